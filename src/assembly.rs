@@ -1,0 +1,414 @@
+//! Assemblies: rigid blocks and the plane joints (interfaces) between them or between a
+//! block and the ground (a support). Analyses take an `Assembly`, never a scene, so any
+//! structure made of blocks and joints can be analysed, not only the arch-and-pier chains a
+//! scene builds.
+//!
+//! Sign convention of a joint: `u = (p2 - p1)/|p2 - p1|` runs along the joint, and the normal
+//! `n = (u_y, -u_x)` points from the block `from` into the block `to`. The force that `from`
+//! exerts on `to` is `N n + V u` with `N >= 0` (compression), and its moment about the joint
+//! midpoint is `M`, positive when the resultant sits toward `p2` (`e = M/N`).
+
+use crate::error::AnalysisError;
+use crate::geometry::{self, polygon_area_centroid, Vec2};
+use crate::scene::{Scene, VoussoirShape};
+
+/// What a block is, for labels and drawings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlockKind {
+    /// An arch voussoir, numbered from the left springing.
+    Voussoir(usize),
+    /// A course of the left pier, numbered from the base.
+    LeftPier(usize),
+    /// A course of the right pier, numbered from the base.
+    RightPier(usize),
+    /// Any other block (assemblies built by hand).
+    Other,
+}
+
+/// A rigid block.
+#[derive(Debug, Clone)]
+pub struct Block {
+    /// Outline (convex polygon, counter-clockwise or clockwise).
+    pub polygon: Vec<Vec2>,
+    /// Area (m^2); for curved voussoirs the exact annular area, not the polygon's.
+    pub area: f64,
+    /// Centroid (m), where the weight and the seismic load act.
+    pub centroid: Vec2,
+    /// Weight W = unit weight * depth * area (N).
+    pub weight: f64,
+    pub kind: BlockKind,
+}
+
+/// What a joint is, for labels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointKind {
+    /// Arch joint j (0 = left springing, n = right springing).
+    Arch(usize),
+    /// Left pier joint, numbered from the base (0 = the base on the ground).
+    LeftPier(usize),
+    /// Right pier joint, numbered from the base.
+    RightPier(usize),
+    Other,
+}
+
+/// A plane joint between two blocks, or a block and the ground (`None`).
+#[derive(Debug, Clone)]
+pub struct Joint {
+    pub p1: Vec2,
+    pub p2: Vec2,
+    /// The block on the `-n` side (`None` = ground).
+    pub from: Option<usize>,
+    /// The block on the `+n` side (`None` = ground).
+    pub to: Option<usize>,
+    /// Coulomb friction coefficient (`inf` = no sliding).
+    pub friction: f64,
+    pub kind: JointKind,
+}
+
+impl Joint {
+    pub fn length(&self) -> f64 {
+        (self.p2 - self.p1).norm()
+    }
+    /// Unit vector from p1 to p2.
+    pub fn tangent(&self) -> Vec2 {
+        (self.p2 - self.p1) / self.length()
+    }
+    /// Unit normal, pointing from `from` into `to`.
+    pub fn normal(&self) -> Vec2 {
+        let u = self.tangent();
+        Vec2::new(u.y, -u.x)
+    }
+    pub fn midpoint(&self) -> Vec2 {
+        0.5 * (self.p1 + self.p2)
+    }
+    /// Whether the joint lies on the ground.
+    pub fn is_support(&self) -> bool {
+        self.from.is_none() || self.to.is_none()
+    }
+}
+
+/// Blocks and joints.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    pub blocks: Vec<Block>,
+    pub joints: Vec<Joint>,
+}
+
+impl Assembly {
+    /// Check that the assembly is well formed: indices in range, joints of positive length,
+    /// each joint's `to` block on the `+n` side, positive weights.
+    pub fn validate(&self) -> Result<(), AnalysisError> {
+        let nb = self.blocks.len();
+        if nb == 0 {
+            return Err(AnalysisError::Assembly("no blocks".into()));
+        }
+        for (i, b) in self.blocks.iter().enumerate() {
+            if !(b.weight.is_finite() && b.weight > 0.0 && b.area > 0.0) {
+                return Err(AnalysisError::Assembly(format!(
+                    "block {i} has weight {} and area {}: both must be positive",
+                    b.weight, b.area
+                )));
+            }
+        }
+        for (j, jt) in self.joints.iter().enumerate() {
+            if !(jt.length() > 0.0) {
+                return Err(AnalysisError::Assembly(format!(
+                    "joint {j} has zero length"
+                )));
+            }
+            if jt.from.is_none() && jt.to.is_none() {
+                return Err(AnalysisError::Assembly(format!(
+                    "joint {j} joins the ground to the ground"
+                )));
+            }
+            for (side, sign) in [(jt.from, -1.0), (jt.to, 1.0)] {
+                if let Some(b) = side {
+                    if b >= nb {
+                        return Err(AnalysisError::Assembly(format!(
+                            "joint {j} refers to block {b}, but there are {nb} blocks"
+                        )));
+                    }
+                    let d = (self.blocks[b].centroid - jt.midpoint()).dot(&jt.normal());
+                    if sign * d <= 0.0 {
+                        return Err(AnalysisError::Assembly(format!(
+                            "joint {j}: block {b} lies on the wrong side of the joint normal"
+                        )));
+                    }
+                }
+            }
+            if jt.friction.is_nan() || jt.friction < 0.0 {
+                return Err(AnalysisError::Assembly(format!(
+                    "joint {j} has friction {}",
+                    jt.friction
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Total weight (N).
+    pub fn total_weight(&self) -> f64 {
+        self.blocks.iter().map(|b| b.weight).sum()
+    }
+
+    /// Largest extent of the assembly's bounding box (m).
+    pub fn size(&self) -> f64 {
+        let mut lo = Vec2::repeat(f64::INFINITY);
+        let mut hi = Vec2::repeat(f64::NEG_INFINITY);
+        for p in self.blocks.iter().flat_map(|b| b.polygon.iter()) {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        (hi - lo).max()
+    }
+
+    /// Whether blocks and joints form a chain between two supports, in order: joint k joins
+    /// block k - 1 (or the ground for k = 0) to block k (or the ground for the last joint).
+    pub fn is_chain(&self) -> bool {
+        let nb = self.blocks.len();
+        self.joints.len() == nb + 1
+            && self.joints.iter().enumerate().all(|(k, j)| {
+                j.from == k.checked_sub(1) && j.to == if k < nb { Some(k) } else { None }
+            })
+    }
+
+    /// The same assembly mirrored about x = 0 (block and joint order reversed, so a chain
+    /// stays a chain from left to right; p1/p2 keep their meaning).
+    pub fn mirrored(&self) -> Assembly {
+        let nb = self.blocks.len();
+        let flip = |b: Option<usize>| b.map(|i| nb - 1 - i);
+        let blocks = self
+            .blocks
+            .iter()
+            .rev()
+            .map(|b| Block {
+                polygon: b
+                    .polygon
+                    .iter()
+                    .rev()
+                    .map(|p| geometry::mirror(*p))
+                    .collect(),
+                centroid: geometry::mirror(b.centroid),
+                ..b.clone()
+            })
+            .collect();
+        let joints = self
+            .joints
+            .iter()
+            .rev()
+            .map(|j| Joint {
+                p1: geometry::mirror(j.p1),
+                p2: geometry::mirror(j.p2),
+                // Mirroring reverses the normal (u_y, -u_x) relative to the blocks.
+                from: flip(j.to),
+                to: flip(j.from),
+                ..j.clone()
+            })
+            .collect();
+        Assembly { blocks, joints }
+    }
+
+    /// Build the blocks and joints of a scene: the left pier courses from the base up, the
+    /// voussoirs from left to right, the right pier courses from the top down (a chain).
+    pub fn from_scene(scene: &Scene) -> Assembly {
+        let a = &scene.arch;
+        let t = a.thickness;
+        let g = match a.shape {
+            crate::scene::Shape::Circular { radius, embrace } => {
+                geometry::circular(radius, t, embrace, a.voussoirs)
+            }
+            crate::scene::Shape::Pointed {
+                radius,
+                eccentricity,
+            } => geometry::pointed(radius, eccentricity, t, a.voussoirs),
+            crate::scene::Shape::Basket {
+                span,
+                rise,
+                side_angle,
+            } => geometry::basket(span, rise, side_angle, t, a.voussoirs),
+        };
+        let gamma = scene.material.unit_weight * scene.material.depth;
+        let mu = scene.material.friction;
+        let curved = a.voussoir_shape == VoussoirShape::Curved;
+        let n = g.voussoirs();
+
+        let mut blocks = Vec::new();
+        let mut joints = Vec::new();
+        let k = scene.piers.as_ref().map_or(0, |p| p.courses);
+        let chain_joint = |p1, p2, idx: usize, last: usize, kind| Joint {
+            p1,
+            p2,
+            from: idx.checked_sub(1),
+            to: (idx < last).then_some(idx),
+            friction: mu,
+            kind,
+        };
+        let total_blocks = n + 2 * k;
+
+        // Left pier, base to top.
+        let (xi, _) = (g.joints[0].0.x, ());
+        let xe = g.joints[0].1.x;
+        if let Some(p) = &scene.piers {
+            let (h, b) = (p.height, p.width);
+            for c in 0..k {
+                let y0 = -h + h * c as f64 / k as f64;
+                let y1 = -h + h * (c + 1) as f64 / k as f64;
+                let poly = vec![
+                    Vec2::new(xi - b, y0),
+                    Vec2::new(xi, y0),
+                    Vec2::new(xi, y1),
+                    Vec2::new(xi - b, y1),
+                ];
+                blocks.push(rect_block(poly, gamma, BlockKind::LeftPier(c)));
+                let idx = joints.len();
+                joints.push(chain_joint(
+                    Vec2::new(xi, y0),
+                    Vec2::new(xi - b, y0),
+                    idx,
+                    total_blocks,
+                    JointKind::LeftPier(c),
+                ));
+            }
+        }
+        // Arch joints and voussoirs.
+        for j in 0..=n {
+            let (mut p1, mut p2) = g.joints[j];
+            if let Some(p) = &scene.piers {
+                // The arch rests on the pier top only where the springing joint lies on it.
+                if j == 0 {
+                    p2 = Vec2::new(xe.max(xi - p.width), 0.0);
+                    p1 = Vec2::new(xi, 0.0);
+                } else if j == n {
+                    p1 = Vec2::new(-xi, 0.0);
+                    p2 = Vec2::new(-(xe.max(xi - p.width)), 0.0);
+                }
+            }
+            let idx = joints.len();
+            joints.push(chain_joint(p1, p2, idx, total_blocks, JointKind::Arch(j)));
+            if j < n {
+                let (area, centroid) = g.voussoir_area_centroid(j, curved);
+                blocks.push(Block {
+                    polygon: g.quad(j).to_vec(),
+                    area,
+                    centroid,
+                    weight: gamma * area,
+                    kind: BlockKind::Voussoir(j),
+                });
+            }
+        }
+        // Right pier, top to base: the mirror image of the left one.
+        if let Some(p) = &scene.piers {
+            let (h, b) = (p.height, p.width);
+            for c in (0..k).rev() {
+                let y0 = -h + h * c as f64 / k as f64;
+                let y1 = -h + h * (c + 1) as f64 / k as f64;
+                let poly = vec![
+                    Vec2::new(-xi, y0),
+                    Vec2::new(-xi + b, y0),
+                    Vec2::new(-xi + b, y1),
+                    Vec2::new(-xi, y1),
+                ];
+                blocks.push(rect_block(poly, gamma, BlockKind::RightPier(c)));
+                let idx = joints.len();
+                joints.push(chain_joint(
+                    Vec2::new(-xi, y0),
+                    Vec2::new(-xi + b, y0),
+                    idx,
+                    total_blocks,
+                    JointKind::RightPier(c),
+                ));
+            }
+        }
+        Assembly { blocks, joints }
+    }
+}
+
+fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
+    let (area, centroid) = polygon_area_centroid(&polygon);
+    Block {
+        polygon,
+        area,
+        centroid,
+        weight: gamma * area,
+        kind,
+    }
+}
+
+/// Which end of a joint a hinge sits at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointEnd {
+    /// The intrados end (arch) or inner face (pier).
+    P1,
+    /// The extrados end (arch) or outer face (pier).
+    P2,
+}
+
+/// A hinge: a joint whose resultant (or rotation centre) sits at one of its ends.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Hinge {
+    pub joint: usize,
+    pub end: JointEnd,
+    pub x: f64,
+    pub y: f64,
+}
+
+impl Hinge {
+    pub fn at(assembly: &Assembly, joint: usize, end: JointEnd) -> Hinge {
+        let j = &assembly.joints[joint];
+        let p = match end {
+            JointEnd::P1 => j.p1,
+            JointEnd::P2 => j.p2,
+        };
+        Hinge {
+            joint,
+            end,
+            x: p.x,
+            y: p.y,
+        }
+    }
+}
+
+/// Internal force of a joint: the force `N n + V u` that `from` exerts on `to`, with moment `M`
+/// about the midpoint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointForce {
+    pub n: f64,
+    pub v: f64,
+    pub m: f64,
+}
+
+/// Largest out-of-balance force (N) of any block under joint forces `forces`, weights and the
+/// seismic load `lambda * sign * W` (moments divided by the structure's size so they are
+/// forces too).
+pub fn equilibrium_residual(
+    assembly: &Assembly,
+    forces: &[JointForce],
+    lambda: f64,
+    sign: f64,
+) -> f64 {
+    let size = assembly.size();
+    let mut res: Vec<[f64; 3]> = assembly
+        .blocks
+        .iter()
+        .map(|b| [sign * lambda * b.weight, -b.weight, 0.0])
+        .collect();
+    for (jt, f) in assembly.joints.iter().zip(forces) {
+        let force = f.n * jt.normal() + f.v * jt.tangent();
+        let mid = jt.midpoint();
+        for (side, s) in [(jt.to, 1.0), (jt.from, -1.0)] {
+            if let Some(b) = side {
+                let g = assembly.blocks[b].centroid;
+                res[b][0] += s * force.x;
+                res[b][1] += s * force.y;
+                // The couple of a resultant offset toward p2 turns clockwise: u x n = -1.
+                res[b][2] += s * (crate::geometry::cross(mid - g, force) - f.m) / size;
+            }
+        }
+    }
+    res.iter()
+        .flat_map(|r| r.iter())
+        .fold(0.0_f64, |acc, x| acc.max(x.abs()))
+}

@@ -1,0 +1,1 @@
+//! Discrete element check: filled by the DEM issue.

@@ -1,0 +1,57 @@
+//! Basket-handle (three-centred) arches: two side arcs of radius r1 subtending the side angle
+//! b each and a crown arc of radius r2 > r1, tangent-continuous.
+
+use super::{radial_joints, Arc, ArchGeometry, Vec2};
+use std::f64::consts::PI;
+
+/// Centreline radii `(r1, r2)` of the side and crown arcs for centreline span `span`, rise
+/// `rise` and side angle `b` (radians), from `(1 - cos b) r1 + cos b r2 = span/2` and
+/// `sin b r1 + (1 - sin b) r2 = rise`.
+pub fn basket_radii(span: f64, rise: f64, b: f64) -> (f64, f64) {
+    let (s, c) = b.sin_cos();
+    let det = (1.0 - c) * (1.0 - s) - c * s;
+    let half = 0.5 * span;
+    let r1 = (half * (1.0 - s) - c * rise) / det;
+    let r2 = ((1.0 - c) * rise - s * half) / det;
+    (r1, r2)
+}
+
+/// Voussoirs on each side arc: `max(1, round(n r1 b / (2 r1 b + r2 (pi - 2b))))`.
+pub fn side_voussoirs(n: usize, r1: f64, r2: f64, b: f64) -> usize {
+    let share = n as f64 * r1 * b / (2.0 * r1 * b + r2 * (PI - 2.0 * b));
+    // f64::round rounds half away from zero, as the spec asks.
+    (share.round() as usize).max(1)
+}
+
+/// Basket-handle arch; the caller has checked `0 < r1 < r2`, `t < 2 r1` and that the crown
+/// arc gets at least one voussoir.
+pub fn basket(span: f64, rise: f64, b: f64, t: f64, n: usize) -> ArchGeometry {
+    let (r1, r2) = basket_radii(span, rise, b);
+    let ns = side_voussoirs(n, r1, r2, b);
+    let nc = n - 2 * ns;
+    let left = Arc {
+        centre: Vec2::new(-(0.5 * span - r1), 0.0),
+        radius: r1,
+    };
+    let crown = Arc {
+        centre: Vec2::new(0.0, -(r2 - r1) * b.sin()),
+        radius: r2,
+    };
+    let right = Arc {
+        centre: Vec2::new(0.5 * span - r1, 0.0),
+        radius: r1,
+    };
+    let mut joints = radial_joints(left, t, PI, PI - b, ns);
+    joints.extend(radial_joints(crown, t, PI - b, b, nc).into_iter().skip(1));
+    joints.extend(radial_joints(right, t, b, 0.0, ns).into_iter().skip(1));
+    let mut arcs = vec![left; ns];
+    arcs.extend(std::iter::repeat_n(crown, nc));
+    arcs.extend(std::iter::repeat_n(right, ns));
+    let mut g = ArchGeometry {
+        joints,
+        arcs,
+        thickness: t,
+    };
+    g.symmetrise();
+    g
+}

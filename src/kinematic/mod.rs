@@ -1,0 +1,1 @@
+//! Kinematic (upper-bound) limit analysis: filled by the kinematic issue.

@@ -1,0 +1,272 @@
+//! Static (lower-bound) limit analysis: the largest load multiplier lambda for which the
+//! blocks can be in equilibrium with no-tension joints whose resultants stay inside them and
+//! whose shear obeys Coulomb's law — the safe theorem of limit analysis for masonry
+//! (Heyman, *The Stone Skeleton*, 1995; Livesley, 1978; Gilbert, Casapulla & Ahmed, 2006).
+//! The program is linear (a conic program over the zero and nonnegative cones) and is solved
+//! with Clarabel. For associative (non-sliding or normality) joints its optimum is the
+//! collapse multiplier; the duals of the equilibrium rows are the virtual velocities of the
+//! blocks, i.e. the collapse mechanism.
+
+mod problem;
+mod settings;
+
+pub use problem::{column, StaticProblem};
+pub use settings::{Direction, StaticSettings};
+
+use crate::assembly::{equilibrium_residual, Assembly, Hinge, JointEnd, JointForce};
+use crate::error::AnalysisError;
+use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
+use std::time::Instant;
+
+/// Outcome of the static analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// A finite collapse multiplier was found.
+    Collapse,
+    /// Equilibrium is possible for every lambda (the program is unbounded).
+    NoCollapse,
+    /// No equilibrium even at lambda = 0: the structure cannot carry its own weight.
+    CannotStand,
+}
+
+impl Status {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Collapse => "collapse",
+            Status::NoCollapse => "no_collapse",
+            Status::CannotStand => "cannot_stand",
+        }
+    }
+}
+
+/// Size of the conic program that was solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct ModelSize {
+    pub variables: usize,
+    pub constraints: usize,
+    pub equality_rows: usize,
+    pub inequality_rows: usize,
+    pub friction_rows: usize,
+}
+
+/// Result of the static analysis.
+#[derive(Debug, Clone)]
+pub struct StaticResult {
+    pub status: Status,
+    /// The collapse multiplier (status `Collapse` only).
+    pub lambda: Option<f64>,
+    /// Joint forces at collapse (status `Collapse` only), in joint order.
+    pub forces: Option<Vec<JointForce>>,
+    /// Joints whose resultant sits at an end.
+    pub hinges: Vec<Hinge>,
+    /// Joints where `|V| = mu N`.
+    pub sliding: Vec<usize>,
+    /// Joints that carry no force at collapse (opened completely).
+    pub open: Vec<usize>,
+    /// Virtual velocities `[vx, vy, omega]` of the blocks (centroid velocity and rotation
+    /// rate, rad per unit time), scaled so the fastest centroid moves at 1. Empty when not
+    /// collapsing.
+    pub mechanism: Vec<[f64; 3]>,
+    /// Largest out-of-balance force of any block (N), 0 when there are no forces.
+    pub equilibrium_residual: f64,
+    pub direction: Direction,
+    /// Wall time of building and solving the program (s).
+    pub solve_time_s: f64,
+    pub iterations: u32,
+    /// Clarabel's status word, for the record.
+    pub solver_status: String,
+    pub model: ModelSize,
+}
+
+/// Beyond this multiplier (a ground tilt of 89.99 deg) a structure is said not to collapse.
+pub const LAMBDA_CAP: f64 = 1e4;
+
+/// Run the static analysis of `assembly`.
+pub fn analyse(
+    assembly: &Assembly,
+    settings: &StaticSettings,
+) -> Result<StaticResult, AnalysisError> {
+    let start = Instant::now();
+    assembly.validate()?;
+    let sign = settings.direction.sign();
+    let problem = StaticProblem::new(assembly, sign, None);
+    let mut sol = run(&problem, settings)?;
+    let mut model = problem_size(&problem);
+    let mut lambda_capped = false;
+    if matches!(
+        sol.status,
+        SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
+    ) {
+        // Unbounded above, or both infeasible: a capped program tells which.
+        let capped = StaticProblem::new(assembly, sign, Some(LAMBDA_CAP));
+        sol = run(&capped, settings)?;
+        model = problem_size(&capped);
+        lambda_capped = true;
+    }
+    let mut result = StaticResult {
+        status: Status::CannotStand,
+        lambda: None,
+        forces: None,
+        hinges: Vec::new(),
+        sliding: Vec::new(),
+        open: Vec::new(),
+        mechanism: Vec::new(),
+        equilibrium_residual: 0.0,
+        direction: settings.direction,
+        solve_time_s: 0.0,
+        iterations: sol.iterations,
+        solver_status: format!("{:?}", sol.status),
+        model,
+    };
+    match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            let lambda = sol.x[0];
+            let forces = read_forces(assembly, &problem, &sol.x);
+            let residual = equilibrium_residual(assembly, &forces, lambda, sign);
+            if sol.status == SolverStatus::AlmostSolved && residual > 1e-6 * problem.force_scale {
+                return Err(AnalysisError::SolverFailed {
+                    status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
+                    iterations: sol.iterations,
+                });
+            }
+            if lambda < 0.0 {
+                result.status = Status::CannotStand;
+            } else if lambda_capped && lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
+                result.status = Status::NoCollapse;
+            } else {
+                result.status = Status::Collapse;
+                result.lambda = Some(lambda);
+                result.equilibrium_residual = residual;
+                classify_joints(assembly, &forces, settings.hinge_tolerance, &mut result);
+                result.mechanism = read_mechanism(assembly, &problem, &sol.z);
+                result.forces = Some(forces);
+            }
+        }
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            result.status = Status::CannotStand;
+        }
+        other => {
+            return Err(AnalysisError::SolverFailed {
+                status: format!("{other:?}"),
+                iterations: sol.iterations,
+            })
+        }
+    }
+    result.solve_time_s = start.elapsed().as_secs_f64();
+    Ok(result)
+}
+
+fn problem_size(p: &StaticProblem) -> ModelSize {
+    ModelSize {
+        variables: p.variables(),
+        constraints: p.equality_rows + p.inequality_rows,
+        equality_rows: p.equality_rows,
+        inequality_rows: p.inequality_rows,
+        friction_rows: 2 * p.friction_joints.len(),
+    }
+}
+
+struct RawSolution {
+    status: SolverStatus,
+    x: Vec<f64>,
+    z: Vec<f64>,
+    iterations: u32,
+}
+
+fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, AnalysisError> {
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(s.tol_gap)
+        .tol_gap_rel(s.tol_gap)
+        .tol_feas(s.tol_feas)
+        .max_iter(s.max_iter)
+        .build()
+        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+    let mut solver = DefaultSolver::new(
+        &problem.p,
+        &problem.q,
+        &problem.a,
+        &problem.b,
+        &problem.cones,
+        settings,
+    )
+    .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+    solver.solve();
+    let sol = &solver.solution;
+    Ok(RawSolution {
+        status: sol.status,
+        x: sol.x.clone(),
+        z: sol.z.clone(),
+        iterations: sol.iterations,
+    })
+}
+
+fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointForce> {
+    assembly
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(j, jt)| {
+            let c1 = x[column(j, 0)] * p.force_scale;
+            let c2 = x[column(j, 1)] * p.force_scale;
+            let v = x[column(j, 2)] * p.force_scale;
+            JointForce {
+                n: c1 + c2,
+                v,
+                m: 0.5 * (c2 - c1) * jt.length(),
+            }
+        })
+        .collect()
+}
+
+fn classify_joints(
+    assembly: &Assembly,
+    forces: &[JointForce],
+    tol: f64,
+    result: &mut StaticResult,
+) {
+    let nmax = forces.iter().fold(0.0_f64, |a, f| a.max(f.n));
+    for (j, (jt, f)) in assembly.joints.iter().zip(forces).enumerate() {
+        if f.n <= tol * nmax {
+            result.open.push(j);
+            continue;
+        }
+        let half = 0.5 * jt.length();
+        let e = f.m / f.n;
+        if e >= half * (1.0 - 2.0 * tol) {
+            result.hinges.push(Hinge::at(assembly, j, JointEnd::P2));
+        } else if e <= -half * (1.0 - 2.0 * tol) {
+            result.hinges.push(Hinge::at(assembly, j, JointEnd::P1));
+        }
+        if jt.friction.is_finite() && f.v.abs() >= (1.0 - tol) * jt.friction * f.n {
+            result.sliding.push(j);
+        }
+    }
+}
+
+fn read_mechanism(assembly: &Assembly, p: &StaticProblem, z: &[f64]) -> Vec<[f64; 3]> {
+    // Moment rows are divided by the length scale, so their duals are rotations times it.
+    let mut v: Vec<[f64; 3]> = (0..assembly.blocks.len())
+        .map(|i| [z[3 * i], z[3 * i + 1], z[3 * i + 2] / p.length_scale])
+        .collect();
+    let vmax = v
+        .iter()
+        .fold(0.0_f64, |a, b| a.max((b[0] * b[0] + b[1] * b[1]).sqrt()));
+    if vmax > 0.0 {
+        for b in &mut v {
+            for c in b.iter_mut() {
+                *c /= vmax;
+            }
+        }
+    }
+    v
+}
+
+impl StaticResult {
+    /// Eccentricity e = M/N of each joint (None where N = 0 or there are no forces).
+    pub fn eccentricity(&self, joint: usize) -> Option<f64> {
+        let f = self.forces.as_ref()?.get(joint)?;
+        (f.n > 0.0).then(|| f.m / f.n)
+    }
+}

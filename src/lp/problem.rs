@@ -1,0 +1,137 @@
+//! The static program in Clarabel's standard form
+//! `min q'x  s.t.  A x + s = b,  s in K`, built from an assembly.
+//!
+//! Variables (dimensionless): `x = [lambda, c1_0, c2_0, V_0, c1_1, ...]`, where `c1, c2 >= 0`
+//! are the compressive forces at the ends p1, p2 of each joint and V its shear, divided by the
+//! total weight. Lengths are divided by the structure's size. Rows:
+//! 1. zero cone, 3 per block: equilibrium of forces and of moments about the block centroid,
+//!    `sum_j +-(c1 n + c2 n + V u) + lambda d W e_x - W e_y = 0`;
+//! 2. nonnegative cone: `c1, c2 >= 0` (no tension, resultant inside the joint), then for joints
+//!    with finite friction `mu (c1 + c2) - V >= 0` and `mu (c1 + c2) + V >= 0` (the planar
+//!    Coulomb cone is a pair of half-planes, so no second-order cone is needed).
+//!
+//! The objective `q = -e_lambda` maximises lambda (Clarabel minimises).
+
+use crate::assembly::Assembly;
+use crate::geometry::{cross, Vec2};
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::SupportedConeT;
+
+/// Problem data, with the scales needed to read the solution back in SI units.
+pub struct StaticProblem {
+    pub p: CscMatrix<f64>,
+    pub q: Vec<f64>,
+    pub a: CscMatrix<f64>,
+    pub b: Vec<f64>,
+    pub cones: Vec<SupportedConeT<f64>>,
+    /// Length scale (m).
+    pub length_scale: f64,
+    /// Force scale (N): the total weight.
+    pub force_scale: f64,
+    /// Joints with friction rows, in row order.
+    pub friction_joints: Vec<usize>,
+    /// Number of equality rows (3 per block).
+    pub equality_rows: usize,
+    /// Number of inequality rows.
+    pub inequality_rows: usize,
+}
+
+/// Column of a joint unknown: 0 = c1, 1 = c2, 2 = V.
+pub fn column(joint: usize, which: usize) -> usize {
+    1 + 3 * joint + which
+}
+
+impl StaticProblem {
+    /// Build the program for `assembly` with the load in direction `sign` (+1 right, -1 left).
+    /// `lambda_cap`, when given, adds the row `lambda <= cap`.
+    pub fn new(assembly: &Assembly, sign: f64, lambda_cap: Option<f64>) -> StaticProblem {
+        let nb = assembly.blocks.len();
+        let nj = assembly.joints.len();
+        let ls = assembly.size();
+        let fs = assembly.total_weight();
+        let nvar = 1 + 3 * nj;
+
+        let mut rows = Vec::new();
+        let mut cols = Vec::new();
+        let mut vals = Vec::new();
+        let mut push = |r: usize, c: usize, v: f64| {
+            rows.push(r);
+            cols.push(c);
+            vals.push(v);
+        };
+
+        let mut b = vec![0.0; 3 * nb];
+        for (i, blk) in assembly.blocks.iter().enumerate() {
+            let w = blk.weight / fs;
+            push(3 * i, 0, sign * w);
+            b[3 * i + 1] = w;
+        }
+        for (j, jt) in assembly.joints.iter().enumerate() {
+            let n = jt.normal();
+            let u = jt.tangent();
+            let m = jt.midpoint();
+            for (side, s) in [(jt.to, 1.0), (jt.from, -1.0)] {
+                let Some(blk) = side else { continue };
+                let g = assembly.blocks[blk].centroid;
+                let r = |p: Vec2| (p - g) / ls;
+                let entries = [(0, jt.p1, n), (1, jt.p2, n), (2, m, u)];
+                for (which, point, dir) in entries {
+                    let c = column(j, which);
+                    push(3 * blk, c, s * dir.x);
+                    push(3 * blk + 1, c, s * dir.y);
+                    push(3 * blk + 2, c, s * cross(r(point), dir));
+                }
+            }
+        }
+        let equality_rows = 3 * nb;
+        let mut row = equality_rows;
+        for j in 0..nj {
+            push(row, column(j, 0), -1.0);
+            push(row + 1, column(j, 1), -1.0);
+            row += 2;
+        }
+        let mut friction_joints = Vec::new();
+        for (j, jt) in assembly.joints.iter().enumerate() {
+            if jt.friction.is_finite() {
+                for sv in [1.0, -1.0] {
+                    push(row, column(j, 0), -jt.friction);
+                    push(row, column(j, 1), -jt.friction);
+                    push(row, column(j, 2), sv);
+                    row += 1;
+                }
+                friction_joints.push(j);
+            }
+        }
+        if lambda_cap.is_some() {
+            push(row, 0, 1.0);
+            row += 1;
+        }
+        let inequality_rows = row - equality_rows;
+        b.resize(row, 0.0);
+        if let Some(cap) = lambda_cap {
+            b[row - 1] = cap;
+        }
+        let a = CscMatrix::new_from_triplets(row, nvar, rows, cols, vals);
+        let mut q = vec![0.0; nvar];
+        q[0] = -1.0;
+        StaticProblem {
+            p: CscMatrix::zeros((nvar, nvar)),
+            q,
+            a,
+            b,
+            cones: vec![
+                SupportedConeT::ZeroConeT(equality_rows),
+                SupportedConeT::NonnegativeConeT(inequality_rows),
+            ],
+            length_scale: ls,
+            force_scale: fs,
+            friction_joints,
+            equality_rows,
+            inequality_rows,
+        }
+    }
+
+    pub fn variables(&self) -> usize {
+        self.q.len()
+    }
+}

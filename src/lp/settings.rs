@@ -1,0 +1,69 @@
+//! Settings of the static analysis, gathered in one struct with documented defaults.
+
+/// Direction of the horizontal acceleration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    /// Toward +x (left to right), the spec's positive lambda.
+    #[default]
+    Right,
+    /// Toward -x.
+    Left,
+}
+
+impl Direction {
+    /// +1 for right, -1 for left.
+    pub fn sign(self) -> f64 {
+        match self {
+            Direction::Right => 1.0,
+            Direction::Left => -1.0,
+        }
+    }
+}
+
+/// Settings of the static (lower-bound) conic program.
+#[derive(Debug, Clone)]
+pub struct StaticSettings {
+    /// Direction of the seismic load. Default: right (+x).
+    pub direction: Direction,
+    /// Clarabel's absolute and relative duality-gap tolerance. Default 1e-10: the program is
+    /// made dimensionless (lengths by the structure's size, forces by its weight), so this is
+    /// a relative accuracy on lambda.
+    pub tol_gap: f64,
+    /// Clarabel's primal/dual feasibility tolerance (dimensionless). Default 1e-10, which
+    /// keeps the equilibrium residual near 1e-10 of the total weight.
+    pub tol_feas: f64,
+    /// Clarabel's iteration limit. Default 200.
+    pub max_iter: u32,
+    /// A joint is a hinge when its resultant lies within `hinge_tolerance * L` of an end
+    /// (L = joint length), and slides when `|V| >= (1 - hinge_tolerance) mu N`. Default 1e-6.
+    pub hinge_tolerance: f64,
+}
+
+impl Default for StaticSettings {
+    fn default() -> Self {
+        StaticSettings {
+            direction: Direction::Right,
+            tol_gap: 1e-10,
+            tol_feas: 1e-10,
+            max_iter: 200,
+            hinge_tolerance: 1e-6,
+        }
+    }
+}
+
+impl StaticSettings {
+    pub fn direction(mut self, d: Direction) -> Self {
+        self.direction = d;
+        self
+    }
+    pub fn tolerance(mut self, tol: f64) -> Self {
+        self.tol_gap = tol;
+        self.tol_feas = tol;
+        self
+    }
+    pub fn hinge_tolerance(mut self, tol: f64) -> Self {
+        self.hinge_tolerance = tol;
+        self
+    }
+}

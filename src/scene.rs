@@ -1,0 +1,637 @@
+//! Scenes: what the user describes (shape, thickness, voussoirs, piers, material), read from
+//! the TOML format of `shared/spec/geometry.md`, with `--set key=value` overrides and
+//! validation that names the key, the value and what is allowed.
+//!
+//! A `Scene` keeps the TOML table it was read from, so overrides (from the command line, a
+//! sweep or the minimum-thickness search) go through exactly the same validation.
+
+use crate::error::SceneError;
+use crate::geometry::{basket_radii, side_voussoirs};
+use std::collections::BTreeSet;
+use std::path::Path;
+use toml::{Table, Value};
+
+/// Largest number of voussoirs (and of pier courses) a scene may ask for: beyond it the
+/// dense outputs and the discrete searches stop being useful, not just slow.
+pub const MAX_VOUSSOIRS: usize = 20_000;
+
+/// The shape of the arch and its shape-specific dimensions (metres, radians).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// Circular arch: centreline radius and full embrace angle (pi = semicircular).
+    Circular { radius: f64, embrace: f64 },
+    /// Pointed arch: centreline radius and eccentricity of the two centres.
+    Pointed { radius: f64, eccentricity: f64 },
+    /// Three-centred basket-handle arch: centreline span, rise, and angle of each side arc.
+    Basket {
+        span: f64,
+        rise: f64,
+        side_angle: f64,
+    },
+}
+
+impl Shape {
+    /// The scene-file name of the shape.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Circular { .. } => "circular",
+            Shape::Pointed { .. } => "pointed",
+            Shape::Basket { .. } => "basket",
+        }
+    }
+}
+
+/// How a voussoir's weight and centroid are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VoussoirShape {
+    /// The quadrilateral with straight chords (default; what the DEM simulates).
+    Polygon,
+    /// The exact annular piece between circular intrados and extrados.
+    Curved,
+}
+
+/// The arch ring.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArchSpec {
+    pub shape: Shape,
+    /// Radial thickness t (m).
+    pub thickness: f64,
+    /// Number of voussoirs n.
+    pub voussoirs: usize,
+    pub voussoir_shape: VoussoirShape,
+}
+
+/// Two rectangular piers under the springings (a portal).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piers {
+    /// Height h (m), from the pier base to the springing line.
+    pub height: f64,
+    /// Width b (m).
+    pub width: f64,
+    /// Number of equal courses k.
+    pub courses: usize,
+}
+
+/// Material and out-of-plane depth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Unit weight (N/m^3).
+    pub unit_weight: f64,
+    /// Out-of-plane depth (m).
+    pub depth: f64,
+    /// Coulomb friction coefficient; `f64::INFINITY` means joints cannot slide.
+    pub friction: f64,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub arch: ArchSpec,
+    pub piers: Option<Piers>,
+    pub material: Material,
+    /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem`; empty when
+    /// the scene has none.
+    pub dem: Table,
+    /// Where the scene came from (file path or "<string>"), for messages.
+    pub origin: String,
+    /// The TOML the scene was built from, with overrides applied.
+    table: Table,
+}
+
+impl Scene {
+    /// Read and validate a scene file.
+    pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Scene::from_toml_str(&text, &path.display().to_string())
+    }
+
+    /// Parse and validate a scene from TOML text; `origin` names it in errors.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let table: Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| SceneError::Syntax {
+                origin: origin.to_string(),
+                message: e.to_string().trim().replace('\n', " "),
+            })?;
+        Scene::from_table(table, origin)
+    }
+
+    /// Validate a scene given as a TOML table.
+    pub fn from_table(table: Table, origin: &str) -> Result<Scene, SceneError> {
+        parse(table, origin)
+    }
+
+    /// The TOML table behind this scene (overrides included).
+    pub fn table(&self) -> &Table {
+        &self.table
+    }
+
+    /// A copy of the scene with `key` (dotted, e.g. `arch.thickness`) set to `value`,
+    /// validated like a scene file.
+    pub fn with_value(&self, key: &str, value: Value) -> Result<Scene, SceneError> {
+        let mut table = self.table.clone();
+        set_dotted(&mut table, key, value).map_err(|message| SceneError::BadOverride {
+            text: key.to_string(),
+            message,
+        })?;
+        parse(table, &self.origin)
+    }
+
+    /// A copy of the scene with the override `key=value` applied (the value is read as a TOML
+    /// value, or as a bare string such as `shape=pointed`).
+    pub fn with_override(&self, assignment: &str) -> Result<Scene, SceneError> {
+        let (key, value) = parse_assignment(assignment)?;
+        let mut table = self.table.clone();
+        set_dotted(&mut table, &key, value).map_err(|message| SceneError::BadOverride {
+            text: assignment.to_string(),
+            message,
+        })?;
+        parse(table, &format!("{} (with --set {assignment})", self.origin))
+    }
+
+    /// A copy of the scene with the arch thickness set to `t`.
+    pub fn with_thickness(&self, t: f64) -> Result<Scene, SceneError> {
+        self.with_value("arch.thickness", Value::Float(t))
+    }
+
+    /// The largest arch thickness the shape admits (exclusive): 2R for circular arches,
+    /// 2(R - e) for pointed ones, 2 r1 for basket arches.
+    pub fn max_thickness(&self) -> f64 {
+        match self.arch.shape {
+            Shape::Circular { radius, .. } => 2.0 * radius,
+            Shape::Pointed {
+                radius,
+                eccentricity,
+            } => 2.0 * (radius - eccentricity),
+            Shape::Basket {
+                span,
+                rise,
+                side_angle,
+            } => 2.0 * basket_radii(span, rise, side_angle).0,
+        }
+    }
+
+    /// A characteristic length of the structure (its overall size), used to make tolerances
+    /// and the conic program dimensionless.
+    pub fn size(&self) -> f64 {
+        let arch = match self.arch.shape {
+            Shape::Circular { radius, .. } => radius,
+            Shape::Pointed { radius, .. } => radius,
+            Shape::Basket { span, .. } => 0.5 * span,
+        };
+        arch.max(self.piers.as_ref().map_or(0.0, |p| p.height))
+    }
+}
+
+/// Split `key=value` and read the value as TOML (falling back to a bare string).
+pub fn parse_assignment(text: &str) -> Result<(String, Value), SceneError> {
+    let (key, raw) = text
+        .split_once('=')
+        .ok_or_else(|| SceneError::BadOverride {
+            text: text.to_string(),
+            message: "expected KEY=VALUE, e.g. arch.thickness=0.2".to_string(),
+        })?;
+    let key = key.trim();
+    let raw = raw.trim();
+    if key.is_empty() || raw.is_empty() {
+        return Err(SceneError::BadOverride {
+            text: text.to_string(),
+            message: "expected KEY=VALUE with a non-empty key and value".to_string(),
+        });
+    }
+    let value = format!("v = {raw}")
+        .parse::<Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| Value::String(raw.to_string()));
+    Ok((key.to_string(), value))
+}
+
+fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.len() != 2 || parts.iter().any(|p| p.is_empty()) {
+        return Err(format!(
+            "key `{key}` must be SECTION.KEY, e.g. arch.thickness or piers.height"
+        ));
+    }
+    if !SECTIONS.contains(&parts[0]) {
+        return Err(format!(
+            "unknown section `{}` (allowed: {})",
+            parts[0],
+            SECTIONS.join(", ")
+        ));
+    }
+    let section = table
+        .entry(parts[0].to_string())
+        .or_insert_with(|| Value::Table(Table::new()));
+    match section {
+        Value::Table(t) => {
+            t.insert(parts[1].to_string(), value);
+            Ok(())
+        }
+        _ => Err(format!("`{}` is not a table in the scene", parts[0])),
+    }
+}
+
+const SECTIONS: &[&str] = &["arch", "piers", "material", "dem"];
+
+/// Reads one section, remembering which keys were used so that the rest are reported as
+/// unknown.
+struct Section<'a> {
+    name: &'static str,
+    table: &'a Table,
+    origin: &'a str,
+    used: BTreeSet<&'static str>,
+}
+
+impl<'a> Section<'a> {
+    fn new(name: &'static str, table: &'a Table, origin: &'a str) -> Self {
+        Section {
+            name,
+            table,
+            origin,
+            used: BTreeSet::new(),
+        }
+    }
+
+    fn key(&self, key: &str) -> String {
+        format!("{}.{}", self.name, key)
+    }
+
+    fn wrong_type(&self, key: &str, v: &Value, expected: &str) -> SceneError {
+        SceneError::WrongType {
+            origin: self.origin.to_string(),
+            key: self.key(key),
+            value: v.to_string(),
+            expected: expected.to_string(),
+        }
+    }
+
+    fn out_of_range(&self, key: &str, value: impl ToString, allowed: &str) -> SceneError {
+        SceneError::OutOfRange {
+            origin: self.origin.to_string(),
+            key: self.key(key),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    fn missing(&self, key: &str, what: &str) -> SceneError {
+        SceneError::MissingKey {
+            origin: self.origin.to_string(),
+            key: self.key(key),
+            what: what.to_string(),
+        }
+    }
+
+    fn opt_f64(&mut self, key: &'static str) -> Result<Option<f64>, SceneError> {
+        self.used.insert(key);
+        match self.table.get(key) {
+            None => Ok(None),
+            Some(Value::Float(x)) => Ok(Some(*x)),
+            Some(Value::Integer(i)) => Ok(Some(*i as f64)),
+            Some(Value::String(s)) if s.trim().eq_ignore_ascii_case("inf") => {
+                Ok(Some(f64::INFINITY))
+            }
+            Some(v) => Err(self.wrong_type(key, v, "a number")),
+        }
+    }
+
+    /// A finite number `> 0`, required (`what` describes it) or defaulted.
+    fn positive(
+        &mut self,
+        key: &'static str,
+        default: Option<f64>,
+        what: &str,
+    ) -> Result<f64, SceneError> {
+        let v = match (self.opt_f64(key)?, default) {
+            (Some(v), _) => v,
+            (None, Some(d)) => d,
+            (None, None) => return Err(self.missing(key, what)),
+        };
+        if !(v.is_finite() && v > 0.0) {
+            return Err(self.out_of_range(key, v, "must be a finite number > 0"));
+        }
+        Ok(v)
+    }
+
+    fn count(
+        &mut self,
+        key: &'static str,
+        default: Option<usize>,
+        min: usize,
+        what: &str,
+    ) -> Result<usize, SceneError> {
+        self.used.insert(key);
+        let v = match (self.table.get(key), default) {
+            (Some(Value::Integer(i)), _) => *i,
+            (Some(v @ Value::Float(x)), _) => {
+                if x.fract() == 0.0 && x.is_finite() {
+                    *x as i64
+                } else {
+                    return Err(self.wrong_type(key, v, "a whole number"));
+                }
+            }
+            (Some(v), _) => return Err(self.wrong_type(key, v, "a whole number")),
+            (None, Some(d)) => return Ok(d),
+            (None, None) => return Err(self.missing(key, what)),
+        };
+        if v < min as i64 || v > MAX_VOUSSOIRS as i64 {
+            return Err(self.out_of_range(
+                key,
+                v,
+                &format!("must be a whole number from {min} to {MAX_VOUSSOIRS}"),
+            ));
+        }
+        Ok(v as usize)
+    }
+
+    fn string(&mut self, key: &'static str, default: Option<&str>) -> Result<String, SceneError> {
+        self.used.insert(key);
+        match (self.table.get(key), default) {
+            (Some(Value::String(s)), _) => Ok(s.clone()),
+            (Some(v), _) => Err(self.wrong_type(key, v, "a string")),
+            (None, Some(d)) => Ok(d.to_string()),
+            (None, None) => Err(self.missing(key, "a string")),
+        }
+    }
+
+    /// Report the first key that was not read.
+    fn finish(&self, context: &str) -> Result<(), SceneError> {
+        for key in self.table.keys() {
+            if !self.used.contains(key.as_str()) {
+                let allowed: Vec<&str> = self.used.iter().copied().collect();
+                return Err(SceneError::UnknownKey {
+                    origin: self.origin.to_string(),
+                    key: self.key(key),
+                    hint: format!(" {context}(allowed: {})", allowed.join(", ")),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+fn section<'a>(
+    table: &'a Table,
+    name: &str,
+    origin: &str,
+) -> Result<Option<&'a Table>, SceneError> {
+    match table.get(name) {
+        None => Ok(None),
+        Some(Value::Table(t)) => Ok(Some(t)),
+        Some(v) => Err(SceneError::WrongType {
+            origin: origin.to_string(),
+            key: name.to_string(),
+            value: v.to_string(),
+            expected: format!("a table [{name}]"),
+        }),
+    }
+}
+
+fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
+    for key in table.keys() {
+        if !SECTIONS.contains(&key.as_str()) {
+            return Err(SceneError::UnknownKey {
+                origin: origin.to_string(),
+                key: key.clone(),
+                hint: format!(" (allowed sections: {})", SECTIONS.join(", ")),
+            });
+        }
+    }
+    let empty = Table::new();
+    let arch_table = section(&table, "arch", origin)?.ok_or_else(|| SceneError::MissingKey {
+        origin: origin.to_string(),
+        key: "arch".to_string(),
+        what: "the [arch] table".to_string(),
+    })?;
+    let arch = parse_arch(Section::new("arch", arch_table, origin))?;
+    let piers = match section(&table, "piers", origin)? {
+        Some(t) => Some(parse_piers(Section::new("piers", t, origin), &arch)?),
+        None => None,
+    };
+    let material = parse_material(Section::new(
+        "material",
+        section(&table, "material", origin)?.unwrap_or(&empty),
+        origin,
+    ))?;
+    let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
+    Ok(Scene {
+        arch,
+        piers,
+        material,
+        dem,
+        origin: origin.to_string(),
+        table,
+    })
+}
+
+fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
+    let shape_name = s.string("shape", None)?;
+    let thickness = s.positive("thickness", None, "arch thickness t in metres")?;
+    let vs = s.string("voussoir_shape", Some("polygon"))?;
+    let voussoir_shape = match vs.as_str() {
+        "polygon" => VoussoirShape::Polygon,
+        "curved" => VoussoirShape::Curved,
+        other => {
+            return Err(s.out_of_range(
+                "voussoir_shape",
+                format!("\"{other}\""),
+                "must be \"polygon\" or \"curved\"",
+            ))
+        }
+    };
+    let (shape, voussoirs) = match shape_name.as_str() {
+        "circular" => {
+            let radius = s.positive("radius", None, "centreline radius R in metres")?;
+            let embrace_deg = s.positive("embrace_deg", Some(180.0), "")?;
+            if embrace_deg >= 360.0 {
+                return Err(s.out_of_range(
+                    "embrace_deg",
+                    embrace_deg,
+                    "must be > 0 and < 360 (degrees)",
+                ));
+            }
+            if thickness >= 2.0 * radius {
+                return Err(s.out_of_range(
+                    "thickness",
+                    thickness,
+                    &format!("must be < 2 * radius = {}", 2.0 * radius),
+                ));
+            }
+            let n = s.count("voussoirs", None, 1, "number of voussoirs n")?;
+            let shape = Shape::Circular {
+                radius,
+                embrace: embrace_deg.to_radians(),
+            };
+            (shape, n)
+        }
+        "pointed" => {
+            let radius = s.positive("radius", None, "centreline radius R in metres")?;
+            let e = s.opt_f64("eccentricity")?.ok_or_else(|| {
+                s.missing(
+                    "eccentricity",
+                    "eccentricity e of the two centres in metres",
+                )
+            })?;
+            if !(e.is_finite() && e >= 0.0 && e < radius - 0.5 * thickness) {
+                return Err(s.out_of_range(
+                    "eccentricity",
+                    e,
+                    &format!(
+                        "must satisfy 0 <= e < R - t/2 = {}",
+                        radius - 0.5 * thickness
+                    ),
+                ));
+            }
+            let n = s.count("voussoirs", None, 2, "number of voussoirs n (even)")?;
+            if n % 2 != 0 {
+                return Err(s.out_of_range("voussoirs", n, "must be even for a pointed arch"));
+            }
+            (
+                Shape::Pointed {
+                    radius,
+                    eccentricity: e,
+                },
+                n,
+            )
+        }
+        "basket" => {
+            let span = s.positive("span", None, "centreline span L in metres")?;
+            let rise = s.positive("rise", None, "centreline rise f in metres")?;
+            let side_deg = s.positive("side_angle_deg", Some(60.0), "")?;
+            if side_deg >= 90.0 {
+                return Err(s.out_of_range(
+                    "side_angle_deg",
+                    side_deg,
+                    "must be > 0 and < 90 (degrees)",
+                ));
+            }
+            let b = side_deg.to_radians();
+            let (r1, r2) = basket_radii(span, rise, b);
+            if !(r1 > 0.0 && r1 < r2) {
+                return Err(s.out_of_range(
+                    "rise",
+                    rise,
+                    &format!("must be < span/2 = {} (and give side radius 0 < r1 < r2; here r1 = {r1:.6}, r2 = {r2:.6})", 0.5 * span),
+                ));
+            }
+            if thickness >= 2.0 * r1 {
+                return Err(s.out_of_range(
+                    "thickness",
+                    thickness,
+                    &format!(
+                        "must be < 2 * r1 = {} (twice the side-arc radius)",
+                        2.0 * r1
+                    ),
+                ));
+            }
+            let n = s.count("voussoirs", None, 3, "number of voussoirs n")?;
+            let ns = side_voussoirs(n, r1, r2, b);
+            if n < 2 * ns + 1 {
+                return Err(s.out_of_range(
+                    "voussoirs",
+                    n,
+                    &format!(
+                        "too few: each side arc takes {ns} and the crown arc needs at least 1"
+                    ),
+                ));
+            }
+            (
+                Shape::Basket {
+                    span,
+                    rise,
+                    side_angle: b,
+                },
+                n,
+            )
+        }
+        other => {
+            return Err(s.out_of_range(
+                "shape",
+                format!("\"{other}\""),
+                "must be \"circular\", \"pointed\" or \"basket\"",
+            ))
+        }
+    };
+    s.finish(&format!("for shape = \"{shape_name}\" "))?;
+    Ok(ArchSpec {
+        shape,
+        thickness,
+        voussoirs,
+        voussoir_shape,
+    })
+}
+
+fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
+    let height = s.positive("height", None, "pier height h in metres")?;
+    let width = s.positive("width", None, "pier width b in metres")?;
+    let courses = s.count("courses", Some(1), 1, "")?;
+    s.finish("")?;
+    if let Shape::Circular { embrace, .. } = arch.shape {
+        if (embrace - std::f64::consts::PI).abs() > 1e-12 {
+            return Err(SceneError::OutOfRange {
+                origin: s.origin.to_string(),
+                key: "arch.embrace_deg".to_string(),
+                value: embrace.to_degrees().to_string(),
+                allowed: "piers need horizontal springing joints: a circular arch on piers must have embrace_deg = 180".to_string(),
+            });
+        }
+    }
+    Ok(Piers {
+        height,
+        width,
+        courses,
+    })
+}
+
+fn parse_material(mut s: Section) -> Result<Material, SceneError> {
+    let unit_weight = s.positive("unit_weight", Some(20000.0), "")?;
+    let depth = s.positive("depth", Some(1.0), "")?;
+    let friction = s.opt_f64("friction")?.unwrap_or(f64::INFINITY);
+    if friction.is_nan() || friction < 0.0 {
+        return Err(s.out_of_range("friction", friction, "must be >= 0, or inf for no sliding"));
+    }
+    s.finish("")?;
+    Ok(Material {
+        unit_weight,
+        depth,
+        friction,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BASE: &str =
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
+
+    #[test]
+    fn defaults_are_the_spec_ones() {
+        let s = Scene::from_toml_str(BASE, "t").unwrap();
+        assert_eq!(s.material.unit_weight, 20000.0);
+        assert_eq!(s.material.depth, 1.0);
+        assert!(s.material.friction.is_infinite());
+        assert_eq!(s.arch.voussoir_shape, VoussoirShape::Polygon);
+        assert!(
+            matches!(s.arch.shape, Shape::Circular { embrace, .. } if (embrace - std::f64::consts::PI).abs() < 1e-15)
+        );
+    }
+
+    #[test]
+    fn override_revalidates() {
+        let s = Scene::from_toml_str(BASE, "t").unwrap();
+        let s2 = s.with_override("arch.thickness=0.3").unwrap();
+        assert_eq!(s2.arch.thickness, 0.3);
+        let e = s.with_override("arch.thickness=-1").unwrap_err();
+        assert_eq!(e.key(), Some("arch.thickness"));
+        let e = s.with_override("arch.colour=3").unwrap_err();
+        assert_eq!(e.key(), Some("arch.colour"));
+        let s3 = s.with_override("material.friction=inf").unwrap();
+        assert!(s3.material.friction.is_infinite());
+    }
+}

@@ -1,0 +1,1 @@
+//! SVG drawings of assemblies, thrust lines and mechanisms (plotters, SVG backend).

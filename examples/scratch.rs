@@ -1,20 +1,25 @@
-use voussoir::{assembly::Assembly, lp, scene::Scene};
+use voussoir::{lp, scene::Scene, thickness};
 fn main() {
-    for (t, n) in [
-        (0.15, 16),
-        (0.15, 64),
-        (0.15, 1000),
-        (0.2, 1000),
-        (0.1, 64),
-        (0.3, 64),
+    for (n, vs) in [
+        (64, "polygon"),
+        (128, "polygon"),
+        (128, "curved"),
+        (256, "curved"),
     ] {
-        let s = Scene::from_toml_str(
-            &format!("[arch]\nshape=\"circular\"\nradius=1.0\nthickness={t}\nvoussoirs={n}\n"),
-            "x",
-        )
-        .unwrap();
-        let a = Assembly::from_scene(&s);
-        let r = lp::analyse(&a, &lp::StaticSettings::default()).unwrap();
-        println!("t={t} n={n} {:?} lambda={:?} res={:.2e} W={:.3e} it={} time={:.4} hinges={:?} open={:?}", r.status, r.lambda, r.equilibrium_residual, a.total_weight(), r.iterations, r.solve_time_s, r.hinges.iter().map(|h| (h.joint, h.end)).collect::<Vec<_>>(), r.open);
+        let s = Scene::from_toml_str(&format!("[arch]\nshape=\"circular\"\nradius=1.0\nthickness=0.15\nvoussoirs={n}\nvoussoir_shape=\"{vs}\"\n"), "x").unwrap();
+        let t0 = std::time::Instant::now();
+        let m = thickness::min_thickness(&s, &lp::StaticSettings::default()).unwrap();
+        let hs: Vec<_> = m
+            .hinges
+            .iter()
+            .map(|h| (h.joint, h.end, (h.x.atan2(h.y)).to_degrees()))
+            .collect();
+        println!(
+            "n={n} {vs} tmin={:?} evals={} time={:.3}s hinges={:?}",
+            m.search.min_thickness,
+            m.search.evaluations,
+            t0.elapsed().as_secs_f64(),
+            hs
+        );
     }
 }

@@ -113,7 +113,7 @@ impl Assembly {
             }
         }
         for (j, jt) in self.joints.iter().enumerate() {
-            if !(jt.length() > 0.0) {
+            if jt.length().is_nan() || jt.length() <= 0.0 {
                 return Err(AnalysisError::Assembly(format!(
                     "joint {j} has zero length"
                 )));
@@ -248,7 +248,7 @@ impl Assembly {
         let total_blocks = n + 2 * k;
 
         // Left pier, base to top.
-        let (xi, _) = (g.joints[0].0.x, ());
+        let xi = g.joints[0].0.x;
         let xe = g.joints[0].1.x;
         if let Some(p) = &scene.piers {
             let (h, b) = (p.height, p.width);

@@ -4,5 +4,7 @@ pub mod error;
 pub mod geometry;
 pub mod kinematic;
 pub mod lp;
+pub mod report;
 pub mod scene;
+pub mod thickness;
 pub mod thrustline;

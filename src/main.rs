@@ -1,1 +1,178 @@
-fn main() {}
+//! The `voussoir` command line: parses arguments, calls the library, prints.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use voussoir::assembly::Assembly;
+use voussoir::error::Error;
+use voussoir::lp::{self, Direction, StaticSettings};
+use voussoir::report;
+use voussoir::scene::Scene;
+use voussoir::thickness;
+
+#[derive(Parser)]
+#[command(
+    name = "voussoir",
+    version,
+    about = "Seismic collapse multiplier of masonry arches and portals",
+    long_about = "voussoir computes how much horizontal ground acceleration (lambda * g) a masonry \
+arch or portal of rigid voussoirs with no-tension joints can take before it becomes a mechanism."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Dir {
+    Right,
+    Left,
+}
+
+#[derive(clap::Args)]
+struct SceneArgs {
+    /// Scene file (TOML, see README)
+    scene: PathBuf,
+    /// Override a scene value, e.g. --set arch.thickness=0.2 (repeatable)
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Collapse multiplier of a scene (static lower bound)
+    Analyze {
+        #[command(flatten)]
+        scene: SceneArgs,
+        /// Print one JSON object instead of the summary
+        #[arg(long)]
+        json: bool,
+        /// Write the thrust line (one row per joint) to this CSV file
+        #[arg(long, value_name = "FILE")]
+        thrust_csv: Option<PathBuf>,
+        /// Direction of the horizontal acceleration
+        #[arg(long, value_enum, default_value = "right")]
+        direction: Dir,
+        /// Conic solver tolerance (gap and feasibility, dimensionless)
+        #[arg(long, default_value_t = 1e-10)]
+        tolerance: f64,
+    },
+    /// Smallest arch thickness that stands under its own weight
+    MinThickness {
+        #[command(flatten)]
+        scene: SceneArgs,
+        /// Print one JSON object instead of the summary
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn load(args: &SceneArgs) -> Result<Scene, Error> {
+    let mut scene = Scene::from_file(&args.scene)?;
+    for s in &args.set {
+        scene = scene.with_override(s)?;
+    }
+    Ok(scene)
+}
+
+/// Write a file whole or not at all: to a temporary sibling, then rename.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut Vec<u8>) -> Result<(), String>,
+) -> Result<(), Error> {
+    let mut buf = Vec::new();
+    write(&mut buf).map_err(|message| Error::Output {
+        path: path.to_path_buf(),
+        message,
+    })?;
+    let tmp = path.with_extension("voussoir-tmp");
+    std::fs::write(&tmp, &buf)
+        .and_then(|_| std::fs::rename(&tmp, path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            Error::Output {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            }
+        })
+}
+
+fn json<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+}
+
+fn run(cli: Cli) -> Result<String, Error> {
+    match cli.command {
+        Command::Analyze {
+            scene,
+            json: as_json,
+            thrust_csv,
+            direction,
+            tolerance,
+        } => {
+            let scene = load(&scene)?;
+            if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1e-2) {
+                return Err(Error::Analysis(voussoir::error::AnalysisError::Other(
+                    format!("--tolerance {tolerance}: must be > 0 and < 1e-2"),
+                )));
+            }
+            let settings = StaticSettings::default()
+                .direction(match direction {
+                    Dir::Right => Direction::Right,
+                    Dir::Left => Direction::Left,
+                })
+                .tolerance(tolerance);
+            let assembly = Assembly::from_scene(&scene);
+            let result = lp::analyse(&assembly, &settings)?;
+            let mut notes = String::new();
+            if let Some(path) = thrust_csv {
+                if result.forces.is_some() {
+                    write_atomically(&path, |buf| {
+                        report::write_thrust_csv(buf, &assembly, &result).map_err(|e| e.to_string())
+                    })?;
+                } else {
+                    notes.push_str(&format!(
+                        "note: no thrust line at collapse ({}): {} not written\n",
+                        result.status.as_str(),
+                        path.display()
+                    ));
+                }
+            }
+            if !notes.is_empty() {
+                eprint!("{notes}");
+            }
+            Ok(if as_json {
+                json(&report::AnalysisReport::new(&scene, &assembly, &result))
+            } else {
+                report::analysis_summary(&scene, &assembly, &result)
+            })
+        }
+        Command::MinThickness {
+            scene,
+            json: as_json,
+        } => {
+            let scene = load(&scene)?;
+            let assembly = Assembly::from_scene(&scene);
+            let m = thickness::min_thickness(&scene, &StaticSettings::default())?;
+            Ok(if as_json {
+                json(&report::MinThicknessReport::new(&scene, &assembly, &m))
+            } else {
+                report::min_thickness_summary(&scene, &assembly, &m)
+            })
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(out) => {
+            println!("{}", out.trim_end());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

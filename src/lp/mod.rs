@@ -10,7 +10,7 @@
 mod problem;
 mod settings;
 
-pub use problem::{column, StaticProblem};
+pub use problem::{column, Objective, StaticProblem};
 pub use settings::{Direction, StaticSettings};
 
 use crate::assembly::{equilibrium_residual, Assembly, Hinge, JointEnd, JointForce};
@@ -90,7 +90,7 @@ pub fn analyse(
     let start = Instant::now();
     assembly.validate()?;
     let sign = settings.direction.sign();
-    let problem = StaticProblem::new(assembly, sign, None);
+    let problem = StaticProblem::new(assembly, Objective::MaxLambda { sign, cap: None });
     let mut sol = run(&problem, settings)?;
     let mut model = problem_size(&problem);
     let mut lambda_capped = false;
@@ -99,7 +99,13 @@ pub fn analyse(
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         // Unbounded above, or both infeasible: a capped program tells which.
-        let capped = StaticProblem::new(assembly, sign, Some(LAMBDA_CAP));
+        let capped = StaticProblem::new(
+            assembly,
+            Objective::MaxLambda {
+                sign,
+                cap: Some(LAMBDA_CAP),
+            },
+        );
         sol = run(&capped, settings)?;
         model = problem_size(&capped);
         lambda_capped = true;
@@ -269,4 +275,70 @@ impl StaticResult {
         let f = self.forces.as_ref()?.get(joint)?;
         (f.n > 0.0).then(|| f.m / f.n)
     }
+}
+
+/// Result of the phase-one program at lambda = 0 (see [`Objective::MinTension`]).
+#[derive(Debug, Clone)]
+pub struct StandResult {
+    /// Whether the structure can carry its own weight (`tau <= 0`).
+    pub stands: bool,
+    /// The least uniform tension (N) every joint end would have to carry for equilibrium at
+    /// lambda = 0; negative when the structure stands, by the margin of its weakest joint.
+    pub tension: f64,
+    /// The joint forces of that solution.
+    pub forces: Vec<JointForce>,
+    /// Joints whose resultant sits at an end (within the hinge tolerance), when it stands.
+    pub hinges: Vec<Hinge>,
+    pub equilibrium_residual: f64,
+}
+
+/// Whether `assembly` can stand under its own weight (lambda = 0), by the phase-one program.
+pub fn stands(
+    assembly: &Assembly,
+    settings: &StaticSettings,
+) -> Result<StandResult, AnalysisError> {
+    assembly.validate()?;
+    let problem = StaticProblem::new(assembly, Objective::MinTension);
+    let sol = run(&problem, settings)?;
+    if !matches!(
+        sol.status,
+        SolverStatus::Solved | SolverStatus::AlmostSolved
+    ) {
+        return Err(AnalysisError::SolverFailed {
+            status: format!("{:?} (stand test at lambda = 0)", sol.status),
+            iterations: sol.iterations,
+        });
+    }
+    let tau = sol.x[0];
+    // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
+    let forces = read_forces(assembly, &problem, &sol.x);
+    let residual = equilibrium_residual(assembly, &forces, 0.0, 1.0);
+    let mut hinges = Vec::new();
+    let stands = tau <= 0.0;
+    if stands {
+        let mut tmp = StaticResult {
+            status: Status::Collapse,
+            lambda: Some(0.0),
+            forces: None,
+            hinges: Vec::new(),
+            sliding: Vec::new(),
+            open: Vec::new(),
+            mechanism: Vec::new(),
+            equilibrium_residual: residual,
+            direction: settings.direction,
+            solve_time_s: 0.0,
+            iterations: sol.iterations,
+            solver_status: format!("{:?}", sol.status),
+            model: problem_size(&problem),
+        };
+        classify_joints(assembly, &forces, settings.hinge_tolerance, &mut tmp);
+        hinges = tmp.hinges;
+    }
+    Ok(StandResult {
+        stands,
+        tension: tau * problem.force_scale,
+        forces,
+        hinges,
+        equilibrium_residual: residual,
+    })
 }

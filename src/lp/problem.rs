@@ -11,6 +11,14 @@
 //!    Coulomb cone is a pair of half-planes, so no second-order cone is needed).
 //!
 //! The objective `q = -e_lambda` maximises lambda (Clarabel minimises).
+//!
+//! A second program, [`Objective::MinTension`], tests whether the structure stands at
+//! lambda = 0 (a phase-one program): column 0 becomes a relaxation `tau` added to every
+//! inequality row, `c1 + tau >= 0`, `c2 + tau >= 0`, `mu N -+ V + tau >= 0`, with `tau >= -1`,
+//! and `tau` is minimised. The structure stands if and only if `tau* <= 0`. Unlike the
+//! lambda program, whose feasible set shrinks to a single point at the minimum thickness and
+//! defeats interior-point methods there, this program always has a strict interior, so its
+//! optimum changes sign cleanly as the thickness crosses the minimum.
 
 use crate::assembly::Assembly;
 use crate::geometry::{cross, Vec2};
@@ -36,6 +44,16 @@ pub struct StaticProblem {
     pub inequality_rows: usize,
 }
 
+/// What the program optimises.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Objective {
+    /// Maximise lambda with the load in direction `sign` (+1 right, -1 left); `cap` adds the
+    /// row `lambda <= cap`.
+    MaxLambda { sign: f64, cap: Option<f64> },
+    /// Minimise the tension relaxation `tau` at lambda = 0.
+    MinTension,
+}
+
 /// Column of a joint unknown: 0 = c1, 1 = c2, 2 = V.
 pub fn column(joint: usize, which: usize) -> usize {
     1 + 3 * joint + which
@@ -44,7 +62,11 @@ pub fn column(joint: usize, which: usize) -> usize {
 impl StaticProblem {
     /// Build the program for `assembly` with the load in direction `sign` (+1 right, -1 left).
     /// `lambda_cap`, when given, adds the row `lambda <= cap`.
-    pub fn new(assembly: &Assembly, sign: f64, lambda_cap: Option<f64>) -> StaticProblem {
+    pub fn new(assembly: &Assembly, objective: Objective) -> StaticProblem {
+        let (sign, lambda_cap, relax) = match objective {
+            Objective::MaxLambda { sign, cap } => (sign, cap, false),
+            Objective::MinTension => (0.0, None, true),
+        };
         let nb = assembly.blocks.len();
         let nj = assembly.joints.len();
         let ls = assembly.size();
@@ -63,7 +85,9 @@ impl StaticProblem {
         let mut b = vec![0.0; 3 * nb];
         for (i, blk) in assembly.blocks.iter().enumerate() {
             let w = blk.weight / fs;
-            push(3 * i, 0, sign * w);
+            if !relax {
+                push(3 * i, 0, sign * w);
+            }
             b[3 * i + 1] = w;
         }
         for (j, jt) in assembly.joints.iter().enumerate() {
@@ -102,8 +126,14 @@ impl StaticProblem {
                 friction_joints.push(j);
             }
         }
-        if lambda_cap.is_some() {
-            push(row, 0, 1.0);
+        if relax {
+            for r in equality_rows..row {
+                push(r, 0, -1.0);
+            }
+        }
+        if lambda_cap.is_some() || relax {
+            // lambda <= cap, or tau >= -1 (keeps the phase-one program bounded).
+            push(row, 0, if relax { -1.0 } else { 1.0 });
             row += 1;
         }
         let inequality_rows = row - equality_rows;
@@ -111,9 +141,12 @@ impl StaticProblem {
         if let Some(cap) = lambda_cap {
             b[row - 1] = cap;
         }
+        if relax {
+            b[row - 1] = 1.0;
+        }
         let a = CscMatrix::new_from_triplets(row, nvar, rows, cols, vals);
         let mut q = vec![0.0; nvar];
-        q[0] = -1.0;
+        q[0] = if relax { 1.0 } else { -1.0 };
         StaticProblem {
             p: CscMatrix::zeros((nvar, nvar)),
             q,

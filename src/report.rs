@@ -1,0 +1,411 @@
+//! What the CLI prints: the JSON objects (a contract for scripts: later versions add fields,
+//! never rename them), the thrust-line CSV, and the human summary.
+
+use crate::assembly::{Assembly, Hinge, JointKind};
+use crate::lp::{Direction, ModelSize, StaticResult, Status};
+use crate::scene::{Scene, Shape, VoussoirShape};
+use crate::thickness::{MinThickness, ThicknessOutcome};
+use crate::thrustline::thrust_points;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// One joint in `analyze --json`.
+#[derive(Debug, Serialize)]
+pub struct JointReport {
+    pub index: usize,
+    /// What the joint is: `arch`, `left_pier` or `right_pier` with its number.
+    pub kind: JointKind,
+    pub p1: [f64; 2],
+    pub p2: [f64; 2],
+    /// Normal force (N), null when the structure has no collapse state.
+    #[serde(rename = "N")]
+    pub n: Option<f64>,
+    /// Shear force (N) along p1 -> p2.
+    #[serde(rename = "V")]
+    pub v: Option<f64>,
+    /// Moment about the joint midpoint (N m), positive toward p2.
+    #[serde(rename = "M")]
+    pub m: Option<f64>,
+    /// Eccentricity M/N (m) from the midpoint toward p2.
+    pub e: Option<f64>,
+    /// Thrust-line point `p_mid + e u`.
+    pub thrust: Option<[f64; 2]>,
+}
+
+/// Scene summary echoed in the JSON.
+#[derive(Debug, Serialize)]
+pub struct SceneReport {
+    pub origin: String,
+    pub shape: &'static str,
+    pub thickness: f64,
+    pub voussoirs: usize,
+    pub voussoir_shape: &'static str,
+    pub portal: bool,
+    /// Coulomb coefficient; null means infinite (no sliding).
+    pub friction: Option<f64>,
+    pub total_weight: f64,
+}
+
+/// `analyze --json`.
+#[derive(Debug, Serialize)]
+pub struct AnalysisReport {
+    pub status: Status,
+    pub lambda_lower: Option<f64>,
+    pub hinges: Vec<Hinge>,
+    pub sliding: Vec<usize>,
+    pub joints: Vec<JointReport>,
+    pub mechanism: Vec<[f64; 3]>,
+    pub equilibrium_residual: f64,
+    pub blocks: usize,
+    pub solve_time_s: f64,
+    pub direction: Direction,
+    pub solver_status: String,
+    pub iterations: u32,
+    pub model: ModelSize,
+    pub scene: SceneReport,
+}
+
+fn xy(p: crate::geometry::Vec2) -> [f64; 2] {
+    [p.x, p.y]
+}
+
+fn finite_or_null(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl SceneReport {
+    pub fn new(scene: &Scene, assembly: &Assembly) -> Self {
+        SceneReport {
+            origin: scene.origin.clone(),
+            shape: scene.arch.shape.name(),
+            thickness: scene.arch.thickness,
+            voussoirs: scene.arch.voussoirs,
+            voussoir_shape: match scene.arch.voussoir_shape {
+                VoussoirShape::Polygon => "polygon",
+                VoussoirShape::Curved => "curved",
+            },
+            portal: scene.piers.is_some(),
+            friction: finite_or_null(scene.material.friction),
+            total_weight: assembly.total_weight(),
+        }
+    }
+}
+
+impl AnalysisReport {
+    pub fn new(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
+        let points = r
+            .forces
+            .as_ref()
+            .map(|f| thrust_points(assembly, f))
+            .unwrap_or_default();
+        let joints = assembly
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| {
+                let f = r.forces.as_ref().and_then(|f| f.get(i));
+                JointReport {
+                    index: i,
+                    kind: j.kind,
+                    p1: xy(j.p1),
+                    p2: xy(j.p2),
+                    n: f.map(|f| f.n),
+                    v: f.map(|f| f.v),
+                    m: f.map(|f| f.m),
+                    e: r.eccentricity(i),
+                    thrust: points.get(i).copied().flatten().map(xy),
+                }
+            })
+            .collect();
+        AnalysisReport {
+            status: r.status,
+            lambda_lower: r.lambda,
+            hinges: r.hinges.clone(),
+            sliding: r.sliding.clone(),
+            joints,
+            mechanism: r.mechanism.clone(),
+            equilibrium_residual: r.equilibrium_residual,
+            blocks: assembly.blocks.len(),
+            solve_time_s: r.solve_time_s,
+            direction: r.direction,
+            solver_status: r.solver_status.clone(),
+            iterations: r.iterations,
+            model: r.model,
+            scene: SceneReport::new(scene, assembly),
+        }
+    }
+}
+
+/// `min-thickness --json`.
+#[derive(Debug, Serialize)]
+pub struct MinThicknessReport {
+    /// `found`, `never_stands` or `stands_at_every_thickness`.
+    pub outcome: ThicknessOutcome,
+    pub min_thickness: Option<f64>,
+    /// min_thickness divided by the characteristic size (R for circular and pointed arches,
+    /// span/2 for basket arches).
+    pub min_thickness_ratio: Option<f64>,
+    pub hinges: Vec<Hinge>,
+    pub safety_factor: Option<f64>,
+    pub thickness: f64,
+    pub evaluations: usize,
+    pub scene: SceneReport,
+}
+
+impl MinThicknessReport {
+    pub fn new(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> Self {
+        MinThicknessReport {
+            outcome: m.search.outcome,
+            min_thickness: m.search.min_thickness,
+            min_thickness_ratio: m.search.min_thickness.map(|t| t / arch_size(scene)),
+            hinges: m.hinges.clone(),
+            safety_factor: m.safety_factor,
+            thickness: scene.arch.thickness,
+            evaluations: m.search.evaluations,
+            scene: SceneReport::new(scene, assembly),
+        }
+    }
+}
+
+/// The arch's own size: R (circular, pointed) or span/2 (basket).
+pub fn arch_size(scene: &Scene) -> f64 {
+    match scene.arch.shape {
+        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
+        Shape::Basket { span, .. } => 0.5 * span,
+    }
+}
+
+/// Write the thrust line as CSV: one row per joint.
+pub fn write_thrust_csv<W: std::io::Write>(
+    out: W,
+    assembly: &Assembly,
+    r: &StaticResult,
+) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record([
+        "joint", "kind", "x", "y", "N", "V", "M", "e", "p1_x", "p1_y", "p2_x", "p2_y",
+    ])?;
+    let forces = r.forces.as_deref().unwrap_or(&[]);
+    let points = thrust_points(assembly, forces);
+    for (i, (j, f)) in assembly.joints.iter().zip(forces).enumerate() {
+        let (x, y) = points[i].map_or((String::new(), String::new()), |p| {
+            (p.x.to_string(), p.y.to_string())
+        });
+        let e = r.eccentricity(i).map_or(String::new(), |e| e.to_string());
+        w.write_record([
+            i.to_string(),
+            joint_label(j.kind),
+            x,
+            y,
+            f.n.to_string(),
+            f.v.to_string(),
+            f.m.to_string(),
+            e,
+            j.p1.x.to_string(),
+            j.p1.y.to_string(),
+            j.p2.x.to_string(),
+            j.p2.y.to_string(),
+        ])?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// Short label of a joint, e.g. `arch 3`, `left pier 0`.
+pub fn joint_label(kind: JointKind) -> String {
+    match kind {
+        JointKind::Arch(j) => format!("arch {j}"),
+        JointKind::LeftPier(j) => format!("left pier {j}"),
+        JointKind::RightPier(j) => format!("right pier {j}"),
+        JointKind::Other => "joint".to_string(),
+    }
+}
+
+fn end_name(assembly: &Assembly, h: &Hinge) -> &'static str {
+    let arch = matches!(assembly.joints[h.joint].kind, JointKind::Arch(_));
+    match (h.end, arch) {
+        (crate::assembly::JointEnd::P1, true) => "intrados",
+        (crate::assembly::JointEnd::P2, true) => "extrados",
+        (crate::assembly::JointEnd::P1, false) => "inner face",
+        (crate::assembly::JointEnd::P2, false) => "outer face",
+    }
+}
+
+/// One line per hinge: `joint 5 (arch 5), intrados, at (x, y)`.
+pub fn hinge_lines(assembly: &Assembly, hinges: &[Hinge]) -> String {
+    let mut s = String::new();
+    for h in hinges {
+        let _ = writeln!(
+            s,
+            "    joint {:>4} ({}), {}, at ({:.4}, {:.4}) m",
+            h.joint,
+            joint_label(assembly.joints[h.joint].kind),
+            end_name(assembly, h),
+            h.x,
+            h.y
+        );
+    }
+    s
+}
+
+/// A one-paragraph description of the scene.
+pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
+    let a = &scene.arch;
+    let shape = match a.shape {
+        Shape::Circular { radius, embrace } => {
+            format!(
+                "circular arch, R = {radius} m, embrace {:.6} deg",
+                embrace.to_degrees()
+            )
+        }
+        Shape::Pointed {
+            radius,
+            eccentricity,
+        } => format!("pointed arch, R = {radius} m, e = {eccentricity} m"),
+        Shape::Basket {
+            span,
+            rise,
+            side_angle,
+        } => format!(
+            "basket-handle arch, span {span} m, rise {rise} m, side angle {:.6} deg",
+            side_angle.to_degrees()
+        ),
+    };
+    let vs = match a.voussoir_shape {
+        VoussoirShape::Polygon => "polygon",
+        VoussoirShape::Curved => "curved",
+    };
+    let mut s = format!(
+        "{shape}, t = {} m, {} {vs} voussoirs",
+        a.thickness, a.voussoirs
+    );
+    if let Some(p) = &scene.piers {
+        let _ = write!(
+            s,
+            "\n  on piers h = {} m, b = {} m, {} course{}",
+            p.height,
+            p.width,
+            p.courses,
+            if p.courses == 1 { "" } else { "s" }
+        );
+    }
+    let mu = if scene.material.friction.is_finite() {
+        format!("mu = {}", scene.material.friction)
+    } else {
+        "mu = inf (no sliding)".to_string()
+    };
+    let _ = write!(
+        s,
+        "\n  {mu}; {} blocks, {} joints, total weight {:.6} kN",
+        assembly.blocks.len(),
+        assembly.joints.len(),
+        assembly.total_weight() / 1000.0
+    );
+    s
+}
+
+/// The human summary of `analyze`.
+pub fn analysis_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> String {
+    let mut s = format!(
+        "{}\n  {}\n\n",
+        scene.origin,
+        describe_scene(scene, assembly)
+    );
+    let dir = match r.direction {
+        Direction::Right => "toward +x (right)",
+        Direction::Left => "toward -x (left)",
+    };
+    match (r.status, r.lambda) {
+        (Status::Collapse, Some(l)) => {
+            let _ = writeln!(
+                s,
+                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  the arch becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}"
+            );
+            let _ = writeln!(s, "  hinges of the thrust line:");
+            s.push_str(&hinge_lines(assembly, &r.hinges));
+            if !r.sliding.is_empty() {
+                let list: Vec<String> = r.sliding.iter().map(|j| j.to_string()).collect();
+                let _ = writeln!(s, "  sliding joints (|V| = mu N): {}", list.join(", "));
+            }
+            let _ = writeln!(
+                s,
+                "  equilibrium residual {:.2e} N ({:.1e} of the weight)",
+                r.equilibrium_residual,
+                r.equilibrium_residual / assembly.total_weight()
+            );
+        }
+        (Status::NoCollapse, _) => {
+            let _ = writeln!(
+                s,
+                "Static (lower bound): NO COLLAPSE — a thrust line fits inside the structure for any horizontal acceleration {dir}"
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even without horizontal load\n  (thinner than its minimum thickness, piers too slender, or too little friction)"
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "  conic program: {} variables, {} constraints; Clarabel {} in {} iterations, {:.2} ms",
+        r.model.variables,
+        r.model.constraints,
+        r.solver_status,
+        r.iterations,
+        r.solve_time_s * 1e3
+    );
+    s
+}
+
+/// The human summary of `min-thickness`.
+pub fn min_thickness_summary(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> String {
+    let mut s = format!(
+        "{}\n  {}\n\n",
+        scene.origin,
+        describe_scene(scene, assembly)
+    );
+    match (m.search.outcome, m.search.min_thickness) {
+        (ThicknessOutcome::Found, Some(t)) => {
+            let _ = writeln!(
+                s,
+                "Minimum thickness (static, lambda = 0): t_min = {t:.9} m  (t_min / {} = {:.6})",
+                match scene.arch.shape {
+                    Shape::Basket { .. } => "(span/2)",
+                    _ => "R",
+                },
+                t / arch_size(scene)
+            );
+            if let Some(f) = m.safety_factor {
+                let _ = writeln!(
+                    s,
+                    "  geometric safety factor of t = {} m: {f:.4}{}",
+                    scene.arch.thickness,
+                    if f < 1.0 {
+                        "  (below 1: this arch cannot stand)"
+                    } else {
+                        ""
+                    }
+                );
+            }
+            let _ = writeln!(s, "  hinges of the thrust line at t_min:");
+            s.push_str(&hinge_lines(assembly, &m.hinges));
+        }
+        (ThicknessOutcome::NeverStands, _) => {
+            let _ = writeln!(
+                s,
+                "No thickness lets this structure stand (up to the largest the shape admits, {} m).",
+                scene.max_thickness()
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "The structure stands at every thickness down to 1e-6 of the largest admissible: no minimum thickness."
+            );
+        }
+    }
+    let _ = writeln!(s, "  {} static analyses", m.search.evaluations);
+    s
+}

@@ -1,0 +1,144 @@
+//! Minimum thickness: the smallest arch thickness t (every other parameter fixed, lambda = 0)
+//! for which the structure can carry its own weight — Heyman's geometric factor of safety is
+//! the ratio of the actual thickness to it (Heyman, *The Stone Skeleton*, 1995, ch. 3).
+//!
+//! The search does not assume that "stands" is monotone in t over the whole admissible range
+//! (for portals it need not be): it scans a geometric grid from the top down to find the
+//! smallest standing grid point, then bisects the interval below it to a relative tolerance.
+
+use crate::assembly::{Assembly, Hinge};
+use crate::error::AnalysisError;
+use crate::lp::{self, StandResult, StaticSettings};
+use crate::scene::Scene;
+
+/// Relative tolerance of the bisection on t.
+pub const DEFAULT_REL_TOL: f64 = 1e-9;
+
+/// How the search ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ThicknessOutcome {
+    /// A minimum thickness was bracketed and bisected.
+    Found,
+    /// No admissible thickness lets the structure stand (e.g. friction too low, piers too
+    /// slender).
+    NeverStands,
+    /// The structure stands at every thickness down to the smallest tried.
+    StandsAtEveryThickness,
+}
+
+/// Result of a thickness search.
+#[derive(Debug, Clone)]
+pub struct ThicknessSearch {
+    pub outcome: ThicknessOutcome,
+    /// The minimum thickness (m), when found: the standing end of the final bracket.
+    pub min_thickness: Option<f64>,
+    /// Final bracket `[does not stand, stands]` (m).
+    pub bracket: Option<(f64, f64)>,
+    /// Number of analyses run.
+    pub evaluations: usize,
+}
+
+/// Find the smallest thickness for which `stands` holds, to relative tolerance `rel_tol`.
+pub fn search<F>(
+    scene: &Scene,
+    rel_tol: f64,
+    mut stands: F,
+) -> Result<ThicknessSearch, AnalysisError>
+where
+    F: FnMut(&Scene) -> Result<bool, AnalysisError>,
+{
+    let t_max = scene.max_thickness();
+    let mut evaluations = 0;
+    let mut test = |t: f64| -> Result<bool, AnalysisError> {
+        evaluations += 1;
+        stands(&scene.with_thickness(t)?)
+    };
+    // Geometric grid from just below the admissible maximum down to 1e-6 of it.
+    const GRID: usize = 40;
+    let top = t_max * (1.0 - 1e-6);
+    let bottom = t_max * 1e-6;
+    let ratio = (bottom / top).powf(1.0 / (GRID - 1) as f64);
+    let mut lowest_standing = None;
+    let mut below = None;
+    let mut t = top;
+    for _ in 0..GRID {
+        if test(t)? {
+            lowest_standing = Some(t);
+        } else if lowest_standing.is_some() {
+            below = Some(t);
+            break;
+        }
+        t *= ratio;
+    }
+    let Some(mut hi) = lowest_standing else {
+        return Ok(ThicknessSearch {
+            outcome: ThicknessOutcome::NeverStands,
+            min_thickness: None,
+            bracket: None,
+            evaluations,
+        });
+    };
+    let Some(mut lo) = below else {
+        return Ok(ThicknessSearch {
+            outcome: ThicknessOutcome::StandsAtEveryThickness,
+            min_thickness: None,
+            bracket: None,
+            evaluations,
+        });
+    };
+    while hi - lo > rel_tol * hi {
+        let mid = 0.5 * (lo + hi);
+        if test(mid)? {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(ThicknessSearch {
+        outcome: ThicknessOutcome::Found,
+        min_thickness: Some(hi),
+        bracket: Some((lo, hi)),
+        evaluations,
+    })
+}
+
+/// Static minimum thickness with the hinges of the thrust line at that thickness.
+#[derive(Debug, Clone)]
+pub struct MinThickness {
+    pub search: ThicknessSearch,
+    /// Hinges of the thrust line at the minimum thickness (static solution there).
+    pub hinges: Vec<Hinge>,
+    /// The scene's own thickness divided by the minimum thickness.
+    pub safety_factor: Option<f64>,
+    /// The static analysis at the minimum thickness.
+    pub at_minimum: Option<(Assembly, StandResult)>,
+}
+
+/// Whether the static program finds equilibrium at lambda = 0.
+pub fn stands_static(scene: &Scene, settings: &StaticSettings) -> Result<bool, AnalysisError> {
+    Ok(lp::stands(&Assembly::from_scene(scene), settings)?.stands)
+}
+
+/// The static minimum thickness of `scene`.
+pub fn min_thickness(
+    scene: &Scene,
+    settings: &StaticSettings,
+) -> Result<MinThickness, AnalysisError> {
+    let search = search(scene, DEFAULT_REL_TOL, |s| stands_static(s, settings))?;
+    let mut hinges = Vec::new();
+    let mut at_minimum = None;
+    if let Some(t) = search.min_thickness {
+        let assembly = Assembly::from_scene(&scene.with_thickness(t)?);
+        let r = lp::stands(&assembly, settings)?;
+        hinges = r.hinges.clone();
+        at_minimum = Some((assembly, r));
+    }
+    let safety_factor = search.min_thickness.map(|t| scene.arch.thickness / t);
+    Ok(MinThickness {
+        search,
+        hinges,
+        safety_factor,
+        at_minimum,
+    })
+}

@@ -576,7 +576,7 @@ fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
             return Err(SceneError::OutOfRange {
                 origin: s.origin.to_string(),
                 key: "arch.embrace_deg".to_string(),
-                value: embrace.to_degrees().to_string(),
+                value: ((embrace.to_degrees() * 1e9).round() / 1e9).to_string(),
                 allowed: "piers need horizontal springing joints: a circular arch on piers must have embrace_deg = 180".to_string(),
             });
         }

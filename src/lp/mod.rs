@@ -187,6 +187,7 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
         .tol_gap_rel(s.tol_gap)
         .tol_feas(s.tol_feas)
         .max_iter(s.max_iter)
+        .direct_solve_method(s.linear_solver.clone())
         .build()
         .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
     let mut solver = DefaultSolver::new(

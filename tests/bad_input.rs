@@ -1,0 +1,108 @@
+//! Invalid scenes: each error names the key (and the value) that is wrong.
+
+use voussoir::error::SceneError;
+use voussoir::scene::Scene;
+
+const GOOD: &str = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
+
+fn err(text: &str) -> SceneError {
+    match Scene::from_toml_str(text, "bad.toml") {
+        Ok(_) => panic!("scene should be rejected:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn each_invalid_scene_names_its_key() {
+    let cases: &[(&str, &str, &str)] = &[
+        // (scene text, key named, value named)
+        ("[arch]\nshape = \"circular\"\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", ""),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nvoussoirs = 8\n", "arch.thickness", ""),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\n", "arch.voussoirs", ""),
+        ("[arch]\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\n", "arch.shape", ""),
+        ("[arch]\nshape = \"oval\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\n", "arch.shape", "oval"),
+        ("[arch]\nshape = \"circular\"\nradius = -1.0\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", "-1"),
+        ("[arch]\nshape = \"circular\"\nradius = 0.0\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", "0"),
+        ("[arch]\nshape = \"circular\"\nradius = nan\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", "NaN"),
+        ("[arch]\nshape = \"circular\"\nradius = inf\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", "inf"),
+        ("[arch]\nshape = \"circular\"\nradius = \"big\"\nthickness = 0.1\nvoussoirs = 8\n", "arch.radius", "big"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 2.5\nvoussoirs = 8\n", "arch.thickness", "2.5"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 0\n", "arch.voussoirs", "0"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8.5\n", "arch.voussoirs", "8.5"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 1000000\n", "arch.voussoirs", "1000000"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\nembrace_deg = 360\n", "arch.embrace_deg", "360"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\nvoussoir_shape = \"round\"\n", "arch.voussoir_shape", "round"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\ncolour = \"red\"\n", "arch.colour", ""),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\neccentricity = 0.1\n", "arch.eccentricity", ""),
+        ("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.2\nthickness = 0.1\nvoussoirs = 9\n", "arch.voussoirs", "9"),
+        ("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.95\nthickness = 0.1\nvoussoirs = 8\n", "arch.eccentricity", "0.95"),
+        ("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = -0.1\nthickness = 0.1\nvoussoirs = 8\n", "arch.eccentricity", "-0.1"),
+        ("[arch]\nshape = \"pointed\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\n", "arch.eccentricity", ""),
+        ("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 1.0\nthickness = 0.1\nvoussoirs = 9\n", "arch.rise", "1"),
+        ("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 1.3\nthickness = 0.1\nvoussoirs = 9\n", "arch.rise", "1.3"),
+        ("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.6\nthickness = 0.1\nvoussoirs = 9\nside_angle_deg = 95\n", "arch.side_angle_deg", "95"),
+        ("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.6\nthickness = 0.1\nvoussoirs = 2\n", "arch.voussoirs", "2"),
+        ("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.3\nthickness = 0.9\nvoussoirs = 9\n", "arch.thickness", "0.9"),
+        (&format!("{GOOD}[piers]\nheight = 1.0\n"), "piers.width", ""),
+        (&format!("{GOOD}[piers]\nheight = 1.0\nwidth = -0.3\n"), "piers.width", "-0.3"),
+        (&format!("{GOOD}[piers]\nheight = 1.0\nwidth = 0.3\ncourses = 0\n"), "piers.courses", "0"),
+        (&format!("{GOOD}[piers]\nheight = 1.0\nwidth = 0.3\nfoo = 1\n"), "piers.foo", ""),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = 120\nthickness = 0.1\nvoussoirs = 8\n[piers]\nheight = 1.0\nwidth = 0.3\n", "arch.embrace_deg", "120"),
+        (&format!("{GOOD}[material]\nfriction = -0.5\n"), "material.friction", "-0.5"),
+        (&format!("{GOOD}[material]\nfriction = nan\n"), "material.friction", "NaN"),
+        (&format!("{GOOD}[material]\nunit_weight = 0\n"), "material.unit_weight", "0"),
+        (&format!("{GOOD}[material]\ndepth = true\n"), "material.depth", "true"),
+        (&format!("{GOOD}[materials]\ndepth = 1.0\n"), "materials", ""),
+        ("arch = 3\n", "arch", "3"),
+        ("[piers]\nheight = 1.0\nwidth = 0.3\n", "arch", ""),
+    ];
+    for (text, key, value) in cases {
+        let e = err(text);
+        let msg = e.to_string();
+        assert_eq!(e.key(), Some(*key), "scene:\n{text}\nerror: {msg}");
+        assert!(msg.contains(key), "message should name {key}: {msg}");
+        assert!(
+            msg.contains("bad.toml"),
+            "message should name the file: {msg}"
+        );
+        if !value.is_empty() {
+            assert!(
+                msg.contains(value),
+                "message should show the value {value}: {msg}"
+            );
+        }
+    }
+}
+
+#[test]
+fn malformed_toml_is_a_syntax_error_with_the_file() {
+    let e = err("[arch\nshape = ");
+    assert!(matches!(e, SceneError::Syntax { .. }));
+    assert!(e.to_string().contains("bad.toml"));
+}
+
+#[test]
+fn overrides_are_validated_like_files() {
+    let s = Scene::from_toml_str(GOOD, "good.toml").expect("valid");
+    for (text, key) in [
+        ("arch.thickness=-0.1", Some("arch.thickness")),
+        ("arch.thickness=abc", Some("arch.thickness")),
+        ("arch.nonsense=1", Some("arch.nonsense")),
+        ("piers.height=1.0", Some("piers.width")),
+        ("material.friction=-1", Some("material.friction")),
+    ] {
+        let e = s.with_override(text).expect_err(text);
+        assert_eq!(e.key(), key, "{text}: {e}");
+    }
+    for text in ["thickness=0.2", "nosuch.key=1", "arch.thickness", "=3"] {
+        let e = s.with_override(text).expect_err(text);
+        assert!(matches!(e, SceneError::BadOverride { .. }), "{text}: {e}");
+    }
+    let ok = s
+        .with_override("arch.shape=pointed")
+        .and_then(|s| s.with_override("arch.eccentricity=0.2"));
+    // Overrides apply one at a time, each validated: a pointed arch needs its eccentricity
+    // first, so the first step fails naming it.
+    let e = ok.expect_err("eccentricity is required before the shape switch validates");
+    assert_eq!(e.key(), Some("arch.eccentricity"));
+}

@@ -1,0 +1,155 @@
+//! End-to-end runs of the `voussoir` binary.
+
+use assert_cmd::Command;
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("data")
+        .join(name)
+}
+
+fn voussoir() -> Command {
+    Command::cargo_bin("voussoir").expect("binary built")
+}
+
+#[test]
+fn analyze_prints_a_summary() {
+    let out = voussoir()
+        .arg("analyze")
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(text.contains("collapse multiplier lambda = 0.14"), "{text}");
+    assert!(text.contains("intrados") && text.contains("extrados"));
+}
+
+#[test]
+fn analyze_json_has_the_contract_fields() {
+    for scene in [
+        "semicircular.toml",
+        "segmental.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+    ] {
+        let out = voussoir()
+            .arg("analyze")
+            .arg(data(scene))
+            .arg("--json")
+            .assert()
+            .success();
+        let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+        for key in [
+            "status",
+            "lambda_lower",
+            "hinges",
+            "sliding",
+            "joints",
+            "mechanism",
+            "equilibrium_residual",
+            "blocks",
+            "solve_time_s",
+        ] {
+            assert!(v.get(key).is_some(), "{scene}: missing {key}");
+        }
+        assert_eq!(v["status"], "collapse");
+        let l = v["lambda_lower"].as_f64().expect("number");
+        assert!(l > 0.0 && l < 1.0);
+        let j = &v["joints"][0];
+        for key in ["index", "p1", "p2", "N", "V", "M", "e"] {
+            assert!(j.get(key).is_some(), "{scene}: joint lacks {key}");
+        }
+        let h = &v["hinges"][0];
+        assert!(h["end"] == "p1" || h["end"] == "p2");
+        assert_eq!(
+            v["mechanism"].as_array().map(|a| a.len()),
+            v["blocks"].as_u64().map(|n| n as usize)
+        );
+    }
+}
+
+#[test]
+fn set_overrides_and_statuses_reach_the_json() {
+    let out = voussoir()
+        .args(["analyze", "--json", "--set", "arch.thickness=0.08"])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert_eq!(v["status"], "cannot_stand");
+    assert!(v["lambda_lower"].is_null());
+    let out = voussoir()
+        .args([
+            "analyze",
+            "--json",
+            "--set",
+            "arch.embrace_deg=60",
+            "--set",
+            "arch.thickness=0.6",
+        ])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert_eq!(v["status"], "no_collapse");
+    assert!(v["lambda_lower"].is_null());
+}
+
+#[test]
+fn thrust_csv_has_a_row_per_joint() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let csv = dir.path().join("thrust.csv");
+    voussoir()
+        .arg("analyze")
+        .arg(data("portal.toml"))
+        .arg("--thrust-csv")
+        .arg(&csv)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&csv).expect("written");
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with("joint,kind,x,y,N,V,M,e"));
+    assert_eq!(lines.len(), 1 + 41);
+}
+
+#[test]
+fn min_thickness_json() {
+    let out = voussoir()
+        .args(["min-thickness", "--json", "--set", "arch.voussoirs=64"])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    let t = v["min_thickness"].as_f64().expect("number");
+    assert!((t - 0.1075).abs() < 3e-4, "{t}");
+    assert!((v["safety_factor"].as_f64().expect("number") - 0.15 / t).abs() < 1e-9);
+    assert_eq!(v["hinges"].as_array().map(|a| a.len()), Some(5));
+}
+
+#[test]
+fn errors_go_to_stderr_with_nothing_on_stdout() {
+    for args in [
+        vec!["analyze".to_string(), "no/such/scene.toml".to_string()],
+        vec![
+            "analyze".to_string(),
+            data("semicircular.toml").display().to_string(),
+            "--set".into(),
+            "arch.thickness=-1".into(),
+        ],
+        vec![
+            "analyze".to_string(),
+            data("semicircular.toml").display().to_string(),
+            "--set".into(),
+            "arch.bogus=1".into(),
+        ],
+    ] {
+        let out = voussoir().args(&args).assert().failure();
+        let o = out.get_output();
+        assert!(o.stdout.is_empty(), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.starts_with("error: "), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}

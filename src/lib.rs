@@ -6,5 +6,6 @@ pub mod kinematic;
 pub mod lp;
 pub mod report;
 pub mod scene;
+pub mod sweep;
 pub mod thickness;
 pub mod thrustline;

@@ -8,6 +8,7 @@ use voussoir::error::Error;
 use voussoir::lp::{self, Direction, StaticSettings};
 use voussoir::report;
 use voussoir::scene::Scene;
+use voussoir::sweep;
 use voussoir::thickness;
 
 #[derive(Parser)]
@@ -56,6 +57,18 @@ enum Command {
         /// Conic solver tolerance (gap and feasibility, dimensionless)
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
+    },
+    /// Parametric sweep: the cartesian product of varied keys, solved in parallel
+    Sweep {
+        #[command(flatten)]
+        scene: SceneArgs,
+        /// KEY=V1,V2,... or KEY=START:STOP:STEP; KEY is a scene key (arch.thickness) or a
+        /// ratio (t/R, e/R, h/R, b/R, t/span, rise/span). Repeatable.
+        #[arg(long, value_name = "KEY=VALUES", required = true)]
+        vary: Vec<String>,
+        /// Write the rows to this CSV file (default: standard output)
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
     },
     /// Smallest arch thickness that stands under its own weight
     MinThickness {
@@ -147,6 +160,47 @@ fn run(cli: Cli) -> Result<String, Error> {
                 report::analysis_summary(&scene, &assembly, &result)
             })
         }
+        Command::Sweep { scene, vary, csv } => {
+            let scene = load(&scene)?;
+            let variations = vary
+                .iter()
+                .map(|v| sweep::parse_variation(v))
+                .collect::<Result<Vec<_>, _>>()?;
+            let cases = sweep::cases(&scene, &variations);
+            let bar = progress_bar(cases.len() as u64, "sweep");
+            let settings = StaticSettings::default();
+            let rows = sweep::run(
+                &cases,
+                |values, s| sweep::static_case(values, s, &settings),
+                &|| bar.inc(1),
+            );
+            bar.finish_and_clear();
+            let mut buf = Vec::new();
+            sweep::write_csv(&mut buf, &variations, &rows).map_err(|e| Error::Output {
+                path: csv.clone().unwrap_or_else(|| "stdout".into()),
+                message: e.to_string(),
+            })?;
+            match csv {
+                Some(path) => {
+                    write_atomically(&path, |b| {
+                        b.extend_from_slice(&buf);
+                        Ok(())
+                    })?;
+                    let failed = rows.iter().filter(|r| r.status == "error").count();
+                    Ok(format!(
+                        "{} cases written to {}{}",
+                        rows.len(),
+                        path.display(),
+                        if failed > 0 {
+                            format!(" ({failed} with status error)")
+                        } else {
+                            String::new()
+                        }
+                    ))
+                }
+                None => Ok(String::from_utf8_lossy(&buf).into_owned()),
+            }
+        }
         Command::MinThickness {
             scene,
             json: as_json,
@@ -161,6 +215,22 @@ fn run(cli: Cli) -> Result<String, Error> {
             })
         }
     }
+}
+
+/// A progress bar on stderr when it is a terminal, hidden otherwise.
+fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ({eta} left)",
+    ) {
+        bar.set_style(style);
+    }
+    bar.set_prefix(what.to_string());
+    bar
 }
 
 fn main() -> ExitCode {

@@ -1,0 +1,357 @@
+//! Parametric sweeps: the cartesian product of varied scene keys, each case analysed
+//! independently (in parallel), rows returned in a deterministic order (the first varied key
+//! changes slowest). Besides scene keys, the dimensionless ratios the paper plots can be
+//! varied directly: `t/R`, `e/R`, `h/R`, `b/R` (R the centreline radius), `t/span` and
+//! `rise/span` (span the centreline span), each setting the underlying scene key.
+
+use crate::assembly::{Assembly, Hinge, JointEnd};
+use crate::error::SceneError;
+use crate::lp::{self, StaticSettings, Status};
+use crate::scene::{parse_assignment, Scene, Shape};
+use rayon::prelude::*;
+use toml::Value;
+
+/// Dimensionless keys that can be varied instead of scene keys.
+pub const DERIVED_KEYS: &[&str] = &["t/R", "e/R", "h/R", "b/R", "t/span", "rise/span"];
+
+/// One varied key and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variation {
+    pub key: String,
+    pub values: Vec<Value>,
+}
+
+/// Parse `KEY=V1,V2,...` or `KEY=START:STOP:STEP` (STOP included when reached within
+/// round-off).
+pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
+    let bad = |message: String| SceneError::BadOverride {
+        text: text.to_string(),
+        message,
+    };
+    let (key, spec) = text
+        .split_once('=')
+        .ok_or_else(|| bad("expected KEY=V1,V2,... or KEY=START:STOP:STEP".into()))?;
+    let key = key.trim().to_string();
+    let spec = spec.trim();
+    if key.is_empty() || spec.is_empty() {
+        return Err(bad("empty key or values".into()));
+    }
+    let values = if spec.contains(':') {
+        let parts: Vec<&str> = spec.split(':').collect();
+        let nums: Vec<f64> = parts
+            .iter()
+            .map(|p| p.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| bad(format!("`{spec}`: START:STOP:STEP must be three numbers")))?;
+        let [start, stop, step] = nums[..] else {
+            return Err(bad(format!(
+                "`{spec}`: START:STOP:STEP must be three numbers"
+            )));
+        };
+        if !(start.is_finite() && stop.is_finite() && step.is_finite())
+            || step <= 0.0
+            || stop < start
+        {
+            return Err(bad(format!(
+                "`{spec}`: need finite START <= STOP and STEP > 0"
+            )));
+        }
+        let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
+        if count > 100_000 {
+            return Err(bad(format!(
+                "`{spec}` gives {count} values; at most 100000"
+            )));
+        }
+        (0..count)
+            // Round to 12 significant digits so 0.1 + 0.05 * 1 prints as 0.15.
+            .map(|i| {
+                let x = start + step * i as f64;
+                Value::Float(format!("{x:.11e}").parse().unwrap_or(x))
+            })
+            .collect()
+    } else {
+        spec.split(',')
+            .map(|v| parse_assignment(&format!("{key}={}", v.trim())).map(|(_, v)| v))
+            .collect::<Result<Vec<_>, _>>()?
+    };
+    Ok(Variation { key, values })
+}
+
+/// Apply `key = value` to a scene: a scene key, or one of [`DERIVED_KEYS`].
+pub fn apply(scene: &Scene, key: &str, value: &Value) -> Result<Scene, SceneError> {
+    if !DERIVED_KEYS.contains(&key) {
+        return scene.with_value(key, value.clone());
+    }
+    let v = match value {
+        Value::Float(x) => *x,
+        Value::Integer(i) => *i as f64,
+        other => {
+            return Err(SceneError::BadOverride {
+                text: format!("{key}={other}"),
+                message: "a ratio must be a number".into(),
+            })
+        }
+    };
+    let radius = match scene.arch.shape {
+        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => Some(radius),
+        Shape::Basket { .. } => None,
+    };
+    let need_radius = || SceneError::BadOverride {
+        text: format!("{key}={v}"),
+        message: format!("`{key}` needs a circular or pointed arch (R is its radius)"),
+    };
+    let (target, x) = match key {
+        "t/R" => ("arch.thickness", v * radius.ok_or_else(need_radius)?),
+        "e/R" => ("arch.eccentricity", v * radius.ok_or_else(need_radius)?),
+        "h/R" => ("piers.height", v * radius.ok_or_else(need_radius)?),
+        "b/R" => ("piers.width", v * radius.ok_or_else(need_radius)?),
+        "t/span" => ("arch.thickness", v * span(scene)),
+        _ => {
+            if !matches!(scene.arch.shape, Shape::Basket { .. }) {
+                return Err(SceneError::BadOverride {
+                    text: format!("{key}={v}"),
+                    message: "`rise/span` needs a basket arch".into(),
+                });
+            }
+            ("arch.rise", v * span(scene))
+        }
+    };
+    scene.with_value(target, Value::Float(x))
+}
+
+/// Centreline span of the arch.
+pub fn span(scene: &Scene) -> f64 {
+    match scene.arch.shape {
+        Shape::Circular { radius, embrace } => 2.0 * radius * (0.5 * embrace).sin(),
+        Shape::Pointed {
+            radius,
+            eccentricity,
+        } => 2.0 * (radius - eccentricity),
+        Shape::Basket { span, .. } => span,
+    }
+}
+
+/// Centreline rise of the arch above the springing line.
+pub fn rise(scene: &Scene) -> f64 {
+    match scene.arch.shape {
+        Shape::Circular { radius, embrace } => radius * (1.0 - (0.5 * embrace).cos()),
+        Shape::Pointed {
+            radius,
+            eccentricity,
+        } => (radius * radius - eccentricity * eccentricity).sqrt(),
+        Shape::Basket { rise, .. } => rise,
+    }
+}
+
+/// The dimensionless ratios of a scene, as `(name, value)`; NaN where not defined.
+pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
+    let radius = match scene.arch.shape {
+        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
+        Shape::Basket { .. } => f64::NAN,
+    };
+    let e = match scene.arch.shape {
+        Shape::Pointed { eccentricity, .. } => eccentricity,
+        _ => 0.0,
+    };
+    let (h, b) = scene
+        .piers
+        .as_ref()
+        .map_or((f64::NAN, f64::NAN), |p| (p.height, p.width));
+    let t = scene.arch.thickness;
+    vec![
+        ("t/R", t / radius),
+        ("t/span", t / span(scene)),
+        ("e/R", e / radius),
+        ("rise/span", rise(scene) / span(scene)),
+        ("h/R", h / radius),
+        ("b/R", b / radius),
+    ]
+}
+
+/// Every case of the sweep: the varied values of each case and its scene (or the error
+/// that made the case invalid), in order.
+pub fn cases(
+    base: &Scene,
+    variations: &[Variation],
+) -> Vec<(Vec<Value>, Result<Scene, SceneError>)> {
+    let total: usize = variations.iter().map(|v| v.values.len()).product();
+    (0..total)
+        .map(|mut k| {
+            let mut idx = vec![0; variations.len()];
+            for (i, v) in variations.iter().enumerate().rev() {
+                idx[i] = k % v.values.len();
+                k /= v.values.len();
+            }
+            let values: Vec<Value> = idx
+                .iter()
+                .zip(variations)
+                .map(|(&i, v)| v.values[i].clone())
+                .collect();
+            // Scene keys first, ratios last, so a ratio sees the radius or span of the case.
+            let mut order: Vec<usize> = (0..variations.len()).collect();
+            order.sort_by_key(|&i| DERIVED_KEYS.contains(&variations[i].key.as_str()));
+            let scene = order.iter().try_fold(base.clone(), |s, &i| {
+                apply(&s, &variations[i].key, &values[i])
+            });
+            (values, scene)
+        })
+        .collect()
+}
+
+/// Run `analyse` on every case in parallel, keeping the order; `progress` is called after
+/// each case (from worker threads).
+pub fn run<R, F>(
+    cases: &[(Vec<Value>, Result<Scene, SceneError>)],
+    analyse: F,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<R>
+where
+    R: Send,
+    F: Fn(&[Value], &Result<Scene, SceneError>) -> R + Sync,
+{
+    cases
+        .par_iter()
+        .map(|(values, scene)| {
+            let r = analyse(values, scene);
+            progress();
+            r
+        })
+        .collect()
+}
+
+/// The outcome of one case.
+#[derive(Debug, Clone)]
+pub struct SweepRow {
+    pub values: Vec<Value>,
+    pub ratios: Vec<(&'static str, f64)>,
+    /// `collapse`, `no_collapse`, `cannot_stand`, or `error`.
+    pub status: String,
+    pub lambda_lower: Option<f64>,
+    pub lambda_upper: Option<f64>,
+    pub hinges: Vec<Hinge>,
+    pub solve_time_s: f64,
+    /// Why the case failed, for status `error`.
+    pub error: Option<String>,
+}
+
+impl SweepRow {
+    /// Relative gap `(upper - lower) / max(1, lower)` when both bounds exist.
+    pub fn gap(&self) -> Option<f64> {
+        Some((self.lambda_upper? - self.lambda_lower?) / self.lambda_lower?.max(1.0))
+    }
+}
+
+/// Hinges as a compact string: `4:p1 15:p2 ...`.
+pub fn hinge_string(hinges: &[Hinge]) -> String {
+    hinges
+        .iter()
+        .map(|h| {
+            format!(
+                "{}:{}",
+                h.joint,
+                match h.end {
+                    JointEnd::P1 => "p1",
+                    JointEnd::P2 => "p2",
+                }
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The static analysis of one case, as a row (errors become rows with status `error`).
+pub fn static_case(
+    values: &[Value],
+    scene: &Result<Scene, SceneError>,
+    settings: &StaticSettings,
+) -> SweepRow {
+    let mut row = SweepRow {
+        values: values.to_vec(),
+        ratios: Vec::new(),
+        status: "error".into(),
+        lambda_lower: None,
+        lambda_upper: None,
+        hinges: Vec::new(),
+        solve_time_s: 0.0,
+        error: None,
+    };
+    let scene = match scene {
+        Ok(s) => s,
+        Err(e) => {
+            row.error = Some(e.to_string());
+            return row;
+        }
+    };
+    row.ratios = ratios(scene);
+    match lp::analyse(&Assembly::from_scene(scene), settings) {
+        Ok(r) => {
+            row.status = r.status.as_str().to_string();
+            row.lambda_lower = r.lambda;
+            row.hinges = r.hinges;
+            row.solve_time_s = r.solve_time_s;
+            if r.status == Status::NoCollapse {
+                row.lambda_lower = None;
+            }
+        }
+        Err(e) => row.error = Some(e.to_string()),
+    }
+    row
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.filter(|v| v.is_finite())
+        .map_or(String::new(), |v| v.to_string())
+}
+
+/// Write the rows as CSV: the varied keys, the dimensionless ratios, then `status,
+/// lambda_lower, lambda_upper, gap, hinges, solve_time_s, error` and any `extra` columns.
+pub fn write_csv<W: std::io::Write>(
+    out: W,
+    variations: &[Variation],
+    rows: &[SweepRow],
+) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    let mut header: Vec<String> = variations.iter().map(|v| v.key.clone()).collect();
+    let ratio_names: Vec<&str> = DERIVED_KEYS
+        .iter()
+        .copied()
+        .filter(|k| !variations.iter().any(|v| v.key == *k))
+        .collect();
+    header.extend(ratio_names.iter().map(|s| s.to_string()));
+    for h in [
+        "status",
+        "lambda_lower",
+        "lambda_upper",
+        "gap",
+        "hinges",
+        "solve_time_s",
+        "error",
+    ] {
+        header.push(h.to_string());
+    }
+    w.write_record(&header)?;
+    for r in rows {
+        let mut rec: Vec<String> = r
+            .values
+            .iter()
+            .map(|v| match v {
+                Value::String(s) => s.clone(),
+                other => other.to_string(),
+            })
+            .collect();
+        for name in &ratio_names {
+            let v = r.ratios.iter().find(|(n, _)| n == name).map(|(_, v)| *v);
+            rec.push(opt(v));
+        }
+        rec.push(r.status.clone());
+        rec.push(opt(r.lambda_lower));
+        rec.push(opt(r.lambda_upper));
+        rec.push(opt(r.gap()));
+        rec.push(hinge_string(&r.hinges));
+        rec.push(r.solve_time_s.to_string());
+        rec.push(r.error.clone().unwrap_or_default());
+        w.write_record(&rec)?;
+    }
+    w.flush()?;
+    Ok(())
+}

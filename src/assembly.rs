@@ -111,6 +111,12 @@ impl Assembly {
                     b.weight, b.area
                 )));
             }
+            if !is_convex(&b.polygon) {
+                return Err(AnalysisError::Assembly(format!(
+                    "block {i} ({:?}) is not a convex polygon: its outline folds over itself",
+                    b.kind
+                )));
+            }
         }
         for (j, jt) in self.joints.iter().enumerate() {
             if jt.length().is_nan() || jt.length() <= 0.0 {
@@ -323,6 +329,28 @@ impl Assembly {
         }
         Assembly { blocks, joints }
     }
+}
+
+/// Whether a polygon is convex (every turn the same way; straight angles allowed).
+pub fn is_convex(polygon: &[Vec2]) -> bool {
+    let m = polygon.len();
+    if m < 3 {
+        return false;
+    }
+    let (mut pos, mut neg) = (false, false);
+    for k in 0..m {
+        let a = polygon[k];
+        let b = polygon[(k + 1) % m];
+        let c = polygon[(k + 2) % m];
+        let turn = geometry::cross(b - a, c - b);
+        let scale = (b - a).norm() * (c - b).norm();
+        if turn > 1e-12 * scale {
+            pos = true;
+        } else if turn < -1e-12 * scale {
+            neg = true;
+        }
+    }
+    !(pos && neg)
 }
 
 fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {

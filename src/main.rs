@@ -81,11 +81,11 @@ enum Command {
 }
 
 fn load(args: &SceneArgs) -> Result<Scene, Error> {
-    let mut scene = Scene::from_file(&args.scene)?;
-    for s in &args.set {
-        scene = scene.with_override(s)?;
+    let scene = Scene::from_file(&args.scene)?;
+    if args.set.is_empty() {
+        return Ok(scene);
     }
-    Ok(scene)
+    Ok(scene.with_overrides(&args.set)?)
 }
 
 /// Write a file whole or not at all: to a temporary sibling, then rename.

@@ -132,24 +132,44 @@ impl Scene {
     /// A copy of the scene with `key` (dotted, e.g. `arch.thickness`) set to `value`,
     /// validated like a scene file.
     pub fn with_value(&self, key: &str, value: Value) -> Result<Scene, SceneError> {
-        let mut table = self.table.clone();
-        set_dotted(&mut table, key, value).map_err(|message| SceneError::BadOverride {
-            text: key.to_string(),
-            message,
-        })?;
-        parse(table, &self.origin)
+        self.with_values(&[(key, value)])
     }
 
     /// A copy of the scene with the override `key=value` applied (the value is read as a TOML
     /// value, or as a bare string such as `shape=pointed`).
     pub fn with_override(&self, assignment: &str) -> Result<Scene, SceneError> {
-        let (key, value) = parse_assignment(assignment)?;
+        self.with_overrides(&[assignment])
+    }
+
+    /// A copy of the scene with all the overrides applied together, then validated once (so
+    /// `arch.shape=pointed` and `arch.eccentricity=0.2` can be given in either order).
+    pub fn with_overrides<S: AsRef<str>>(&self, assignments: &[S]) -> Result<Scene, SceneError> {
         let mut table = self.table.clone();
-        set_dotted(&mut table, &key, value).map_err(|message| SceneError::BadOverride {
-            text: assignment.to_string(),
-            message,
-        })?;
-        parse(table, &format!("{} (with --set {assignment})", self.origin))
+        let mut sets = String::new();
+        for a in assignments {
+            let a = a.as_ref();
+            let (key, value) = parse_assignment(a)?;
+            set_dotted(&mut table, &key, value).map_err(|message| SceneError::BadOverride {
+                text: a.to_string(),
+                message,
+            })?;
+            sets.push_str(&format!(" --set {a}"));
+        }
+        parse(table, &format!("{} (with{sets})", self.origin))
+    }
+
+    /// A copy of the scene with several `(key, value)` pairs set together, validated once.
+    pub fn with_values(&self, values: &[(&str, Value)]) -> Result<Scene, SceneError> {
+        let mut table = self.table.clone();
+        for (key, value) in values {
+            set_dotted(&mut table, key, value.clone()).map_err(|message| {
+                SceneError::BadOverride {
+                    text: key.to_string(),
+                    message,
+                }
+            })?;
+        }
+        parse(table, &self.origin)
     }
 
     /// A copy of the scene with the arch thickness set to `t`.
@@ -491,6 +511,23 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             if n % 2 != 0 {
                 return Err(s.out_of_range("voussoirs", n, "must be even for a pointed arch"));
             }
+            // The intrados meets the axis x = 0 at a larger polar angle than the centreline;
+            // the last radial joint before the crown must stay on its own side of the axis,
+            // or that voussoir folds over the crown joint.
+            let phi_end = (-e / radius).acos();
+            let psi_intrados = (-e / (radius - 0.5 * thickness)).acos();
+            let h = (n / 2) as f64;
+            let phi_last = std::f64::consts::PI - (std::f64::consts::PI - phi_end) * (h - 1.0) / h;
+            if n > 2 && phi_last <= psi_intrados {
+                return Err(s.out_of_range(
+                    "eccentricity",
+                    e,
+                    &format!(
+                        "too close to R - t/2 for {n} voussoirs: the radial joint next to the crown would cross the axis on the intrados; use fewer voussoirs (at most {}) or a smaller eccentricity",
+                        max_pointed_voussoirs(phi_end, psi_intrados)
+                    ),
+                ));
+            }
             (
                 Shape::Pointed {
                     radius,
@@ -516,7 +553,11 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
                 return Err(s.out_of_range(
                     "rise",
                     rise,
-                    &format!("must be < span/2 = {} (and give side radius 0 < r1 < r2; here r1 = {r1:.6}, r2 = {r2:.6})", 0.5 * span),
+                    &format!(
+                        "with side_angle_deg = {side_deg} the rise must lie strictly between {} and span/2 = {} (so that 0 < r1 < r2; here r1 = {r1:.6}, r2 = {r2:.6}); a flatter basket needs a larger side_angle_deg",
+                        0.5 * span * (1.0 - b.sin()) / b.cos(),
+                        0.5 * span
+                    ),
                 ));
             }
             if thickness >= 2.0 * r1 {
@@ -564,6 +605,19 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
         voussoirs,
         voussoir_shape,
     })
+}
+
+/// The largest even n whose joint next to the crown stays left of the axis on the intrados.
+fn max_pointed_voussoirs(phi_end: f64, psi_intrados: f64) -> usize {
+    // phi_last = pi - (pi - phi_end)(h - 1)/h > psi  <=>  h < (pi - phi_end) / (psi - phi_end)
+    let span = std::f64::consts::PI - phi_end;
+    let limit = span / (psi_intrados - phi_end);
+    let h = if limit.is_finite() {
+        (limit.ceil() as usize).saturating_sub(1).max(1)
+    } else {
+        1
+    };
+    2 * h
 }
 
 fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {

@@ -77,11 +77,33 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
     Ok(Variation { key, values })
 }
 
-/// Apply `key = value` to a scene: a scene key, or one of [`DERIVED_KEYS`].
-pub fn apply(scene: &Scene, key: &str, value: &Value) -> Result<Scene, SceneError> {
-    if !DERIVED_KEYS.contains(&key) {
-        return scene.with_value(key, value.clone());
+/// Apply `key = value` pairs to a scene: scene keys first (together), then the
+/// [`DERIVED_KEYS`] ratios (together), computed from the radius or span of the result.
+pub fn apply(scene: &Scene, pairs: &[(&str, &Value)]) -> Result<Scene, SceneError> {
+    let (derived, plain): (Vec<_>, Vec<_>) =
+        pairs.iter().partition(|(k, _)| DERIVED_KEYS.contains(k));
+    let plain: Vec<(&str, Value)> = plain.iter().map(|(k, v)| (*k, (*v).clone())).collect();
+    let scene = if plain.is_empty() {
+        scene.clone()
+    } else {
+        scene.with_values(&plain)?
+    };
+    if derived.is_empty() {
+        return Ok(scene);
     }
+    let targets = derived
+        .iter()
+        .map(|(k, v)| derived_target(&scene, k, v))
+        .collect::<Result<Vec<_>, _>>()?;
+    scene.with_values(&targets)
+}
+
+/// The scene key and value a ratio stands for.
+fn derived_target(
+    scene: &Scene,
+    key: &str,
+    value: &Value,
+) -> Result<(&'static str, Value), SceneError> {
     let v = match value {
         Value::Float(x) => *x,
         Value::Integer(i) => *i as f64,
@@ -116,7 +138,7 @@ pub fn apply(scene: &Scene, key: &str, value: &Value) -> Result<Scene, SceneErro
             ("arch.rise", v * span(scene))
         }
     };
-    scene.with_value(target, Value::Float(x))
+    Ok((target, Value::Float(x)))
 }
 
 /// Centreline span of the arch.
@@ -187,12 +209,12 @@ pub fn cases(
                 .zip(variations)
                 .map(|(&i, v)| v.values[i].clone())
                 .collect();
-            // Scene keys first, ratios last, so a ratio sees the radius or span of the case.
-            let mut order: Vec<usize> = (0..variations.len()).collect();
-            order.sort_by_key(|&i| DERIVED_KEYS.contains(&variations[i].key.as_str()));
-            let scene = order.iter().try_fold(base.clone(), |s, &i| {
-                apply(&s, &variations[i].key, &values[i])
-            });
+            let pairs: Vec<(&str, &Value)> = variations
+                .iter()
+                .zip(&values)
+                .map(|(v, x)| (v.key.as_str(), x))
+                .collect();
+            let scene = apply(base, &pairs);
             (values, scene)
         })
         .collect()

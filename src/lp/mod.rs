@@ -153,10 +153,21 @@ pub fn analyse(
             result.status = Status::CannotStand;
         }
         other => {
-            return Err(AnalysisError::SolverFailed {
-                status: format!("{other:?}"),
-                iterations: sol.iterations,
-            })
+            // Just below the minimum thickness the lambda program is nearly infeasible and
+            // the interior-point method may stall. The phase-one program settles it: a
+            // positive least tension certifies that nothing stands at lambda = 0.
+            let stand = stands(assembly, settings)?;
+            if stand.stands {
+                return Err(AnalysisError::SolverFailed {
+                    status: format!("{other:?}"),
+                    iterations: sol.iterations,
+                });
+            }
+            result.status = Status::CannotStand;
+            result.solver_status = format!(
+                "{other:?}; phase-one least tension {:.3e} N > 0",
+                stand.tension
+            );
         }
     }
     result.solve_time_s = start.elapsed().as_secs_f64();

@@ -15,6 +15,14 @@ use toml::{Table, Value};
 /// dense outputs and the discrete searches stop being useful, not just slow.
 pub const MAX_VOUSSOIRS: usize = 20_000;
 
+/// Smallest length a scene may give (m): a micrometre.
+pub const MIN_LENGTH: f64 = 1e-6;
+/// Largest length a scene may give (m): a thousand kilometres.
+pub const MAX_LENGTH: f64 = 1e6;
+/// Smallest thickness relative to the arch's size (radius, or half the span): thinner rings
+/// have no meaning for masonry and lose all digits in the joint geometry.
+pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
+
 /// The shape of the arch and its shape-specific dimensions (metres, radians).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
@@ -338,6 +346,19 @@ impl<'a> Section<'a> {
         Ok(v)
     }
 
+    /// A length (m) within [`MIN_LENGTH`, `MAX_LENGTH`].
+    fn length(&mut self, key: &'static str, what: &str) -> Result<f64, SceneError> {
+        let v = self.positive(key, None, what)?;
+        if !(MIN_LENGTH..=MAX_LENGTH).contains(&v) {
+            return Err(self.out_of_range(
+                key,
+                v,
+                &format!("must be a length from {MIN_LENGTH:e} to {MAX_LENGTH:e} m"),
+            ));
+        }
+        Ok(v)
+    }
+
     fn count(
         &mut self,
         key: &'static str,
@@ -451,7 +472,7 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
 
 fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
     let shape_name = s.string("shape", None)?;
-    let thickness = s.positive("thickness", None, "arch thickness t in metres")?;
+    let thickness = s.length("thickness", "arch thickness t in metres")?;
     let vs = s.string("voussoir_shape", Some("polygon"))?;
     let voussoir_shape = match vs.as_str() {
         "polygon" => VoussoirShape::Polygon,
@@ -466,7 +487,7 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
     };
     let (shape, voussoirs) = match shape_name.as_str() {
         "circular" => {
-            let radius = s.positive("radius", None, "centreline radius R in metres")?;
+            let radius = s.length("radius", "centreline radius R in metres")?;
             let embrace_deg = s.positive("embrace_deg", Some(180.0), "")?;
             if embrace_deg >= 360.0 {
                 return Err(s.out_of_range(
@@ -483,6 +504,19 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
                 ));
             }
             let n = s.count("voussoirs", None, 1, "number of voussoirs n")?;
+            // A polygon voussoir is a quadrilateral of straight chords: it needs less than
+            // 180 deg of arc.
+            if embrace_deg / n as f64 >= 180.0 {
+                return Err(s.out_of_range(
+                    "voussoirs",
+                    n,
+                    &format!(
+                        "each voussoir would subtend {} deg; an embrace of {embrace_deg} deg needs at least {} voussoirs",
+                        embrace_deg / n as f64,
+                        (embrace_deg / 180.0).floor() as usize + 1
+                    ),
+                ));
+            }
             let shape = Shape::Circular {
                 radius,
                 embrace: embrace_deg.to_radians(),
@@ -490,7 +524,7 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             (shape, n)
         }
         "pointed" => {
-            let radius = s.positive("radius", None, "centreline radius R in metres")?;
+            let radius = s.length("radius", "centreline radius R in metres")?;
             let e = s.opt_f64("eccentricity")?.ok_or_else(|| {
                 s.missing(
                     "eccentricity",
@@ -537,8 +571,8 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             )
         }
         "basket" => {
-            let span = s.positive("span", None, "centreline span L in metres")?;
-            let rise = s.positive("rise", None, "centreline rise f in metres")?;
+            let span = s.length("span", "centreline span L in metres")?;
+            let rise = s.length("rise", "centreline rise f in metres")?;
             let side_deg = s.positive("side_angle_deg", Some(60.0), "")?;
             if side_deg >= 90.0 {
                 return Err(s.out_of_range(
@@ -598,6 +632,17 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             ))
         }
     };
+    let size = match shape {
+        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
+        Shape::Basket { span, .. } => 0.5 * span,
+    };
+    if thickness < MIN_RELATIVE_THICKNESS * size {
+        return Err(s.out_of_range(
+            "thickness",
+            thickness,
+            &format!("must be at least {MIN_RELATIVE_THICKNESS:e} of the arch's size ({size} m)"),
+        ));
+    }
     s.finish(&format!("for shape = \"{shape_name}\" "))?;
     Ok(ArchSpec {
         shape,
@@ -621,8 +666,8 @@ fn max_pointed_voussoirs(phi_end: f64, psi_intrados: f64) -> usize {
 }
 
 fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
-    let height = s.positive("height", None, "pier height h in metres")?;
-    let width = s.positive("width", None, "pier width b in metres")?;
+    let height = s.length("height", "pier height h in metres")?;
+    let width = s.length("width", "pier width b in metres")?;
     let courses = s.count("courses", Some(1), 1, "")?;
     s.finish("")?;
     if let Shape::Circular { embrace, .. } = arch.shape {

@@ -444,3 +444,84 @@ fn chart_without_values_still_draws_and_says_so() {
     let doc = Document::parse(&text).expect("well-formed XML");
     assert!(texts(&doc).iter().any(|t| t == "no finite values to plot"));
 }
+
+/// Shapes, portals, both load directions, friction, 1000 voussoirs: the drawing carries one
+/// element per block, hinge and sliding joint, the thrust line on the joints, and, for a
+/// four-hinge mechanism, one closed dashed outline per moving rigid piece (three).
+#[test]
+fn every_kind_of_structure_draws() {
+    let cases = [
+        ("circular-1000", "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 1000\n", Direction::Right),
+        ("circular-200-thin", "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1075\nvoussoirs = 200\n", Direction::Right),
+        ("segmental", "[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = 120\nthickness = 0.1\nvoussoirs = 30\n", Direction::Right),
+        ("pointed-left", "[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.3\nthickness = 0.12\nvoussoirs = 40\n", Direction::Left),
+        ("basket", "[arch]\nshape = \"basket\"\nspan = 3.0\nrise = 0.9\nthickness = 0.2\nvoussoirs = 25\n", Direction::Right),
+        ("portal-friction", "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 12\n[piers]\nheight = 2.5\nwidth = 0.6\ncourses = 6\n[material]\nfriction = 0.42\n", Direction::Right),
+    ];
+    let mut slid = 0;
+    for (name, text, dir) in cases {
+        let a = Assembly::from_scene(&scene(text));
+        let r = lp::analyse(&a, &StaticSettings::default().direction(dir)).expect("runs");
+        assert_eq!(r.status, Status::Collapse, "{name}");
+        let forces = r.forces.as_deref().expect("forces");
+        let d = Drawing {
+            title: format!("{name}\nlambda = {:.4}", r.lambda.unwrap_or(f64::NAN)),
+            forces: Some(forces),
+            hinges: &r.hinges,
+            sliding: &r.sliding,
+            mechanism: Some(Mechanism {
+                velocities: &r.mechanism,
+                amplification: None,
+            }),
+            load: Some(dir),
+            ..Default::default()
+        };
+        let text = svg::structure_svg(&a, &d).expect("drawing");
+        keep(&format!("{name}.svg"), &text);
+        let doc = Document::parse(&text).expect("well-formed XML");
+        let (x0, y0, s) = fit_frame(&doc, &a);
+
+        // Every drawn pressure point lies on its joint (within the pixel rounding).
+        let line: Vec<_> = children(group(&doc, "thrust-line"), "polyline")
+            .iter()
+            .flat_map(points)
+            .collect();
+        let on_joints: Vec<_> = a
+            .joints
+            .iter()
+            .zip(thrust_points(&a, forces))
+            .filter_map(|(j, p)| p.map(|_| j))
+            .collect();
+        assert_eq!(line.len(), on_joints.len(), "{name}");
+        for (p, j) in line.iter().zip(on_joints) {
+            let w = Vec2::new((p.0 - x0) / s, (y0 - p.1) / s);
+            let u = j.tangent();
+            let along = (w - j.p1).dot(&u);
+            let off = (w - j.p1 - along * u).norm() * s;
+            assert!(off <= 1.5, "{name}: pressure point {off} px off its joint");
+            assert!(along >= -1.5 / s && along <= j.length() + 1.5 / s, "{name}");
+        }
+        assert_eq!(
+            children(group(&doc, "hinges"), "circle").len(),
+            r.hinges.len(),
+            "{name}"
+        );
+        if !r.sliding.is_empty() {
+            slid += 1;
+            assert_eq!(
+                children(group(&doc, "sliding"), "polyline").len(),
+                r.sliding.len()
+            );
+        }
+        let dashed = children(group(&doc, "mechanism"), "polyline");
+        assert!(!dashed.is_empty(), "{name}");
+        if r.sliding.is_empty() && r.hinges.len() == 4 {
+            assert_eq!(dashed.len(), 3, "{name}: three moving pieces");
+            for p in &dashed {
+                let pts = points(p);
+                assert!(near(pts[0], pts[pts.len() - 1], 0.1), "{name}: closed");
+            }
+        }
+    }
+    assert!(slid > 0, "the friction case slides");
+}

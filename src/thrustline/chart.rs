@@ -126,15 +126,21 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
     if y0 > 0.0 {
         y0 = 0.0;
     }
-    let pad = |lo: f64, hi: f64, share: f64| {
-        let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
-        (
-            lo - share * span * f64::from(u8::from(lo != 0.0)),
-            hi + share * span,
-        )
+    // Room around the data so end markers stay clear of the axes: 2 % each side in x, 6 %
+    // above (and below, when negative) in y; a single value gets a range around it.
+    let widen = |lo: f64, hi: f64| {
+        if hi > lo {
+            (lo, hi)
+        } else {
+            let h = 0.5 * lo.abs().max(1.0);
+            (lo - h, hi + h)
+        }
     };
-    (x0, x1) = if x1 > x0 { (x0, x1) } else { pad(x0, x1, 0.1) };
-    (y0, y1) = pad(y0, y1, 0.06);
+    (x0, x1) = widen(x0, x1);
+    (x0, x1) = (x0 - 0.02 * (x1 - x0), x1 + 0.02 * (x1 - x0));
+    (y0, y1) = widen(y0, y1);
+    let dy = y1 - y0;
+    (y0, y1) = (if y0 < 0.0 { y0 - 0.06 * dy } else { y0 }, y1 + 0.06 * dy);
 
     // The legend column to the right of the plot.
     let mut entries: Vec<(Glyph, String)> = Vec::new();
@@ -173,8 +179,8 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
             .y_desc(chart.y_label.clone())
             .label_style(label)
             .axis_desc_style(desc)
-            .light_line_style(RGBColor(0xEE, 0xEE, 0xEE))
-            .bold_line_style(RGBColor(0xD0, 0xD0, 0xD0))
+            .light_line_style(INVISIBLE)
+            .bold_line_style(RGBColor(0xDD, 0xDD, 0xDD))
             .draw()
             .map_err(plot_err)?;
         if !has_data {

@@ -70,7 +70,7 @@ pub mod colours {
     /// Thrust line (line of pressure).
     pub const THRUST: RGBColor = RGBColor(0xD6, 0x27, 0x28);
     /// Line of action of the resultant (funicular polygon).
-    pub const ACTION: RGBColor = RGBColor(0xF0, 0x90, 0x90);
+    pub const ACTION: RGBColor = RGBColor(0xEE, 0x82, 0x82);
     /// Hinge markers.
     pub const HINGE: RGBColor = RGBColor(0x1A, 0x1A, 0x1A);
     /// Sliding joints.
@@ -243,7 +243,12 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     };
 
     let mut legend = Vec::new();
-    legend.push((Glyph::Block, "blocks (to scale)".to_string()));
+    let blocks_label = if drawing.moved.is_some() {
+        "initial positions (to scale)"
+    } else {
+        "blocks (to scale)"
+    };
+    legend.push((Glyph::Block, blocks_label.to_string()));
     let thrust = drawing.forces.map(|f| super::thrust_points(assembly, f));
     if thrust.is_some() {
         legend.push((Glyph::Line(THRUST, 3, false), "thrust line".into()));
@@ -255,7 +260,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         legend.push((Glyph::Hinge, format!("hinge ({})", drawing.hinges.len())));
     }
     if !drawing.sliding.is_empty() {
-        legend.push((Glyph::Line(SLIDING, 5, false), "sliding joint".into()));
+        legend.push((Glyph::Line(SLIDING, 6, false), "sliding joint".into()));
     }
     let has_supports = !drawing.hide_supports && assembly.joints.iter().any(|j| j.is_support());
     if has_supports {
@@ -263,7 +268,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     }
     if let Some(m) = &mech {
         legend.push((
-            Glyph::Line(MECHANISM, 2, true),
+            Glyph::Mechanism,
             format!(
                 "collapse mechanism, displacements x{} (largest {} m = {:.0}% of size {} m)",
                 sig(m.amplification),
@@ -330,13 +335,24 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         })?;
     }
     svg.layer("blocks", |root| {
-        // Outlines of thin voussoirs would merge into a dark band: thinner edges then.
-        let thin = assembly.blocks.len() > 150;
-        let edge = if thin {
-            BLOCK_EDGE.mix(0.45).stroke_width(1)
-        } else {
-            BLOCK_EDGE.stroke_width(1)
-        };
+        // The edges of thin voussoirs (a few pixels apart) would merge into a dark band:
+        // fade them with the typical shortest edge, in pixels.
+        let mut shortest: Vec<f64> = assembly
+            .blocks
+            .iter()
+            .map(|b| {
+                let n = b.polygon.len();
+                (0..n)
+                    .map(|k| (b.polygon[(k + 1) % n] - b.polygon[k]).norm())
+                    .fold(f64::INFINITY, f64::min)
+                    * scale
+            })
+            .collect();
+        shortest.sort_by(f64::total_cmp);
+        let typical = shortest.get(shortest.len() / 2).copied().unwrap_or(0.0);
+        let edge = BLOCK_EDGE
+            .mix((typical / 12.0).clamp(0.2, 1.0))
+            .stroke_width(1);
         for b in &assembly.blocks {
             let pts: Vec<_> = b.polygon.iter().map(|p| frame.px(*p)).collect();
             root.draw(&Polygon::new(pts.clone(), BLOCK.filled()))
@@ -364,7 +380,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
                 let j = &assembly.joints[k];
                 root.draw(&PathElement::new(
                     vec![frame.px(j.p1), frame.px(j.p2)],
-                    SLIDING.stroke_width(5),
+                    SLIDING.stroke_width(6),
                 ))
                 .map_err(plot_err)?;
             }
@@ -705,17 +721,16 @@ fn line_of_action(
                     let (da, db) = (dir(k), dir(k + 1));
                     let den = crate::geometry::cross(da, db);
                     let bl = &assembly.blocks[k];
-                    let reach = bl
-                        .polygon
-                        .iter()
-                        .map(|p| (p - bl.centroid).norm())
-                        .fold(0.0, f64::max);
                     if den.abs() > 1e-12 * da.norm() * db.norm() {
                         // a + s da = b + r db  =>  s = ((b - a) x db) / (da x db)
                         let s = crate::geometry::cross(b - a, db) / den;
                         let c = a + s * da;
-                        // Nearly parallel forces put the corner far away; leave it out.
-                        ((c - bl.centroid).norm() <= 2.0 * reach).then_some(c)
+                        // Nearly parallel forces (a pier course under a small lambda, the
+                        // block at a support) put the corner outside the block, even below
+                        // the ground: true, but it reads as a stray spike. Draw the corner
+                        // only where the line turns inside the block; elsewhere the run
+                        // joins the pressure points.
+                        inside(&bl.polygon, c).then_some(c)
                     } else {
                         None
                     }
@@ -728,6 +743,13 @@ fn line_of_action(
         }
     }
     runs(seq.into_iter())
+}
+
+/// Whether `p` lies in the convex polygon `poly` (either orientation), edges included.
+fn inside(poly: &[Vec2], p: Vec2) -> bool {
+    let n = poly.len();
+    let side = |k: usize| crate::geometry::cross(poly[(k + 1) % n] - poly[k], p - poly[k]);
+    (0..n).all(|k| side(k) >= 0.0) || (0..n).all(|k| side(k) <= 0.0)
 }
 
 /// Runs of consecutive `Some` points.
@@ -909,6 +931,8 @@ pub(crate) enum Glyph {
     Moved,
     /// Colour, stroke width, dashed.
     Line(RGBColor, u32, bool),
+    /// Dashed outline over a faint fill (mechanism).
+    Mechanism,
     /// A line with point markers (charts).
     Marked(RGBColor),
     Hinge,
@@ -986,6 +1010,26 @@ pub(crate) fn draw_legend(
                     root.draw(&PathElement::new(vec![(x0, yc), (x1, yc)], style))
                         .map_err(plot_err)?;
                 }
+            }
+            Glyph::Mechanism => {
+                root.draw(&Rectangle::new(
+                    [(x0, yc - 7), (x1, yc + 7)],
+                    MECHANISM.mix(0.10).filled(),
+                ))
+                .map_err(plot_err)?;
+                root.draw(&DashedPathElement::new(
+                    vec![
+                        (x0, yc - 7),
+                        (x1, yc - 7),
+                        (x1, yc + 7),
+                        (x0, yc + 7),
+                        (x0, yc - 7),
+                    ],
+                    8,
+                    5,
+                    MECHANISM.stroke_width(2),
+                ))
+                .map_err(plot_err)?;
             }
             Glyph::Marked(c) => {
                 root.draw(&PathElement::new(

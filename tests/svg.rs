@@ -338,9 +338,14 @@ fn draw_structure_writes_the_file() {
     let a = semicircle(0.15, 8);
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("a.svg");
-    svg::draw_structure(&path, &a, &Drawing::new("blocks only")).expect("written");
+    let title = "blocks only: t < R & \"quoted\"";
+    svg::draw_structure(&path, &a, &Drawing::new(title)).expect("written");
     let text = std::fs::read_to_string(&path).expect("read back");
     let doc = Document::parse(&text).expect("well-formed XML");
+    assert!(
+        texts(&doc).iter().any(|t| t == title),
+        "title escaped and kept"
+    );
     assert_eq!(children(group(&doc, "blocks"), "polygon").len(), 8);
     let missing = dir.path().join("no/such/dir/a.svg");
     assert!(matches!(

@@ -84,6 +84,17 @@ pub fn draw_lines<P: AsRef<Path>>(path: P, chart: &Chart) -> Result<(), SvgError
     write_file(path.as_ref(), &text)
 }
 
+/// Draw `chart` as SVG into `writer`.
+pub fn write_lines<W: std::io::Write>(mut writer: W, chart: &Chart) -> Result<(), SvgError> {
+    let text = chart_svg(chart)?;
+    writer
+        .write_all(text.as_bytes())
+        .map_err(|source| SvgError::Io {
+            path: "<writer>".into(),
+            source,
+        })
+}
+
 /// The SVG document of `chart`.
 pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
     // Sorted finite points of each series, with the breaks kept.
@@ -141,6 +152,12 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
     (y0, y1) = widen(y0, y1);
     let dy = y1 - y0;
     (y0, y1) = (if y0 < 0.0 { y0 - 0.06 * dy } else { y0 }, y1 + 0.06 * dy);
+
+    if ![x0, x1, y0, y1].iter().all(|v| v.is_finite()) {
+        return Err(SvgError::Invalid(
+            "the values span more than a finite range".into(),
+        ));
+    }
 
     // The legend column to the right of the plot.
     let mut entries: Vec<(Glyph, String)> = Vec::new();

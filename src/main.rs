@@ -10,6 +10,7 @@ use voussoir::report;
 use voussoir::scene::Scene;
 use voussoir::sweep;
 use voussoir::thickness;
+use voussoir::thrustline::svg::{self, Drawing, Mechanism};
 
 #[derive(Parser)]
 #[command(
@@ -51,6 +52,9 @@ enum Command {
         /// Write the thrust line (one row per joint) to this CSV file
         #[arg(long, value_name = "FILE")]
         thrust_csv: Option<PathBuf>,
+        /// Draw the blocks, thrust line, hinges and mechanism to this SVG file
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
         /// Direction of the horizontal acceleration
         #[arg(long, value_enum, default_value = "right")]
         direction: Dir,
@@ -69,6 +73,15 @@ enum Command {
         /// Write the rows to this CSV file (default: standard output)
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
+        /// Draw lambda against --x to this SVG file, one line per value of the other keys
+        #[arg(long, value_name = "FILE", requires = "x")]
+        svg: Option<PathBuf>,
+        /// Abscissa of the chart: a varied key or a ratio (t/R, e/R, h/R, b/R, t/span, rise/span)
+        #[arg(long, value_name = "KEY")]
+        x: Option<String>,
+        /// Key whose values name the lines of the chart (listed first in the legend)
+        #[arg(long, value_name = "KEY")]
+        series: Option<String>,
     },
     /// Smallest arch thickness that stands under its own weight
     MinThickness {
@@ -77,6 +90,9 @@ enum Command {
         /// Print one JSON object instead of the summary
         #[arg(long)]
         json: bool,
+        /// Draw the thrust line at the minimum thickness to this SVG file
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
     },
 }
 
@@ -110,6 +126,17 @@ fn write_atomically(
         })
 }
 
+fn write_svg(path: &Path, assembly: &Assembly, drawing: &Drawing) -> Result<(), Error> {
+    let text = svg::structure_svg(assembly, drawing).map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    write_atomically(path, |b| {
+        b.extend_from_slice(text.as_bytes());
+        Ok(())
+    })
+}
+
 fn json<T: serde::Serialize>(value: &T) -> String {
     serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
 }
@@ -120,6 +147,7 @@ fn run(cli: Cli) -> Result<String, Error> {
             scene,
             json: as_json,
             thrust_csv,
+            svg,
             direction,
             tolerance,
         } => {
@@ -151,6 +179,22 @@ fn run(cli: Cli) -> Result<String, Error> {
                     ));
                 }
             }
+            if let Some(path) = svg {
+                let title = report::drawing_title(&scene, result.lambda, None);
+                let drawing = Drawing {
+                    title,
+                    forces: result.forces.as_deref(),
+                    hinges: &result.hinges,
+                    sliding: &result.sliding,
+                    mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
+                        velocities: &result.mechanism,
+                        amplification: None,
+                    }),
+                    load: Some(settings.direction),
+                    ..Default::default()
+                };
+                write_svg(&path, &assembly, &drawing)?;
+            }
             if !notes.is_empty() {
                 eprint!("{notes}");
             }
@@ -160,12 +204,33 @@ fn run(cli: Cli) -> Result<String, Error> {
                 report::analysis_summary(&scene, &assembly, &result)
             })
         }
-        Command::Sweep { scene, vary, csv } => {
+        Command::Sweep {
+            scene,
+            vary,
+            csv,
+            svg,
+            x,
+            series,
+        } => {
             let scene = load(&scene)?;
             let variations = vary
                 .iter()
                 .map(|v| sweep::parse_variation(v))
                 .collect::<Result<Vec<_>, _>>()?;
+            let chart_for = |rows: &[sweep::SweepRow]| -> Result<Option<voussoir::thrustline::chart::Chart>, Error> {
+                match (&svg, &x) {
+                    (Some(_), Some(x)) => Ok(Some(sweep::chart(
+                        &variations,
+                        rows,
+                        x,
+                        series.as_deref(),
+                        &format!("{}: collapse multiplier against {x}", report::shape_title(&scene)),
+                    )?)),
+                    _ => Ok(None),
+                }
+            };
+            // Check --x and --series before solving anything.
+            chart_for(&[])?;
             let cases = sweep::cases(&scene, &variations);
             let bar = progress_bar(cases.len() as u64, "sweep");
             let settings = StaticSettings::default();
@@ -175,6 +240,17 @@ fn run(cli: Cli) -> Result<String, Error> {
                 &|| bar.inc(1),
             );
             bar.finish_and_clear();
+            if let (Some(path), Some(chart)) = (&svg, chart_for(&rows)?) {
+                let text =
+                    voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| Error::Output {
+                        path: path.clone(),
+                        message: e.to_string(),
+                    })?;
+                write_atomically(path, |b| {
+                    b.extend_from_slice(text.as_bytes());
+                    Ok(())
+                })?;
+            }
             let mut buf = Vec::new();
             sweep::write_csv(&mut buf, &variations, &rows).map_err(|e| Error::Output {
                 path: csv.clone().unwrap_or_else(|| "stdout".into()),
@@ -204,10 +280,33 @@ fn run(cli: Cli) -> Result<String, Error> {
         Command::MinThickness {
             scene,
             json: as_json,
+            svg,
         } => {
             let scene = load(&scene)?;
             let assembly = Assembly::from_scene(&scene);
             let m = thickness::min_thickness(&scene, &StaticSettings::default())?;
+            if let Some(path) = svg {
+                match (&m.at_minimum, m.search.min_thickness) {
+                    (Some((at, stand)), Some(t)) => {
+                        let drawing = Drawing {
+                            title: format!(
+                                "{} at its minimum thickness t_min = {t:.6} m\nthrust line under self-weight (lambda = 0), {} hinges",
+                                report::shape_title(&scene),
+                                stand.hinges.len()
+                            ),
+                            forces: Some(&stand.forces),
+                            hinges: &stand.hinges,
+                            ..Default::default()
+                        };
+                        write_svg(&path, at, &drawing)?;
+                    }
+                    _ => eprintln!(
+                        "note: no minimum thickness ({:?}): {} not written",
+                        m.search.outcome,
+                        path.display()
+                    ),
+                }
+            }
             Ok(if as_json {
                 json(&report::MinThicknessReport::new(&scene, &assembly, &m))
             } else {
@@ -237,8 +336,16 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(out) => {
-            println!("{}", out.trim_end());
-            ExitCode::SUCCESS
+            use std::io::Write;
+            // A closed pipe (`voussoir ... | head`) is not an error of ours.
+            let mut stdout = std::io::stdout().lock();
+            match writeln!(stdout, "{}", out.trim_end()).and_then(|_| stdout.flush()) {
+                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    eprintln!("error: cannot write to standard output: {e}");
+                    ExitCode::FAILURE
+                }
+                _ => ExitCode::SUCCESS,
+            }
         }
         Err(e) => {
             eprintln!("error: {e}");

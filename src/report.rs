@@ -409,3 +409,44 @@ pub fn min_thickness_summary(scene: &Scene, assembly: &Assembly, m: &MinThicknes
     let _ = writeln!(s, "  {} static analyses", m.search.evaluations);
     s
 }
+
+/// A short name of the structure for titles, e.g. `semicircular arch` or `pointed portal`.
+pub fn shape_title(scene: &Scene) -> String {
+    let shape = match scene.arch.shape {
+        Shape::Circular { embrace, .. } => {
+            let deg = embrace.to_degrees();
+            if (deg - 180.0).abs() < 1e-9 {
+                "semicircular".to_string()
+            } else if deg < 180.0 {
+                format!("segmental ({deg:.0} deg)")
+            } else {
+                format!("horseshoe ({deg:.0} deg)")
+            }
+        }
+        Shape::Pointed { .. } => "pointed".to_string(),
+        Shape::Basket { .. } => "basket-handle".to_string(),
+    };
+    format!(
+        "{shape} {}",
+        if scene.piers.is_some() {
+            "portal"
+        } else {
+            "arch"
+        }
+    )
+}
+
+/// Title of a structure drawing: shape, thickness, voussoirs and the multipliers.
+pub fn drawing_title(scene: &Scene, lower: Option<f64>, upper: Option<f64>) -> String {
+    let fmt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.4}"));
+    let mut second = format!("lambda_lower = {}", fmt(lower));
+    if upper.is_some() {
+        second.push_str(&format!("   lambda_upper = {}", fmt(upper)));
+    }
+    format!(
+        "{}, t = {} m, {} voussoirs\n{second}",
+        shape_title(scene),
+        scene.arch.thickness,
+        scene.arch.voussoirs
+    )
+}

@@ -377,3 +377,94 @@ pub fn write_csv<W: std::io::Write>(
     w.flush()?;
     Ok(())
 }
+
+/// The chart of a sweep: lambda against the `x` key (a varied key or a ratio), one line per
+/// combination of the other varied keys (the `series` key first in the legend when given).
+pub fn chart(
+    variations: &[Variation],
+    rows: &[SweepRow],
+    x: &str,
+    series: Option<&str>,
+    title: &str,
+) -> Result<crate::thrustline::chart::Chart, SceneError> {
+    use crate::thrustline::chart::{Chart, Series};
+    let bad = |message: String| SceneError::BadOverride {
+        text: format!("--x {x}"),
+        message,
+    };
+    let x_index = variations.iter().position(|v| v.key == x);
+    if x_index.is_none() && !DERIVED_KEYS.contains(&x) {
+        return Err(bad(format!(
+            "`{x}` is neither a varied key nor a ratio ({})",
+            DERIVED_KEYS.join(", ")
+        )));
+    }
+    if let Some(sk) = series {
+        if !variations.iter().any(|v| v.key == sk) || Some(sk) == Some(x) {
+            return Err(SceneError::BadOverride {
+                text: format!("--series {sk}"),
+                message: "must be a varied key other than --x".into(),
+            });
+        }
+    }
+    let mut others: Vec<usize> = (0..variations.len())
+        .filter(|&i| Some(i) != x_index)
+        .collect();
+    if let Some(sk) = series {
+        others.sort_by_key(|&i| variations[i].key != sk);
+    }
+    let text = |v: &Value| match v {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
+    // (series name, its points), in order of first appearance.
+    type Line = (String, Vec<(f64, Option<f64>)>);
+    let mut groups: Vec<Line> = Vec::new();
+    for r in rows {
+        let xv = match x_index {
+            Some(i) => match &r.values[i] {
+                Value::Float(f) => Some(*f),
+                Value::Integer(n) => Some(*n as f64),
+                _ => None,
+            },
+            None => r.ratios.iter().find(|(n, _)| *n == x).map(|(_, v)| *v),
+        };
+        let Some(xv) = xv else { continue };
+        let name = if others.len() == 1 {
+            text(&r.values[others[0]])
+        } else {
+            others
+                .iter()
+                .map(|&i| format!("{} = {}", variations[i].key, text(&r.values[i])))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        match groups.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, pts)) => pts.push((xv, r.lambda_lower)),
+            None => groups.push((name, vec![(xv, r.lambda_lower)])),
+        }
+    }
+    Ok(Chart {
+        title: title.to_string(),
+        x_label: x.to_string(),
+        y_label: "collapse multiplier lambda_lower".to_string(),
+        legend_title: match others.len() {
+            0 => None,
+            1 => Some(variations[others[0]].key.clone()),
+            _ => Some("series".to_string()),
+        },
+        series: groups
+            .into_iter()
+            .map(|(name, pts)| {
+                Series::new(
+                    if name.is_empty() {
+                        "lambda".to_string()
+                    } else {
+                        name
+                    },
+                    pts,
+                )
+            })
+            .collect(),
+    })
+}

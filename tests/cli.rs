@@ -153,3 +153,68 @@ fn errors_go_to_stderr_with_nothing_on_stdout() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+#[test]
+fn svg_outputs_are_written_and_parse() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let a = dir.path().join("a.svg");
+    let m = dir.path().join("m.svg");
+    let s = dir.path().join("s.svg");
+    let c = dir.path().join("s.csv");
+    voussoir()
+        .arg("analyze")
+        .arg(data("portal.toml"))
+        .arg("--svg")
+        .arg(&a)
+        .assert()
+        .success();
+    voussoir()
+        .args(["min-thickness", "--set", "arch.voussoirs=16", "--svg"])
+        .arg(&m)
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    voussoir()
+        .args([
+            "sweep",
+            "--vary",
+            "t/R=0.12:0.2:0.04",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--x",
+            "t/R",
+            "--series",
+            "arch.voussoirs",
+            "--svg",
+        ])
+        .arg(&s)
+        .arg("--csv")
+        .arg(&c)
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    for f in [&a, &m, &s] {
+        let text = std::fs::read_to_string(f).expect("written");
+        roxmltree::Document::parse(&text).expect("well-formed SVG");
+    }
+    assert_eq!(
+        std::fs::read_to_string(&c).expect("csv").lines().count(),
+        1 + 6
+    );
+    // A bad --x is refused before anything is solved or written.
+    let bad = dir.path().join("bad.svg");
+    voussoir()
+        .args([
+            "sweep",
+            "--vary",
+            "t/R=0.12,0.2",
+            "--x",
+            "nonsense",
+            "--svg",
+        ])
+        .arg(&bad)
+        .arg(data("semicircular.toml"))
+        .assert()
+        .failure();
+    assert!(!bad.exists());
+}

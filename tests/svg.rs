@@ -89,7 +89,9 @@ fn fit_frame(doc: &Document, a: &Assembly) -> (f64, f64, f64) {
         })
         .collect();
     let n = pairs.len() as f64;
-    let mean = |f: &dyn Fn(&((f64, f64), Vec2)) -> f64| pairs.iter().map(f).sum::<f64>() / n;
+    // A drawn point and the corner it stands for.
+    type Pair = ((f64, f64), Vec2);
+    let mean = |f: &dyn Fn(&Pair) -> f64| pairs.iter().map(f).sum::<f64>() / n;
     let (px, py) = (mean(&|q| q.0 .0), mean(&|q| q.0 .1));
     let (wx, wy) = (mean(&|q| q.1.x), mean(&|q| q.1.y));
     let num: f64 = pairs

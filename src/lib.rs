@@ -9,3 +9,4 @@ pub mod scene;
 pub mod sweep;
 pub mod thickness;
 pub mod thrustline;
+pub mod study;

@@ -2,7 +2,8 @@
 //! independently (in parallel), rows returned in a deterministic order (the first varied key
 //! changes slowest). Besides scene keys, the dimensionless ratios the paper plots can be
 //! varied directly: `t/R`, `e/R`, `h/R`, `b/R` (R the centreline radius), `t/span` and
-//! `rise/span` (span the centreline span), each setting the underlying scene key.
+//! `rise/span` (span the centreline span), each setting the underlying scene key, and
+//! `e/span`, which sets a pointed arch's eccentricity while keeping its span (so R changes).
 
 use crate::assembly::{Assembly, Hinge, JointEnd};
 use crate::error::SceneError;
@@ -12,7 +13,7 @@ use rayon::prelude::*;
 use toml::Value;
 
 /// Dimensionless keys that can be varied instead of scene keys.
-pub const DERIVED_KEYS: &[&str] = &["t/R", "e/R", "h/R", "b/R", "t/span", "rise/span"];
+pub const DERIVED_KEYS: &[&str] = &["t/R", "e/R", "h/R", "b/R", "t/span", "rise/span", "e/span"];
 
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
@@ -91,10 +92,10 @@ pub fn apply(scene: &Scene, pairs: &[(&str, &Value)]) -> Result<Scene, SceneErro
     if derived.is_empty() {
         return Ok(scene);
     }
-    let targets = derived
-        .iter()
-        .map(|(k, v)| derived_target(&scene, k, v))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut targets = Vec::new();
+    for (k, v) in &derived {
+        targets.extend(derived_target(&scene, k, v)?);
+    }
     scene.with_values(&targets)
 }
 
@@ -103,7 +104,7 @@ fn derived_target(
     scene: &Scene,
     key: &str,
     value: &Value,
-) -> Result<(&'static str, Value), SceneError> {
+) -> Result<Vec<(&'static str, Value)>, SceneError> {
     let v = match value {
         Value::Float(x) => *x,
         Value::Integer(i) => *i as f64,
@@ -128,6 +129,20 @@ fn derived_target(
         "h/R" => ("piers.height", v * radius.ok_or_else(need_radius)?),
         "b/R" => ("piers.width", v * radius.ok_or_else(need_radius)?),
         "t/span" => ("arch.thickness", v * span(scene)),
+        "e/span" => {
+            let Shape::Pointed { .. } = scene.arch.shape else {
+                return Err(SceneError::BadOverride {
+                    text: format!("{key}={v}"),
+                    message: "`e/span` needs a pointed arch".into(),
+                });
+            };
+            let sp = span(scene);
+            let e = v * sp;
+            return Ok(vec![
+                ("arch.eccentricity", Value::Float(e)),
+                ("arch.radius", Value::Float(0.5 * sp + e)),
+            ]);
+        }
         _ => {
             if !matches!(scene.arch.shape, Shape::Basket { .. }) {
                 return Err(SceneError::BadOverride {
@@ -138,7 +153,7 @@ fn derived_target(
             ("arch.rise", v * span(scene))
         }
     };
-    Ok((target, Value::Float(x)))
+    Ok(vec![(target, Value::Float(x))])
 }
 
 /// Centreline span of the arch.
@@ -187,6 +202,7 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         ("rise/span", rise(scene) / span(scene)),
         ("h/R", h / radius),
         ("b/R", b / radius),
+        ("e/span", e / span(scene)),
     ]
 }
 
@@ -254,6 +270,8 @@ pub struct SweepRow {
     pub solve_time_s: f64,
     /// Why the case failed, for status `error`.
     pub error: Option<String>,
+    /// Further named columns (e.g. a baseline multiplier and the ratio to it).
+    pub extra: Vec<(&'static str, Option<f64>)>,
 }
 
 impl SweepRow {
@@ -296,6 +314,7 @@ pub fn static_case(
         hinges: Vec::new(),
         solve_time_s: 0.0,
         error: None,
+        extra: Vec::new(),
     };
     let scene = match scene {
         Ok(s) => s,
@@ -351,6 +370,12 @@ pub fn write_csv<W: std::io::Write>(
     ] {
         header.push(h.to_string());
     }
+    let extra: Vec<&str> = rows
+        .iter()
+        .find(|r| !r.extra.is_empty())
+        .map(|r| r.extra.iter().map(|(n, _)| *n).collect())
+        .unwrap_or_default();
+    header.extend(extra.iter().map(|s| s.to_string()));
     w.write_record(&header)?;
     for r in rows {
         let mut rec: Vec<String> = r
@@ -372,6 +397,9 @@ pub fn write_csv<W: std::io::Write>(
         rec.push(hinge_string(&r.hinges));
         rec.push(r.solve_time_s.to_string());
         rec.push(r.error.clone().unwrap_or_default());
+        for name in &extra {
+            rec.push(opt(r.extra.iter().find(|(n, _)| n == name).and_then(|(_, v)| *v)));
+        }
         w.write_record(&rec)?;
     }
     w.flush()?;
@@ -386,6 +414,18 @@ pub fn chart(
     x: &str,
     series: Option<&str>,
     title: &str,
+) -> Result<crate::thrustline::chart::Chart, SceneError> {
+    chart_of(variations, rows, x, series, title, None)
+}
+
+/// Like [`chart`], plotting the extra column `y` (e.g. `lambda_ratio`) when given.
+pub fn chart_of(
+    variations: &[Variation],
+    rows: &[SweepRow],
+    x: &str,
+    series: Option<&str>,
+    title: &str,
+    y: Option<&str>,
 ) -> Result<crate::thrustline::chart::Chart, SceneError> {
     use crate::thrustline::chart::{Chart, Series};
     let bad = |message: String| SceneError::BadOverride {
@@ -439,15 +479,23 @@ pub fn chart(
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        let yv = match y {
+            Some(col) => r.extra.iter().find(|(n, _)| *n == col).and_then(|(_, v)| *v),
+            None => r.lambda_lower,
+        };
         match groups.iter_mut().find(|(n, _)| *n == name) {
-            Some((_, pts)) => pts.push((xv, r.lambda_lower)),
-            None => groups.push((name, vec![(xv, r.lambda_lower)])),
+            Some((_, pts)) => pts.push((xv, yv)),
+            None => groups.push((name, vec![(xv, yv)])),
         }
     }
     Ok(Chart {
         title: title.to_string(),
         x_label: x.to_string(),
-        y_label: "collapse multiplier lambda_lower".to_string(),
+        y_label: match y {
+            Some("lambda_ratio") => "lambda / lambda of the semicircle of equal span".to_string(),
+            Some(col) => col.to_string(),
+            None => "collapse multiplier lambda_lower".to_string(),
+        },
         legend_title: match others.len() {
             0 => None,
             1 => Some(variations[others[0]].key.clone()),

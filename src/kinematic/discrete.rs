@@ -60,13 +60,13 @@ impl Key {
         }
         k
     }
-    fn items(&self) -> impl Iterator<Item = (usize, u8)> + '_ {
+    pub(crate) fn items(&self) -> impl Iterator<Item = (usize, u8)> + '_ {
         (0..self.count as usize).map(|i| (self.joints[i] as usize, self.acts[i]))
     }
 }
 
 /// The chain's joints and the prefix sums of its blocks, with the load direction.
-struct Chain {
+pub(crate) struct Chain {
     /// `p[e][j]`: end e (0 = p1, 1 = p2) of joint j.
     p: [Vec<Vec2>; 2],
     normal: Vec<Vec2>,
@@ -108,7 +108,43 @@ impl Chain {
         }
     }
 
-    fn joints(&self) -> usize {
+    /// A two-support chain of sections `(p1, p2)` with the material `segments[k]` between
+    /// sections k and k + 1.
+    pub(crate) fn from_sections(
+        sections: &[(Vec2, Vec2)],
+        segments: &[Sums],
+        sign: f64,
+        size: f64,
+    ) -> Chain {
+        let mut pre = Vec::with_capacity(segments.len() + 1);
+        let mut s = Sums::default();
+        pre.push(s);
+        for g in segments {
+            s = s + *g;
+            pre.push(s);
+        }
+        let normal = sections
+            .iter()
+            .map(|(p1, p2)| {
+                let d = (p2 - p1).normalize();
+                Vec2::new(d.y, -d.x)
+            })
+            .collect();
+        Chain {
+            p: [
+                sections.iter().map(|s| s.0).collect(),
+                sections.iter().map(|s| s.1).collect(),
+            ],
+            normal,
+            len: sections.iter().map(|(p1, p2)| (p2 - p1).norm()).collect(),
+            pre,
+            sign,
+            size,
+            closed: true,
+        }
+    }
+
+    pub(crate) fn joints(&self) -> usize {
         self.len.len()
     }
 
@@ -131,7 +167,7 @@ impl Chain {
     }
 
     /// Direct evaluation of any candidate: `(A, G)` if admissible.
-    fn evaluate(&self, key: &Key) -> Option<(f64, f64, super::Motion)> {
+    pub(crate) fn evaluate(&self, key: &Key) -> Option<(f64, f64, super::Motion)> {
         let actives: Vec<Active> = key.items().map(|(j, a)| self.active(j, a)).collect();
         let m = solve_motion(&actives, self.closed)?;
         let js: Vec<usize> = key.items().map(|(j, _)| j).collect();
@@ -325,73 +361,7 @@ fn two_hinges_one_open(chain: &Chain, parallel: bool) -> Extremes<Key> {
     let n = chain.joints();
     let per_open = |o: usize| {
         let mut ext = Extremes::new();
-        let nrm = chain.normal[o];
-        let p = chain.p[0][o];
-        let q = chain.p[1][o];
-        let lo = chain.len[o];
-        for j1 in 0..n {
-            if j1 == o {
-                continue;
-            }
-            for j2 in j1 + 1..n {
-                if j2 == o {
-                    continue;
-                }
-                for e1 in 0..2usize {
-                    let h1 = chain.p[e1][j1];
-                    let s1 = if e1 == 0 { -1.0 } else { 1.0 };
-                    for e2 in 0..2usize {
-                        let h2 = chain.p[e2][j2];
-                        let s2 = if e2 == 0 { -1.0 } else { 1.0 };
-                        let c1 = (p - h2).dot(&nrm);
-                        let c2 = (h1 - p).dot(&nrm);
-                        let cp = (h2 - h1).dot(&nrm);
-                        let cn = -cross(h2 - h1, p - h1);
-                        // Opening velocities: the free end of each hinge, both ends of o.
-                        let v = [
-                            s1 * c1 * chain.len[j1],
-                            s2 * c2 * chain.len[j2],
-                            cn,
-                            cn - cp * lo,
-                        ];
-                        let vmax = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-                        if !(vmax > 0.0) {
-                            continue;
-                        }
-                        let tol = ADMISSIBLE_TOL * vmax;
-                        let sigma = if v.iter().all(|&x| x >= -tol) {
-                            1.0
-                        } else if v.iter().all(|&x| x <= tol) {
-                            -1.0
-                        } else {
-                            continue;
-                        };
-                        let r1 = [sigma * c1, sigma * c1 * h1.y, -sigma * c1 * h1.x];
-                        let r2 = [sigma * c2, sigma * c2 * h2.y, -sigma * c2 * h2.x];
-                        let ro = [
-                            sigma * cp,
-                            sigma * (cp * p.y + cn * nrm.x),
-                            sigma * (-cp * p.x + cn * nrm.y),
-                        ];
-                        // Chain order of the three active joints.
-                        let mut items = [(j1, r1, e1 as u8), (j2, r2, e2 as u8), (o, ro, OPEN)];
-                        items.sort_unstable_by_key(|x| x.0);
-                        let t1 = items[0].1;
-                        let t2 = [t1[0] + items[1].1[0], t1[1] + items[1].1[1], t1[2] + items[1].1[2]];
-                        let (a1, g1) = super::work(t1, chain.body(items[0].0, items[1].0));
-                        let (a2, g2) = super::work(t2, chain.body(items[1].0, items[2].0));
-                        let _ = q;
-                        ext.push(chain.sign * (a1 + a2), g1 + g2, || {
-                            Key::new(&[
-                                (items[0].0, items[0].2),
-                                (items[1].0, items[1].2),
-                                (items[2].0, items[2].2),
-                            ])
-                        });
-                    }
-                }
-            }
-        }
+        two_hinges_one_open_at(chain, o, &mut ext);
         ext
     };
     if parallel {
@@ -401,6 +371,96 @@ fn two_hinges_one_open(chain: &Chain, parallel: bool) -> Extremes<Key> {
             .reduce(Extremes::new, Extremes::merge)
     } else {
         (0..n).map(per_open).fold(Extremes::new(), Extremes::merge)
+    }
+}
+
+/// The two-hinges-one-open mechanisms whose open joint is `o`.
+fn two_hinges_one_open_at<S: Sink>(chain: &Chain, o: usize, sink: &mut S) {
+    let n = chain.joints();
+    let nrm = chain.normal[o];
+    let p = chain.p[0][o];
+    let lo = chain.len[o];
+    // Signed distances of every joint end from the open joint's line.
+    let dist: [Vec<f64>; 2] = [
+        chain.p[0].iter().map(|q| (q - p).dot(&nrm)).collect(),
+        chain.p[1].iter().map(|q| (q - p).dot(&nrm)).collect(),
+    ];
+    for j1 in 0..n {
+        if j1 == o {
+            continue;
+        }
+        for j2 in j1 + 1..n {
+            if j2 == o {
+                continue;
+            }
+            for e1 in 0..2usize {
+                let h1 = chain.p[e1][j1];
+                let s1 = if e1 == 0 { -1.0 } else { 1.0 };
+                for e2 in 0..2usize {
+                    let h2 = chain.p[e2][j2];
+                    let s2 = if e2 == 0 { -1.0 } else { 1.0 };
+                    let c1 = -dist[e2][j2];
+                    let c2 = dist[e1][j1];
+                    let cp = dist[e2][j2] - dist[e1][j1];
+                    let cn = -cross(h2 - h1, p - h1);
+                    // Opening velocities: the free end of each hinge, both ends of o.
+                    let v = [
+                        s1 * c1 * chain.len[j1],
+                        s2 * c2 * chain.len[j2],
+                        cn,
+                        cn - cp * lo,
+                    ];
+                    let vmax = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                    if vmax <= 0.0 {
+                        continue;
+                    }
+                    let tol = ADMISSIBLE_TOL * vmax;
+                    let sigma = if v.iter().all(|&x| x >= -tol) {
+                        1.0
+                    } else if v.iter().all(|&x| x <= tol) {
+                        -1.0
+                    } else {
+                        continue;
+                    };
+                    sink.count(1);
+                    let r1 = [sigma * c1, sigma * c1 * h1.y, -sigma * c1 * h1.x];
+                    let r2 = [sigma * c2, sigma * c2 * h2.y, -sigma * c2 * h2.x];
+                    let ro = [
+                        sigma * cp,
+                        sigma * (cp * p.y + cn * nrm.x),
+                        sigma * (-cp * p.x + cn * nrm.y),
+                    ];
+                    // Chain order of the three active joints.
+                    let items = if o < j1 {
+                        [(o, ro, OPEN), (j1, r1, e1 as u8), (j2, r2, e2 as u8)]
+                    } else if o < j2 {
+                        [(j1, r1, e1 as u8), (o, ro, OPEN), (j2, r2, e2 as u8)]
+                    } else {
+                        [(j1, r1, e1 as u8), (j2, r2, e2 as u8), (o, ro, OPEN)]
+                    };
+                    let t1 = items[0].1;
+                    let t2 = [
+                        t1[0] + items[1].1[0],
+                        t1[1] + items[1].1[1],
+                        t1[2] + items[1].1[2],
+                    ];
+                    let (a1, g1) = super::work(t1, chain.body(items[0].0, items[1].0));
+                    let (a2, g2) = super::work(t2, chain.body(items[1].0, items[2].0));
+                    let (ax, g) = (chain.sign * (a1 + a2), g1 + g2);
+                    if sink.wants(ax, g) {
+                        sink.take(
+                            ax,
+                            g,
+                            Key::new(&[
+                                (items[0].0, items[0].2),
+                                (items[1].0, items[1].2),
+                                (items[2].0, items[2].2),
+                            ]),
+                        );
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -444,6 +504,38 @@ fn mask_tables() -> MaskTables {
         }
     }
     t
+}
+
+/// Receiver of admissible mechanisms `(A, G, key)` during a search.
+pub(crate) trait Sink {
+    /// Whether a mechanism with load power `ax` and gravity power `g` may matter (a cheap test
+    /// before its key is built).
+    fn wants(&self, ax: f64, g: f64) -> bool;
+    fn take(&mut self, ax: f64, g: f64, key: Key);
+    /// Count `n` admissible mechanisms.
+    fn count(&mut self, n: u64);
+}
+
+impl Sink for Extremes<Key> {
+    #[inline]
+    fn wants(&self, ax: f64, g: f64) -> bool {
+        // g/ax < best (ax > 0) and g/ax > needed (ax < 0) are both g < l * ax: no division.
+        if ax > 0.0 {
+            self.best.as_ref().is_none_or(|b| g <= b.0 * ax)
+        } else if ax < 0.0 {
+            self.needed.as_ref().is_none_or(|b| g <= b.0 * ax)
+        } else {
+            g < 0.0
+        }
+    }
+    #[inline]
+    fn take(&mut self, ax: f64, g: f64, key: Key) {
+        self.record(ax, g, || key);
+    }
+    #[inline]
+    fn count(&mut self, n: u64) {
+        self.admissible += n;
+    }
 }
 
 /// Index of the triple p < q < r in the combinatorial number system.
@@ -509,102 +601,35 @@ struct BcdConst {
     kd: [f64; 2],
 }
 
+/// Tables shared by the four-hinge loops.
+pub(crate) struct FourTables {
+    idx: TripleIndex,
+    signs: Vec<u16>,
+    masks: MaskTables,
+}
+
+impl FourTables {
+    fn new(chain: &Chain, parallel: bool) -> Self {
+        let idx = TripleIndex::new(chain.joints());
+        let signs = triangle_signs(chain, &idx, parallel);
+        FourTables {
+            idx,
+            signs,
+            masks: mask_tables(),
+        }
+    }
+}
+
 /// The four-hinge family over all joint quadruples a < b < c < d.
 fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
     let n = chain.joints();
     if n < 4 {
         return Extremes::new();
     }
-    let idx = TripleIndex::new(n);
-    let signs = triangle_signs(chain, &idx, parallel);
-    let masks = mask_tables();
+    let tables = FourTables::new(chain, parallel);
     let per_d = |d: usize| {
         let mut ext = Extremes::new();
-        let mut best = f64::INFINITY;
-        let mut needed = f64::NEG_INFINITY;
-        let mut konst = [BcdConst::default(); 8];
-        for c in 2..d {
-            let base_acd = idx.c3[d] + idx.c2[c];
-            let scd = chain.body(c, d);
-            for b in 1..c {
-                let ybcd = signs[idx.c3[d] + idx.c2[c] + b];
-                let base_abc = idx.c3[c] + idx.c2[b];
-                let base_abd = idx.c3[d] + idx.c2[b];
-                if ybcd >> 8 != 0 {
-                    for a in 0..b {
-                        slow_quadruple(chain, [a, b, c, d], &mut ext);
-                    }
-                    best = ext.best.as_ref().map_or(f64::INFINITY, |x| x.0);
-                    needed = ext.needed.as_ref().map_or(f64::NEG_INFINITY, |x| x.0);
-                    continue;
-                }
-                let sbc = chain.body(b, c);
-                for (combo, k) in konst.iter_mut().enumerate() {
-                    let pb = chain.p[(combo >> 2) & 1][b];
-                    let pc = chain.p[(combo >> 1) & 1][c];
-                    let pd = chain.p[combo & 1][d];
-                    *k = BcdConst {
-                        ca: cross(pc - pb, pd - pb),
-                        al: [cross(pc, pd), pc.y - pd.y, pd.x - pc.x],
-                        be: [cross(pb, pc), pb.y - pc.y, pc.x - pb.x],
-                        kb: [pb.y * sbc.w - sbc.wy, sbc.wx - pb.x * sbc.w],
-                        kd: [pd.y * scd.w - scd.wy, scd.wx - pd.x * scd.w],
-                    };
-                }
-                let ma = masks.a[(ybcd & 0xff) as usize];
-                let pre_c = chain.pre[c];
-                for a in 0..b {
-                    let yabc = signs[base_abc + a];
-                    let yabd = signs[base_abd + a];
-                    let yacd = signs[base_acd + a];
-                    if (yabc | yabd | yacd) >> 8 != 0 {
-                        slow_quadruple(chain, [a, b, c, d], &mut ext);
-                        best = ext.best.as_ref().map_or(f64::INFINITY, |x| x.0);
-                        needed = ext.needed.as_ref().map_or(f64::NEG_INFINITY, |x| x.0);
-                        continue;
-                    }
-                    let mb = masks.b[(yacd & 0xff) as usize];
-                    let mc = masks.c[(yabd & 0xff) as usize];
-                    let md = masks.d[(yabc & 0xff) as usize];
-                    let plus = ma & mb & mc & md;
-                    let minus = !ma & !mb & !mc & !md;
-                    if plus | minus == 0 {
-                        continue;
-                    }
-                    ext.admissible += u64::from((plus | minus).count_ones());
-                    let sac = pre_c - chain.pre[a];
-                    for (bits, sigma) in [(plus, 1.0), (minus, -1.0)] {
-                        let mut bits = bits;
-                        while bits != 0 {
-                            let pat = bits.trailing_zeros() as usize;
-                            bits &= bits - 1;
-                            let k = &konst[pat & 7];
-                            let pa = chain.p[(pat >> 3) & 1][a];
-                            // c_B = -T(a,c,d), c_D = -T(a,b,c); the sign sigma is applied last.
-                            let cb = -(k.al[0] + k.al[1] * pa.x + k.al[2] * pa.y);
-                            let cd = -(k.be[0] + k.be[1] * pa.x + k.be[2] * pa.y);
-                            let ax = k.ca * (pa.y * sac.w - sac.wy) + cb * k.kb[0] - cd * k.kd[0];
-                            let g = k.ca * (sac.wx - pa.x * sac.w) + cb * k.kb[1] - cd * k.kd[1];
-                            let (ax, g) = (sigma * chain.sign * ax, sigma * g);
-                            // g/ax < best (ax > 0) and g/ax > needed (ax < 0) are both
-                            // g < l * ax: no division unless the record may improve.
-                            let record = if ax > 0.0 {
-                                g <= best * ax
-                            } else if ax < 0.0 {
-                                g <= needed * ax
-                            } else {
-                                g < 0.0
-                            };
-                            if record {
-                                ext.record(ax, g, || quad_key([a, b, c, d], pat));
-                                best = ext.best.as_ref().map_or(f64::INFINITY, |x| x.0);
-                                needed = ext.needed.as_ref().map_or(f64::NEG_INFINITY, |x| x.0);
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        four_hinges_at(chain, &tables, d, &mut ext);
         ext
     };
     if parallel {
@@ -615,6 +640,102 @@ fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
             .reduce(Extremes::new, Extremes::merge)
     } else {
         (3..n).map(per_d).fold(Extremes::new(), Extremes::merge)
+    }
+}
+
+/// Every admissible mechanism of a chain, in any order, to `sink` (sequential).
+pub(crate) fn visit_all<S: Sink>(chain: &Chain, sink: &mut S) {
+    let n = chain.joints();
+    if n >= 4 {
+        let tables = FourTables::new(chain, false);
+        for d in 3..n {
+            four_hinges_at(chain, &tables, d, sink);
+        }
+    }
+    for o in 0..n {
+        two_hinges_one_open_at(chain, o, sink);
+    }
+    for j1 in 0..n {
+        for j2 in j1 + 1..n {
+            let key = Key::new(&[(j1, OPEN), (j2, OPEN)]);
+            if let Some((a, g, _)) = chain.evaluate(&key) {
+                sink.count(1);
+                sink.take(a, g, key);
+            }
+        }
+    }
+}
+
+/// The four-hinge quadruples whose last hinge is at joint `d`.
+fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &mut S) {
+    let (idx, signs, masks) = (&tables.idx, &tables.signs, &tables.masks);
+    let mut konst = [BcdConst::default(); 8];
+    for c in 2..d {
+        let base_acd = idx.c3[d] + idx.c2[c];
+        let scd = chain.body(c, d);
+        for b in 1..c {
+            let ybcd = signs[idx.c3[d] + idx.c2[c] + b];
+            let base_abc = idx.c3[c] + idx.c2[b];
+            let base_abd = idx.c3[d] + idx.c2[b];
+            if ybcd >> 8 != 0 {
+                for a in 0..b {
+                    slow_quadruple(chain, [a, b, c, d], sink);
+                }
+                continue;
+            }
+            let sbc = chain.body(b, c);
+            for (combo, k) in konst.iter_mut().enumerate() {
+                let pb = chain.p[(combo >> 2) & 1][b];
+                let pc = chain.p[(combo >> 1) & 1][c];
+                let pd = chain.p[combo & 1][d];
+                *k = BcdConst {
+                    ca: cross(pc - pb, pd - pb),
+                    al: [cross(pc, pd), pc.y - pd.y, pd.x - pc.x],
+                    be: [cross(pb, pc), pb.y - pc.y, pc.x - pb.x],
+                    kb: [pb.y * sbc.w - sbc.wy, sbc.wx - pb.x * sbc.w],
+                    kd: [pd.y * scd.w - scd.wy, scd.wx - pd.x * scd.w],
+                };
+            }
+            let ma = masks.a[(ybcd & 0xff) as usize];
+            let pre_c = chain.pre[c];
+            for a in 0..b {
+                let yabc = signs[base_abc + a];
+                let yabd = signs[base_abd + a];
+                let yacd = signs[base_acd + a];
+                if (yabc | yabd | yacd) >> 8 != 0 {
+                    slow_quadruple(chain, [a, b, c, d], sink);
+                    continue;
+                }
+                let mb = masks.b[(yacd & 0xff) as usize];
+                let mc = masks.c[(yabd & 0xff) as usize];
+                let md = masks.d[(yabc & 0xff) as usize];
+                let plus = ma & mb & mc & md;
+                let minus = !ma & !mb & !mc & !md;
+                if plus | minus == 0 {
+                    continue;
+                }
+                sink.count(u64::from((plus | minus).count_ones()));
+                let sac = pre_c - chain.pre[a];
+                for (bits, sigma) in [(plus, 1.0), (minus, -1.0)] {
+                    let mut bits = bits;
+                    while bits != 0 {
+                        let pat = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        let k = &konst[pat & 7];
+                        let pa = chain.p[(pat >> 3) & 1][a];
+                        // c_B = -T(a,c,d), c_D = -T(a,b,c); the sign sigma is applied last.
+                        let cb = -(k.al[0] + k.al[1] * pa.x + k.al[2] * pa.y);
+                        let cd = -(k.be[0] + k.be[1] * pa.x + k.be[2] * pa.y);
+                        let ax = k.ca * (pa.y * sac.w - sac.wy) + cb * k.kb[0] - cd * k.kd[0];
+                        let g = k.ca * (sac.wx - pa.x * sac.w) + cb * k.kb[1] - cd * k.kd[1];
+                        let (ax, g) = (sigma * chain.sign * ax, sigma * g);
+                        if sink.wants(ax, g) {
+                            sink.take(ax, g, quad_key([a, b, c, d], pat));
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -630,7 +751,7 @@ fn quad_key(j: [usize; 4], pat: usize) -> Key {
 /// `(A, G)` of the four-hinge mechanism with hinges at joints `j` and end pattern `pat`,
 /// oriented by `sigma`. Bodies: [a, b), [b, c), [c, d); body twists `c_A m_a`,
 /// `c_A m_a + c_B m_b`, `-c_D m_d` with `m_p = (1, p_y, -p_x)`.
-#[inline]
+#[cfg(test)]
 fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64, f64) {
     let a = chain.p[(pat >> 3) & 1][j[0]];
     let b = chain.p[(pat >> 2) & 1][j[1]];
@@ -651,11 +772,12 @@ fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64,
 
 /// All 16 end patterns of a quadruple by direct evaluation (near-collinear hinge points).
 #[cold]
-fn slow_quadruple(chain: &Chain, j: [usize; 4], ext: &mut Extremes<Key>) {
+fn slow_quadruple<S: Sink>(chain: &Chain, j: [usize; 4], sink: &mut S) {
     for pat in 0..16 {
         let key = quad_key(j, pat);
         if let Some((a, g, _)) = chain.evaluate(&key) {
-            ext.push(a, g, || key);
+            sink.count(1);
+            sink.take(a, g, key);
         }
     }
 }

@@ -53,7 +53,7 @@ pub mod continuous;
 pub mod discrete;
 
 pub use continuous::{
-    continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
+    continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult, HingeLocation,
     MinThickness,
 };
 pub use discrete::{analyse, lambda_upper_of_scene, stands};

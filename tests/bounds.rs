@@ -23,7 +23,7 @@ fn grid() -> Vec<Case> {
     let mut cases = Vec::new();
     let shapes = ["polygon", "curved"];
     let mut k = 0usize;
-    let mut next = |k: &mut usize, list: &[usize]| {
+    let next = |k: &mut usize, list: &[usize]| {
         *k += 1;
         list[*k % list.len()]
     };
@@ -92,7 +92,10 @@ fn grid() -> Vec<Case> {
                     let t = [0.15, 0.2, 0.25][(k + si) % 3];
                     let vs = shapes[k % 2];
                     cases.push(Case {
-                        label: format!("portal {} h={h} b={b} k={courses} t={t} n={n} {vs}", sh.lines().next().unwrap_or("")),
+                        label: format!(
+                            "portal {} h={h} b={b} k={courses} t={t} n={n} {vs}",
+                            sh.lines().next().unwrap_or("")
+                        ),
                         toml: format!(
                             "{}[piers]\nheight = {h}\nwidth = {b}\ncourses = {courses}\n",
                             arch(sh, t, n, vs)
@@ -138,12 +141,19 @@ fn static_and_kinematic_bounds_coincide() {
                 // Unique mechanism: the static solution shows exactly hinges + 2 open = 4 and
                 // the kinematic one has no idle hinge.
                 let m = kin.mechanism.as_ref().expect("mechanism");
-                if st.hinges.len() + 2 * st.open.len() == 4 && m.hinges.len() + 2 * m.open.len() == 4 {
+                if st.hinges.len() + 2 * st.open.len() == 4
+                    && m.hinges.len() + 2 * m.open.len() == 4
+                {
                     compared_mechanisms += 1;
-                    let hs: Vec<(usize, JointEnd)> = st.hinges.iter().map(|h| (h.joint, h.end)).collect();
-                    let hk: Vec<(usize, JointEnd)> = m.hinges.iter().map(|h| (h.joint, h.end)).collect();
+                    let hs: Vec<(usize, JointEnd)> =
+                        st.hinges.iter().map(|h| (h.joint, h.end)).collect();
+                    let hk: Vec<(usize, JointEnd)> =
+                        m.hinges.iter().map(|h| (h.joint, h.end)).collect();
                     if hs != hk || st.open != m.open {
-                        failures.push(format!("{label}: hinges static {hs:?} open {:?}, kinematic {hk:?} open {:?}", st.open, m.open));
+                        failures.push(format!(
+                            "{label}: hinges static {hs:?} open {:?}, kinematic {hk:?} open {:?}",
+                            st.open, m.open
+                        ));
                         continue;
                     }
                     let dv = st
@@ -160,5 +170,51 @@ fn static_and_kinematic_bounds_coincide() {
         }
     }
     eprintln!("statuses (collapse, no_collapse, cannot_stand): {counts:?}; mechanisms compared: {compared_mechanisms}");
-    assert!(failures.is_empty(), "{} disagreements:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} disagreements:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// With finite friction the rotational mechanisms stay admissible, so the kinematic value is
+/// still an upper bound; sliding can only lower the static multiplier (then sliding governs).
+#[test]
+fn finite_friction_static_stays_below_kinematic() {
+    let mut slid = 0;
+    for mu in [0.2, 0.4, 0.7] {
+        for (sh, piers) in [
+            ("shape = \"circular\"\nradius = 1.0\nembrace_deg = 100", ""),
+            (
+                "shape = \"circular\"\nradius = 1.0",
+                "[piers]\nheight = 1.0\nwidth = 0.5\ncourses = 4\n",
+            ),
+            ("shape = \"pointed\"\nradius = 1.0\neccentricity = 0.25", ""),
+        ] {
+            let text = format!(
+                "{}{piers}[material]\nfriction = {mu}\n",
+                arch(sh, 0.25, 16, "polygon")
+            );
+            let scene = Scene::from_toml_str(&text, "friction").expect("scene");
+            let asm = Assembly::from_scene(&scene);
+            let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
+            let kin = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
+            let (Some(ls), Some(lk)) = (st.lambda, kin.lambda_upper) else {
+                continue;
+            };
+            assert!(
+                ls <= lk * (1.0 + 1e-7) + 1e-9,
+                "mu = {mu} {sh}: static {ls} > kinematic {lk}"
+            );
+            if ls < lk * (1.0 - 1e-6) {
+                slid += 1;
+                assert!(
+                    !st.sliding.is_empty(),
+                    "static below kinematic without sliding joints"
+                );
+            }
+        }
+    }
+    assert!(slid > 0, "no case where sliding governs");
 }

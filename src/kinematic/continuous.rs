@@ -45,8 +45,8 @@
 
 use super::discrete::{visit_all, Chain, Key, Sink};
 use super::{
-    motion_work, solve_motion, Act, Active, Direction, Extremes, Family, KinematicError,
-    Status, Sums,
+    motion_work, solve_motion, Act, Active, Direction, Extremes, Family, KinematicError, Status,
+    Sums,
 };
 use crate::assembly::{Assembly, JointEnd, JointKind};
 use crate::geometry::{basket_radii, polar, polygon_area_centroid, Vec2};
@@ -421,9 +421,26 @@ struct Collector<'a> {
     coarse: &'a [Pos],
 }
 
+impl Collector<'_> {
+    /// Signatures are refined only within `REFINE_MARGIN` of the best; keep every candidate
+    /// below this looser cut (the best can only decrease as the search goes on).
+    fn cut(&self) -> f64 {
+        self.ext.best.as_ref().map_or(f64::INFINITY, |b| {
+            b.0 + 2.0 * REFINE_MARGIN * b.0.abs().max(0.05)
+        })
+    }
+}
+
+/// Relative margin (of |best|, at least 0.05 absolute) within which signatures are refined.
+const REFINE_MARGIN: f64 = 0.2;
+
 impl Sink for Collector<'_> {
-    fn wants(&self, _ax: f64, _g: f64) -> bool {
-        true
+    fn wants(&self, ax: f64, g: f64) -> bool {
+        if ax > 0.0 {
+            g <= self.cut() * ax
+        } else {
+            self.ext.wants(ax, g)
+        }
     }
     fn take(&mut self, ax: f64, g: f64, key: Key) {
         self.ext.record(ax, g, || key);
@@ -484,7 +501,7 @@ pub fn continuous_with(
     let mut refined = 0;
     let mut best: Option<(f64, Vec<Pos>, Vec<Act>)> = None;
     if let Some(&(l0, _)) = cands.first() {
-        let margin = 0.2 * l0.abs().max(0.05);
+        let margin = REFINE_MARGIN * l0.abs().max(0.05);
         for (l, key) in cands.iter().take(8) {
             if *l > l0 + margin {
                 break;
@@ -664,7 +681,12 @@ fn refine(
                 }
             }
             // Also try the ends of the bracket (a section may want to sit on a bound).
-            let mut cand = [(f1, x1), (f2, x2), (eval(x0, evaluations), x0), (eval(x3, evaluations), x3)];
+            let mut cand = [
+                (f1, x1),
+                (f2, x2),
+                (eval(x0, evaluations), x0),
+                (eval(x3, evaluations), x3),
+            ];
             cand.sort_by(|a, b| a.0.total_cmp(&b.0));
             if cand[0].0 < best {
                 best = cand[0].0;
@@ -673,7 +695,8 @@ fn refine(
             }
             width[vi] = (4.0 * (pos[k].u - u0).abs()).max(1e-4 * a.len);
         }
-        if !(before - best > 1e-15 * best.abs().max(1e-3)) && moved < 1e-9 {
+        let gain = before - best;
+        if (gain.is_nan() || gain <= 1e-15 * best.abs().max(1e-3)) && moved < 1e-9 {
             break;
         }
     }

@@ -168,14 +168,29 @@ impl Chain {
 
     /// Direct evaluation of any candidate: `(A, G)` if admissible.
     pub(crate) fn evaluate(&self, key: &Key) -> Option<(f64, f64, super::Motion)> {
-        let actives: Vec<Active> = key.items().map(|(j, a)| self.active(j, a)).collect();
-        let m = solve_motion(&actives, self.closed)?;
-        let js: Vec<usize> = key.items().map(|(j, _)| j).collect();
-        let mut bodies: Vec<Sums> = js.windows(2).map(|w| self.body(w[0], w[1])).collect();
-        if !self.closed {
-            bodies.push(self.body(js[js.len() - 1], self.pre.len() - 1));
+        let count = key.count as usize;
+        let mut actives = [Active {
+            p1: Vec2::zeros(),
+            p2: Vec2::zeros(),
+            act: Act::Open,
+        }; 4];
+        let mut js = [0usize; 4];
+        for (k, (j, a)) in key.items().enumerate() {
+            actives[k] = self.active(j, a);
+            js[k] = j;
         }
-        let (ax, g) = motion_work(&m, &bodies);
+        let m = solve_motion(&actives[..count], self.closed)?;
+        let mut bodies = [Sums::default(); 4];
+        for k in 0..count - 1 {
+            bodies[k] = self.body(js[k], js[k + 1]);
+        }
+        let nbodies = if self.closed {
+            count - 1
+        } else {
+            bodies[count - 1] = self.body(js[count - 1], self.pre.len() - 1);
+            count
+        };
+        let (ax, g) = motion_work(&m, &bodies[..nbodies]);
         Some((self.sign * ax, g, m))
     }
 }
@@ -261,8 +276,8 @@ fn mechanism_of(assembly: &Assembly, chain: &Chain, key: &Key) -> Option<Mechani
     let mut twist = [0.0; 3];
     let nbodies = if chain.closed { js.len() - 1 } else { js.len() };
     for k in 0..nbodies {
-        for c in 0..3 {
-            twist[c] += m.rel[k][c];
+        for (tc, rc) in twist.iter_mut().zip(m.rel[k]) {
+            *tc += rc;
         }
         let end = if k + 1 < js.len() { js[k + 1] } else { nb };
         for (b, v) in vel.iter_mut().enumerate().take(end).skip(js[k]) {
@@ -763,10 +778,9 @@ fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64,
     let sac = chain.pre[j[2]] - chain.pre[j[0]];
     let sbc = chain.pre[j[2]] - chain.pre[j[1]];
     let scd = chain.pre[j[3]] - chain.pre[j[2]];
-    let ax = ca * (a.y * sac.w - sac.wy) + cb * (b.y * sbc.w - sbc.wy)
-        - cd * (d.y * scd.w - scd.wy);
-    let g = ca * (sac.wx - a.x * sac.w) + cb * (sbc.wx - b.x * sbc.w)
-        - cd * (scd.wx - d.x * scd.w);
+    let ax =
+        ca * (a.y * sac.w - sac.wy) + cb * (b.y * sbc.w - sbc.wy) - cd * (d.y * scd.w - scd.wy);
+    let g = ca * (sac.wx - a.x * sac.w) + cb * (sbc.wx - b.x * sbc.w) - cd * (scd.wx - d.x * scd.w);
     (chain.sign * ax, g)
 }
 
@@ -851,7 +865,10 @@ mod tests {
             }
         }
         let (fb, bb) = (fast.best.unwrap(), brute.best.unwrap());
-        assert!((fb.0 - bb.0).abs() <= 1e-12 * bb.0.abs().max(1.0), "{fb:?} {bb:?}");
+        assert!(
+            (fb.0 - bb.0).abs() <= 1e-12 * bb.0.abs().max(1.0),
+            "{fb:?} {bb:?}"
+        );
         assert_eq!(fb.1, bb.1);
         assert_eq!(fast.admissible, brute.admissible);
     }

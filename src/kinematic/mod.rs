@@ -53,12 +53,12 @@ pub mod continuous;
 pub mod discrete;
 
 pub use continuous::{
-    continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult, HingeLocation,
-    MinThickness,
+    continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult,
+    HingeLocation, MinThickness,
 };
 pub use discrete::{analyse, lambda_upper_of_scene, stands};
 
-use crate::assembly::{Assembly, Hinge, JointEnd};
+use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
 pub use crate::lp::{Direction, Status};
 use thiserror::Error;
@@ -258,7 +258,6 @@ pub(crate) fn work(t: Twist, s: Sums) -> (f64, f64) {
 pub(crate) struct Motion {
     pub rel: [Twist; 4],
     pub opening: [f64; 4],
-    pub count: usize,
 }
 
 /// Relative tolerance of admissibility: an opening velocity above `-ADMISSIBLE_TOL` times the
@@ -337,7 +336,7 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
         }
     }
     let vmax = values[..nv].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if !(vmax > 0.0) || !vmax.is_finite() {
+    if vmax.is_nan() || vmax <= 0.0 || !vmax.is_finite() {
         return None;
     }
     let tol = ADMISSIBLE_TOL * vmax;
@@ -356,11 +355,7 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
     for o in opening.iter_mut() {
         *o *= sigma / vmax;
     }
-    Some(Motion {
-        rel,
-        opening,
-        count: actives.len(),
-    })
+    Some(Motion { rel, opening })
 }
 
 /// `(sum W vx, sum W vy)` of a motion whose bodies (between consecutive active joints, and
@@ -369,8 +364,8 @@ pub(crate) fn motion_work(m: &Motion, bodies: &[Sums]) -> (f64, f64) {
     let mut t = [0.0; 3];
     let (mut a, mut g) = (0.0, 0.0);
     for (k, s) in bodies.iter().enumerate() {
-        for c in 0..3 {
-            t[c] += m.rel[k][c];
+        for (tc, rc) in t.iter_mut().zip(m.rel[k]) {
+            *tc += rc;
         }
         let (da, dg) = work(t, *s);
         a += da;

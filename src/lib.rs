@@ -6,7 +6,7 @@ pub mod kinematic;
 pub mod lp;
 pub mod report;
 pub mod scene;
+pub mod study;
 pub mod sweep;
 pub mod thickness;
 pub mod thrustline;
-pub mod study;

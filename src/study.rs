@@ -60,31 +60,43 @@ impl Study {
             path: path.to_path_buf(),
             source,
         })?;
-        let mut table: Table = text.parse().map_err(|e: toml::de::Error| SceneError::Syntax {
-            origin: origin.clone(),
-            message: e.to_string().trim().replace('\n', " "),
-        })?;
-        let string = |t: &mut Table, key: &str, required: bool| -> Result<Option<String>, SceneError> {
-            match t.remove(key) {
-                Some(Value::String(s)) => Ok(Some(s)),
-                Some(v) => Err(SceneError::WrongType {
-                    origin: origin.clone(),
-                    key: key.to_string(),
-                    value: v.to_string(),
-                    expected: "a string".into(),
-                }),
-                None if required => Err(SceneError::MissingKey {
-                    origin: origin.clone(),
-                    key: key.to_string(),
-                    what: "a string".into(),
-                }),
-                None => Ok(None),
-            }
-        };
+        let mut table: Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| SceneError::Syntax {
+                origin: origin.clone(),
+                message: e.to_string().trim().replace('\n', " "),
+            })?;
+        let string =
+            |t: &mut Table, key: &str, required: bool| -> Result<Option<String>, SceneError> {
+                match t.remove(key) {
+                    Some(Value::String(s)) => Ok(Some(s)),
+                    Some(v) => Err(SceneError::WrongType {
+                        origin: origin.clone(),
+                        key: key.to_string(),
+                        value: v.to_string(),
+                        expected: "a string".into(),
+                    }),
+                    None if required => Err(SceneError::MissingKey {
+                        origin: origin.clone(),
+                        key: key.to_string(),
+                        what: "a string".into(),
+                    }),
+                    None => Ok(None),
+                }
+            };
         let title = string(&mut table, "title", true)?.unwrap_or_default();
         let output = string(&mut table, "output", true)?.unwrap_or_default();
-        if output.is_empty() || !output.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
-            return Err(err(&origin, "output", output, "a file base name of letters, digits, _ and -"));
+        if output.is_empty()
+            || !output
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        {
+            return Err(err(
+                &origin,
+                "output",
+                output,
+                "a file base name of letters, digits, _ and -",
+            ));
         }
         let x = string(&mut table, "x", true)?.unwrap_or_default();
         let series = string(&mut table, "series", false)?;
@@ -98,11 +110,21 @@ impl Study {
             None => false,
             Some("semicircle") => true,
             Some(other) => {
-                return Err(err(&origin, "baseline", other.to_string(), "\"semicircle\""))
+                return Err(err(
+                    &origin,
+                    "baseline",
+                    other.to_string(),
+                    "\"semicircle\"",
+                ))
             }
         };
         if plot_ratio && !baseline {
-            return Err(err(&origin, "y", y, "lambda_ratio needs baseline = \"semicircle\""));
+            return Err(err(
+                &origin,
+                "y",
+                y,
+                "lambda_ratio needs baseline = \"semicircle\"",
+            ));
         }
         let variations = match table.remove("vary") {
             Some(Value::Array(items)) => items
@@ -172,7 +194,14 @@ impl Study {
     /// Run every case (in parallel) and return the rows and the chart.
     pub fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<(Vec<SweepRow>, Chart), SceneError> {
         // Validate the chart keys before solving.
-        sweep::chart_of(&self.variations, &[], &self.x, self.series.as_deref(), &self.title, None)?;
+        sweep::chart_of(
+            &self.variations,
+            &[],
+            &self.x,
+            self.series.as_deref(),
+            &self.title,
+            None,
+        )?;
         let settings = StaticSettings::default();
         let cases = sweep::cases(&self.scene, &self.variations);
         let rows = sweep::run(
@@ -180,10 +209,12 @@ impl Study {
             |values, scene| {
                 let mut row = sweep::static_case(values, scene, &settings);
                 if self.baseline {
-                    let base = scene.as_ref().ok().and_then(|s| semicircle_of_equal_span(s).ok());
-                    let lb = base.and_then(|b| {
-                        sweep::static_case(values, &Ok(b), &settings).lambda_lower
-                    });
+                    let base = scene
+                        .as_ref()
+                        .ok()
+                        .and_then(|s| semicircle_of_equal_span(s).ok());
+                    let lb = base
+                        .and_then(|b| sweep::static_case(values, &Ok(b), &settings).lambda_lower);
                     let ratio = match (row.lambda_lower, lb) {
                         (Some(l), Some(b)) if b > 0.0 => Some(l / b),
                         _ => None,
@@ -216,9 +247,16 @@ pub fn semicircle_of_equal_span(scene: &Scene) -> Result<Scene, SceneError> {
     arch.insert("thickness".into(), Value::Float(scene.arch.thickness));
     let n = scene.arch.voussoirs;
     arch.insert("voussoirs".into(), Value::Integer(n as i64));
-    if let Some(v) = scene.table().get("arch").and_then(|a| a.get("voussoir_shape")) {
+    if let Some(v) = scene
+        .table()
+        .get("arch")
+        .and_then(|a| a.get("voussoir_shape"))
+    {
         arch.insert("voussoir_shape".into(), v.clone());
     }
     table.insert("arch".into(), Value::Table(arch));
-    Scene::from_table(table, &format!("{} (semicircle of equal span)", scene.origin))
+    Scene::from_table(
+        table,
+        &format!("{} (semicircle of equal span)", scene.origin),
+    )
 }

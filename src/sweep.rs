@@ -398,7 +398,11 @@ pub fn write_csv<W: std::io::Write>(
         rec.push(r.solve_time_s.to_string());
         rec.push(r.error.clone().unwrap_or_default());
         for name in &extra {
-            rec.push(opt(r.extra.iter().find(|(n, _)| n == name).and_then(|(_, v)| *v)));
+            rec.push(opt(r
+                .extra
+                .iter()
+                .find(|(n, _)| n == name)
+                .and_then(|(_, v)| *v)));
         }
         w.write_record(&rec)?;
     }
@@ -480,7 +484,11 @@ pub fn chart_of(
                 .join(", ")
         };
         let yv = match y {
-            Some(col) => r.extra.iter().find(|(n, _)| *n == col).and_then(|(_, v)| *v),
+            Some(col) => r
+                .extra
+                .iter()
+                .find(|(n, _)| *n == col)
+                .and_then(|(_, v)| *v),
             None => r.lambda_lower,
         };
         match groups.iter_mut().find(|(n, _)| *n == name) {

@@ -1,1 +1,467 @@
-//! Kinematic (upper-bound) limit analysis: filled by the kinematic issue.
+//! Kinematic (upper-bound) limit analysis of chains of rigid blocks: the collapse multiplier
+//! as the least load multiplier that makes some admissible hinge mechanism move — the unsafe
+//! theorem of limit analysis for no-tension, non-sliding masonry (Heyman, *The Stone
+//! Skeleton*, 1995, ch. 3; Oppenheim, 1992; Ochsendorf, 2002; De Luca et al., 2004).
+//!
+//! # Mechanisms of a chain
+//! A chain is a row of blocks between two supports (joint k joins block k - 1, or the ground,
+//! to block k, or the ground). A joint is *closed* (no relative motion), a *hinge* (relative
+//! rotation about its end p1 or p2, the other end opening) or *open* (relative motion without
+//! tangential slip that separates both ends: a rotation about a point of the joint's line
+//! outside the joint, or a translation along its normal). The relative motion of the block
+//! after a joint with respect to the block before it is a twist `r = (omega, vx0, vy0)`, with
+//! velocity field `v(q) = (vx0 - omega q_y, vy0 + omega q_x)`; a rotation `c` about `p` is
+//! `c (1, p_y, -p_x)`, a normal translation `c (0, n_x, n_y)`. Closure of the chain (both
+//! supports fixed) is `sum_k r_k = 0`: three equations. A hinge contributes one unknown, an
+//! open joint two, so the one-degree-of-freedom mechanisms (the extreme rays of the cone of
+//! admissible motions) have `hinges + 2 open = 4`; with exactly four unknown columns the
+//! mechanism is the null vector of a 3 x 4 matrix, i.e. its signed 3 x 3 minors (cofactors).
+//! For four hinges a < b < c < d this gives the relative rotations
+//! `T(b,c,d), -T(a,c,d), T(a,b,d), -T(a,b,c)` with `T(p,q,r) = (q - p) x (r - p)`, which needs no
+//! division and stays valid when two hinge lines are parallel (a translating body).
+//! Degenerate mechanisms with fewer active joints (three collinear hinges, a hinge on the line
+//! of an open joint) are the members of these families in which one joint does not move.
+//!
+//! A one-support chain (a column or cantilever, the last block free) has the mechanisms of a
+//! single hinge.
+//!
+//! # Admissibility and virtual work
+//! A hinge at p1 needs the relative rotation to be negative (so that p2 opens), at p2 positive;
+//! an open joint needs both ends to separate. The mechanism's sign is fixed by these
+//! conditions (or it is inadmissible). The virtual-work equation with the horizontal load
+//! `lambda W` at each centroid, `lambda sum(W vx) = sum(W vy)` (the load's power equals the
+//! rate of increase of potential energy; hinges dissipate nothing), gives
+//! `lambda = G / A` with `G = sum(W vy)`, `A = d sum(W vx)` (d = +-1 the load direction).
+//! Equilibrium at lambda is possible iff `lambda A <= G` for every admissible mechanism, so
+//! the static set of multipliers is `[max_{A<0} G/A, min_{A>0} G/A]` (LP duality with the
+//! static program of `crate::lp`). Hence:
+//! - `Collapse`: the interval is non-empty and its top `lambda_upper = min_{A>0} G/A >= 0`;
+//! - `NoCollapse`: no admissible mechanism is driven by the load (`A > 0`), the top is open;
+//! - `CannotStand`: `min_{A>0} G/A < 0` (a mechanism runs even against a load pushing it back,
+//!   i.e. it moves under its own weight, `G < 0`), or the interval is empty (some mechanism
+//!   with `A < 0` needs more than `lambda_upper`, or one with `A = 0` has `G < 0`). Every
+//!   witness of `CannotStand` is a mechanism with `G < 0`: gravity alone drives it.
+//!
+//! These rotational mechanisms are admissible for any friction coefficient, so `lambda_upper`
+//! bounds the collapse multiplier from above for finite friction as well (sliding can only
+//! lower it).
+//!
+//! The discrete search is in [`discrete`], the continuous model of the arch (hinges anywhere)
+//! in [`continuous`].
+
+pub mod continuous;
+pub mod discrete;
+
+pub use continuous::{
+    continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult,
+    HingeLocation, MinThickness,
+};
+pub use discrete::{analyse, lambda_upper_of_scene, stands};
+
+use crate::assembly::{Hinge, JointEnd};
+use crate::geometry::Vec2;
+pub use crate::lp::{Direction, Status};
+use thiserror::Error;
+
+/// Errors of the kinematic analyses (physical outcomes are statuses, not errors).
+#[derive(Debug, Error)]
+pub enum KinematicError {
+    #[error("the kinematic search needs a chain of blocks between two supports (or standing on one support): joint k must join block k-1 (ground for k = 0) to block k (ground for the last joint); this assembly is not one")]
+    NotAChain,
+    #[error("exhaustive kinematic search over {joints} joints exceeds the limit of {max} joints (its cost grows as joints^4); raise KinematicSettings::max_joints to run it anyway")]
+    TooManyJoints { joints: usize, max: usize },
+    #[error("invalid assembly: {0}")]
+    Assembly(#[from] crate::error::AnalysisError),
+    #[error("{0}")]
+    Scene(#[from] crate::error::SceneError),
+    #[error("continuous model: {0}")]
+    Continuous(String),
+}
+
+/// Settings of the discrete kinematic search.
+#[derive(Debug, Clone)]
+pub struct KinematicSettings {
+    /// Direction of the seismic load. Default: right (+x).
+    pub direction: Direction,
+    /// Largest number of joints searched exhaustively. Default 600 (about 5e9 four-joint
+    /// combinations, tens of seconds).
+    pub max_joints: usize,
+    /// Use rayon threads. Default true.
+    pub parallel: bool,
+}
+
+impl Default for KinematicSettings {
+    fn default() -> Self {
+        KinematicSettings {
+            direction: Direction::Right,
+            max_joints: 600,
+            parallel: true,
+        }
+    }
+}
+
+impl KinematicSettings {
+    pub fn direction(mut self, d: Direction) -> Self {
+        self.direction = d;
+        self
+    }
+}
+
+/// Which family of one-degree-of-freedom mechanisms a mechanism belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Family {
+    /// Four hinges, three moving bodies.
+    FourHinges,
+    /// Two hinges and a joint that opens completely.
+    TwoHingesOneOpen,
+    /// Two joints that open completely: one body lifts off.
+    TwoOpen,
+    /// A single hinge of a one-support chain (column, cantilever).
+    OneHinge,
+}
+
+/// A mechanism: its active joints and the motion of the blocks.
+#[derive(Debug, Clone)]
+pub struct Mechanism {
+    pub family: Family,
+    /// Hinges (joint, end, coordinates), in chain order. A hinge of the family whose relative
+    /// rotation vanishes (a degenerate member, e.g. three collinear hinges) is left out.
+    pub hinges: Vec<Hinge>,
+    /// Joints that open completely.
+    pub open: Vec<usize>,
+    /// `[vx, vy, omega]` of each block (centroid velocity, rotation rate), scaled so the
+    /// fastest centroid moves at 1 and the load does positive work (for `Collapse`), or so
+    /// gravity does positive work (the witness of `CannotStand`).
+    pub velocities: Vec<[f64; 3]>,
+    /// `G / A` of this mechanism.
+    pub lambda: f64,
+}
+
+/// Result of the discrete kinematic search.
+#[derive(Debug, Clone)]
+pub struct KinematicResult {
+    /// Consistent with the static status (see the module docs).
+    pub status: Status,
+    /// The kinematic collapse multiplier `min_{A>0} G/A` (status `Collapse` only).
+    pub lambda_upper: Option<f64>,
+    /// `min_{A>0} G/A` whatever its sign (None when no mechanism is driven by the load): a
+    /// continuous function of the geometry, negative below the minimum thickness; this is what
+    /// a root finder on thickness wants.
+    pub lambda_signed: Option<f64>,
+    /// `max_{A<0} G/A`: the least multiplier the structure needs (None when no admissible
+    /// mechanism runs against the load).
+    pub lambda_needed: Option<f64>,
+    /// The governing mechanism (status `Collapse`), or the witness of `CannotStand`.
+    pub mechanism: Option<Mechanism>,
+    pub direction: Direction,
+    /// Candidates examined (joint sets times hinge-end patterns, as if enumerated one by one).
+    pub candidates: u64,
+    /// Candidates that were admissible.
+    pub admissible: u64,
+    /// Wall time of the search (s).
+    pub wall_time_s: f64,
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kinematics shared by the discrete and continuous models.
+
+/// A planar twist `(omega, vx0, vy0)`: velocity field `v(q) = (vx0 - omega q_y, vy0 + omega q_x)`.
+pub(crate) type Twist = [f64; 3];
+
+/// Unit rotation about `p`.
+#[inline]
+pub(crate) fn rot(p: Vec2) -> Twist {
+    [1.0, p.y, -p.x]
+}
+
+/// Unit translation along `n`.
+#[inline]
+pub(crate) fn trans(n: Vec2) -> Twist {
+    [0.0, n.x, n.y]
+}
+
+#[inline]
+pub(crate) fn det3(a: Twist, b: Twist, c: Twist) -> f64 {
+    a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1])
+        + c[0] * (a[1] * b[2] - a[2] * b[1])
+}
+
+/// Velocity of twist `t` at `q`.
+#[inline]
+pub(crate) fn velocity(t: Twist, q: Vec2) -> Vec2 {
+    Vec2::new(t[1] - t[0] * q.y, t[2] + t[0] * q.x)
+}
+
+/// How a joint takes part in a mechanism.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Act {
+    Hinge(JointEnd),
+    Open,
+}
+
+/// An active joint (or section) of a mechanism: its ends and what it does.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Active {
+    pub p1: Vec2,
+    pub p2: Vec2,
+    pub act: Act,
+}
+
+impl Active {
+    fn normal(&self) -> Vec2 {
+        let d = self.p2 - self.p1;
+        Vec2::new(d.y, -d.x) / d.norm()
+    }
+}
+
+/// Weight and first moments `(W, sum W x, sum W y)` of the blocks of a body.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Sums {
+    pub w: f64,
+    pub wx: f64,
+    pub wy: f64,
+}
+
+impl std::ops::Add for Sums {
+    type Output = Sums;
+    fn add(self, o: Sums) -> Sums {
+        Sums {
+            w: self.w + o.w,
+            wx: self.wx + o.wx,
+            wy: self.wy + o.wy,
+        }
+    }
+}
+
+impl std::ops::Sub for Sums {
+    type Output = Sums;
+    fn sub(self, o: Sums) -> Sums {
+        Sums {
+            w: self.w - o.w,
+            wx: self.wx - o.wx,
+            wy: self.wy - o.wy,
+        }
+    }
+}
+
+/// `(sum W vx, sum W vy)` of a body moving with twist `t`.
+#[inline]
+pub(crate) fn work(t: Twist, s: Sums) -> (f64, f64) {
+    (t[1] * s.w - t[0] * s.wy, t[2] * s.w + t[0] * s.wx)
+}
+
+/// An admissible mechanism: the relative twist of each active joint (sign fixed by
+/// admissibility) and the opening velocity of each hinge's free end (to spot hinges that do
+/// not move).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Motion {
+    pub rel: [Twist; 4],
+    pub opening: [f64; 4],
+}
+
+/// Relative tolerance of admissibility: an opening velocity above `-ADMISSIBLE_TOL` times the
+/// largest one counts as opening (it is a joint that does not move, round-off aside).
+pub(crate) const ADMISSIBLE_TOL: f64 = 1e-9;
+
+/// The one-degree-of-freedom motion with the given active joints, if admissible. `closed`:
+/// both ends of the chain are supported (closure `sum r = 0`, needs hinges + 2 open = 4);
+/// otherwise a single hinge of a one-support chain.
+pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
+    let mut cols: [Twist; 4] = [[0.0; 3]; 4];
+    let mut owner = [0usize; 4];
+    let mut nc = 0;
+    for (i, a) in actives.iter().enumerate() {
+        let push = |cols: &mut [Twist; 4], owner: &mut [usize; 4], nc: &mut usize, t| {
+            if *nc < 4 {
+                cols[*nc] = t;
+                owner[*nc] = i;
+            }
+            *nc += 1;
+        };
+        match a.act {
+            Act::Hinge(JointEnd::P1) => push(&mut cols, &mut owner, &mut nc, rot(a.p1)),
+            Act::Hinge(JointEnd::P2) => push(&mut cols, &mut owner, &mut nc, rot(a.p2)),
+            Act::Open => {
+                push(&mut cols, &mut owner, &mut nc, rot(a.p1));
+                push(&mut cols, &mut owner, &mut nc, trans(a.normal()));
+            }
+        }
+    }
+    let mut coef = [0.0; 4];
+    if closed {
+        if nc != 4 {
+            return None;
+        }
+        coef[0] = det3(cols[1], cols[2], cols[3]);
+        coef[1] = -det3(cols[0], cols[2], cols[3]);
+        coef[2] = det3(cols[0], cols[1], cols[3]);
+        coef[3] = -det3(cols[0], cols[1], cols[2]);
+    } else {
+        if nc != 1 {
+            return None;
+        }
+        coef[0] = 1.0;
+    }
+    let mut rel = [[0.0; 3]; 4];
+    for k in 0..nc {
+        for c in 0..3 {
+            rel[owner[k]][c] += coef[k] * cols[k][c];
+        }
+    }
+    // Opening velocities (normal relative velocity, `to` minus `from`, along n).
+    let mut values = [0.0; 8];
+    let mut opening = [0.0; 4];
+    let mut nv = 0;
+    for (i, a) in actives.iter().enumerate() {
+        let n = a.normal();
+        let vn = |q: Vec2| velocity(rel[i], q).dot(&n);
+        match a.act {
+            Act::Hinge(JointEnd::P1) => {
+                opening[i] = vn(a.p2);
+                values[nv] = opening[i];
+                nv += 1;
+            }
+            Act::Hinge(JointEnd::P2) => {
+                opening[i] = vn(a.p1);
+                values[nv] = opening[i];
+                nv += 1;
+            }
+            Act::Open => {
+                values[nv] = vn(a.p1);
+                values[nv + 1] = vn(a.p2);
+                opening[i] = values[nv].min(values[nv + 1]);
+                nv += 2;
+            }
+        }
+    }
+    let vmax = values[..nv].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if vmax.is_nan() || vmax <= 0.0 || !vmax.is_finite() {
+        return None;
+    }
+    let tol = ADMISSIBLE_TOL * vmax;
+    let sigma = if values[..nv].iter().all(|&v| v >= -tol) {
+        1.0
+    } else if values[..nv].iter().all(|&v| v <= tol) {
+        -1.0
+    } else {
+        return None;
+    };
+    for r in rel.iter_mut().take(actives.len()) {
+        for c in r.iter_mut() {
+            *c *= sigma;
+        }
+    }
+    for o in opening.iter_mut() {
+        *o *= sigma / vmax;
+    }
+    Some(Motion { rel, opening })
+}
+
+/// `(sum W vx, sum W vy)` of a motion whose bodies (between consecutive active joints, and
+/// after the last one for a one-support chain) have sums `bodies`.
+pub(crate) fn motion_work(m: &Motion, bodies: &[Sums]) -> (f64, f64) {
+    let mut t = [0.0; 3];
+    let (mut a, mut g) = (0.0, 0.0);
+    for (k, s) in bodies.iter().enumerate() {
+        for (tc, rc) in t.iter_mut().zip(m.rel[k]) {
+            *tc += rc;
+        }
+        let (da, dg) = work(t, *s);
+        a += da;
+        g += dg;
+    }
+    (a, g)
+}
+
+/// Running extremes of `G/A` over admissible mechanisms, with the arguments attached.
+#[derive(Debug, Clone)]
+pub(crate) struct Extremes<K> {
+    /// `min G/A` over `A > 0`.
+    pub best: Option<(f64, K)>,
+    /// `max G/A` over `A < 0`.
+    pub needed: Option<(f64, K)>,
+    /// A mechanism with `A = 0` and `G < 0`.
+    pub stalled: Option<K>,
+    pub admissible: u64,
+}
+
+impl<K: Clone + Ord> Extremes<K> {
+    pub fn new() -> Self {
+        Extremes {
+            best: None,
+            needed: None,
+            stalled: None,
+            admissible: 0,
+        }
+    }
+
+    /// Record an admissible mechanism with load power `a` and gravity power `g`.
+    #[inline]
+    pub fn push(&mut self, a: f64, g: f64, key: impl FnOnce() -> K) {
+        self.admissible += 1;
+        self.record(a, g, key);
+    }
+
+    /// As `push`, without counting the mechanism (the caller counts).
+    #[inline]
+    pub fn record(&mut self, a: f64, g: f64, key: impl FnOnce() -> K) {
+        if a > 0.0 {
+            let l = g / a;
+            match &self.best {
+                Some((b, _)) if *b < l => {}
+                Some((b, k)) if *b == l => {
+                    let key = key();
+                    if key < *k {
+                        self.best = Some((l, key));
+                    }
+                }
+                _ => self.best = Some((l, key())),
+            }
+        } else if a < 0.0 {
+            let l = g / a;
+            match &self.needed {
+                Some((b, _)) if *b >= l => {}
+                _ => self.needed = Some((l, key())),
+            }
+        } else if g < 0.0 && self.stalled.is_none() {
+            self.stalled = Some(key());
+        }
+    }
+
+    pub fn merge(mut self, o: Self) -> Self {
+        self.admissible += o.admissible;
+        if let Some((l, k)) = o.best {
+            match &self.best {
+                Some((b, bk)) if *b < l || (*b == l && *bk <= k) => {}
+                _ => self.best = Some((l, k)),
+            }
+        }
+        if let Some((l, k)) = o.needed {
+            match &self.needed {
+                Some((b, _)) if *b >= l => {}
+                _ => self.needed = Some((l, k)),
+            }
+        }
+        if self.stalled.is_none() {
+            self.stalled = o.stalled;
+        }
+        self
+    }
+
+    /// The status, per the module docs, and the key of the mechanism that decides it.
+    pub fn verdict(&self) -> (Status, Option<K>) {
+        if let Some(k) = &self.stalled {
+            return (Status::CannotStand, Some(k.clone()));
+        }
+        match (&self.best, &self.needed) {
+            (Some((b, _)), Some((n, nk))) if n > b => (Status::CannotStand, Some(nk.clone())),
+            (Some((b, k)), _) if *b < 0.0 => (Status::CannotStand, Some(k.clone())),
+            (Some((_, k)), _) => (Status::Collapse, Some(k.clone())),
+            (None, Some((n, nk))) if *n > crate::lp::LAMBDA_CAP => {
+                (Status::CannotStand, Some(nk.clone()))
+            }
+            (None, _) => (Status::NoCollapse, None),
+        }
+    }
+}

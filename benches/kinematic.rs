@@ -1,0 +1,102 @@
+//! Timings of the kinematic searches: exhaustive discrete search (semicircle, n = 32, 64,
+//! 128; a 4-course portal) and the continuous model per geometry. Prints a table; run with
+//! `cargo bench --bench kinematic`. Targets: n = 128 under 0.2 s, continuous under 1 ms.
+
+use std::time::Instant;
+use voussoir::assembly::Assembly;
+use voussoir::kinematic::{self, KinematicSettings};
+use voussoir::scene::Scene;
+
+fn scene(text: &str) -> Scene {
+    match Scene::from_toml_str(text, "bench") {
+        Ok(s) => s,
+        Err(e) => panic!("bench scene: {e}"),
+    }
+}
+
+/// Best of `reps` wall times (s) and the last result of `f`.
+fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut best = f64::INFINITY;
+    let mut out = f();
+    for _ in 0..reps {
+        let t = Instant::now();
+        out = f();
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    (best, out)
+}
+
+fn main() {
+    println!(
+        "{:<40} {:>6} {:>12} {:>12} {:>10} {:>10}",
+        "discrete exhaustive search", "joints", "candidates", "lambda", "best ms", "1 thread"
+    );
+    let cases = [
+        ("semicircle t/R=0.15 n=32", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.15\nvoussoirs=32\n"),
+        ("semicircle t/R=0.15 n=64", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.15\nvoussoirs=64\n"),
+        ("semicircle t/R=0.15 n=128", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.15\nvoussoirs=128\n"),
+        ("portal semicircle n=32, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=32\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
+        ("portal semicircle n=128, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=128\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
+    ];
+    for (label, text) in cases {
+        let asm = Assembly::from_scene(&scene(text));
+        let par = KinematicSettings::default();
+        let seq = KinematicSettings {
+            parallel: false,
+            ..KinematicSettings::default()
+        };
+        let (tp, r) = time(3, || kinematic::analyse(&asm, &par));
+        let (ts, _) = time(1, || kinematic::analyse(&asm, &seq));
+        match r {
+            Ok(r) => println!(
+                "{label:<40} {:>6} {:>12} {:>12.8} {:>10.2} {:>10.2}",
+                asm.joints.len(),
+                r.candidates,
+                r.lambda_upper.unwrap_or(f64::NAN),
+                1e3 * tp,
+                1e3 * ts
+            ),
+            Err(e) => println!("{label:<40} error: {e}"),
+        }
+    }
+    println!();
+    println!(
+        "{:<40} {:>8} {:>7} {:>6} {:>12} {:>10}",
+        "continuous model", "sections", "refined", "evals", "lambda", "best ms"
+    );
+    let geoms = [
+        ("semicircle t/R=0.15", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.15\nvoussoirs=16\n"),
+        ("segmental 120 deg t/R=0.1", "[arch]\nshape='circular'\nradius=1.0\nembrace_deg=120\nthickness=0.1\nvoussoirs=16\n"),
+        ("horseshoe 220 deg t/R=0.3", "[arch]\nshape='circular'\nradius=1.0\nembrace_deg=220\nthickness=0.3\nvoussoirs=16\n"),
+        ("pointed e/R=0.25 t/R=0.2", "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.25\nthickness=0.2\nvoussoirs=16\n"),
+        ("basket rise/span=0.35 t=0.2", "[arch]\nshape='basket'\nspan=2.0\nrise=0.7\nthickness=0.2\nvoussoirs=16\n"),
+        ("portal semicircle, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=16\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
+        ("portal pointed, 1 course", "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.25\nthickness=0.2\nvoussoirs=16\n[piers]\nheight=1.5\nwidth=0.5\ncourses=1\n"),
+        ("portal basket, 4 courses", "[arch]\nshape='basket'\nspan=2.0\nrise=0.7\nthickness=0.2\nvoussoirs=16\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
+    ];
+    for (label, text) in geoms {
+        let s = scene(text);
+        let (t, r) = time(20, || kinematic::continuous(&s));
+        match r {
+            Ok(r) => println!(
+                "{label:<40} {:>8} {:>7} {:>6} {:>12.8} {:>10.3}",
+                r.coarse_sections,
+                r.refined,
+                r.evaluations,
+                r.lambda_signed.unwrap_or(f64::NAN),
+                1e3 * t
+            ),
+            Err(e) => println!("{label:<40} error: {e}"),
+        }
+    }
+    let s = scene("[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=16\n");
+    let (t, m) = time(1, || kinematic::continuous_min_thickness(&s));
+    if let Ok(m) = m {
+        println!(
+            "\ncontinuous minimum thickness, semicircle: t/R = {:.6} ({} analyses, {:.1} ms)",
+            m.thickness,
+            m.iterations,
+            1e3 * t
+        );
+    }
+}

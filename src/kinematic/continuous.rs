@@ -1,0 +1,777 @@
+//! Continuous kinematic model: the arch ring treated as a continuum in which a hinge can form
+//! at any radial section, not only at the joints between voussoirs — the limit of infinitely
+//! many voussoirs, and the "analytical model" of the seed paper (after Oppenheim, 1992;
+//! Ochsendorf, 2002; De Luca, Giordano & Mele, 2004).
+//!
+//! # The structure
+//! - Arch: annular pieces (centre c, centreline radius r, thickness t) between radial
+//!   sections. The weight and first moments of the piece between polar angles `theta_a` and
+//!   `theta_b` (`d = |theta_a - theta_b|`, `m` the mid angle) are, exactly and with no
+//!   differences of large prefix sums,
+//!   `W = gamma r t d`, `W x = c_x W + gamma K 2 sin(d/2) cos m`, `W y = c_y W + gamma K 2 sin(d/2)
+//!   sin m`, `K = (r_e^3 - r_i^3)/3 = t (r^2 + t^2/12)`.
+//!   Circular arches are one annulus; basket arches three (sections at the transitions belong
+//!   to both arcs); a pointed arch is two annuli, left and right, meeting at the vertical crown
+//!   joint of `geometry.md`. Radial sections of the left arc of a pointed arch exist only
+//!   where they lie entirely left of the crown line (polar angle about the left centre
+//!   `>= acos(-e / r_i)`); the small "keystone" between that last radial section and the
+//!   crown joint (extrados sector minus a triangle) is rigid and moves with the left annulus
+//!   (mirror on the right). A discrete pointed arch with very many voussoirs has radial joints
+//!   inside this keystone that cross the crown joint; such voussoirs are not proper blocks.
+//! - Piers are kept as given: a coursed pier has horizontal bed joints, and a crack across a
+//!   course would be a tensile fracture of a stone, which the no-tension model excludes; so a
+//!   pier can only hinge or open at its bed joints (base, course joints), and the
+//!   arch-pier interface is the springing joint of `geometry.md` (the part of the arch's
+//!   springing section that rests on the pier). Only with infinitely many courses could a pier
+//!   hinge at any height; that would be a different structure, not a limit of this one.
+//!
+//! # The search
+//! The families are those of the discrete search ([`crate::kinematic`]). A global search runs
+//! the exhaustive discrete search on a coarse set of sections (about 24 along the arch, plus
+//! every pier joint) with the exact continuum weights between them, and keeps the best
+//! mechanism of every *signature* (which piece each active section lies in, and what it does).
+//! The signatures whose coarse multiplier is near the best are refined: every arch section is
+//! moved by golden-section minimisation along its piece (bounded by its neighbours), one
+//! coordinate at a time, until the multiplier stops decreasing. Pier joints stay where they
+//! are.
+//!
+//! # Angles
+//! A section's `polar_deg` is the polar angle of its direction p1 -> p2 (intrados to extrados),
+//! in degrees: for a radial section, the centreline angle about its arc's centre (180 at the
+//! left springing of a semicircle, 90 at its crown, 0 at the right springing; 90 for the
+//! vertical crown joint of a pointed arch). `from_vertical_deg = |polar_deg - 90|` is the angle
+//! from the crown direction, e.g. the haunch hinge of the semicircle at minimum thickness at
+//! 54.5 deg.
+
+use super::discrete::{visit_all, Chain, Key, Sink};
+use super::{
+    motion_work, solve_motion, Act, Active, Direction, Extremes, Family, KinematicError, Status,
+    Sums,
+};
+use crate::assembly::{Assembly, JointEnd, JointKind};
+use crate::geometry::{basket_radii, polar, polygon_area_centroid, Vec2};
+use crate::scene::{Scene, Shape};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// Sections of the coarse global search along the arch.
+const COARSE_SECTIONS: usize = 24;
+
+/// Where a hinge (or an open section) of the continuous model is.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HingeLocation {
+    /// A section of the arch ring (springing sections included). Angles in degrees, see the
+    /// module docs.
+    Arch {
+        polar_deg: f64,
+        from_vertical_deg: f64,
+    },
+    /// A bed joint of a pier: `joint` counts from the pier base (0 = the base on the ground).
+    Pier { left: bool, joint: usize },
+}
+
+/// A hinge or open section of the continuous mechanism.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ContinuousHinge {
+    pub location: HingeLocation,
+    /// The end the hinge sits at (None: the section opens completely).
+    pub end: Option<JointEnd>,
+    /// Hinge point (for an open section, its p1).
+    pub x: f64,
+    pub y: f64,
+}
+
+/// Result of the continuous model.
+#[derive(Debug, Clone)]
+pub struct ContinuousResult {
+    pub status: Status,
+    /// The continuous collapse multiplier (status `Collapse` only).
+    pub lambda_continuous: Option<f64>,
+    /// The least `G/A` over mechanisms driven by the load, whatever its sign (negative below
+    /// the minimum thickness).
+    pub lambda_signed: Option<f64>,
+    pub family: Option<Family>,
+    /// Hinges of the governing mechanism in chain order (idle ones left out).
+    pub hinges: Vec<ContinuousHinge>,
+    /// Sections that open completely.
+    pub open: Vec<ContinuousHinge>,
+    pub direction: Direction,
+    /// Sections of the coarse search and signatures refined.
+    pub coarse_sections: usize,
+    pub refined: usize,
+    /// Mechanism evaluations of the refinement.
+    pub evaluations: u64,
+    pub wall_time_s: f64,
+}
+
+/// The continuous model's minimum thickness: where `lambda_continuous` reaches 0.
+#[derive(Debug, Clone)]
+pub struct MinThickness {
+    /// Arch thickness t (m).
+    pub thickness: f64,
+    /// The continuous analysis at that thickness (its hinges are the mechanism of the
+    /// minimum-thickness arch).
+    pub result: ContinuousResult,
+    /// Continuous analyses run by the root finder.
+    pub iterations: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Annulus {
+    centre: Vec2,
+    ri: f64,
+    re: f64,
+    /// Polar angle at u = 0; the angle is `theta0 + dir u`, u in [0, len].
+    theta0: f64,
+    dir: f64,
+    len: f64,
+    /// Rigid material attached before u = 0 and after u = len (pointed keystones).
+    head: Sums,
+    tail: Sums,
+    gamma: f64,
+}
+
+impl Annulus {
+    fn section(&self, u: f64) -> (Vec2, Vec2) {
+        let d = polar(self.theta0 + self.dir * u);
+        (self.centre + self.ri * d, self.centre + self.re * d)
+    }
+
+    /// Weight and first moments of the annular piece between u0 <= u1 (closed form).
+    fn sums(&self, u0: f64, u1: f64) -> Sums {
+        let du = u1 - u0;
+        if du <= 0.0 {
+            return Sums::default();
+        }
+        let r = 0.5 * (self.ri + self.re);
+        let t = self.re - self.ri;
+        let mid = self.theta0 + self.dir * 0.5 * (u0 + u1);
+        let w = self.gamma * r * t * du;
+        let k = self.gamma * t * (r * r + t * t / 12.0) * 2.0 * (0.5 * du).sin();
+        Sums {
+            w,
+            wx: self.centre.x * w + k * mid.cos(),
+            wy: self.centre.y * w + k * mid.sin(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Item {
+    Joint { p1: Vec2, p2: Vec2, kind: JointKind },
+    Block(Sums),
+    Annulus(Annulus),
+}
+
+/// A position along the chain: an item and, in an annulus, the parameter u.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pos {
+    item: usize,
+    u: f64,
+}
+
+struct Structure {
+    items: Vec<Item>,
+    /// Sums of each whole item (with heads and tails).
+    full: Vec<Sums>,
+    size: f64,
+}
+
+impl Structure {
+    fn from_scene(scene: &Scene) -> Result<Structure, KinematicError> {
+        let asm = Assembly::from_scene(scene);
+        asm.validate()?;
+        let k = scene.piers.as_ref().map_or(0, |p| p.courses);
+        let n = scene.arch.voussoirs;
+        let gamma = scene.material.unit_weight * scene.material.depth;
+        let t = scene.arch.thickness;
+        let sums_of = |b: &crate::assembly::Block| Sums {
+            w: b.weight,
+            wx: b.weight * b.centroid.x,
+            wy: b.weight * b.centroid.y,
+        };
+        let joint = |j: usize| {
+            let jt = &asm.joints[j];
+            Item::Joint {
+                p1: jt.p1,
+                p2: jt.p2,
+                kind: jt.kind,
+            }
+        };
+        let mut items = Vec::new();
+        for c in 0..k {
+            items.push(joint(c));
+            items.push(Item::Block(sums_of(&asm.blocks[c])));
+        }
+        items.push(joint(k));
+        let ring = |centre: Vec2, r: f64, theta0: f64, len: f64| Annulus {
+            centre,
+            ri: r - 0.5 * t,
+            re: r + 0.5 * t,
+            theta0,
+            dir: -1.0,
+            len,
+            head: Sums::default(),
+            tail: Sums::default(),
+            gamma,
+        };
+        match scene.arch.shape {
+            Shape::Circular { radius, embrace } => {
+                items.push(Item::Annulus(ring(
+                    Vec2::zeros(),
+                    radius,
+                    0.5 * PI + 0.5 * embrace,
+                    embrace,
+                )));
+            }
+            Shape::Pointed {
+                radius,
+                eccentricity: e,
+            } => {
+                let ri = radius - 0.5 * t;
+                let re = radius + 0.5 * t;
+                if e >= ri {
+                    return Err(KinematicError::Continuous(format!(
+                        "pointed arch with eccentricity {e} >= intrados radius {ri}"
+                    )));
+                }
+                let phi_i = (-e / ri).acos();
+                let phi_e = (-e / re).acos();
+                // Left keystone: extrados sector (phi_e..phi_i about (e, 0)) minus the
+                // triangle (centre, intrados apex, extrados apex).
+                let o = Vec2::new(e, 0.0);
+                let apex_i = Vec2::new(0.0, (ri * ri - e * e).sqrt());
+                let apex_e = Vec2::new(0.0, (re * re - e * e).sqrt());
+                let d = phi_i - phi_e;
+                let mid = 0.5 * (phi_i + phi_e);
+                let sw = gamma * 0.5 * re * re * d;
+                let sk = gamma * re * re * re / 3.0 * 2.0 * (0.5 * d).sin();
+                let (ta, tc) = polygon_area_centroid(&[o, apex_i, apex_e]);
+                let tw = gamma * ta;
+                let key_left = Sums {
+                    w: sw - tw,
+                    wx: o.x * sw + sk * mid.cos() - tw * tc.x,
+                    wy: o.y * sw + sk * mid.sin() - tw * tc.y,
+                };
+                let key_right = Sums {
+                    w: key_left.w,
+                    wx: -key_left.wx,
+                    wy: key_left.wy,
+                };
+                let mut left = ring(o, radius, PI, PI - phi_i);
+                left.tail = key_left;
+                let mut right = ring(Vec2::new(-e, 0.0), radius, PI - phi_i, PI - phi_i);
+                right.head = key_right;
+                items.push(Item::Annulus(left));
+                items.push(Item::Joint {
+                    p1: apex_i,
+                    p2: apex_e,
+                    kind: JointKind::Arch(n / 2),
+                });
+                items.push(Item::Annulus(right));
+            }
+            Shape::Basket {
+                span,
+                rise,
+                side_angle: b,
+            } => {
+                let (r1, r2) = basket_radii(span, rise, b);
+                items.push(Item::Annulus(ring(
+                    Vec2::new(-(0.5 * span - r1), 0.0),
+                    r1,
+                    PI,
+                    b,
+                )));
+                items.push(Item::Annulus(ring(
+                    Vec2::new(0.0, -(r2 - r1) * b.sin()),
+                    r2,
+                    PI - b,
+                    PI - 2.0 * b,
+                )));
+                items.push(Item::Annulus(ring(
+                    Vec2::new(0.5 * span - r1, 0.0),
+                    r1,
+                    b,
+                    b,
+                )));
+            }
+        }
+        items.push(joint(k + n));
+        for c in 0..k {
+            items.push(Item::Block(sums_of(&asm.blocks[k + n + c])));
+            items.push(joint(k + n + 1 + c));
+        }
+        let full = items
+            .iter()
+            .map(|it| match it {
+                Item::Joint { .. } => Sums::default(),
+                Item::Block(s) => *s,
+                Item::Annulus(a) => a.head + a.sums(0.0, a.len) + a.tail,
+            })
+            .collect();
+        Ok(Structure {
+            items,
+            full,
+            size: asm.size(),
+        })
+    }
+
+    fn section(&self, p: Pos) -> (Vec2, Vec2) {
+        match &self.items[p.item] {
+            Item::Joint { p1, p2, .. } => (*p1, *p2),
+            Item::Annulus(a) => a.section(p.u),
+            Item::Block(_) => (Vec2::zeros(), Vec2::zeros()),
+        }
+    }
+
+    /// Material between positions p < q.
+    fn between(&self, p: Pos, q: Pos) -> Sums {
+        if p.item == q.item {
+            return match &self.items[p.item] {
+                Item::Annulus(a) => a.sums(p.u, q.u),
+                _ => Sums::default(),
+            };
+        }
+        let mut s = match &self.items[p.item] {
+            Item::Annulus(a) => a.sums(p.u, a.len) + a.tail,
+            _ => Sums::default(),
+        };
+        for f in &self.full[p.item + 1..q.item] {
+            s = s + *f;
+        }
+        if let Item::Annulus(a) = &self.items[q.item] {
+            s = s + a.head + a.sums(0.0, q.u);
+        }
+        s
+    }
+
+    /// Coarse sections: every joint, and points along each annulus (without duplicating a
+    /// neighbouring joint or the end of the previous annulus).
+    fn coarse(&self) -> Vec<Pos> {
+        let total: f64 = self
+            .items
+            .iter()
+            .map(|it| match it {
+                Item::Annulus(a) => a.len,
+                _ => 0.0,
+            })
+            .sum();
+        let tol = 1e-12 * self.size;
+        let mut out = Vec::new();
+        for (i, it) in self.items.iter().enumerate() {
+            match it {
+                Item::Joint { .. } => out.push(Pos { item: i, u: 0.0 }),
+                Item::Block(_) => {}
+                Item::Annulus(a) => {
+                    let m = ((COARSE_SECTIONS as f64 * a.len / total).round() as usize).max(2);
+                    let same = |p: (Vec2, Vec2), q: (Vec2, Vec2)| {
+                        (p.0 - q.0).norm() <= tol && (p.1 - q.1).norm() <= tol
+                    };
+                    let skip_first = match self.items.get(i.wrapping_sub(1)) {
+                        Some(Item::Annulus(_)) => true,
+                        Some(Item::Joint { p1, p2, .. }) => same((*p1, *p2), a.section(0.0)),
+                        _ => false,
+                    };
+                    let skip_last = match self.items.get(i + 1) {
+                        Some(Item::Joint { p1, p2, .. }) => same((*p1, *p2), a.section(a.len)),
+                        _ => false,
+                    };
+                    for s in 0..=m {
+                        if (s == 0 && skip_first) || (s == m && skip_last) {
+                            continue;
+                        }
+                        out.push(Pos {
+                            item: i,
+                            u: a.len * s as f64 / m as f64,
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// `(A, G)` of the mechanism with active sections `pos` doing `acts`, if admissible.
+    fn evaluate(&self, pos: &[Pos], acts: &[Act], sign: f64) -> Option<(f64, f64)> {
+        let mut actives = [Active {
+            p1: Vec2::zeros(),
+            p2: Vec2::zeros(),
+            act: Act::Open,
+        }; 4];
+        for (k, (p, a)) in pos.iter().zip(acts).enumerate() {
+            let (p1, p2) = self.section(*p);
+            actives[k] = Active { p1, p2, act: *a };
+        }
+        let m = solve_motion(&actives[..pos.len()], true)?;
+        let mut bodies = [Sums::default(); 3];
+        for k in 0..pos.len() - 1 {
+            bodies[k] = self.between(pos[k], pos[k + 1]);
+        }
+        let (ax, g) = motion_work(&m, &bodies[..pos.len() - 1]);
+        Some((sign * ax, g))
+    }
+}
+
+/// Best coarse mechanism of each signature (the item and action of each active section).
+struct Collector<'a> {
+    ext: Extremes<Key>,
+    best: HashMap<[(usize, u8); 4], (f64, Key)>,
+    coarse: &'a [Pos],
+}
+
+impl Collector<'_> {
+    /// Signatures are refined only within `REFINE_MARGIN` of the best; keep every candidate
+    /// below this looser cut (the best can only decrease as the search goes on).
+    fn cut(&self) -> f64 {
+        self.ext.best.as_ref().map_or(f64::INFINITY, |b| {
+            b.0 + 2.0 * REFINE_MARGIN * b.0.abs().max(0.05)
+        })
+    }
+}
+
+/// Relative margin (of |best|, at least 0.05 absolute) within which signatures are refined.
+const REFINE_MARGIN: f64 = 0.2;
+
+impl Sink for Collector<'_> {
+    fn wants(&self, ax: f64, g: f64) -> bool {
+        if ax > 0.0 {
+            g <= self.cut() * ax
+        } else {
+            self.ext.wants(ax, g)
+        }
+    }
+    fn take(&mut self, ax: f64, g: f64, key: Key) {
+        self.ext.record(ax, g, || key);
+        if ax > 0.0 {
+            let l = g / ax;
+            let mut sig = [(usize::MAX, 0u8); 4];
+            for (k, (j, a)) in key.items().enumerate() {
+                sig[k] = (self.coarse[j].item, a);
+            }
+            let e = self.best.entry(sig).or_insert((l, key));
+            if l < e.0 || (l == e.0 && key < e.1) {
+                *e = (l, key);
+            }
+        }
+    }
+    fn count(&mut self, n: u64) {
+        self.ext.admissible += n;
+    }
+}
+
+fn act_of(a: u8) -> Act {
+    match a {
+        0 => Act::Hinge(JointEnd::P1),
+        1 => Act::Hinge(JointEnd::P2),
+        _ => Act::Open,
+    }
+}
+
+/// Continuous model with the load toward +x.
+pub fn continuous(scene: &Scene) -> Result<ContinuousResult, KinematicError> {
+    continuous_with(scene, Direction::Right)
+}
+
+/// Continuous model (hinges at any section of the arch; piers as given) for the load in
+/// direction `direction`.
+pub fn continuous_with(
+    scene: &Scene,
+    direction: Direction,
+) -> Result<ContinuousResult, KinematicError> {
+    let start = Instant::now();
+    let st = Structure::from_scene(scene)?;
+    let sign = direction.sign();
+    let coarse = st.coarse();
+    let sections: Vec<(Vec2, Vec2)> = coarse.iter().map(|p| st.section(*p)).collect();
+    let segments: Vec<Sums> = coarse.windows(2).map(|w| st.between(w[0], w[1])).collect();
+    let chain = Chain::from_sections(&sections, &segments, sign, st.size);
+    let mut col = Collector {
+        ext: Extremes::new(),
+        best: HashMap::new(),
+        coarse: &coarse,
+    };
+    visit_all(&chain, &mut col);
+
+    // Refine the signatures whose coarse multiplier is near the best one.
+    let mut cands: Vec<(f64, Key)> = col.best.values().copied().collect();
+    cands.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut evaluations = 0u64;
+    let mut refined = 0;
+    let mut best: Option<(f64, Vec<Pos>, Vec<Act>)> = None;
+    if let Some(&(l0, _)) = cands.first() {
+        let margin = REFINE_MARGIN * l0.abs().max(0.05);
+        for (l, key) in cands.iter().take(8) {
+            if *l > l0 + margin {
+                break;
+            }
+            refined += 1;
+            let pos: Vec<Pos> = key.items().map(|(j, _)| coarse[j]).collect();
+            let acts: Vec<Act> = key.items().map(|(_, a)| act_of(a)).collect();
+            let (lr, pr) = refine(&st, pos, &acts, sign, &mut evaluations);
+            if best.as_ref().is_none_or(|b| lr < b.0) {
+                best = Some((lr, pr, acts));
+            }
+        }
+    }
+    let mut ext = col.ext.clone();
+    if let Some((l, _, _)) = &best {
+        if let Some(b) = ext.best.as_mut() {
+            b.0 = b.0.min(*l);
+        }
+    }
+    let (status, _) = ext.verdict();
+    let lambda_signed = ext.best.as_ref().map(|b| b.0);
+    let mut hinges = Vec::new();
+    let mut open = Vec::new();
+    let mut family = None;
+    if let Some((_, pos, acts)) = &best {
+        // Drop idle hinges (zero relative rotation), as the discrete search does.
+        let actives: Vec<Active> = pos
+            .iter()
+            .zip(acts)
+            .map(|(p, a)| {
+                let (p1, p2) = st.section(*p);
+                Active { p1, p2, act: *a }
+            })
+            .collect();
+        let motion = solve_motion(&actives, true);
+        let n_open = acts.iter().filter(|a| **a == Act::Open).count();
+        family = Some(match n_open {
+            0 => Family::FourHinges,
+            1 => Family::TwoHingesOneOpen,
+            _ => Family::TwoOpen,
+        });
+        for (k, (p, a)) in pos.iter().zip(acts).enumerate() {
+            let (p1, p2) = st.section(*p);
+            let location = match &st.items[p.item] {
+                Item::Joint {
+                    kind: JointKind::LeftPier(c),
+                    ..
+                } => HingeLocation::Pier {
+                    left: true,
+                    joint: *c,
+                },
+                Item::Joint {
+                    kind: JointKind::RightPier(c),
+                    ..
+                } => HingeLocation::Pier {
+                    left: false,
+                    joint: *c,
+                },
+                _ => {
+                    let d = p2 - p1;
+                    let polar_deg = d.y.atan2(d.x).to_degrees();
+                    HingeLocation::Arch {
+                        polar_deg,
+                        from_vertical_deg: (polar_deg - 90.0).abs(),
+                    }
+                }
+            };
+            match a {
+                Act::Open => open.push(ContinuousHinge {
+                    location,
+                    end: None,
+                    x: p1.x,
+                    y: p1.y,
+                }),
+                Act::Hinge(e) => {
+                    if motion.is_some_and(|m| m.opening[k] <= super::ADMISSIBLE_TOL) {
+                        continue;
+                    }
+                    let q = if *e == JointEnd::P1 { p1 } else { p2 };
+                    hinges.push(ContinuousHinge {
+                        location,
+                        end: Some(*e),
+                        x: q.x,
+                        y: q.y,
+                    });
+                }
+            }
+        }
+    }
+    Ok(ContinuousResult {
+        status,
+        lambda_continuous: if status == Status::Collapse {
+            lambda_signed
+        } else {
+            None
+        },
+        lambda_signed,
+        family,
+        hinges,
+        open,
+        direction,
+        coarse_sections: coarse.len(),
+        refined,
+        evaluations,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Coordinate-wise golden-section refinement of the arch sections of one mechanism
+/// signature. Returns the refined multiplier and positions.
+fn refine(
+    st: &Structure,
+    mut pos: Vec<Pos>,
+    acts: &[Act],
+    sign: f64,
+    evaluations: &mut u64,
+) -> (f64, Vec<Pos>) {
+    let f = |pos: &[Pos], ev: &mut u64| -> f64 {
+        *ev += 1;
+        match st.evaluate(pos, acts, sign) {
+            Some((ax, g)) if ax > 0.0 => g / ax,
+            _ => f64::INFINITY,
+        }
+    };
+    let vars: Vec<usize> = (0..pos.len())
+        .filter(|&k| matches!(st.items[pos[k].item], Item::Annulus(_)))
+        .collect();
+    let mut best = f(&pos, evaluations);
+    // Initial bracket half-width: a coarse step along the piece.
+    let mut width: Vec<f64> = vars
+        .iter()
+        .map(|&k| match &st.items[pos[k].item] {
+            Item::Annulus(a) => a.len / 4.0,
+            _ => 0.0,
+        })
+        .collect();
+    for _sweep in 0..60 {
+        let before = best;
+        let mut moved = 0.0_f64;
+        for (vi, &k) in vars.iter().enumerate() {
+            let Item::Annulus(a) = &st.items[pos[k].item] else {
+                continue;
+            };
+            let mut lo = 0.0_f64;
+            let mut hi = a.len;
+            if k > 0 && pos[k - 1].item == pos[k].item {
+                lo = pos[k - 1].u;
+            }
+            if k + 1 < pos.len() && pos[k + 1].item == pos[k].item {
+                hi = pos[k + 1].u;
+            }
+            let u0 = pos[k].u;
+            let (mut x0, mut x3) = ((u0 - width[vi]).max(lo), (u0 + width[vi]).min(hi));
+            let r = 0.5 * (5f64.sqrt() - 1.0);
+            let mut trial = pos.clone();
+            let mut eval = |u: f64, ev: &mut u64| {
+                trial[k].u = u;
+                f(&trial, ev)
+            };
+            let mut x1 = x3 - r * (x3 - x0);
+            let mut x2 = x0 + r * (x3 - x0);
+            let mut f1 = eval(x1, evaluations);
+            let mut f2 = eval(x2, evaluations);
+            while x3 - x0 > 1e-11 * a.len.max(1e-300) {
+                if f1 <= f2 {
+                    x3 = x2;
+                    x2 = x1;
+                    f2 = f1;
+                    x1 = x3 - r * (x3 - x0);
+                    f1 = eval(x1, evaluations);
+                } else {
+                    x0 = x1;
+                    x1 = x2;
+                    f1 = f2;
+                    x2 = x0 + r * (x3 - x0);
+                    f2 = eval(x2, evaluations);
+                }
+            }
+            // Also try the ends of the bracket (a section may want to sit on a bound).
+            let mut cand = [
+                (f1, x1),
+                (f2, x2),
+                (eval(x0, evaluations), x0),
+                (eval(x3, evaluations), x3),
+            ];
+            cand.sort_by(|a, b| a.0.total_cmp(&b.0));
+            if cand[0].0 < best {
+                best = cand[0].0;
+                moved = moved.max((cand[0].1 - u0).abs());
+                pos[k].u = cand[0].1;
+            }
+            width[vi] = (4.0 * (pos[k].u - u0).abs()).max(1e-4 * a.len);
+        }
+        let gain = before - best;
+        if (gain.is_nan() || gain <= 1e-15 * best.abs().max(1e-3)) && moved < 1e-9 {
+            break;
+        }
+    }
+    (best, pos)
+}
+
+/// The continuous model's minimum thickness: the root of `lambda_signed(t)` (load toward +x),
+/// bracketed from the scene's thickness and found by the Illinois variant of regula falsi.
+pub fn continuous_min_thickness(scene: &Scene) -> Result<MinThickness, KinematicError> {
+    let tmax = scene.max_thickness();
+    let mut iterations = 0;
+    let mut lam = |t: f64| -> Result<(f64, ContinuousResult), KinematicError> {
+        iterations += 1;
+        let r = continuous(&scene.with_thickness(t)?)?;
+        let l = r.lambda_signed.unwrap_or(f64::INFINITY);
+        Ok((l, r))
+    };
+    let mut hi = scene.arch.thickness;
+    let (mut fhi, _) = lam(hi)?;
+    while fhi <= 0.0 {
+        hi = 0.5 * (hi + tmax);
+        if tmax - hi < 1e-6 * tmax {
+            return Err(KinematicError::Continuous(
+                "the arch cannot stand at any thickness".into(),
+            ));
+        }
+        fhi = lam(hi)?.0;
+    }
+    let mut lo = hi;
+    let mut flo = fhi;
+    while flo > 0.0 {
+        lo *= 0.5;
+        if lo < 1e-4 * tmax {
+            return Err(KinematicError::Continuous(format!(
+                "lambda stays positive down to thickness {lo:e}: no minimum thickness"
+            )));
+        }
+        flo = lam(lo)?.0;
+    }
+    if !fhi.is_finite() {
+        // Bisect until the upper end has a finite multiplier.
+        while !fhi.is_finite() {
+            hi = 0.5 * (lo + hi);
+            fhi = lam(hi)?.0;
+        }
+    }
+    // Illinois regula falsi on [lo, hi] with f(lo) < 0 < f(hi).
+    let mut side = 0;
+    let mut t = lo;
+    for _ in 0..100 {
+        t = (lo * fhi - hi * flo) / (fhi - flo);
+        let (ft, _) = lam(t)?;
+        if ft > 0.0 {
+            hi = t;
+            fhi = ft;
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        } else {
+            lo = t;
+            flo = ft;
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        }
+        if hi - lo < 1e-10 * tmax || ft == 0.0 {
+            break;
+        }
+    }
+    let (_, result) = lam(t)?;
+    Ok(MinThickness {
+        thickness: t,
+        result,
+        iterations,
+    })
+}

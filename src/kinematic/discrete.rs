@@ -1,0 +1,875 @@
+//! Exhaustive search over the one-degree-of-freedom hinge mechanisms of a chain of blocks
+//! (families in the module docs of [`crate::kinematic`]).
+//!
+//! # Cost and the exact pruning of the four-hinge family
+//! With N joints there are C(N,4) joint quadruples and 16 hinge-end patterns each (C(129,4) *
+//! 16 = 1.8e8 for a 128-voussoir arch). The relative rotations of a four-hinge mechanism are
+//! the cofactors `c_A = T(b,c,d)`, `c_B = -T(a,c,d)`, `c_C = T(a,b,d)`, `c_D = -T(a,b,c)`
+//! (`T` = twice the signed area of a triangle), and admissibility is a sign condition on each:
+//! a hinge at p2 needs `sigma c > 0`, at p1 `sigma c < 0`, with one common orientation sigma.
+//! The key observation is that the rotation of each hinge does *not* depend on where that
+//! hinge is: `c_A` depends on b, c, d only. So the sign of every triangle `T(p,q,r)` of three
+//! joints, for each of their 2^3 end choices, is computed once (a byte per joint triple, C(N,3)
+//! of them), and the admissible (pattern, sigma) pairs of a quadruple are the bitwise AND of
+//! four 16-bit masks read from 256-entry tables indexed by those bytes (the sigma = -1 masks
+//! are the complements). Nothing is approximated: a pattern is discarded only when one of its
+//! four sign conditions fails, and whenever a triangle's area is within round-off of zero
+//! (collinear hinge points, e.g. along a pier face) the quadruple falls back to the direct
+//! evaluation of all 16 patterns with a tolerance. Only the survivors (typically the two
+//! alternating intrados/extrados patterns) get their virtual work evaluated, in O(1) from
+//! prefix sums of W, W x, W y along the chain.
+//!
+//! The two-hinges-one-open family (N C(N-1,2) joint choices times 4 end patterns) uses the
+//! closed forms of its cofactors: with the open joint's line through p with unit normal n and
+//! hinges h1, h2, the relative rotations are `(p - h2).n` and `(h1 - p).n`, and the open
+//! joint's relative motion is the rotation `(h2 - h1).n` about p plus the normal translation
+//! `-T(h1, h2, p)`.
+
+use super::{
+    motion_work, solve_motion, Act, Active, Extremes, Family, KinematicError, KinematicResult,
+    KinematicSettings, Mechanism, Sums, ADMISSIBLE_TOL,
+};
+use crate::assembly::{Assembly, Hinge, JointEnd};
+use crate::geometry::{cross, Vec2};
+use crate::lp::Status;
+use crate::scene::Scene;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// The active joints of a mechanism, for comparisons and tie-breaking: joint indices in chain
+/// order and what each does (0 = hinge at p1, 1 = hinge at p2, 2 = open).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct Key {
+    joints: [u32; 4],
+    acts: [u8; 4],
+    count: u8,
+}
+
+const OPEN: u8 = 2;
+
+impl Key {
+    fn new(items: &[(usize, u8)]) -> Key {
+        let mut k = Key {
+            joints: [u32::MAX; 4],
+            acts: [0; 4],
+            count: items.len() as u8,
+        };
+        for (i, &(j, a)) in items.iter().enumerate() {
+            k.joints[i] = j as u32;
+            k.acts[i] = a;
+        }
+        k
+    }
+    pub(crate) fn items(&self) -> impl Iterator<Item = (usize, u8)> + '_ {
+        (0..self.count as usize).map(|i| (self.joints[i] as usize, self.acts[i]))
+    }
+}
+
+/// The chain's joints and the prefix sums of its blocks, with the load direction.
+pub(crate) struct Chain {
+    /// `p[e][j]`: end e (0 = p1, 1 = p2) of joint j.
+    p: [Vec<Vec2>; 2],
+    normal: Vec<Vec2>,
+    len: Vec<f64>,
+    /// `pre[k]`: sums over blocks `0..k`.
+    pre: Vec<Sums>,
+    /// +1: load toward +x, -1: toward -x.
+    sign: f64,
+    /// Size of the structure (m), for round-off thresholds.
+    size: f64,
+    /// Whether both ends are supported.
+    closed: bool,
+}
+
+impl Chain {
+    fn new(a: &Assembly, sign: f64, closed: bool) -> Chain {
+        let mut pre = Vec::with_capacity(a.blocks.len() + 1);
+        let mut s = Sums::default();
+        pre.push(s);
+        for b in &a.blocks {
+            s = s + Sums {
+                w: b.weight,
+                wx: b.weight * b.centroid.x,
+                wy: b.weight * b.centroid.y,
+            };
+            pre.push(s);
+        }
+        Chain {
+            p: [
+                a.joints.iter().map(|j| j.p1).collect(),
+                a.joints.iter().map(|j| j.p2).collect(),
+            ],
+            normal: a.joints.iter().map(|j| j.normal()).collect(),
+            len: a.joints.iter().map(|j| j.length()).collect(),
+            pre,
+            sign,
+            size: a.size(),
+            closed,
+        }
+    }
+
+    /// A two-support chain of sections `(p1, p2)` with the material `segments[k]` between
+    /// sections k and k + 1.
+    pub(crate) fn from_sections(
+        sections: &[(Vec2, Vec2)],
+        segments: &[Sums],
+        sign: f64,
+        size: f64,
+    ) -> Chain {
+        let mut pre = Vec::with_capacity(segments.len() + 1);
+        let mut s = Sums::default();
+        pre.push(s);
+        for g in segments {
+            s = s + *g;
+            pre.push(s);
+        }
+        let normal = sections
+            .iter()
+            .map(|(p1, p2)| {
+                let d = (p2 - p1).normalize();
+                Vec2::new(d.y, -d.x)
+            })
+            .collect();
+        Chain {
+            p: [
+                sections.iter().map(|s| s.0).collect(),
+                sections.iter().map(|s| s.1).collect(),
+            ],
+            normal,
+            len: sections.iter().map(|(p1, p2)| (p2 - p1).norm()).collect(),
+            pre,
+            sign,
+            size,
+            closed: true,
+        }
+    }
+
+    pub(crate) fn joints(&self) -> usize {
+        self.len.len()
+    }
+
+    /// Sums of the blocks between joints `j1 < j2` (blocks `j1..j2`).
+    #[inline]
+    fn body(&self, j1: usize, j2: usize) -> Sums {
+        self.pre[j2] - self.pre[j1]
+    }
+
+    fn active(&self, j: usize, act: u8) -> Active {
+        Active {
+            p1: self.p[0][j],
+            p2: self.p[1][j],
+            act: match act {
+                0 => Act::Hinge(JointEnd::P1),
+                1 => Act::Hinge(JointEnd::P2),
+                _ => Act::Open,
+            },
+        }
+    }
+
+    /// Direct evaluation of any candidate: `(A, G)` if admissible.
+    pub(crate) fn evaluate(&self, key: &Key) -> Option<(f64, f64, super::Motion)> {
+        let count = key.count as usize;
+        let mut actives = [Active {
+            p1: Vec2::zeros(),
+            p2: Vec2::zeros(),
+            act: Act::Open,
+        }; 4];
+        let mut js = [0usize; 4];
+        for (k, (j, a)) in key.items().enumerate() {
+            actives[k] = self.active(j, a);
+            js[k] = j;
+        }
+        let m = solve_motion(&actives[..count], self.closed)?;
+        let mut bodies = [Sums::default(); 4];
+        for k in 0..count - 1 {
+            bodies[k] = self.body(js[k], js[k + 1]);
+        }
+        let nbodies = if self.closed {
+            count - 1
+        } else {
+            bodies[count - 1] = self.body(js[count - 1], self.pre.len() - 1);
+            count
+        };
+        let (ax, g) = motion_work(&m, &bodies[..nbodies]);
+        Some((self.sign * ax, g, m))
+    }
+}
+
+/// Whether `a` is a one-support chain: joint k joins block k - 1 (ground for k = 0) to block
+/// k, and the last block is free.
+pub fn is_column(a: &Assembly) -> bool {
+    let nb = a.blocks.len();
+    a.joints.len() == nb
+        && a.joints
+            .iter()
+            .enumerate()
+            .all(|(k, j)| j.from == k.checked_sub(1) && j.to == Some(k))
+}
+
+/// Discrete kinematic analysis of a chain assembly: the least multiplier over all admissible
+/// one-degree-of-freedom mechanisms whose hinges sit at joint ends.
+pub fn analyse(
+    assembly: &Assembly,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, KinematicError> {
+    let start = Instant::now();
+    assembly.validate()?;
+    let closed = if assembly.is_chain() {
+        true
+    } else if is_column(assembly) {
+        false
+    } else {
+        return Err(KinematicError::NotAChain);
+    };
+    let nj = assembly.joints.len();
+    if nj > settings.max_joints {
+        return Err(KinematicError::TooManyJoints {
+            joints: nj,
+            max: settings.max_joints,
+        });
+    }
+    let chain = Chain::new(assembly, settings.direction.sign(), closed);
+    let (ext, candidates) = if closed {
+        search_closed(&chain, settings.parallel)
+    } else {
+        search_column(&chain)
+    };
+    let (status, key) = ext.verdict();
+    let mechanism = key.and_then(|k| mechanism_of(assembly, &chain, &k));
+    Ok(KinematicResult {
+        status,
+        lambda_upper: if status == Status::Collapse {
+            ext.best.as_ref().map(|b| b.0)
+        } else {
+            None
+        },
+        lambda_signed: ext.best.as_ref().map(|b| b.0),
+        lambda_needed: ext.needed.as_ref().map(|b| b.0),
+        mechanism,
+        direction: settings.direction,
+        candidates,
+        admissible: ext.admissible,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Discrete kinematic analysis of a scene (its assembly, default settings but `direction`).
+pub fn lambda_upper_of_scene(
+    scene: &Scene,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, KinematicError> {
+    analyse(&Assembly::from_scene(scene), settings)
+}
+
+/// The kinematic "stands" predicate for a bisection on thickness: true unless some admissible
+/// mechanism makes the structure unable to carry its own weight (status `CannotStand`).
+pub fn stands(scene: &Scene, settings: &KinematicSettings) -> Result<bool, KinematicError> {
+    Ok(lambda_upper_of_scene(scene, settings)?.status != Status::CannotStand)
+}
+
+/// The mechanism of `key`, with block velocities normalised (fastest centroid at speed 1).
+fn mechanism_of(assembly: &Assembly, chain: &Chain, key: &Key) -> Option<Mechanism> {
+    let (a, g, m) = chain.evaluate(key)?;
+    let js: Vec<usize> = key.items().map(|(j, _)| j).collect();
+    let nb = assembly.blocks.len();
+    let mut vel = vec![[0.0; 3]; nb];
+    let mut twist = [0.0; 3];
+    let nbodies = if chain.closed { js.len() - 1 } else { js.len() };
+    for k in 0..nbodies {
+        for (tc, rc) in twist.iter_mut().zip(m.rel[k]) {
+            *tc += rc;
+        }
+        let end = if k + 1 < js.len() { js[k + 1] } else { nb };
+        for (b, v) in vel.iter_mut().enumerate().take(end).skip(js[k]) {
+            let u = super::velocity(twist, assembly.blocks[b].centroid);
+            *v = [u.x, u.y, twist[0]];
+        }
+    }
+    let vmax = vel
+        .iter()
+        .fold(0.0_f64, |s, v| s.max((v[0] * v[0] + v[1] * v[1]).sqrt()));
+    if vmax > 0.0 {
+        for v in &mut vel {
+            for c in v.iter_mut() {
+                *c /= vmax;
+            }
+        }
+    }
+    let mut hinges = Vec::new();
+    let mut open = Vec::new();
+    let mut n_open = 0;
+    for (i, (j, act)) in key.items().enumerate() {
+        match act {
+            OPEN => {
+                open.push(j);
+                n_open += 1;
+            }
+            e if m.opening[i] > ADMISSIBLE_TOL => hinges.push(Hinge::at(
+                assembly,
+                j,
+                if e == 0 { JointEnd::P1 } else { JointEnd::P2 },
+            )),
+            _ => {}
+        }
+    }
+    let family = match (chain.closed, n_open) {
+        (false, _) => Family::OneHinge,
+        (true, 0) => Family::FourHinges,
+        (true, 1) => Family::TwoHingesOneOpen,
+        _ => Family::TwoOpen,
+    };
+    Some(Mechanism {
+        family,
+        hinges,
+        open,
+        velocities: vel,
+        lambda: g / a,
+    })
+}
+
+/// One-support chain: a single hinge at either end of any joint.
+fn search_column(chain: &Chain) -> (Extremes<Key>, u64) {
+    let mut ext = Extremes::new();
+    for j in 0..chain.joints() {
+        for e in 0..2u8 {
+            let key = Key::new(&[(j, e)]);
+            if let Some((a, g, _)) = chain.evaluate(&key) {
+                ext.push(a, g, || key);
+            }
+        }
+    }
+    (ext, 2 * chain.joints() as u64)
+}
+
+fn binom(n: usize, k: usize) -> u64 {
+    if k > n {
+        return 0;
+    }
+    (0..k).fold(1u64, |acc, i| acc * (n - i) as u64 / (i as u64 + 1))
+}
+
+fn search_closed(chain: &Chain, parallel: bool) -> (Extremes<Key>, u64) {
+    let n = chain.joints();
+    let candidates = 16 * binom(n, 4) + 4 * n as u64 * binom(n.saturating_sub(1), 2) + binom(n, 2);
+    let four = four_hinges(chain, parallel);
+    let three = two_hinges_one_open(chain, parallel);
+    let two = two_open(chain);
+    (four.merge(three).merge(two), candidates)
+}
+
+fn two_open(chain: &Chain) -> Extremes<Key> {
+    let n = chain.joints();
+    let mut ext = Extremes::new();
+    for j1 in 0..n {
+        for j2 in j1 + 1..n {
+            let key = Key::new(&[(j1, OPEN), (j2, OPEN)]);
+            if let Some((a, g, _)) = chain.evaluate(&key) {
+                ext.push(a, g, || key);
+            }
+        }
+    }
+    ext
+}
+
+/// Two hinges h1, h2 and one open joint o, in any chain order, by the closed-form cofactors.
+fn two_hinges_one_open(chain: &Chain, parallel: bool) -> Extremes<Key> {
+    let n = chain.joints();
+    let per_open = |o: usize| {
+        let mut ext = Extremes::new();
+        two_hinges_one_open_at(chain, o, &mut ext);
+        ext
+    };
+    if parallel {
+        (0..n)
+            .into_par_iter()
+            .map(per_open)
+            .reduce(Extremes::new, Extremes::merge)
+    } else {
+        (0..n).map(per_open).fold(Extremes::new(), Extremes::merge)
+    }
+}
+
+/// The two-hinges-one-open mechanisms whose open joint is `o`.
+fn two_hinges_one_open_at<S: Sink>(chain: &Chain, o: usize, sink: &mut S) {
+    let n = chain.joints();
+    let nrm = chain.normal[o];
+    let p = chain.p[0][o];
+    let lo = chain.len[o];
+    // Signed distances of every joint end from the open joint's line.
+    let dist: [Vec<f64>; 2] = [
+        chain.p[0].iter().map(|q| (q - p).dot(&nrm)).collect(),
+        chain.p[1].iter().map(|q| (q - p).dot(&nrm)).collect(),
+    ];
+    for j1 in 0..n {
+        if j1 == o {
+            continue;
+        }
+        for j2 in j1 + 1..n {
+            if j2 == o {
+                continue;
+            }
+            for e1 in 0..2usize {
+                let h1 = chain.p[e1][j1];
+                let s1 = if e1 == 0 { -1.0 } else { 1.0 };
+                for e2 in 0..2usize {
+                    let h2 = chain.p[e2][j2];
+                    let s2 = if e2 == 0 { -1.0 } else { 1.0 };
+                    let c1 = -dist[e2][j2];
+                    let c2 = dist[e1][j1];
+                    let cp = dist[e2][j2] - dist[e1][j1];
+                    let cn = -cross(h2 - h1, p - h1);
+                    // Opening velocities: the free end of each hinge, both ends of o.
+                    let v = [
+                        s1 * c1 * chain.len[j1],
+                        s2 * c2 * chain.len[j2],
+                        cn,
+                        cn - cp * lo,
+                    ];
+                    let vmax = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                    if vmax <= 0.0 {
+                        continue;
+                    }
+                    let tol = ADMISSIBLE_TOL * vmax;
+                    let sigma = if v.iter().all(|&x| x >= -tol) {
+                        1.0
+                    } else if v.iter().all(|&x| x <= tol) {
+                        -1.0
+                    } else {
+                        continue;
+                    };
+                    sink.count(1);
+                    let r1 = [sigma * c1, sigma * c1 * h1.y, -sigma * c1 * h1.x];
+                    let r2 = [sigma * c2, sigma * c2 * h2.y, -sigma * c2 * h2.x];
+                    let ro = [
+                        sigma * cp,
+                        sigma * (cp * p.y + cn * nrm.x),
+                        sigma * (-cp * p.x + cn * nrm.y),
+                    ];
+                    // Chain order of the three active joints.
+                    let items = if o < j1 {
+                        [(o, ro, OPEN), (j1, r1, e1 as u8), (j2, r2, e2 as u8)]
+                    } else if o < j2 {
+                        [(j1, r1, e1 as u8), (o, ro, OPEN), (j2, r2, e2 as u8)]
+                    } else {
+                        [(j1, r1, e1 as u8), (j2, r2, e2 as u8), (o, ro, OPEN)]
+                    };
+                    let t1 = items[0].1;
+                    let t2 = [
+                        t1[0] + items[1].1[0],
+                        t1[1] + items[1].1[1],
+                        t1[2] + items[1].1[2],
+                    ];
+                    let (a1, g1) = super::work(t1, chain.body(items[0].0, items[1].0));
+                    let (a2, g2) = super::work(t2, chain.body(items[1].0, items[2].0));
+                    let (ax, g) = (chain.sign * (a1 + a2), g1 + g2);
+                    if sink.wants(ax, g) {
+                        sink.take(
+                            ax,
+                            g,
+                            Key::new(&[
+                                (items[0].0, items[0].2),
+                                (items[1].0, items[1].2),
+                                (items[2].0, items[2].2),
+                            ]),
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Masks of admissible (pattern, sigma = +1) for the four sign conditions, indexed by the sign
+/// byte of the relevant triangle. Pattern bits: eA << 3 | eB << 2 | eC << 1 | eD (1 = p2);
+/// a triangle byte's bit `ep << 2 | eq << 1 | er` is set when `T > 0`.
+struct MaskTables {
+    a: [u16; 256],
+    b: [u16; 256],
+    c: [u16; 256],
+    d: [u16; 256],
+}
+
+fn mask_tables() -> MaskTables {
+    let mut t = MaskTables {
+        a: [0; 256],
+        b: [0; 256],
+        c: [0; 256],
+        d: [0; 256],
+    };
+    for y in 0..256usize {
+        let bit = |i: usize| (y >> i) & 1 == 1;
+        for pat in 0..16usize {
+            let (ea, eb, ec, ed) = ((pat >> 3) & 1, (pat >> 2) & 1, (pat >> 1) & 1, pat & 1);
+            // c_A = +T(b,c,d): hinge A at p2 (ea = 1) needs c_A > 0.
+            if (ea == 1) == bit(eb << 2 | ec << 1 | ed) {
+                t.a[y] |= 1 << pat;
+            }
+            // c_B = -T(a,c,d).
+            if (eb == 1) != bit(ea << 2 | ec << 1 | ed) {
+                t.b[y] |= 1 << pat;
+            }
+            // c_C = +T(a,b,d).
+            if (ec == 1) == bit(ea << 2 | eb << 1 | ed) {
+                t.c[y] |= 1 << pat;
+            }
+            // c_D = -T(a,b,c).
+            if (ed == 1) != bit(ea << 2 | eb << 1 | ec) {
+                t.d[y] |= 1 << pat;
+            }
+        }
+    }
+    t
+}
+
+/// Receiver of admissible mechanisms `(A, G, key)` during a search.
+pub(crate) trait Sink {
+    /// Whether a mechanism with load power `ax` and gravity power `g` may matter (a cheap test
+    /// before its key is built).
+    fn wants(&self, ax: f64, g: f64) -> bool;
+    fn take(&mut self, ax: f64, g: f64, key: Key);
+    /// Count `n` admissible mechanisms.
+    fn count(&mut self, n: u64);
+}
+
+impl Sink for Extremes<Key> {
+    #[inline]
+    fn wants(&self, ax: f64, g: f64) -> bool {
+        // g/ax < best (ax > 0) and g/ax > needed (ax < 0) are both g < l * ax: no division.
+        if ax > 0.0 {
+            self.best.as_ref().is_none_or(|b| g <= b.0 * ax)
+        } else if ax < 0.0 {
+            self.needed.as_ref().is_none_or(|b| g <= b.0 * ax)
+        } else {
+            g < 0.0
+        }
+    }
+    #[inline]
+    fn take(&mut self, ax: f64, g: f64, key: Key) {
+        self.record(ax, g, || key);
+    }
+    #[inline]
+    fn count(&mut self, n: u64) {
+        self.admissible += n;
+    }
+}
+
+/// Index of the triple p < q < r in the combinatorial number system.
+struct TripleIndex {
+    c2: Vec<usize>,
+    c3: Vec<usize>,
+}
+
+impl TripleIndex {
+    fn new(n: usize) -> Self {
+        TripleIndex {
+            c2: (0..=n).map(|q| q * q.saturating_sub(1) / 2).collect(),
+            c3: (0..=n)
+                .map(|r| r * r.saturating_sub(1) * r.saturating_sub(2) / 6)
+                .collect(),
+        }
+    }
+}
+
+/// Sign bytes of all joint triples: low byte = `T > eps` for each of the 8 end choices, high
+/// byte = `|T| <= eps` (collinear within round-off).
+fn triangle_signs(chain: &Chain, idx: &TripleIndex, parallel: bool) -> Vec<u16> {
+    let n = chain.joints();
+    let eps = 1e-11 * chain.size * chain.size;
+    let row = |r: usize| {
+        let mut out = Vec::with_capacity(idx.c3[r + 1] - idx.c3[r]);
+        for q in 1..r {
+            for p in 0..q {
+                let mut v = 0u16;
+                for combo in 0..8usize {
+                    let pp = chain.p[(combo >> 2) & 1][p];
+                    let qq = chain.p[(combo >> 1) & 1][q];
+                    let rr = chain.p[combo & 1][r];
+                    let t = cross(qq - pp, rr - pp);
+                    if t.abs() <= eps {
+                        v |= 1 << (8 + combo);
+                    } else if t > 0.0 {
+                        v |= 1 << combo;
+                    }
+                }
+                out.push(v);
+            }
+        }
+        out
+    };
+    let rows: Vec<Vec<u16>> = if parallel {
+        (0..n).into_par_iter().map(row).collect()
+    } else {
+        (0..n).map(row).collect()
+    };
+    rows.concat()
+}
+
+/// Constants of the four-hinge work for fixed hinge points b, c, d (one end choice each):
+/// `c_A`, the linear forms `T(a,c,d) = al0 + al . a` and `T(a,b,c) = be0 + be . a`, and the
+/// contributions of the bodies [b, c) and [c, d) per unit rotation.
+#[derive(Clone, Copy, Default)]
+struct BcdConst {
+    ca: f64,
+    al: [f64; 3],
+    be: [f64; 3],
+    kb: [f64; 2],
+    kd: [f64; 2],
+}
+
+/// Tables shared by the four-hinge loops.
+pub(crate) struct FourTables {
+    idx: TripleIndex,
+    signs: Vec<u16>,
+    masks: MaskTables,
+}
+
+impl FourTables {
+    fn new(chain: &Chain, parallel: bool) -> Self {
+        let idx = TripleIndex::new(chain.joints());
+        let signs = triangle_signs(chain, &idx, parallel);
+        FourTables {
+            idx,
+            signs,
+            masks: mask_tables(),
+        }
+    }
+}
+
+/// The four-hinge family over all joint quadruples a < b < c < d.
+fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
+    let n = chain.joints();
+    if n < 4 {
+        return Extremes::new();
+    }
+    let tables = FourTables::new(chain, parallel);
+    let per_d = |d: usize| {
+        let mut ext = Extremes::new();
+        four_hinges_at(chain, &tables, d, &mut ext);
+        ext
+    };
+    if parallel {
+        (3..n)
+            .into_par_iter()
+            .rev()
+            .map(per_d)
+            .reduce(Extremes::new, Extremes::merge)
+    } else {
+        (3..n).map(per_d).fold(Extremes::new(), Extremes::merge)
+    }
+}
+
+/// Every admissible mechanism of a chain, in any order, to `sink` (sequential).
+pub(crate) fn visit_all<S: Sink>(chain: &Chain, sink: &mut S) {
+    let n = chain.joints();
+    if n >= 4 {
+        let tables = FourTables::new(chain, false);
+        for d in 3..n {
+            four_hinges_at(chain, &tables, d, sink);
+        }
+    }
+    for o in 0..n {
+        two_hinges_one_open_at(chain, o, sink);
+    }
+    for j1 in 0..n {
+        for j2 in j1 + 1..n {
+            let key = Key::new(&[(j1, OPEN), (j2, OPEN)]);
+            if let Some((a, g, _)) = chain.evaluate(&key) {
+                sink.count(1);
+                sink.take(a, g, key);
+            }
+        }
+    }
+}
+
+/// The four-hinge quadruples whose last hinge is at joint `d`.
+fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &mut S) {
+    let (idx, signs, masks) = (&tables.idx, &tables.signs, &tables.masks);
+    let mut konst = [BcdConst::default(); 8];
+    for c in 2..d {
+        let base_acd = idx.c3[d] + idx.c2[c];
+        let scd = chain.body(c, d);
+        for b in 1..c {
+            let ybcd = signs[idx.c3[d] + idx.c2[c] + b];
+            let base_abc = idx.c3[c] + idx.c2[b];
+            let base_abd = idx.c3[d] + idx.c2[b];
+            if ybcd >> 8 != 0 {
+                for a in 0..b {
+                    slow_quadruple(chain, [a, b, c, d], sink);
+                }
+                continue;
+            }
+            let sbc = chain.body(b, c);
+            for (combo, k) in konst.iter_mut().enumerate() {
+                let pb = chain.p[(combo >> 2) & 1][b];
+                let pc = chain.p[(combo >> 1) & 1][c];
+                let pd = chain.p[combo & 1][d];
+                *k = BcdConst {
+                    ca: cross(pc - pb, pd - pb),
+                    al: [cross(pc, pd), pc.y - pd.y, pd.x - pc.x],
+                    be: [cross(pb, pc), pb.y - pc.y, pc.x - pb.x],
+                    kb: [pb.y * sbc.w - sbc.wy, sbc.wx - pb.x * sbc.w],
+                    kd: [pd.y * scd.w - scd.wy, scd.wx - pd.x * scd.w],
+                };
+            }
+            let ma = masks.a[(ybcd & 0xff) as usize];
+            let pre_c = chain.pre[c];
+            for a in 0..b {
+                let yabc = signs[base_abc + a];
+                let yabd = signs[base_abd + a];
+                let yacd = signs[base_acd + a];
+                if (yabc | yabd | yacd) >> 8 != 0 {
+                    slow_quadruple(chain, [a, b, c, d], sink);
+                    continue;
+                }
+                let mb = masks.b[(yacd & 0xff) as usize];
+                let mc = masks.c[(yabd & 0xff) as usize];
+                let md = masks.d[(yabc & 0xff) as usize];
+                let plus = ma & mb & mc & md;
+                let minus = !ma & !mb & !mc & !md;
+                if plus | minus == 0 {
+                    continue;
+                }
+                sink.count(u64::from((plus | minus).count_ones()));
+                let sac = pre_c - chain.pre[a];
+                for (bits, sigma) in [(plus, 1.0), (minus, -1.0)] {
+                    let mut bits = bits;
+                    while bits != 0 {
+                        let pat = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        let k = &konst[pat & 7];
+                        let pa = chain.p[(pat >> 3) & 1][a];
+                        // c_B = -T(a,c,d), c_D = -T(a,b,c); the sign sigma is applied last.
+                        let cb = -(k.al[0] + k.al[1] * pa.x + k.al[2] * pa.y);
+                        let cd = -(k.be[0] + k.be[1] * pa.x + k.be[2] * pa.y);
+                        let ax = k.ca * (pa.y * sac.w - sac.wy) + cb * k.kb[0] - cd * k.kd[0];
+                        let g = k.ca * (sac.wx - pa.x * sac.w) + cb * k.kb[1] - cd * k.kd[1];
+                        let (ax, g) = (sigma * chain.sign * ax, sigma * g);
+                        if sink.wants(ax, g) {
+                            sink.take(ax, g, quad_key([a, b, c, d], pat));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn quad_key(j: [usize; 4], pat: usize) -> Key {
+    Key::new(&[
+        (j[0], ((pat >> 3) & 1) as u8),
+        (j[1], ((pat >> 2) & 1) as u8),
+        (j[2], ((pat >> 1) & 1) as u8),
+        (j[3], (pat & 1) as u8),
+    ])
+}
+
+/// `(A, G)` of the four-hinge mechanism with hinges at joints `j` and end pattern `pat`,
+/// oriented by `sigma`. Bodies: [a, b), [b, c), [c, d); body twists `c_A m_a`,
+/// `c_A m_a + c_B m_b`, `-c_D m_d` with `m_p = (1, p_y, -p_x)`.
+#[cfg(test)]
+fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64, f64) {
+    let a = chain.p[(pat >> 3) & 1][j[0]];
+    let b = chain.p[(pat >> 2) & 1][j[1]];
+    let c = chain.p[(pat >> 1) & 1][j[2]];
+    let d = chain.p[pat & 1][j[3]];
+    let ca = sigma * cross(c - b, d - b);
+    let cb = -sigma * cross(c - a, d - a);
+    let cd = -sigma * cross(b - a, c - a);
+    let sac = chain.pre[j[2]] - chain.pre[j[0]];
+    let sbc = chain.pre[j[2]] - chain.pre[j[1]];
+    let scd = chain.pre[j[3]] - chain.pre[j[2]];
+    let ax =
+        ca * (a.y * sac.w - sac.wy) + cb * (b.y * sbc.w - sbc.wy) - cd * (d.y * scd.w - scd.wy);
+    let g = ca * (sac.wx - a.x * sac.w) + cb * (sbc.wx - b.x * sbc.w) - cd * (scd.wx - d.x * scd.w);
+    (chain.sign * ax, g)
+}
+
+/// All 16 end patterns of a quadruple by direct evaluation (near-collinear hinge points).
+#[cold]
+fn slow_quadruple<S: Sink>(chain: &Chain, j: [usize; 4], sink: &mut S) {
+    for pat in 0..16 {
+        let key = quad_key(j, pat);
+        if let Some((a, g, _)) = chain.evaluate(&key) {
+            sink.count(1);
+            sink.take(a, g, key);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fast paths agree with the generic cofactor evaluation on every candidate.
+    #[test]
+    fn fast_paths_match_generic_evaluation() {
+        let scene = Scene::from_toml_str(
+            "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.2\nthickness=0.2\nvoussoirs=6\n[piers]\nheight=0.8\nwidth=0.35\ncourses=2\n",
+            "t",
+        )
+        .unwrap();
+        let asm = Assembly::from_scene(&scene);
+        let chain = Chain::new(&asm, 1.0, true);
+        let n = chain.joints();
+        // Four hinges: quadruple_work against evaluate, where admissible.
+        let mut checked = 0;
+        for d in 3..n {
+            for c in 2..d {
+                for b in 1..c {
+                    for a in 0..b {
+                        for pat in 0..16 {
+                            let key = quad_key([a, b, c, d], pat);
+                            if let Some((ax, g, _)) = chain.evaluate(&key) {
+                                let (ax1, g1) = quadruple_work(&chain, [a, b, c, d], pat, 1.0);
+                                let sigma = if ax * ax1 + g * g1 >= 0.0 { 1.0 } else { -1.0 };
+                                let (ax2, g2) = (sigma * ax1, sigma * g1);
+                                let s = ax.abs() + g.abs();
+                                assert!((ax - ax2).abs() <= 1e-9 * s && (g - g2).abs() <= 1e-9 * s);
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 100);
+        // Both searches over the whole family agree with brute force.
+        let fast = four_hinges(&chain, false).merge(two_hinges_one_open(&chain, false));
+        let mut brute = Extremes::new();
+        for d in 3..n {
+            for c in 2..d {
+                for b in 1..c {
+                    for a in 0..b {
+                        slow_quadruple(&chain, [a, b, c, d], &mut brute);
+                    }
+                }
+            }
+        }
+        for o in 0..n {
+            for j1 in 0..n {
+                for j2 in j1 + 1..n {
+                    if j1 == o || j2 == o {
+                        continue;
+                    }
+                    for e1 in 0..2u8 {
+                        for e2 in 0..2u8 {
+                            let mut items = [(j1, e1), (j2, e2), (o, OPEN)];
+                            items.sort_unstable();
+                            let key = Key::new(&items);
+                            if let Some((a, g, _)) = chain.evaluate(&key) {
+                                brute.push(a, g, || key);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let (fb, bb) = (fast.best.unwrap(), brute.best.unwrap());
+        assert!(
+            (fb.0 - bb.0).abs() <= 1e-12 * bb.0.abs().max(1.0),
+            "{fb:?} {bb:?}"
+        );
+        assert_eq!(fb.1, bb.1);
+        assert_eq!(fast.admissible, brute.admissible);
+    }
+}

@@ -10,3 +10,4 @@ pub mod study;
 pub mod sweep;
 pub mod thickness;
 pub mod thrustline;
+pub mod analysis;

@@ -1,0 +1,114 @@
+//! One analysis of a scene by every method asked for: the static lower bound (always), the
+//! discrete kinematic upper bound (when the chain is small enough for the exhaustive search),
+//! and the continuous kinematic model (on request). The CLI and the sweeps both call this, so
+//! they report the same numbers.
+
+use crate::assembly::Assembly;
+use crate::error::AnalysisError;
+use crate::kinematic::{self, ContinuousResult, KinematicResult, KinematicSettings};
+use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
+use crate::scene::Scene;
+
+/// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
+/// grows as joints^4 (about 0.2 s at 129 joints, 3 s at 257).
+pub const KINEMATIC_DEFAULT_MAX_JOINTS: usize = 200;
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub static_settings: StaticSettings,
+    /// Largest chain (joints) searched kinematically; 0 turns the search off.
+    pub kinematic_max_joints: usize,
+    /// Run the continuous model.
+    pub continuous: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            static_settings: StaticSettings::default(),
+            kinematic_max_joints: KINEMATIC_DEFAULT_MAX_JOINTS,
+            continuous: false,
+        }
+    }
+}
+
+impl Options {
+    pub fn direction(&self) -> Direction {
+        self.static_settings.direction
+    }
+}
+
+/// The results of every method run on one scene.
+#[derive(Debug, Clone)]
+pub struct SceneAnalysis {
+    pub assembly: Assembly,
+    pub lower: StaticResult,
+    /// The discrete kinematic result, or why it was not run or failed.
+    pub upper: Result<KinematicResult, String>,
+    /// The continuous model, when asked for (or why it failed).
+    pub continuous: Option<Result<ContinuousResult, String>>,
+}
+
+impl SceneAnalysis {
+    /// The upper bound, when the kinematic search ran.
+    pub fn lambda_upper(&self) -> Option<f64> {
+        self.upper.as_ref().ok().and_then(|k| k.lambda_upper)
+    }
+
+    /// Relative gap `|lower - upper| / max(1, lower)` when both bounds exist.
+    pub fn gap(&self) -> Option<f64> {
+        let l = self.lower.lambda?;
+        let u = self.lambda_upper()?;
+        Some((u - l).abs() / l.abs().max(1.0))
+    }
+
+    /// Whether sliding governs: finite friction somewhere, and the static bound is below the
+    /// rotational upper bound.
+    pub fn sliding_governs(&self) -> bool {
+        let finite = self.assembly.joints.iter().any(|j| j.friction.is_finite());
+        match (self.lower.status, self.lower.lambda, self.lambda_upper()) {
+            (Status::Collapse, Some(l), Some(u)) => finite && l < u * (1.0 - 1e-6),
+            (Status::Collapse, Some(_), None) => finite && !self.lower.sliding.is_empty(),
+            (Status::CannotStand, _, _) => {
+                finite
+                    && self
+                        .upper
+                        .as_ref()
+                        .is_ok_and(|k| k.status != Status::CannotStand)
+            }
+            _ => false,
+        }
+    }
+}
+
+/// Analyse a scene.
+pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
+    let assembly = Assembly::from_scene(scene);
+    let lower = lp::analyse(&assembly, &options.static_settings)?;
+    let upper = if options.kinematic_max_joints == 0 {
+        Err("kinematic search turned off".to_string())
+    } else if assembly.joints.len() > options.kinematic_max_joints {
+        Err(format!(
+            "kinematic search skipped: {} joints is more than {} (its cost grows as joints^4; raise --kinematic-max-joints to run it)",
+            assembly.joints.len(),
+            options.kinematic_max_joints
+        ))
+    } else {
+        let settings = KinematicSettings {
+            direction: options.direction(),
+            max_joints: options.kinematic_max_joints,
+            ..KinematicSettings::default()
+        };
+        kinematic::analyse(&assembly, &settings).map_err(|e| e.to_string())
+    };
+    let continuous = options.continuous.then(|| {
+        kinematic::continuous_with(scene, options.direction()).map_err(|e| e.to_string())
+    });
+    Ok(SceneAnalysis {
+        assembly,
+        lower,
+        upper,
+        continuous,
+    })
+}

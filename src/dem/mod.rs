@@ -240,7 +240,7 @@ pub fn collapse_multiplier(
         result.steps += r.steps;
         match r.outcome {
             Outcome::Stands => lo = lo.max(x),
-            Outcome::Collapses | Outcome::Undecided => {
+            Outcome::Collapses | Outcome::Creeps | Outcome::Undecided => {
                 if r.outcome == Outcome::Undecided {
                     result.undecided_runs += 1;
                 }
@@ -350,6 +350,11 @@ impl Simulation {
     /// Set the fraction of gravity and the horizontal multiplier applied from now on.
     pub fn set_load(&mut self, gravity: f64, lambda: f64) {
         self.world.load = world::Load { gravity, lambda };
+    }
+    /// Set Cundall's local damping coefficient used from now on (initially
+    /// `IntegrationParameters::local_damping`).
+    pub fn set_local_damping(&mut self, alpha: f64) {
+        self.world.local_damping = alpha;
     }
     /// Advance one time step.
     pub fn step(&mut self) {

@@ -14,6 +14,12 @@ pub enum Outcome {
     Stands,
     /// A block point moved farther than the collapse displacement.
     Collapses,
+    /// Keeps moving: after the ramp, the displacement grew by at least as much in each of
+    /// five consecutive windows (one ramp time each) as in the one before — an accelerating
+    /// mechanism, or one so close to its threshold that it slides steadily against the
+    /// damping and would take very long to reach the collapse displacement. Counts as not
+    /// standing.
+    Creeps,
     /// Neither within `max_time`.
     Undecided,
 }
@@ -56,6 +62,12 @@ pub struct Run {
     pub snapshots: Vec<Snapshot>,
 }
 
+/// Consecutive windows of non-decreasing displacement growth that make a run creep.
+const CREEP_WINDOWS: usize = 5;
+/// Smallest growth per window (fraction of the collapse displacement) that counts: well above
+/// the round-off of a structure at rest, well below the elastic response to the ramp.
+const CREEP_GROWTH: f64 = 2e-4;
+
 /// Run `world` from its current state with gravity ramped to 1 (`lambda = None`), or with
 /// full gravity and the horizontal load ramped to `lambda`, until rest, collapse or
 /// `max_time`. `progress` receives the fraction of `max_time` used.
@@ -75,9 +87,23 @@ pub(crate) fn run(
     let mut max_disp: f64 = 0.0;
     let total = p.ramp_time + p.max_time;
     let mut last_progress = 0.0;
+    // Creep detection: displacement growth per window of one ramp time after the ramp.
+    let window = p.ramp_time;
+    let mut next_window = 2.0 * p.ramp_time;
+    let mut window_start_disp = f64::NAN;
+    let mut last_growth = f64::NAN;
+    let mut growing = 0;
     let outcome = loop {
         let t = world.time - t0;
         let ramp = (t / p.ramp_time).min(1.0);
+        // Strong local damping while the load is ramped in keeps the loading quasi-static
+        // (no dynamic overshoot); once it is held, only the contact dashpots damp, so a
+        // mechanism runs freely instead of creeping against the local damping.
+        world.local_damping = if t < p.ramp_time {
+            p.local_damping
+        } else {
+            p.hold_damping
+        };
         world.load = match lambda {
             None => Load {
                 gravity: ramp,
@@ -113,6 +139,20 @@ pub(crate) fn run(
         {
             break Outcome::Stands;
         }
+        if t >= next_window {
+            let growth = max_disp - window_start_disp;
+            if growth >= last_growth && growth > CREEP_GROWTH * p.collapse_displacement {
+                growing += 1;
+            } else {
+                growing = 0;
+            }
+            if growing >= CREEP_WINDOWS {
+                break Outcome::Creeps;
+            }
+            last_growth = growth;
+            window_start_disp = max_disp;
+            next_window += window;
+        }
         if t > total {
             break Outcome::Undecided;
         }
@@ -125,7 +165,8 @@ pub(crate) fn run(
     if p.snapshot_interval.is_some() {
         snapshots.push(snapshot(world, t));
     }
-    let onset = (outcome == Outcome::Collapses).then(|| onset(world, assembly));
+    let onset = matches!(outcome, Outcome::Collapses | Outcome::Creeps)
+        .then(|| onset(world, assembly, max_disp));
     Run {
         lambda,
         outcome,
@@ -152,9 +193,9 @@ fn snapshot(world: &World, time: f64) -> Snapshot {
 
 /// Which joints of the assembly have opened (at one end: a hinge at the other; at both:
 /// open) or slipped, from where the blocks on either side carry the joint's ends.
-fn onset(world: &World, assembly: &Assembly) -> Onset {
+fn onset(world: &World, assembly: &Assembly, moved: f64) -> Onset {
     let size = assembly.size();
-    let d = world.params.collapse_displacement;
+    let d = moved;
     let mut out = Onset::default();
     // Ground bodies follow the blocks, one per support joint in joint order; they never move.
     let nb = assembly.blocks.len();
@@ -172,8 +213,9 @@ fn onset(world: &World, assembly: &Assembly) -> Onset {
         let u = from.rotate(jt.tangent());
         let rel = |q: Vec2| to.carry(q) - from.carry(q);
         let (g1, g2) = (rel(jt.p1).dot(&n), rel(jt.p2).dot(&n));
-        // A hinge rotation that moves a block point by `d` over the structure's size opens the
-        // far end of a joint of length L by about d L / size; a tenth of it is unambiguous.
+        // A hinge rotation that moves a block point by `d` (the largest displacement of the
+        // run) over the structure's size opens the far end of a joint of length L by about
+        // d L / size; a tenth of it is unambiguous.
         let open_gap = 0.1 * d * jt.length() / size;
         let (o1, o2) = (g1 > open_gap, g2 > open_gap);
         match (o1, o2) {

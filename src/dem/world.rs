@@ -72,6 +72,8 @@ pub(crate) struct World {
     pub time: f64,
     pub steps: u64,
     pub load: Load,
+    /// Cundall's local damping coefficient applied now (the protocol switches it).
+    pub local_damping: f64,
     /// Coulomb coefficient used for contacts (scene friction, or `infinite_friction`).
     pub mu: f64,
     /// Broad-phase margin (m) and the positions at the last broad phase.
@@ -144,6 +146,7 @@ impl World {
             time: 0.0,
             steps: 0,
             load: Load::default(),
+            local_damping: params.local_damping,
             mu,
             margin: (0.01 * size).max(4.0 * params.contact_tolerance),
             broad_pos: Vec::new(),
@@ -344,7 +347,7 @@ impl World {
     pub fn integrate(&mut self) {
         let p = &self.params;
         let g = p.gravity;
-        let alpha = p.local_damping;
+        let alpha = self.local_damping;
         let dt = self.dt;
         let mut unbalanced: f64 = 0.0;
         let mut max_speed: f64 = 0.0;

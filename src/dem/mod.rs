@@ -396,6 +396,10 @@ impl Simulation {
     pub fn potential_energy(&self) -> f64 {
         self.world.potential_energy()
     }
+    /// Elastic energy of the contact springs (J).
+    pub fn elastic_energy(&self) -> f64 {
+        self.world.elastic_energy()
+    }
     /// Number of vertex-to-edge contacts that carry a force.
     pub fn active_contacts(&self) -> usize {
         self.world

@@ -395,15 +395,18 @@ impl World {
             .filter(|b| !b.fixed)
             .map(|b| b.mass * g * (self.load.gravity * b.pos.y - self.load.lambda * b.pos.x))
             .sum();
+        loads + self.elastic_energy()
+    }
+
+    /// Elastic energy of the normal and shear contact springs (J).
+    pub fn elastic_energy(&self) -> f64 {
         let (kn, ks) = (self.params.normal_stiffness, self.params.shear_stiffness);
-        let springs: f64 = self
-            .pairs
+        self.pairs
             .iter()
             .flat_map(|p| &p.contacts)
             .filter(|c| c.depth > 0.0)
             .map(|c| 0.5 * kn * c.depth * c.depth + 0.5 * c.shear * c.shear / ks)
-            .sum();
-        loads + springs
+            .sum()
     }
 }
 

@@ -44,7 +44,11 @@ fn arch(n: usize, t: f64, mu: f64) -> Scene {
     scene(&format!(
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\n\
          [material]\nfriction = {}\n",
-        if mu.is_finite() { mu.to_string() } else { "\"inf\"".to_string() }
+        if mu.is_finite() {
+            mu.to_string()
+        } else {
+            "\"inf\"".to_string()
+        }
     ))
 }
 
@@ -63,7 +67,10 @@ fn check_bracket(r: &DemResult, tol: f64) -> (f64, f64, f64) {
         r.lambda_dem.expect("midpoint"),
     );
     assert!(lo < hi && (hi - lo) <= tol * mid * (1.0 + 1e-12));
-    assert_eq!(r.standing_run().expect("standing run").outcome, Outcome::Stands);
+    assert_eq!(
+        r.standing_run().expect("standing run").outcome,
+        Outcome::Stands
+    );
     assert_ne!(
         r.collapsing_run().expect("collapsing run").outcome,
         Outcome::Stands
@@ -80,7 +87,10 @@ fn single_block_rocks_at_b_over_h() {
     let r = run(&a, &p, 0.01);
     let (_, _, mid) = check_bracket(&r, 0.01);
     let exact = b / h;
-    println!("rocking: lambda_dem {mid:.5} vs b/h {exact} ({:+.3}%)", 100.0 * (mid / exact - 1.0));
+    println!(
+        "rocking: lambda_dem {mid:.5} vs b/h {exact} ({:+.3}%)",
+        100.0 * (mid / exact - 1.0)
+    );
     assert!((mid / exact - 1.0).abs() < 0.02);
     assert!(r.friction_infinite && r.friction >= 100.0);
     // It turns about the downstream corner (p2 = (b/2, 0)) and does not slide.
@@ -96,21 +106,25 @@ fn single_block_slides_at_mu() {
     let p = IntegrationParameters::for_assembly(&a).initial_guess(Some(0.6));
     let r = run(&a, &p, 0.01);
     let (_, _, mid) = check_bracket(&r, 0.01);
-    println!("sliding: lambda_dem {mid:.5} vs mu {mu} ({:+.3}%)", 100.0 * (mid / mu - 1.0));
+    println!(
+        "sliding: lambda_dem {mid:.5} vs mu {mu} ({:+.3}%)",
+        100.0 * (mid / mu - 1.0)
+    );
     assert!((mid / mu - 1.0).abs() < 0.02);
     assert_eq!(r.sliding, vec![0]);
     assert!(r.hinges.is_empty());
 }
 
 /// DEM against the static lower bound: within 2% (the issue asks 5%, aims at 2%), with a
-/// bracket of 1% — narrower than the 2% the comparison claims.
-fn compare_with_static(name: &str, s: &Scene) -> (f64, f64) {
+/// bracket of relative width `tol`, narrower than the 2% the comparison claims. The search
+/// starts from the static value, so a first bracket that verifies puts its midpoint on it:
+/// `tol` well below 1% makes the DEM find its own threshold inside.
+fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
     let a = Assembly::from_scene(s);
     let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse);
     let lower = st.lambda.expect("lambda");
     let p = IntegrationParameters::from_scene(s, &a).expect("params");
-    let tol = 0.01;
     let r = run(&a, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     let diff = mid / lower - 1.0;
@@ -122,7 +136,10 @@ fn compare_with_static(name: &str, s: &Scene) -> (f64, f64) {
         r.runs.len(),
         r.steps,
         r.wall_time_s,
-        r.hinges.iter().map(|h| (h.joint, h.end)).collect::<Vec<_>>()
+        r.hinges
+            .iter()
+            .map(|h| (h.joint, h.end))
+            .collect::<Vec<_>>()
     );
     assert!(diff.abs() < 0.02, "{name}: DEM {mid} vs static {lower}");
     assert!((hi - lo) / mid < 0.02);
@@ -143,7 +160,11 @@ fn compare_with_static(name: &str, s: &Scene) -> (f64, f64) {
 #[test]
 fn semicircular_arches_agree_with_the_static_bound() {
     for (n, t) in [(16, 0.15), (16, 0.25), (32, 0.15), (32, 0.25)] {
-        compare_with_static(&format!("semicircle n={n} t/R={t}"), &arch(n, t, 0.8));
+        compare_with_static(
+            &format!("semicircle n={n} t/R={t}"),
+            &arch(n, t, 0.8),
+            0.002,
+        );
     }
 }
 
@@ -153,7 +174,7 @@ fn portal_agrees_with_the_static_bound() {
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n\
          [piers]\nheight = 1.0\nwidth = 0.4\ncourses = 2\n[material]\nfriction = 0.8\n",
     );
-    compare_with_static("portal", &s);
+    compare_with_static("portal", &s, 0.002);
 }
 
 #[test]
@@ -176,7 +197,7 @@ fn other_shapes_agree_with_the_static_bound_with_default_settings() {
         ),
     ];
     for (name, text) in cases {
-        compare_with_static(name, &scene(text));
+        compare_with_static(name, &scene(text), 0.01);
     }
 }
 
@@ -203,10 +224,16 @@ fn sliding_case_against_the_associative_bound() {
              {hi:.5}] (sliding {:?}, hinges {:?})  difference {:+.2}%",
             st.sliding,
             r.sliding,
-            r.hinges.iter().map(|h| (h.joint, h.end)).collect::<Vec<_>>(),
+            r.hinges
+                .iter()
+                .map(|h| (h.joint, h.end))
+                .collect::<Vec<_>>(),
             100.0 * diff
         );
-        assert!(lo <= assoc * (1.0 + 1e-9), "DEM stands above the associative bound");
+        assert!(
+            lo <= assoc * (1.0 + 1e-9),
+            "DEM stands above the associative bound"
+        );
         assert!(diff.abs() < 0.02);
         assert_eq!(r.sliding, st.sliding);
     }
@@ -303,7 +330,8 @@ fn dem_table_is_validated_and_applied() {
     assert!(p.with_override("dem.rest_force=2").is_err());
     // Defaults follow the geometry: a scene twice as large gets the same dimensionless
     // settings (stiffness x weight / length, times x sqrt(length)).
-    let big = scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
+    let big =
+        scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
     let ab = Assembly::from_scene(&big);
     let pb = IntegrationParameters::from_scene(&big, &ab).expect("valid");
     let p0 = IntegrationParameters::for_assembly(&a);
@@ -325,7 +353,12 @@ fn snapshots_are_written_as_csv() {
     let files = dem::write_snapshots(dir.path(), &r).expect("written");
     let names: Vec<_> = files
         .iter()
-        .map(|f| f.file_name().unwrap_or_default().to_string_lossy().to_string())
+        .map(|f| {
+            f.file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .to_string()
+        })
         .collect();
     assert_eq!(names, ["settle.csv", "stands.csv", "collapses.csv"]);
     let text = std::fs::read_to_string(&files[2]).expect("read");
@@ -340,9 +373,10 @@ fn snapshots_are_written_as_csv() {
     // The first snapshot is the settled arch: every vertex within the collapse displacement
     // of where the assembly puts it.
     for row in rows.iter().take(a.blocks.len() * 4) {
-        let v = a.blocks[row[2] as usize].polygon.iter().any(|q| {
-            (q - Vec2::new(row[4], row[5])).norm() < p.collapse_displacement
-        });
+        let v = a.blocks[row[2] as usize]
+            .polygon
+            .iter()
+            .any(|q| (q - Vec2::new(row[4], row[5])).norm() < p.collapse_displacement);
         assert!(v);
     }
 }

@@ -20,8 +20,9 @@
 //!   stability limit of the stiffest block.
 //!
 //! Protocol ([`collapse_multiplier`]): settle under gravity ramped from 0; then, from the
-//! settled state, runs at constant `lambda` (ramped in, then held) that end at rest or in
-//! collapse; a bracket `[lambda_stands, lambda_collapses]` is searched from a first guess
+//! settled state, runs at constant `lambda` (ramped in, then held) that end at rest, in
+//! collapse (a block point moved by the collapse displacement) or creeping (the displacement
+//! kept growing at a non-decreasing rate for five windows); a bracket `[lambda_stands, lambda_collapses]` is searched from a first guess
 //! (the static lower bound by default) and narrowed by bisection until its width is below
 //! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
 
@@ -285,9 +286,7 @@ pub fn write_snapshots(dir: &Path, result: &DemResult) -> Result<Vec<PathBuf>, D
     };
     std::fs::create_dir_all(dir).map_err(|e| err(dir, &e))?;
     let mut written = Vec::new();
-    let stands = result
-        .standing_run()
-        .filter(|r| r.lambda.is_some());
+    let stands = result.standing_run().filter(|r| r.lambda.is_some());
     let runs = [
         ("settle.csv", result.runs.first()),
         ("stands.csv", stands),

@@ -121,7 +121,7 @@ pub(crate) fn run(
             }
         }
         world.step();
-        if (world.steps - steps0) % check_every != 0 {
+        if !(world.steps - steps0).is_multiple_of(check_every) {
             continue;
         }
         max_disp = world
@@ -135,8 +135,7 @@ pub(crate) fn run(
         if max_disp > p.collapse_displacement {
             break Outcome::Collapses;
         }
-        if t > p.ramp_time && world.max_speed < p.rest_velocity && world.unbalanced < p.rest_force
-        {
+        if t > p.ramp_time && world.max_speed < p.rest_velocity && world.unbalanced < p.rest_force {
             break Outcome::Stands;
         }
         if t >= next_window {

@@ -1,1 +1,463 @@
-//! Discrete element check: filled by the DEM issue.
+//! Discrete element check of the collapse multiplier: the blocks of an assembly as 2D rigid
+//! convex polygons moving in time under gravity and a constant horizontal acceleration
+//! `lambda g`, touching through no-tension, cohesionless Coulomb contacts — the distinct
+//! element method of Cundall (1971; Cundall & Strack 1979) as used for masonry arches in
+//! UDEC (Lemos 2007, "Discrete element modeling of masonry structures", Int. J. Archit.
+//! Herit. 1:190-213; DeJong, De Lorenzis, Adams & Ochsendorf 2008).
+//!
+//! Model (see [`world`] for the equations):
+//! - every assembly block is a rigid convex polygon with the mass and polar moment of the
+//!   uniform polygon (`unit_weight depth / g` per unit area). Curved voussoirs are simulated
+//!   by their chord polygon (the DEM does not model circular faces): their weight and centroid
+//!   then differ slightly from the exact annular ones the static analysis uses;
+//! - the ground is a fixed rectangle under every support joint;
+//! - vertex-to-edge contacts, found by a sort-and-sweep broad phase and a vertex-in-polygon
+//!   narrow phase every step, so blocks that separate and touch again are handled;
+//! - penalty normal and shear springs with dashpots, no tension, no cohesion, Coulomb friction
+//!   with the joints' coefficient (`inf` is replaced by `IntegrationParameters::
+//!   infinite_friction` and reported);
+//! - symplectic Euler (central differences) with Cundall's local damping, time step from the
+//!   stability limit of the stiffest block.
+//!
+//! Protocol ([`collapse_multiplier`]): settle under gravity ramped from 0; then, from the
+//! settled state, runs at constant `lambda` (ramped in, then held) that end at rest, in
+//! collapse (a block point moved by the collapse displacement) or creeping (the displacement
+//! kept growing at a non-decreasing rate for five windows); a bracket `[lambda_stands, lambda_collapses]` is searched from a first guess
+//! (the static lower bound by default) and narrowed by bisection until its width is below
+//! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
+
+mod body;
+mod params;
+mod protocol;
+mod world;
+
+pub use params::{IntegrationParameters, DEM_KEYS};
+pub use protocol::{Onset, Outcome, Run, Snapshot};
+
+use crate::assembly::{Assembly, Hinge};
+use crate::error::AnalysisError;
+use crate::lp;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use thiserror::Error;
+use world::World;
+
+/// Failures of the DEM check that are not physical answers.
+#[derive(Debug, Error)]
+pub enum DemError {
+    #[error("invalid assembly: {0}")]
+    Assembly(#[from] AnalysisError),
+    #[error("invalid DEM setting: {0}")]
+    Settings(String),
+    #[error("cannot write snapshots to {path}: {message}")]
+    Output { path: PathBuf, message: String },
+}
+
+/// Where the bracket search started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GuessSource {
+    /// `IntegrationParameters::initial_guess`.
+    Given,
+    /// The static lower bound, solved by `collapse_multiplier`.
+    Static,
+    /// A fixed 0.2 (the static program found no multiplier).
+    Default,
+}
+
+/// Result of the DEM collapse search.
+#[derive(Debug, Clone)]
+pub struct DemResult {
+    /// The structure does not settle under its own weight (it collapses, or does not come
+    /// to rest within `max_time`): no multiplier.
+    pub cannot_stand: bool,
+    /// No collapse up to `max_lambda`.
+    pub no_collapse: bool,
+    /// Largest multiplier verified to stand (0 = the settling run itself).
+    pub lambda_stands: Option<f64>,
+    /// Smallest multiplier verified to collapse (or, if `undecided_runs > 0`, not to come to
+    /// rest).
+    pub lambda_collapses: Option<f64>,
+    /// Midpoint of the bracket.
+    pub lambda_dem: Option<f64>,
+    /// `(lambda_collapses - lambda_stands) / lambda_dem`.
+    pub bracket_width: Option<f64>,
+    /// Hinges, sliding joints and fully open joints of the run at `lambda_collapses`, when
+    /// the collapse displacement was reached.
+    pub hinges: Vec<Hinge>,
+    pub sliding: Vec<usize>,
+    pub open: Vec<usize>,
+    /// Every run, the settling one first.
+    pub runs: Vec<Run>,
+    /// Runs that neither came to rest nor collapsed within `max_time` (counted as not
+    /// standing).
+    pub undecided_runs: usize,
+    /// Total time steps and wall time (s).
+    pub steps: u64,
+    pub wall_time_s: f64,
+    /// The time step used (s).
+    pub time_step: f64,
+    /// The Coulomb coefficient the contacts used, and whether it stands for `inf`.
+    pub friction: f64,
+    pub friction_infinite: bool,
+    /// First guess of the bracket search and where it came from.
+    pub initial_guess: f64,
+    pub guess_source: GuessSource,
+    /// The settings used.
+    pub params: IntegrationParameters,
+}
+
+impl DemResult {
+    /// The run at `lambda_stands` (the settling run if it is 0).
+    pub fn standing_run(&self) -> Option<&Run> {
+        let l = self.lambda_stands?;
+        self.runs
+            .iter()
+            .find(|r| r.outcome == Outcome::Stands && r.lambda.unwrap_or(0.0) == l)
+    }
+
+    /// The run at `lambda_collapses`.
+    pub fn collapsing_run(&self) -> Option<&Run> {
+        let l = self.lambda_collapses?;
+        self.runs
+            .iter()
+            .find(|r| r.outcome != Outcome::Stands && r.lambda == Some(l))
+    }
+}
+
+/// Most runs one search may take (a bisection from a 1% bracket needs a handful).
+const MAX_RUNS: usize = 60;
+
+/// Bracket the collapse multiplier of `assembly` by DEM runs, to a relative width of
+/// `tolerance` (e.g. 0.01). `progress` receives a fraction of the expected work in [0, 1].
+pub fn collapse_multiplier(
+    assembly: &Assembly,
+    params: &IntegrationParameters,
+    tolerance: f64,
+    progress: &mut dyn FnMut(f64),
+) -> Result<DemResult, DemError> {
+    let clock = Instant::now();
+    assembly.validate()?;
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+        return Err(DemError::Settings(format!(
+            "tolerance = {tolerance}: must be > 0 and < 1"
+        )));
+    }
+    let (guess, guess_source) = match params.initial_guess {
+        Some(g) => (g, GuessSource::Given),
+        None => match lp::analyse(assembly, &lp::StaticSettings::default()) {
+            Ok(r) if r.lambda.is_some_and(|l| l > 0.0) => {
+                (r.lambda.unwrap_or(0.2), GuessSource::Static)
+            }
+            _ => (0.2, GuessSource::Default),
+        },
+    };
+    let mut world = World::new(assembly, params);
+    let friction_infinite = assembly.joints.iter().any(|j| j.friction.is_infinite());
+    let mut result = DemResult {
+        cannot_stand: false,
+        no_collapse: false,
+        lambda_stands: None,
+        lambda_collapses: None,
+        lambda_dem: None,
+        bracket_width: None,
+        hinges: Vec::new(),
+        sliding: Vec::new(),
+        open: Vec::new(),
+        runs: Vec::new(),
+        undecided_runs: 0,
+        steps: 0,
+        wall_time_s: 0.0,
+        time_step: world.dt,
+        friction: world.mu,
+        friction_infinite,
+        initial_guess: guess,
+        guess_source,
+        params: params.clone(),
+    };
+
+    // Progress: runs done plus the fraction of the current one, over the runs still expected.
+    let mut reported: f64 = 0.0;
+    let mut report = |done: f64, expected: f64, progress: &mut dyn FnMut(f64)| {
+        let f = (done / expected.max(done + 0.5)).clamp(0.0, 0.99);
+        if f > reported {
+            reported = f;
+            progress(f);
+        }
+    };
+
+    let settle = protocol::run(&mut world, assembly, None, &mut |f| {
+        report(f, 3.0, progress)
+    });
+    let settled_ok = settle.outcome == Outcome::Stands;
+    result.steps += settle.steps;
+    result.runs.push(settle);
+    if !settled_ok {
+        result.cannot_stand = true;
+        result.wall_time_s = clock.elapsed().as_secs_f64();
+        progress(1.0);
+        return Ok(result);
+    }
+    world.time = 0.0;
+    let settled = world;
+
+    let h = 0.45 * tolerance;
+    let mut lo = 0.0_f64;
+    let mut hi: Option<f64> = None;
+    let mut up = 4.0 * h;
+    let mut down = 2.0 * h / (1.0 + h);
+    for k in 0..MAX_RUNS {
+        let x = match hi {
+            None if lo == 0.0 => guess * (1.0 + h),
+            None => {
+                let x = lo * (1.0 + up);
+                up *= 2.0;
+                x
+            }
+            Some(hi) => {
+                if hi - lo <= tolerance * 0.5 * (hi + lo) {
+                    break;
+                }
+                let x = (0.5 * (lo + hi)).max(hi * (1.0 - down));
+                down *= 2.0;
+                x
+            }
+        };
+        if hi.is_none() && x > params.max_lambda {
+            result.no_collapse = true;
+            break;
+        }
+        let expected = 1.0
+            + k as f64
+            + match hi {
+                None => 3.0,
+                Some(hi) => 1.0 + ((hi - lo) / (tolerance * 0.5 * (hi + lo))).log2().max(0.0),
+            };
+        let mut w = settled.clone();
+        let done = 1.0 + k as f64;
+        let r = protocol::run(&mut w, assembly, Some(x), &mut |f| {
+            report(done + f, expected, progress)
+        });
+        result.steps += r.steps;
+        match r.outcome {
+            Outcome::Stands => lo = lo.max(x),
+            Outcome::Collapses | Outcome::Creeps | Outcome::Undecided => {
+                if r.outcome == Outcome::Undecided {
+                    result.undecided_runs += 1;
+                }
+                if hi.is_none_or(|h| x < h) {
+                    hi = Some(x);
+                    if let Some(o) = &r.onset {
+                        result.hinges = o.hinges.clone();
+                        result.sliding = o.sliding.clone();
+                        result.open = o.open.clone();
+                    } else {
+                        result.hinges.clear();
+                        result.sliding.clear();
+                        result.open.clear();
+                    }
+                }
+            }
+        }
+        result.runs.push(r);
+        report(done + 1.0, expected, progress);
+    }
+    result.lambda_stands = Some(lo);
+    result.lambda_collapses = hi;
+    if let Some(hi) = hi {
+        let mid = 0.5 * (lo + hi);
+        result.lambda_dem = Some(mid);
+        result.bracket_width = Some((hi - lo) / mid);
+    }
+    result.wall_time_s = clock.elapsed().as_secs_f64();
+    progress(1.0);
+    Ok(result)
+}
+
+/// Write the snapshots of the settling run, the run at `lambda_stands` and the run at
+/// `lambda_collapses` as CSV files `settle.csv`, `stands.csv`, `collapses.csv` in `dir`
+/// (created if needed), one row per block vertex: `time_s,lambda,block,vertex,x,y`.
+/// Returns the files written. Snapshots are recorded only when
+/// `IntegrationParameters::snapshot_interval` is set.
+pub fn write_snapshots(dir: &Path, result: &DemResult) -> Result<Vec<PathBuf>, DemError> {
+    let err = |path: &Path, e: &dyn std::fmt::Display| DemError::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| err(dir, &e))?;
+    let mut written = Vec::new();
+    let stands = result.standing_run().filter(|r| r.lambda.is_some());
+    let runs = [
+        ("settle.csv", result.runs.first()),
+        ("stands.csv", stands),
+        ("collapses.csv", result.collapsing_run()),
+    ];
+    for (name, run) in runs {
+        let Some(run) = run else { continue };
+        let path = dir.join(name);
+        let mut w = csv::Writer::from_path(&path).map_err(|e| err(&path, &e))?;
+        w.write_record(["time_s", "lambda", "block", "vertex", "x", "y"])
+            .map_err(|e| err(&path, &e))?;
+        for s in &run.snapshots {
+            for (b, poly) in s.blocks.iter().enumerate() {
+                for (v, p) in poly.iter().enumerate() {
+                    w.write_record([
+                        format!("{:.6}", s.time),
+                        format!("{:.6}", s.lambda),
+                        b.to_string(),
+                        v.to_string(),
+                        format!("{:.9}", p.x),
+                        format!("{:.9}", p.y),
+                    ])
+                    .map_err(|e| err(&path, &e))?;
+                }
+            }
+        }
+        w.flush().map_err(|e| err(&path, &e))?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// One vertex-to-edge contact of a [`Simulation`].
+#[derive(Debug, Clone, Copy)]
+pub struct ContactState {
+    pub vertex_block: Option<usize>,
+    pub edge_block: Option<usize>,
+    pub point: crate::geometry::Vec2,
+    pub normal: crate::geometry::Vec2,
+    pub normal_force: f64,
+    pub shear_force: f64,
+    pub sliding: bool,
+}
+
+/// Direct access to one DEM simulation, for checks and drawings: the same world and stages
+/// `collapse_multiplier` uses.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    world: World,
+}
+
+impl Simulation {
+    /// The blocks of `assembly` at rest in their assembly positions, no load applied.
+    pub fn new(assembly: &Assembly, params: &IntegrationParameters) -> Result<Self, DemError> {
+        assembly.validate()?;
+        Ok(Simulation {
+            world: World::new(assembly, params),
+        })
+    }
+    /// Set the fraction of gravity and the horizontal multiplier applied from now on.
+    pub fn set_load(&mut self, gravity: f64, lambda: f64) {
+        self.world.load = world::Load { gravity, lambda };
+    }
+    /// Set Cundall's local damping coefficient used from now on (initially
+    /// `IntegrationParameters::local_damping`).
+    pub fn set_local_damping(&mut self, alpha: f64) {
+        self.world.local_damping = alpha;
+    }
+    /// Advance one time step.
+    pub fn step(&mut self) {
+        self.world.step();
+    }
+    /// Advance by `duration` seconds at the current load.
+    pub fn run_for(&mut self, duration: f64) {
+        let end = self.world.time + duration;
+        while self.world.time < end {
+            self.world.step();
+        }
+    }
+    /// Ramp gravity in and run to rest (or collapse, or `max_time`), as the settling run of
+    /// `collapse_multiplier`.
+    pub fn settle(&mut self, assembly: &Assembly) -> Run {
+        protocol::run(&mut self.world, assembly, None, &mut |_| {})
+    }
+    /// Ramp the horizontal multiplier `lambda` in (full gravity) and run to rest or collapse.
+    pub fn run_at(&mut self, assembly: &Assembly, lambda: f64) -> Run {
+        protocol::run(&mut self.world, assembly, Some(lambda), &mut |_| {})
+    }
+    /// Simulated time (s) and steps so far.
+    pub fn time(&self) -> f64 {
+        self.world.time
+    }
+    pub fn steps(&self) -> u64 {
+        self.world.steps
+    }
+    /// The time step (s).
+    pub fn time_step(&self) -> f64 {
+        self.world.dt
+    }
+    /// Kinetic energy of the blocks (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.world.kinetic_energy()
+    }
+    /// Potential energy of the loads at their current factors plus the elastic energy of
+    /// the contact springs (J).
+    pub fn potential_energy(&self) -> f64 {
+        self.world.potential_energy()
+    }
+    /// Elastic energy of the contact springs (J).
+    pub fn elastic_energy(&self) -> f64 {
+        self.world.elastic_energy()
+    }
+    /// Number of vertex-to-edge contacts that carry a force.
+    pub fn active_contacts(&self) -> usize {
+        self.world
+            .pairs
+            .iter()
+            .flat_map(|p| &p.contacts)
+            .filter(|c| c.normal_force > 0.0)
+            .count()
+    }
+    /// Every touching contact: the block whose vertex touches (None = ground), the block whose
+    /// edge is touched, the vertex position, the edge's outward normal, and the normal and
+    /// shear forces (N) of the last step.
+    pub fn contacts(&self) -> Vec<ContactState> {
+        let mut out = Vec::new();
+        for pair in &self.world.pairs {
+            for c in &pair.contacts {
+                let (vi, ei) = if c.flipped {
+                    (pair.b, pair.a)
+                } else {
+                    (pair.a, pair.b)
+                };
+                let (vb, eb) = (&self.world.bodies[vi], &self.world.bodies[ei]);
+                out.push(ContactState {
+                    vertex_block: vb.block,
+                    edge_block: eb.block,
+                    point: vb.world[c.vertex],
+                    normal: eb.normals[c.edge],
+                    normal_force: c.normal_force,
+                    shear_force: c.shear,
+                    sliding: c.sliding,
+                });
+            }
+        }
+        out
+    }
+    /// Number of contacts that slid in the last step.
+    pub fn sliding_contacts(&self) -> usize {
+        self.world
+            .pairs
+            .iter()
+            .flat_map(|p| &p.contacts)
+            .filter(|c| c.sliding)
+            .count()
+    }
+    /// Centroid and rotation (rad) of every assembly block.
+    pub fn blocks(&self) -> Vec<(crate::geometry::Vec2, f64)> {
+        self.world
+            .bodies
+            .iter()
+            .filter(|b| b.block.is_some())
+            .map(|b| (b.pos, b.angle))
+            .collect()
+    }
+    /// Largest speed of a block point (m/s) and largest unbalanced force over block weight,
+    /// from the last step.
+    pub fn max_speed(&self) -> f64 {
+        self.world.max_speed
+    }
+    pub fn unbalanced(&self) -> f64 {
+        self.world.unbalanced
+    }
+}

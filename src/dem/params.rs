@@ -1,0 +1,336 @@
+//! Every knob of the DEM time stepping, gathered in one struct (in the manner of rapier's
+//! `IntegrationParameters`), with defaults derived from the geometry of the assembly so that
+//! no scene needs tuning, overridable from the scene's `[dem]` table and by builder setters.
+//!
+//! The defaults are chosen from three scales of the structure: its size `L`
+//! (`Assembly::size`), its total weight `W` and the gravity time `T = sqrt(L / g)`:
+//!
+//! | knob                    | default                     | why |
+//! |-------------------------|-----------------------------|-----|
+//! | `normal_stiffness`      | `W / (3e-5 t)` (N/m per contact point), `t` the shortest joint | the whole weight on one contact point would press it in by `3e-5 t`. The DEM multiplier converges to the rigid-block one as `1/kn` (the elastic sag before the hinges form softens the arch): on a 16-voussoir semicircle with t/R = 0.15 the offset is -18% at `W/(3e-3 t)`, -3.5% at `W/(3e-4 t)`, -0.9% at this default |
+//! | `shear_stiffness`       | `normal_stiffness`          | the joints of dry masonry are about as stiff in shear as in compression (UDEC practice: `ks` between `kn/2` and `kn`) |
+//! | `contact_damping`       | 0.3 of critical             | kills the contact rattling within a few contact periods without slowing rigid-body motion (a dashpot only acts on relative velocity at a touching point) |
+//! | `local_damping`         | 0.5                         | Cundall's non-viscous local damping: every block force is reduced by `alpha |F| sign(v)`; it removes energy from every mode at any frequency and can never hold a block that is out of balance (the damping force is below the unbalanced force), so it settles quasi-statically without moving the collapse threshold |
+//! | `hold_damping`          | 0.5                         | the same local damping once the load is held: with 0 the residual vibration of a structure just below its threshold kicks it into the mechanism (DEM multiplier 0.5-1% low); a mechanism slowed to a steady creep by the damping is caught by the creep test of the protocol |
+//! | `time_step_factor`      | 0.9                         | fraction of the explicit stability limit `2 / omega_max (sqrt(1 + z^2) - z)` of the stiffest block (a Gershgorin bound over all its possible contacts, with the damping ratio `z` its dashpots give that mode) |
+//! | `ramp_time`             | `0.3 T`                     | gravity and the horizontal load are applied over a linear ramp, so there is no dynamic overshoot of a step load |
+//! | `max_time`              | `40 T`                      | longest run after the ramp before a run is declared undecided |
+//! | `collapse_displacement` | `0.01 L`                    | a run collapses when a block point has moved by more than this since the start of the run: 300 times the elastic overlaps, and the arch mechanisms soften geometrically, so a mechanism that has moved this far does not come back |
+//! | `rest_velocity`         | `1e-5 sqrt(g L)`            | a run is at rest when no block point moves faster than this ... |
+//! | `rest_force`            | `1e-5`                      | ... and no block has an unbalanced force (or moment / its radius) above this fraction of its weight |
+//! | `infinite_friction`     | 1000                        | the Coulomb coefficient used for `friction = inf` |
+//! | `contact_tolerance`     | `1e-3 t`                    | corner rounding: a vertex pressing into an edge still touches it this far beyond the edge's end; also the window for choosing the edge near a corner. Several times the elastic overlaps, and small against any joint |
+//! | `max_lambda`            | 10                          | above this multiplier (84 deg tilt) the structure is said not to collapse |
+
+use crate::assembly::Assembly;
+use crate::error::SceneError;
+use crate::scene::Scene;
+use toml::{Table, Value};
+
+/// Overlap, as a fraction of the shortest joint, that the whole weight would cause on a
+/// single contact point with the default normal stiffness.
+pub const STIFFNESS_OVERLAP: f64 = 3e-5;
+
+/// Time-stepping knobs of the DEM (SI units). Build with [`IntegrationParameters::from_scene`]
+/// or [`IntegrationParameters::for_assembly`], then adjust with the setters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegrationParameters {
+    /// Gravitational acceleration g (m/s^2). Default 9.81. The multiplier does not depend on
+    /// it; it only sets the time scale.
+    pub gravity: f64,
+    /// Normal penalty stiffness of one vertex-to-edge contact (N/m). Default `W / (3e-5 t)`
+    /// with `t` the shortest joint.
+    pub normal_stiffness: f64,
+    /// Shear penalty stiffness of one contact (N/m). Default: the normal stiffness.
+    pub shear_stiffness: f64,
+    /// Viscous damping of each contact, as a fraction of the critical damping of the two
+    /// touching masses on the normal spring (also used in shear). Default 0.3.
+    pub contact_damping: f64,
+    /// Cundall's local damping coefficient alpha in [0, 1) while a load is ramped in.
+    /// Default 0.5.
+    pub local_damping: f64,
+    /// Cundall's local damping coefficient once the load is held. Default 0.5 (the same):
+    /// with less, the residual vibration of a structure just below its threshold can kick it
+    /// into the mechanism and the DEM multiplier drops (by ~0.5-1% with 0).
+    pub hold_damping: f64,
+    /// Fraction of the explicit stability limit used as the time step. Default 0.9.
+    pub time_step_factor: f64,
+    /// An explicit time step (s) instead of the one from `time_step_factor`.
+    pub time_step: Option<f64>,
+    /// Duration of the linear ramp of gravity (settling) and of the horizontal load (s).
+    /// Default `0.3 sqrt(L/g)`.
+    pub ramp_time: f64,
+    /// Longest time a run may last after its ramp before it is declared undecided (s).
+    /// Default `40 sqrt(L/g)`.
+    pub max_time: f64,
+    /// Displacement (m) of any block point since the start of a run beyond which the run
+    /// has collapsed. Default `0.01 L`.
+    pub collapse_displacement: f64,
+    /// Largest speed (m/s) of any block point for the run to count as at rest. Default
+    /// `1e-5 sqrt(g L)`.
+    pub rest_velocity: f64,
+    /// Largest unbalanced force of any block, as a fraction of its weight, for the run to
+    /// count as at rest. Default 1e-5.
+    pub rest_force: f64,
+    /// Friction coefficient used for joints with `friction = inf`. Default 1000.
+    pub infinite_friction: f64,
+    /// Corner rounding (m): how far beyond an edge's end a vertex pressing into it still
+    /// touches it. Default `1e-3 t` with `t` the shortest joint.
+    pub contact_tolerance: f64,
+    /// Largest multiplier tried; beyond it the structure is said not to collapse. Default 10.
+    pub max_lambda: f64,
+    /// Where the bracket search starts (e.g. the static lambda_lower). `None`: the function
+    /// solves the static program itself for it.
+    pub initial_guess: Option<f64>,
+    /// Record block positions every this many seconds of simulated time (for
+    /// `write_snapshots`); `None` records nothing. Default `None`.
+    pub snapshot_interval: Option<f64>,
+}
+
+/// Every key the `[dem]` table accepts.
+pub const DEM_KEYS: &[&str] = &[
+    "gravity",
+    "normal_stiffness",
+    "shear_stiffness",
+    "contact_damping",
+    "local_damping",
+    "hold_damping",
+    "time_step_factor",
+    "time_step",
+    "ramp_time",
+    "max_time",
+    "collapse_displacement",
+    "rest_velocity",
+    "rest_force",
+    "infinite_friction",
+    "contact_tolerance",
+    "max_lambda",
+    "initial_guess",
+    "snapshot_interval",
+];
+
+impl IntegrationParameters {
+    /// Defaults derived from the size and weight of `assembly` (see the module docs).
+    pub fn for_assembly(assembly: &Assembly) -> Self {
+        let gravity = 9.81;
+        let size = assembly.size().max(f64::MIN_POSITIVE);
+        let weight = assembly.total_weight().max(f64::MIN_POSITIVE);
+        let t = (size / gravity).sqrt();
+        // The shortest joint: the lever arm every hinge has to work with.
+        let joint = assembly
+            .joints
+            .iter()
+            .map(|j| j.length())
+            .fold(f64::INFINITY, f64::min)
+            .min(size);
+        let kn = weight / (STIFFNESS_OVERLAP * joint);
+        IntegrationParameters {
+            gravity,
+            normal_stiffness: kn,
+            shear_stiffness: kn,
+            contact_damping: 0.3,
+            local_damping: 0.5,
+            hold_damping: 0.5,
+            time_step_factor: 0.9,
+            time_step: None,
+            ramp_time: 0.3 * t,
+            max_time: 40.0 * t,
+            collapse_displacement: 0.01 * size,
+            rest_velocity: 1e-5 * (gravity * size).sqrt(),
+            rest_force: 1e-5,
+            infinite_friction: 1000.0,
+            contact_tolerance: 1e-3 * joint,
+            max_lambda: 10.0,
+            initial_guess: None,
+            snapshot_interval: None,
+        }
+    }
+
+    /// Defaults for the assembly of `scene`, overridden by the scene's `[dem]` table. Unknown
+    /// keys, values of the wrong type and values out of range are errors naming `dem.<key>`.
+    pub fn from_scene(scene: &Scene, assembly: &Assembly) -> Result<Self, SceneError> {
+        let mut p = Self::for_assembly(assembly);
+        p.apply_table(&scene.dem, &scene.origin)?;
+        Ok(p)
+    }
+
+    /// Apply the entries of a `[dem]` table (`origin` names it in errors).
+    pub fn apply_table(&mut self, table: &Table, origin: &str) -> Result<(), SceneError> {
+        for (key, value) in table {
+            self.set(key, value, origin)?;
+        }
+        Ok(())
+    }
+
+    /// Set one knob by its `[dem]` key, with the scene's validation.
+    pub fn set(&mut self, key: &str, value: &Value, origin: &str) -> Result<(), SceneError> {
+        let full = format!("dem.{key}");
+        let number = || -> Result<f64, SceneError> {
+            match value {
+                Value::Float(x) => Ok(*x),
+                Value::Integer(i) => Ok(*i as f64),
+                Value::String(s) if s.trim().eq_ignore_ascii_case("inf") => Ok(f64::INFINITY),
+                v => Err(SceneError::WrongType {
+                    origin: origin.to_string(),
+                    key: full.clone(),
+                    value: v.to_string(),
+                    expected: "a number".to_string(),
+                }),
+            }
+        };
+        let out_of_range = |v: f64, allowed: &str| SceneError::OutOfRange {
+            origin: origin.to_string(),
+            key: full.clone(),
+            value: v.to_string(),
+            allowed: allowed.to_string(),
+        };
+        let positive = |v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(out_of_range(v, "must be a finite number > 0"))
+            }
+        };
+        let fraction = |v: f64| {
+            if (0.0..1.0).contains(&v) {
+                Ok(v)
+            } else {
+                Err(out_of_range(v, "must be >= 0 and < 1"))
+            }
+        };
+        match key {
+            "gravity" => self.gravity = positive(number()?)?,
+            "normal_stiffness" => self.normal_stiffness = positive(number()?)?,
+            "shear_stiffness" => self.shear_stiffness = positive(number()?)?,
+            "contact_damping" => {
+                let v = number()?;
+                if !(0.0..=2.0).contains(&v) {
+                    return Err(out_of_range(
+                        v,
+                        "must be >= 0 and <= 2 (fraction of critical)",
+                    ));
+                }
+                self.contact_damping = v;
+            }
+            "local_damping" => self.local_damping = fraction(number()?)?,
+            "hold_damping" => self.hold_damping = fraction(number()?)?,
+            "time_step_factor" => {
+                let v = number()?;
+                if !(v > 0.0 && v <= 1.0) {
+                    return Err(out_of_range(v, "must be > 0 and <= 1"));
+                }
+                self.time_step_factor = v;
+            }
+            "time_step" => self.time_step = Some(positive(number()?)?),
+            "ramp_time" => self.ramp_time = positive(number()?)?,
+            "max_time" => self.max_time = positive(number()?)?,
+            "collapse_displacement" => self.collapse_displacement = positive(number()?)?,
+            "rest_velocity" => self.rest_velocity = positive(number()?)?,
+            "rest_force" => {
+                let v = number()?;
+                if !(v > 0.0 && v < 1.0) {
+                    return Err(out_of_range(
+                        v,
+                        "must be > 0 and < 1 (fraction of block weight)",
+                    ));
+                }
+                self.rest_force = v;
+            }
+            "infinite_friction" => self.infinite_friction = positive(number()?)?,
+            "contact_tolerance" => self.contact_tolerance = positive(number()?)?,
+            "max_lambda" => self.max_lambda = positive(number()?)?,
+            "initial_guess" => self.initial_guess = Some(positive(number()?)?),
+            "snapshot_interval" => self.snapshot_interval = Some(positive(number()?)?),
+            _ => {
+                return Err(SceneError::UnknownKey {
+                    origin: origin.to_string(),
+                    key: full,
+                    hint: format!(" (allowed in [dem]: {})", DEM_KEYS.join(", ")),
+                })
+            }
+        }
+        Ok(())
+    }
+
+    /// Set a knob from a `KEY=VALUE` text (CLI `--set dem.KEY=VALUE` style, with or without
+    /// the `dem.` prefix).
+    pub fn with_override(mut self, assignment: &str) -> Result<Self, SceneError> {
+        let (key, value) = crate::scene::parse_assignment(assignment)?;
+        let key = key.strip_prefix("dem.").unwrap_or(&key).to_string();
+        self.set(&key, &value, "--set")?;
+        Ok(self)
+    }
+
+    pub fn gravity(mut self, g: f64) -> Self {
+        self.gravity = g;
+        self
+    }
+    pub fn normal_stiffness(mut self, k: f64) -> Self {
+        self.normal_stiffness = k;
+        self
+    }
+    pub fn shear_stiffness(mut self, k: f64) -> Self {
+        self.shear_stiffness = k;
+        self
+    }
+    pub fn contact_damping(mut self, ratio: f64) -> Self {
+        self.contact_damping = ratio;
+        self
+    }
+    pub fn local_damping(mut self, alpha: f64) -> Self {
+        self.local_damping = alpha;
+        self
+    }
+    pub fn hold_damping(mut self, alpha: f64) -> Self {
+        self.hold_damping = alpha;
+        self
+    }
+    pub fn time_step_factor(mut self, f: f64) -> Self {
+        self.time_step_factor = f;
+        self
+    }
+    pub fn time_step(mut self, dt: Option<f64>) -> Self {
+        self.time_step = dt;
+        self
+    }
+    pub fn ramp_time(mut self, t: f64) -> Self {
+        self.ramp_time = t;
+        self
+    }
+    pub fn max_time(mut self, t: f64) -> Self {
+        self.max_time = t;
+        self
+    }
+    pub fn collapse_displacement(mut self, d: f64) -> Self {
+        self.collapse_displacement = d;
+        self
+    }
+    pub fn rest_velocity(mut self, v: f64) -> Self {
+        self.rest_velocity = v;
+        self
+    }
+    pub fn rest_force(mut self, f: f64) -> Self {
+        self.rest_force = f;
+        self
+    }
+    pub fn infinite_friction(mut self, mu: f64) -> Self {
+        self.infinite_friction = mu;
+        self
+    }
+    pub fn contact_tolerance(mut self, d: f64) -> Self {
+        self.contact_tolerance = d;
+        self
+    }
+    pub fn max_lambda(mut self, l: f64) -> Self {
+        self.max_lambda = l;
+        self
+    }
+    pub fn initial_guess(mut self, l: Option<f64>) -> Self {
+        self.initial_guess = l;
+        self
+    }
+    pub fn snapshot_interval(mut self, dt: Option<f64>) -> Self {
+        self.snapshot_interval = dt;
+        self
+    }
+}

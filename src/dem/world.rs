@@ -1,0 +1,527 @@
+//! The DEM world and its time-stepping pipeline. One step is four named stages:
+//!
+//! 1. [`World::broad_phase`]: candidate pairs of bodies whose bounding boxes (grown by a
+//!    margin) overlap, by sort-and-sweep along x; redone only when some body has moved by
+//!    more than half the margin since the last time, so it scales with the number of blocks.
+//! 2. [`World::narrow_phase`]: vertex-to-edge contacts of each candidate pair (every vertex
+//!    of one body inside the other, in both directions), matched to last step's contacts so
+//!    the shear spring keeps its history while a contact persists (Cundall & Strack 1979;
+//!    Cundall 1988, "Formulation of a three-dimensional distinct element model").
+//! 3. [`World::contact_forces`]: penalty springs and dashpots at each contact: normal force
+//!    `N = max(0, kn d - cn vn)` (no tension, no cohesion; released as soon as the vertex
+//!    leaves the edge), incremental shear force `S <- S - ks vt dt` capped by Coulomb
+//!    `|S| <= mu N`.
+//! 4. [`World::integrate`]: symplectic Euler (the central-difference scheme of UDEC) on each
+//!    block's centroid and rotation, with Cundall's local damping `F <- F - alpha |F| sign(v)`
+//!    per degree of freedom.
+//!
+//! Loads: weight `m g` down and `lambda m g` along +x at each block's centroid, both scaled
+//! by the ramp factors the protocol sets.
+
+use super::body::Body;
+use super::params::IntegrationParameters;
+use crate::assembly::Assembly;
+use crate::geometry::{cross, Vec2};
+
+/// One vertex-to-edge contact: vertex `vertex` of one body of the pair touches edge `edge` of
+/// the other.
+#[derive(Debug, Clone)]
+pub(crate) struct Contact {
+    /// false: a vertex of `pair.a` on an edge of `pair.b`; true: the other way round.
+    pub flipped: bool,
+    pub vertex: usize,
+    pub edge: usize,
+    /// Shear spring force (N) along the edge tangent, kept while the contact persists.
+    pub shear: f64,
+    /// Normal force of the last step (N), >= 0.
+    pub normal_force: f64,
+    /// Penetration depth of the last step (m), > 0.
+    pub depth: f64,
+    /// Whether the contact slid (|S| = mu N) in the last step.
+    pub sliding: bool,
+}
+
+/// A candidate pair of bodies and its contacts (`a < b`).
+#[derive(Debug, Clone)]
+pub(crate) struct Pair {
+    pub a: usize,
+    pub b: usize,
+    /// Critical damping coefficient sqrt(kn m_red) of the pair's contacts (`m_red` from the
+    /// effective masses at a corner, see `effective_mass`).
+    pub sqrt_km: f64,
+    /// Coulomb coefficient of the pair's contacts.
+    pub mu: f64,
+    pub contacts: Vec<Contact>,
+}
+
+/// The load factors the protocol applies.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Load {
+    /// Fraction of gravity applied (ramped from 0 to 1 while settling).
+    pub gravity: f64,
+    /// Horizontal multiplier currently applied (ramped to the target of a run).
+    pub lambda: f64,
+}
+
+/// Rigid blocks, the fixed ground under the supports, and the contacts between them.
+#[derive(Debug, Clone)]
+pub(crate) struct World {
+    pub bodies: Vec<Body>,
+    pub pairs: Vec<Pair>,
+    pub params: IntegrationParameters,
+    pub dt: f64,
+    pub time: f64,
+    pub steps: u64,
+    pub load: Load,
+    /// Cundall's local damping coefficient applied now (the protocol switches it).
+    pub local_damping: f64,
+    /// Coulomb coefficient used for contacts (scene friction, or `infinite_friction`).
+    pub mu: f64,
+    /// Broad-phase margin (m) and the positions at the last broad phase.
+    margin: f64,
+    broad_pos: Vec<(Vec2, f64)>,
+    /// Positions at the last contact search.
+    search_pos: Vec<(Vec2, f64)>,
+    /// Contact force and moment on each body from the last `contact_forces`.
+    force: Vec<(Vec2, f64)>,
+    /// Largest unbalanced force of any free block, as a fraction of its weight, and largest
+    /// speed of any block point (m/s), from the last `integrate`.
+    pub unbalanced: f64,
+    pub max_speed: f64,
+}
+
+impl World {
+    /// Bodies from the blocks of `assembly` (their polygons, with the polygon's mass and
+    /// centroid: for curved voussoirs the DEM simulates the chord polygon) plus one fixed
+    /// ground body under every support joint.
+    pub fn new(assembly: &Assembly, params: &IntegrationParameters) -> World {
+        let g = params.gravity;
+        let size = assembly.size();
+        let mut bodies: Vec<Body> = assembly
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                // Unit weight x depth from the block's own weight and area; the DEM mass is
+                // that of its polygon.
+                let gamma = b.weight / b.area;
+                Body::new(&b.polygon, gamma / g, false, Some(i))
+            })
+            .collect();
+        for j in assembly.joints.iter().filter(|j| j.is_support()) {
+            // The ground is a fixed rectangle on the far side of the support joint, three
+            // joint lengths wide, so a block can rock or slide on it without falling off.
+            let l = j.length();
+            let u = j.tangent();
+            // Normal pointing out of the block into the ground.
+            let into_ground = if j.to.is_none() {
+                j.normal()
+            } else {
+                -j.normal()
+            };
+            let a = j.p1 - l * u;
+            let b = j.p2 + l * u;
+            let depth = l.max(0.1 * size);
+            let poly = [a, b, b + depth * into_ground, a + depth * into_ground];
+            bodies.push(Body::new(&poly, 0.0, true, None));
+        }
+        let mu_scene = assembly
+            .joints
+            .iter()
+            .map(|j| j.friction)
+            .fold(0.0_f64, f64::max);
+        let mu = if mu_scene.is_finite() {
+            mu_scene
+        } else {
+            params.infinite_friction
+        };
+        let dt = params
+            .time_step
+            .unwrap_or_else(|| critical_time_step(&bodies, params) * params.time_step_factor);
+        let n = bodies.len();
+        let mut w = World {
+            bodies,
+            pairs: Vec::new(),
+            params: params.clone(),
+            dt,
+            time: 0.0,
+            steps: 0,
+            load: Load::default(),
+            local_damping: params.local_damping,
+            mu,
+            margin: (0.01 * size).max(4.0 * params.contact_tolerance),
+            broad_pos: Vec::new(),
+            search_pos: Vec::new(),
+            force: vec![(Vec2::zeros(), 0.0); n],
+            unbalanced: 0.0,
+            max_speed: 0.0,
+        };
+        w.broad_phase();
+        w.search_contacts();
+        w
+    }
+
+    /// One time step: the four stages of the pipeline.
+    pub fn step(&mut self) {
+        if moved(&self.bodies, &self.broad_pos, 0.5 * self.margin) {
+            self.broad_phase();
+            self.search_contacts();
+        } else {
+            self.narrow_phase();
+        }
+        self.contact_forces();
+        self.integrate();
+        self.time += self.dt;
+        self.steps += 1;
+    }
+
+    /// Stage 1: candidate pairs by sort-and-sweep of the grown bounding boxes along x. The
+    /// contacts of pairs that stay candidates are kept.
+    pub fn broad_phase(&mut self) {
+        let m = self.margin;
+        let mut order: Vec<usize> = (0..self.bodies.len()).collect();
+        order.sort_by(|&i, &j| self.bodies[i].lo.x.total_cmp(&self.bodies[j].lo.x));
+        let mut keys: Vec<(usize, usize)> = Vec::new();
+        for (k, &i) in order.iter().enumerate() {
+            let bi = &self.bodies[i];
+            for &j in &order[k + 1..] {
+                let bj = &self.bodies[j];
+                if bj.lo.x > bi.hi.x + m {
+                    break;
+                }
+                if (bi.fixed && bj.fixed) || bj.lo.y > bi.hi.y + m || bi.lo.y > bj.hi.y + m {
+                    continue;
+                }
+                keys.push((i.min(j), i.max(j)));
+            }
+        }
+        keys.sort_unstable();
+        let mut old = std::mem::take(&mut self.pairs).into_iter().peekable();
+        let mut pairs = Vec::with_capacity(keys.len());
+        for (a, b) in keys {
+            while old.peek().is_some_and(|p| (p.a, p.b) < (a, b)) {
+                old.next();
+            }
+            if let Some(p) = old.next_if(|p| (p.a, p.b) == (a, b)) {
+                pairs.push(p);
+                continue;
+            }
+            let (ba, bb) = (&self.bodies[a], &self.bodies[b]);
+            let m_red = reduced_mass(ba, bb);
+            pairs.push(Pair {
+                a,
+                b,
+                sqrt_km: (self.params.normal_stiffness * m_red).sqrt(),
+                mu: self.mu,
+                contacts: Vec::new(),
+            });
+        }
+        self.pairs = pairs;
+        self.broad_pos = self.bodies.iter().map(|b| (b.pos, b.angle)).collect();
+    }
+
+    /// Stage 2: vertex-to-edge contacts. A full search of every candidate pair runs only
+    /// when some body has moved by a quarter of the contact tolerance since the last one; it
+    /// also keeps vertices that are within the tolerance outside a facing edge, as inactive
+    /// contacts with a gap. Between searches no vertex can reach an edge it was farther than
+    /// the tolerance from, so updating the depth of the known contacts is exact.
+    pub fn narrow_phase(&mut self) {
+        if moved(
+            &self.bodies,
+            &self.search_pos,
+            0.25 * self.params.contact_tolerance,
+        ) {
+            self.search_contacts();
+            return;
+        }
+        for pair in &mut self.pairs {
+            for c in &mut pair.contacts {
+                let (vi, ei) = if c.flipped {
+                    (pair.b, pair.a)
+                } else {
+                    (pair.a, pair.b)
+                };
+                let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
+                c.depth = -(vb.world[c.vertex] - eb.world[c.edge]).dot(&eb.normals[c.edge]);
+            }
+        }
+    }
+
+    /// The full vertex-to-edge search of every candidate pair, keeping the shear history of
+    /// contacts that persist (same vertex on the same edge).
+    fn search_contacts(&mut self) {
+        let window = self.params.contact_tolerance;
+        for pair in &mut self.pairs {
+            let (a, b) = (&self.bodies[pair.a], &self.bodies[pair.b]);
+            let old = std::mem::take(&mut pair.contacts);
+            let mut found = Vec::with_capacity(old.len().max(4));
+            for (flipped, v_body, e_body) in [(false, a, b), (true, b, a)] {
+                let n = v_body.world.len();
+                for i in 0..n {
+                    let p = v_body.world[i];
+                    // The two edges of the vertex's own body that meet at it.
+                    let adj = [v_body.normals[(i + n - 1) % n], v_body.normals[i]];
+                    if let Some((edge, depth)) = touch(p, adj, e_body, window) {
+                        let shear = old
+                            .iter()
+                            .find(|c| c.flipped == flipped && c.vertex == i && c.edge == edge)
+                            .map_or(0.0, |c| c.shear);
+                        found.push(Contact {
+                            flipped,
+                            vertex: i,
+                            edge,
+                            shear,
+                            normal_force: 0.0,
+                            depth,
+                            sliding: false,
+                        });
+                    }
+                }
+            }
+            pair.contacts = found;
+        }
+        self.search_pos = self.bodies.iter().map(|b| (b.pos, b.angle)).collect();
+    }
+
+    /// Stage 3: contact forces (normal and shear springs with dashpots, no tension, Coulomb).
+    pub fn contact_forces(&mut self) {
+        for f in &mut self.force {
+            *f = (Vec2::zeros(), 0.0);
+        }
+        let p = &self.params;
+        let dt = self.dt;
+        for pair in &mut self.pairs {
+            let cn = 2.0 * p.contact_damping * pair.sqrt_km;
+            let cs = cn * (p.shear_stiffness / p.normal_stiffness).sqrt();
+            for c in &mut pair.contacts {
+                let (vi, ei) = if c.flipped {
+                    (pair.b, pair.a)
+                } else {
+                    (pair.a, pair.b)
+                };
+                let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
+                let point = vb.world[c.vertex];
+                // Outward normal of the touched edge: it pushes the vertex's body away.
+                let n = eb.normals[c.edge];
+                let t = Vec2::new(-n.y, n.x);
+                let vrel = vb.point_velocity(point) - eb.point_velocity(point);
+                let (vn, vt) = (vrel.dot(&n), vrel.dot(&t));
+                let normal = p.normal_stiffness * c.depth - cn * vn;
+                if c.depth <= 0.0 || normal <= 0.0 {
+                    // No tension: the contact carries nothing and forgets its shear.
+                    c.normal_force = 0.0;
+                    c.shear = 0.0;
+                    c.sliding = false;
+                    continue;
+                }
+                let mut shear = c.shear - p.shear_stiffness * vt * dt;
+                let cap = pair.mu * normal;
+                c.sliding = false;
+                if shear.abs() > cap {
+                    shear = cap * shear.signum();
+                    c.sliding = true;
+                }
+                c.shear = shear;
+                c.normal_force = normal;
+                // The dashpot acts in shear only while sticking and within the Coulomb cap.
+                let s_total = if c.sliding {
+                    shear
+                } else {
+                    (shear - cs * vt).clamp(-cap, cap)
+                };
+                let f = normal * n + s_total * t;
+                let fv = &mut self.force[vi];
+                fv.0 += f;
+                fv.1 += cross(point - vb.pos, f);
+                let fe = &mut self.force[ei];
+                fe.0 -= f;
+                fe.1 -= cross(point - eb.pos, f);
+            }
+        }
+    }
+
+    /// Stage 4: loads, local damping and symplectic Euler on every free block.
+    pub fn integrate(&mut self) {
+        let p = &self.params;
+        let g = p.gravity;
+        let alpha = self.local_damping;
+        let dt = self.dt;
+        let mut unbalanced: f64 = 0.0;
+        let mut max_speed: f64 = 0.0;
+        for (body, (fc, mc)) in self.bodies.iter_mut().zip(&self.force) {
+            if body.fixed {
+                continue;
+            }
+            let w = body.mass * g;
+            let f = fc + Vec2::new(self.load.lambda * w, -self.load.gravity * w);
+            let m = *mc;
+            unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / w);
+            // Cundall's local damping opposes the motion of each degree of freedom with a
+            // force proportional to the unbalanced force, never larger than it.
+            let damp = |force: f64, v: f64| {
+                if v == 0.0 {
+                    force
+                } else {
+                    force - alpha * force.abs() * v.signum()
+                }
+            };
+            let fx = damp(f.x, body.vel.x);
+            let fy = damp(f.y, body.vel.y);
+            let mz = damp(m, body.omega);
+            body.vel += Vec2::new(fx, fy) * (dt / body.mass);
+            body.omega += mz * dt / body.inertia;
+            body.pos += body.vel * dt;
+            body.angle += body.omega * dt;
+            body.refresh();
+            max_speed = max_speed.max(body.vel.norm() + body.omega.abs() * body.radius);
+        }
+        self.unbalanced = unbalanced;
+        self.max_speed = max_speed;
+    }
+
+    /// Kinetic energy of all blocks (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.bodies.iter().map(Body::kinetic_energy).sum()
+    }
+
+    /// Potential energy of the applied loads (gravity and the horizontal load at their
+    /// current factors, measured from the origin) plus the elastic energy of the contact
+    /// springs (J).
+    pub fn potential_energy(&self) -> f64 {
+        let g = self.params.gravity;
+        let loads: f64 = self
+            .bodies
+            .iter()
+            .filter(|b| !b.fixed)
+            .map(|b| b.mass * g * (self.load.gravity * b.pos.y - self.load.lambda * b.pos.x))
+            .sum();
+        loads + self.elastic_energy()
+    }
+
+    /// Elastic energy of the normal and shear contact springs (J).
+    pub fn elastic_energy(&self) -> f64 {
+        let (kn, ks) = (self.params.normal_stiffness, self.params.shear_stiffness);
+        self.pairs
+            .iter()
+            .flat_map(|p| &p.contacts)
+            .filter(|c| c.depth > 0.0)
+            .map(|c| 0.5 * kn * c.depth * c.depth + 0.5 * c.shear * c.shear / ks)
+            .sum()
+    }
+}
+
+/// Whether vertex `p` (whose own body's edges meeting at it have outward normals `adj`)
+/// presses into the convex body `e`, or lies within the tolerance outside a facing edge;
+/// if so, the edge it touches and the penetration depth (negative: a gap).
+///
+/// The corners of `e` are rounded by the `window`, as UDEC rounds block corners: a vertex
+/// that presses into an edge and lies beyond its end by less than the window still touches
+/// it. Without this, two blocks whose joint faces end at the same corners (every voussoir
+/// joint) would see each corner contact flicker between "vertex of A in B" and "vertex of B
+/// in A" with the round-off of the tangential offset, losing the shear history each time.
+/// Near a corner the edge most nearly facing one of the vertex's own edges wins: a vertex on
+/// the corner of a face-to-face joint must push along the joint normal, not along the joint;
+/// and a vertex outside the polygon (within the rounding) touches only such a facing edge.
+/// Cosine above which a vertex's own edge and a touched edge face each other (25 degrees).
+const FACE_TO_FACE: f64 = 0.9;
+
+fn touch(p: Vec2, adj: [Vec2; 2], e: &Body, window: f64) -> Option<(usize, f64)> {
+    if p.x < e.lo.x - window
+        || p.x > e.hi.x + window
+        || p.y < e.lo.y - window
+        || p.y > e.hi.y + window
+    {
+        return None;
+    }
+    let n = e.world.len();
+    let mut max_s = f64::NEG_INFINITY;
+    for k in 0..n {
+        let s = (p - e.world[k]).dot(&e.normals[k]);
+        if s >= window {
+            return None;
+        }
+        max_s = max_s.max(s);
+    }
+    let mut best: Option<(usize, f64, f64)> = None;
+    for k in 0..n {
+        let nk = e.normals[k];
+        let s = (p - e.world[k]).dot(&nk);
+        if s < max_s - window {
+            continue;
+        }
+        let score = (-adj[0].dot(&nk)).max(-adj[1].dot(&nk));
+        // Outside the polygon (within the rounding) only a facing edge counts: a vertex
+        // just past the corner of an opening joint must not catch the neighbouring face of
+        // the other block, which would glue the joint shut.
+        if max_s >= 0.0 && score < FACE_TO_FACE {
+            continue;
+        }
+        let a = e.world[k];
+        let edge = e.world[(k + 1) % n] - a;
+        let len2 = edge.norm_squared();
+        let tpar = (p - a).dot(&edge) / len2;
+        let eps = window / len2.sqrt();
+        if tpar < -eps || tpar > 1.0 + eps {
+            continue;
+        }
+        let better = match best {
+            None => true,
+            Some((_, bs, bscore)) => score > bscore + 1e-9 || (score > bscore - 1e-9 && s > bs),
+        };
+        if better {
+            best = Some((k, s, score));
+        }
+    }
+    best.map(|(k, s, _)| (k, -s))
+}
+
+/// Whether some free body has moved (a point of it, by translation plus rotation times its
+/// radius) by more than `limit` since the positions `since`.
+fn moved(bodies: &[Body], since: &[(Vec2, f64)], limit: f64) -> bool {
+    since.len() != bodies.len()
+        || bodies
+            .iter()
+            .zip(since)
+            .any(|(b, (p, a))| (b.pos - p).norm() + (b.angle - a).abs() * b.radius > limit)
+}
+
+/// The mass a block shows at its farthest corner, `1 / (1/m + r^2/I)`: a corner contact
+/// pushes the block and turns it (about a quarter of `m` for a rectangle).
+pub(crate) fn effective_mass(b: &Body) -> f64 {
+    1.0 / (1.0 / b.mass + b.radius * b.radius / b.inertia)
+}
+
+/// Reduced effective mass of two touching bodies (a fixed one counts as infinitely heavy).
+fn reduced_mass(a: &Body, b: &Body) -> f64 {
+    match (a.fixed, b.fixed) {
+        (true, _) => effective_mass(b),
+        (_, true) => effective_mass(a),
+        _ => {
+            let (ma, mb) = (effective_mass(a), effective_mass(b));
+            ma * mb / (ma + mb)
+        }
+    }
+}
+
+/// The explicit stability limit of the stiffest block: `2 / omega_max (sqrt(1 + z^2) - z)`
+/// (central differences with viscous damping). `omega_max^2` is bounded (Gershgorin) by
+/// `2 n_c k / m_eff` over the block's `n_c = 2 x vertices` possible contacts, the factor 2
+/// for two free blocks vibrating against each other; `z` is the damping ratio the contact
+/// dashpots give that highest mode, `c omega_max / (2 k)`, much larger than the nominal
+/// `contact_damping` because many dashpots act on one light block.
+pub(crate) fn critical_time_step(bodies: &[Body], p: &IntegrationParameters) -> f64 {
+    let k = p.normal_stiffness.max(p.shear_stiffness);
+    bodies
+        .iter()
+        .filter(|b| !b.fixed)
+        .map(|b| {
+            let m = effective_mass(b);
+            let omega = (2.0 * 2.0 * b.local.len() as f64 * k / m).sqrt();
+            // The block's dashpots are at most those against the ground (m_red = m).
+            let c = 2.0 * p.contact_damping * (p.normal_stiffness * m).sqrt();
+            let z = c * omega / (2.0 * k);
+            2.0 / omega * ((1.0 + z * z).sqrt() - z)
+        })
+        .fold(f64::INFINITY, f64::min)
+        .min(1.0)
+}

@@ -1,0 +1,382 @@
+//! DEM check of the collapse multiplier: hand-derived single-block values, agreement with the
+//! static lower bound on arches and a portal, the sliding case against the associative bound,
+//! energy conservation of the integrator, the `[dem]` table's validation and snapshots.
+
+use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind};
+use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
+use voussoir::geometry::Vec2;
+use voussoir::lp::{self, Status};
+use voussoir::scene::Scene;
+
+/// A rectangular block b x h standing on the ground (one support joint along its base).
+fn block(b: f64, h: f64, mu: f64) -> Assembly {
+    let polygon = vec![
+        Vec2::new(-0.5 * b, 0.0),
+        Vec2::new(0.5 * b, 0.0),
+        Vec2::new(0.5 * b, h),
+        Vec2::new(-0.5 * b, h),
+    ];
+    Assembly {
+        blocks: vec![Block {
+            polygon,
+            area: b * h,
+            centroid: Vec2::new(0.0, 0.5 * h),
+            weight: 20000.0 * b * h,
+            kind: BlockKind::Other,
+        }],
+        // n = (0, -1) points from the block into the ground.
+        joints: vec![Joint {
+            p1: Vec2::new(-0.5 * b, 0.0),
+            p2: Vec2::new(0.5 * b, 0.0),
+            from: Some(0),
+            to: None,
+            friction: mu,
+            kind: JointKind::Other,
+        }],
+    }
+}
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml_str(text, "test").expect("valid scene")
+}
+
+fn arch(n: usize, t: f64, mu: f64) -> Scene {
+    scene(&format!(
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\n\
+         [material]\nfriction = {}\n",
+        if mu.is_finite() {
+            mu.to_string()
+        } else {
+            "\"inf\"".to_string()
+        }
+    ))
+}
+
+fn run(assembly: &Assembly, params: &IntegrationParameters, tol: f64) -> DemResult {
+    dem::collapse_multiplier(assembly, params, tol, &mut |_| {}).expect("DEM runs")
+}
+
+/// The bracket is made of DEM runs: one that stood at `lambda_stands` (or the settling run)
+/// and one that did not at `lambda_collapses`, with nothing undecided.
+fn check_bracket(r: &DemResult, tol: f64) -> (f64, f64, f64) {
+    assert!(!r.cannot_stand && !r.no_collapse);
+    assert_eq!(r.undecided_runs, 0);
+    let (lo, hi, mid) = (
+        r.lambda_stands.expect("stands"),
+        r.lambda_collapses.expect("collapses"),
+        r.lambda_dem.expect("midpoint"),
+    );
+    assert!(lo < hi && (hi - lo) <= tol * mid * (1.0 + 1e-12));
+    assert_eq!(
+        r.standing_run().expect("standing run").outcome,
+        Outcome::Stands
+    );
+    assert_ne!(
+        r.collapsing_run().expect("collapsing run").outcome,
+        Outcome::Stands
+    );
+    (lo, hi, mid)
+}
+
+#[test]
+fn single_block_rocks_at_b_over_h() {
+    let (b, h) = (0.5, 1.0);
+    let a = block(b, h, f64::INFINITY);
+    // Start the search away from the answer so the bracket is found by the DEM alone.
+    let p = IntegrationParameters::for_assembly(&a).initial_guess(Some(0.3));
+    let r = run(&a, &p, 0.01);
+    let (_, _, mid) = check_bracket(&r, 0.01);
+    let exact = b / h;
+    println!(
+        "rocking: lambda_dem {mid:.5} vs b/h {exact} ({:+.3}%)",
+        100.0 * (mid / exact - 1.0)
+    );
+    assert!((mid / exact - 1.0).abs() < 0.02);
+    assert!(r.friction_infinite && r.friction >= 100.0);
+    // It turns about the downstream corner (p2 = (b/2, 0)) and does not slide.
+    assert_eq!(r.hinges.len(), 1);
+    assert_eq!(r.hinges[0].end, JointEnd::P2);
+    assert!(r.sliding.is_empty());
+}
+
+#[test]
+fn single_block_slides_at_mu() {
+    let (b, h, mu) = (1.0, 0.5, 0.4);
+    let a = block(b, h, mu);
+    let p = IntegrationParameters::for_assembly(&a).initial_guess(Some(0.6));
+    let r = run(&a, &p, 0.01);
+    let (_, _, mid) = check_bracket(&r, 0.01);
+    println!(
+        "sliding: lambda_dem {mid:.5} vs mu {mu} ({:+.3}%)",
+        100.0 * (mid / mu - 1.0)
+    );
+    assert!((mid / mu - 1.0).abs() < 0.02);
+    assert_eq!(r.sliding, vec![0]);
+    assert!(r.hinges.is_empty());
+}
+
+/// DEM against the static lower bound: within 2% (the issue asks 5%, aims at 2%), with a
+/// bracket of relative width `tol`, narrower than the 2% the comparison claims. The search
+/// starts from the static value, so a first bracket that verifies puts its midpoint on it:
+/// `tol` well below 1% makes the DEM find its own threshold inside.
+fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
+    let a = Assembly::from_scene(s);
+    let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+    assert_eq!(st.status, Status::Collapse);
+    let lower = st.lambda.expect("lambda");
+    let p = IntegrationParameters::from_scene(s, &a).expect("params");
+    let r = run(&a, &p, tol);
+    let (lo, hi, mid) = check_bracket(&r, tol);
+    let diff = mid / lower - 1.0;
+    println!(
+        "{name}: lambda_lower {lower:.5}  DEM [{lo:.5}, {hi:.5}] mid {mid:.5}  diff {:+.2}%  \
+         width {:.2}%  runs {}  steps {}  {:.2} s  hinges {:?}",
+        100.0 * diff,
+        100.0 * (hi - lo) / mid,
+        r.runs.len(),
+        r.steps,
+        r.wall_time_s,
+        r.hinges
+            .iter()
+            .map(|h| (h.joint, h.end))
+            .collect::<Vec<_>>()
+    );
+    assert!(diff.abs() < 0.02, "{name}: DEM {mid} vs static {lower}");
+    assert!((hi - lo) / mid < 0.02);
+    // The DEM sees hinges at the joints the static solution puts them at.
+    for h in &st.hinges {
+        assert!(
+            r.hinges
+                .iter()
+                .any(|d| d.end == h.end && d.joint.abs_diff(h.joint) <= 1),
+            "{name}: static hinge {:?} not seen by the DEM ({:?})",
+            (h.joint, h.end),
+            r.hinges
+        );
+    }
+    (lower, mid)
+}
+
+#[test]
+fn semicircular_arches_agree_with_the_static_bound() {
+    for (n, t) in [(16, 0.15), (16, 0.25), (32, 0.15), (32, 0.25)] {
+        compare_with_static(
+            &format!("semicircle n={n} t/R={t}"),
+            &arch(n, t, 0.8),
+            0.002,
+        );
+    }
+}
+
+#[test]
+fn portal_agrees_with_the_static_bound() {
+    let s = scene(
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n\
+         [piers]\nheight = 1.0\nwidth = 0.4\ncourses = 2\n[material]\nfriction = 0.8\n",
+    );
+    compare_with_static("portal", &s, 0.002);
+}
+
+#[test]
+fn other_shapes_agree_with_the_static_bound_with_default_settings() {
+    let cases = [
+        (
+            "pointed",
+            "[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.2\nthickness = 0.15\n\
+             voussoirs = 16\n[material]\nfriction = 0.8\n",
+        ),
+        (
+            "basket",
+            "[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.7\nthickness = 0.2\nvoussoirs = 17\n\
+             [material]\nfriction = 0.8\n",
+        ),
+        (
+            "segmental",
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = 120\nthickness = 0.15\n\
+             voussoirs = 16\n",
+        ),
+    ];
+    for (name, text) in cases {
+        compare_with_static(name, &scene(text), 0.01);
+    }
+}
+
+/// Where sliding governs: a semicircle t/R = 0.25 with mu = 0.35 slides at three joints in
+/// the static solution. The static program uses associative friction (normality), the DEM
+/// Coulomb's non-associative law (slip without dilatancy), whose collapse multiplier can only
+/// be lower (Radenkovic's theorem): the DEM must not stand above the bound, and the test
+/// prints and bounds the difference it finds.
+#[test]
+fn sliding_case_against_the_associative_bound() {
+    for (t, mu) in [(0.25, 0.35), (0.15, 0.4)] {
+        let s = arch(16, t, mu);
+        let a = Assembly::from_scene(&s);
+        let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+        let assoc = st.lambda.expect("collapse");
+        assert!(!st.sliding.is_empty());
+        let p = IntegrationParameters::from_scene(&s, &a).expect("params");
+        let tol = 0.005;
+        let r = run(&a, &p, tol);
+        let (lo, hi, mid) = check_bracket(&r, tol);
+        let diff = mid / assoc - 1.0;
+        println!(
+            "t/R={t} mu={mu}: associative static {assoc:.5} (sliding {:?})  DEM [{lo:.5}, \
+             {hi:.5}] (sliding {:?}, hinges {:?})  difference {:+.2}%",
+            st.sliding,
+            r.sliding,
+            r.hinges
+                .iter()
+                .map(|h| (h.joint, h.end))
+                .collect::<Vec<_>>(),
+            100.0 * diff
+        );
+        assert!(
+            lo <= assoc * (1.0 + 1e-9),
+            "DEM stands above the associative bound"
+        );
+        assert!(diff.abs() < 0.02);
+        assert_eq!(r.sliding, st.sliding);
+    }
+}
+
+#[test]
+fn an_arch_that_cannot_stand_says_so() {
+    let s = arch(16, 0.25, 0.3);
+    let a = Assembly::from_scene(&s);
+    let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+    assert_eq!(st.status, Status::CannotStand);
+    let p = IntegrationParameters::from_scene(&s, &a).expect("params");
+    let r = run(&a, &p, 0.01);
+    assert!(r.cannot_stand);
+    assert!(r.lambda_dem.is_none());
+    assert_ne!(r.runs[0].outcome, Outcome::Stands);
+}
+
+/// Largest energy error over `duration` s of an undamped settled arch nudged by a 1% rise of
+/// gravity, its first and second halves, and the elastic energy of the contact springs.
+fn energy_error(time_step_factor: f64, duration: f64) -> (f64, f64, f64) {
+    // No friction limit: a slipping contact would dissipate.
+    let s = arch(16, 0.25, f64::INFINITY);
+    let a = Assembly::from_scene(&s);
+    let p = IntegrationParameters::from_scene(&s, &a)
+        .expect("params")
+        .contact_damping(0.0)
+        .time_step_factor(time_step_factor);
+    let mut sim = dem::Simulation::new(&a, &p).expect("sim");
+    // Settle with local damping only, then switch it off.
+    assert_eq!(sim.settle(&a).outcome, Outcome::Stands);
+    sim.set_local_damping(0.0);
+    sim.set_load(1.01, 0.0);
+    let contacts = sim.active_contacts();
+    let e0 = sim.kinetic_energy() + sim.potential_energy();
+    let (mut first, mut second) = (0.0_f64, 0.0_f64);
+    let samples = 200;
+    for k in 0..samples {
+        sim.run_for(duration / samples as f64);
+        let err = (sim.kinetic_energy() + sim.potential_energy() - e0).abs();
+        if k < samples / 2 {
+            first = first.max(err);
+        } else {
+            second = second.max(err);
+        }
+        assert_eq!(sim.active_contacts(), contacts, "a contact opened");
+        assert_eq!(sim.sliding_contacts(), 0);
+    }
+    (first, second, sim.elastic_energy())
+}
+
+/// With no damping at all and no contact opening or slipping, a settled arch keeps its total
+/// energy (kinetic + potential of the weight + elastic in the contact springs): symplectic
+/// Euler's error is a bounded oscillation, first order in the time step, with no drift.
+#[test]
+fn energy_is_conserved_without_damping() {
+    let (first, second, elastic) = energy_error(0.9, 1.0);
+    let (fine, _, _) = energy_error(0.3, 0.2);
+    println!(
+        "energy error: {first:.3e} J (first 0.5 s), {second:.3e} J (last 0.5 s), {fine:.3e} J \
+         with a third of the time step; elastic energy {elastic:.3e} J"
+    );
+    // Small: symplectic Euler's energy error on an oscillation of energy E is about
+    // (omega dt / 2) E, with omega dt < 2 below the stability limit; the 1% nudge sets
+    // oscillations of about 2% of the spring energy (which grows as the load squared) ...
+    assert!(first.max(second) < 0.02 * elastic);
+    // ... no drift ...
+    assert!(second < 1.5 * first);
+    // ... and first order in the time step.
+    assert!(fine < 0.5 * first);
+}
+
+#[test]
+fn dem_table_is_validated_and_applied() {
+    let base = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
+    let s = scene(&format!("{base}[dem]\nlocal_damping = 0.3\nmax_time = 5\n"));
+    let a = Assembly::from_scene(&s);
+    let p = IntegrationParameters::from_scene(&s, &a).expect("valid");
+    assert_eq!(p.local_damping, 0.3);
+    assert_eq!(p.max_time, 5.0);
+    for (text, key) in [
+        ("colour = 3", "dem.colour"),
+        ("local_damping = 1.5", "dem.local_damping"),
+        ("normal_stiffness = -1", "dem.normal_stiffness"),
+        ("time_step = \"fast\"", "dem.time_step"),
+    ] {
+        let s = scene(&format!("{base}[dem]\n{text}\n"));
+        let e = IntegrationParameters::from_scene(&s, &a).expect_err(text);
+        assert_eq!(e.key(), Some(key), "{text}: {e}");
+        assert!(e.to_string().contains(key));
+    }
+    let p = p.with_override("dem.rest_force=1e-6").expect("override");
+    assert_eq!(p.rest_force, 1e-6);
+    assert!(p.with_override("dem.rest_force=2").is_err());
+    // Defaults follow the geometry: a scene twice as large gets the same dimensionless
+    // settings (stiffness x weight / length, times x sqrt(length)).
+    let big =
+        scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
+    let ab = Assembly::from_scene(&big);
+    let pb = IntegrationParameters::from_scene(&big, &ab).expect("valid");
+    let p0 = IntegrationParameters::for_assembly(&a);
+    let w = ab.total_weight() / a.total_weight();
+    assert!((pb.normal_stiffness / p0.normal_stiffness - w / 2.0).abs() < 1e-9 * w);
+    assert!((pb.ramp_time / p0.ramp_time - 2f64.sqrt()).abs() < 1e-12);
+    assert!((pb.collapse_displacement / p0.collapse_displacement - 2.0).abs() < 1e-12);
+}
+
+#[test]
+fn snapshots_are_written_as_csv() {
+    let s = arch(16, 0.25, 0.8);
+    let a = Assembly::from_scene(&s);
+    let p = IntegrationParameters::from_scene(&s, &a)
+        .expect("params")
+        .snapshot_interval(Some(0.05));
+    let r = run(&a, &p, 0.02);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let files = dem::write_snapshots(dir.path(), &r).expect("written");
+    let names: Vec<_> = files
+        .iter()
+        .map(|f| {
+            f.file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .to_string()
+        })
+        .collect();
+    assert_eq!(names, ["settle.csv", "stands.csv", "collapses.csv"]);
+    let text = std::fs::read_to_string(&files[2]).expect("read");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("time_s,lambda,block,vertex,x,y"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().expect("number")).collect())
+        .collect();
+    let snaps = r.collapsing_run().expect("run").snapshots.len();
+    assert!(snaps >= 2);
+    assert_eq!(rows.len(), snaps * a.blocks.len() * 4);
+    // The first snapshot is the settled arch: every vertex within the collapse displacement
+    // of where the assembly puts it.
+    for row in rows.iter().take(a.blocks.len() * 4) {
+        let v = a.blocks[row[2] as usize]
+            .polygon
+            .iter()
+            .any(|q| (q - Vec2::new(row[4], row[5])).norm() < p.collapse_displacement);
+        assert!(v);
+    }
+}

@@ -3,9 +3,10 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use voussoir::analysis;
 use voussoir::assembly::Assembly;
 use voussoir::error::Error;
-use voussoir::lp::{self, Direction, StaticSettings};
+use voussoir::lp::{Direction, StaticSettings};
 use voussoir::report;
 use voussoir::scene::Scene;
 use voussoir::sweep;
@@ -61,6 +62,12 @@ enum Command {
         /// Conic solver tolerance (gap and feasibility, dimensionless)
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
+        /// Also run the continuous model (hinges anywhere: the limit of infinitely many voussoirs)
+        #[arg(long)]
+        continuous: bool,
+        /// Largest chain (joints) for the exhaustive kinematic search; 0 turns it off
+        #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+        kinematic_max_joints: usize,
     },
     /// Parametric sweep: the cartesian product of varied keys, solved in parallel
     Sweep {
@@ -93,6 +100,12 @@ enum Command {
         /// Draw the thrust line at the minimum thickness to this SVG file
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
+        /// Also find the continuous model's minimum thickness
+        #[arg(long)]
+        continuous: bool,
+        /// Largest chain (joints) for the kinematic bisection; 0 turns it off
+        #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+        kinematic_max_joints: usize,
     },
 }
 
@@ -150,6 +163,8 @@ fn run(cli: Cli) -> Result<String, Error> {
             svg,
             direction,
             tolerance,
+            continuous,
+            kinematic_max_joints,
         } => {
             let scene = load(&scene)?;
             if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1e-2) {
@@ -163,13 +178,18 @@ fn run(cli: Cli) -> Result<String, Error> {
                     Dir::Left => Direction::Left,
                 })
                 .tolerance(tolerance);
-            let assembly = Assembly::from_scene(&scene);
-            let result = lp::analyse(&assembly, &settings)?;
+            let options = analysis::Options {
+                static_settings: settings,
+                kinematic_max_joints,
+                continuous,
+            };
+            let a = analysis::analyse(&scene, &options)?;
+            let (assembly, result) = (&a.assembly, &a.lower);
             let mut notes = String::new();
             if let Some(path) = thrust_csv {
                 if result.forces.is_some() {
                     write_atomically(&path, |buf| {
-                        report::write_thrust_csv(buf, &assembly, &result).map_err(|e| e.to_string())
+                        report::write_thrust_csv(buf, assembly, result).map_err(|e| e.to_string())
                     })?;
                 } else {
                     notes.push_str(&format!(
@@ -180,7 +200,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                 }
             }
             if let Some(path) = svg {
-                let title = report::drawing_title(&scene, result.lambda, None);
+                let title = report::drawing_title(&scene, result.lambda, a.lambda_upper());
                 let drawing = Drawing {
                     title,
                     forces: result.forces.as_deref(),
@@ -190,18 +210,18 @@ fn run(cli: Cli) -> Result<String, Error> {
                         velocities: &result.mechanism,
                         amplification: None,
                     }),
-                    load: Some(settings.direction),
+                    load: Some(options.direction()),
                     ..Default::default()
                 };
-                write_svg(&path, &assembly, &drawing)?;
+                write_svg(&path, assembly, &drawing)?;
             }
             if !notes.is_empty() {
                 eprint!("{notes}");
             }
             Ok(if as_json {
-                json(&report::AnalysisReport::new(&scene, &assembly, &result))
+                json(&report::AnalysisReport::new(&scene, &a))
             } else {
-                report::analysis_summary(&scene, &assembly, &result)
+                report::analysis_summary(&scene, &a)
             })
         }
         Command::Sweep {
@@ -281,6 +301,8 @@ fn run(cli: Cli) -> Result<String, Error> {
             scene,
             json: as_json,
             svg,
+            continuous,
+            kinematic_max_joints,
         } => {
             let scene = load(&scene)?;
             let assembly = Assembly::from_scene(&scene);
@@ -307,10 +329,36 @@ fn run(cli: Cli) -> Result<String, Error> {
                     ),
                 }
             }
-            Ok(if as_json {
-                json(&report::MinThicknessReport::new(&scene, &assembly, &m))
+            let mut rep = report::MinThicknessReport::new(&scene, &assembly, &m);
+            if kinematic_max_joints > 0 && assembly.joints.len() <= kinematic_max_joints {
+                let k = thickness::min_thickness_kinematic(&scene, kinematic_max_joints)?;
+                rep.min_thickness_kinematic = k.min_thickness;
+                rep.min_thickness_gap = match (m.search.min_thickness, k.min_thickness) {
+                    (Some(a), Some(b)) => Some((a - b).abs() / a),
+                    _ => None,
+                };
             } else {
-                report::min_thickness_summary(&scene, &assembly, &m)
+                rep.kinematic_note = Some(format!(
+                    "kinematic search skipped: {} joints is more than {kinematic_max_joints}",
+                    assembly.joints.len()
+                ));
+            }
+            if continuous {
+                match voussoir::kinematic::continuous_min_thickness(&scene) {
+                    Ok(c) => {
+                        rep.min_thickness_continuous = Some(Some(c.thickness));
+                        rep.continuous_hinges = Some(c.result.hinges.clone());
+                    }
+                    Err(e) => {
+                        rep.min_thickness_continuous = Some(None);
+                        rep.kinematic_note = Some(format!("continuous model: {e}"));
+                    }
+                }
+            }
+            Ok(if as_json {
+                json(&rep)
+            } else {
+                report::min_thickness_summary(&scene, &assembly, &m, &rep)
             })
         }
     }

@@ -1,7 +1,9 @@
 //! What the CLI prints: the JSON objects (a contract for scripts: later versions add fields,
 //! never rename them), the thrust-line CSV, and the human summary.
 
+use crate::analysis::SceneAnalysis;
 use crate::assembly::{Assembly, Hinge, JointKind};
+use crate::kinematic::ContinuousHinge;
 use crate::lp::{Direction, ModelSize, StaticResult, Status};
 use crate::scene::{Scene, Shape, VoussoirShape};
 use crate::thickness::{MinThickness, ThicknessOutcome};
@@ -63,6 +65,32 @@ pub struct AnalysisReport {
     pub iterations: u32,
     pub model: ModelSize,
     pub scene: SceneReport,
+    /// Discrete kinematic (upper-bound) multiplier, or null (no collapse, cannot stand, or
+    /// the search was not run: see `kinematic_note`).
+    pub lambda_upper: Option<f64>,
+    /// Status of the kinematic search (same words as `status`), or null when not run.
+    pub kinematic_status: Option<Status>,
+    /// `|lambda_upper - lambda_lower| / max(1, lambda_lower)` when both exist.
+    pub gap: Option<f64>,
+    /// Hinges of the governing kinematic mechanism (same form as `hinges`).
+    pub mechanism_hinges: Vec<Hinge>,
+    /// Joints that open completely in that mechanism.
+    pub open_joints: Vec<usize>,
+    /// Finite friction and a static bound below the rotational upper bound: sliding governs.
+    pub sliding_governs: bool,
+    /// Block velocities of the kinematic mechanism `[vx, vy, omega]`.
+    pub kinematic_mechanism: Vec<[f64; 3]>,
+    /// Why the kinematic search was not run or failed, when so.
+    pub kinematic_note: Option<String>,
+    pub kinematic_time_s: Option<f64>,
+    /// Continuous model (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_continuous: Option<Option<f64>>,
+    /// Hinges of the continuous mechanism (only with `--continuous`); angles in degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_hinges: Option<Vec<ContinuousHinge>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_note: Option<String>,
 }
 
 fn xy(p: crate::geometry::Vec2) -> [f64; 2] {
@@ -92,7 +120,40 @@ impl SceneReport {
 }
 
 impl AnalysisReport {
-    pub fn new(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
+    pub fn new(scene: &Scene, a: &SceneAnalysis) -> Self {
+        let mut report = AnalysisReport::new_static(scene, &a.assembly, &a.lower);
+        match &a.upper {
+            Ok(k) => {
+                report.lambda_upper = k.lambda_upper;
+                report.kinematic_status = Some(k.status);
+                report.kinematic_time_s = Some(k.wall_time_s);
+                if let Some(m) = &k.mechanism {
+                    report.mechanism_hinges = m.hinges.clone();
+                    report.open_joints = m.open.clone();
+                    report.kinematic_mechanism = m.velocities.clone();
+                }
+            }
+            Err(note) => report.kinematic_note = Some(note.clone()),
+        }
+        report.gap = a.gap();
+        report.sliding_governs = a.sliding_governs();
+        if let Some(c) = &a.continuous {
+            match c {
+                Ok(c) => {
+                    report.lambda_continuous = Some(c.lambda_continuous);
+                    report.continuous_hinges = Some(c.hinges.clone());
+                }
+                Err(note) => {
+                    report.lambda_continuous = Some(None);
+                    report.continuous_note = Some(note.clone());
+                }
+            }
+        }
+        report
+    }
+
+    /// The static part alone.
+    pub fn new_static(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
         let points = r
             .forces
             .as_ref()
@@ -132,6 +193,18 @@ impl AnalysisReport {
             iterations: r.iterations,
             model: r.model,
             scene: SceneReport::new(scene, assembly),
+            lambda_upper: None,
+            kinematic_status: None,
+            gap: None,
+            mechanism_hinges: Vec::new(),
+            open_joints: Vec::new(),
+            sliding_governs: false,
+            kinematic_mechanism: Vec::new(),
+            kinematic_note: None,
+            kinematic_time_s: None,
+            lambda_continuous: None,
+            continuous_hinges: None,
+            continuous_note: None,
         }
     }
 }
@@ -150,6 +223,16 @@ pub struct MinThicknessReport {
     pub thickness: f64,
     pub evaluations: usize,
     pub scene: SceneReport,
+    /// Kinematic minimum thickness (where lambda_upper reaches 0), or null when not run.
+    pub min_thickness_kinematic: Option<f64>,
+    /// `|t_static - t_kinematic| / t_static`.
+    pub min_thickness_gap: Option<f64>,
+    pub kinematic_note: Option<String>,
+    /// Continuous-model minimum thickness (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_thickness_continuous: Option<Option<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_hinges: Option<Vec<ContinuousHinge>>,
 }
 
 impl MinThicknessReport {
@@ -163,6 +246,11 @@ impl MinThicknessReport {
             thickness: scene.arch.thickness,
             evaluations: m.search.evaluations,
             scene: SceneReport::new(scene, assembly),
+            min_thickness_kinematic: None,
+            min_thickness_gap: None,
+            kinematic_note: None,
+            min_thickness_continuous: None,
+            continuous_hinges: None,
         }
     }
 }
@@ -254,8 +342,8 @@ pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
     let shape = match a.shape {
         Shape::Circular { radius, embrace } => {
             format!(
-                "circular arch, R = {radius} m, embrace {:.6} deg",
-                embrace.to_degrees()
+                "circular arch, R = {radius} m, embrace {} deg",
+                trim(embrace.to_degrees())
             )
         }
         Shape::Pointed {
@@ -267,8 +355,8 @@ pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
             rise,
             side_angle,
         } => format!(
-            "basket-handle arch, span {span} m, rise {rise} m, side angle {:.6} deg",
-            side_angle.to_degrees()
+            "basket-handle arch, span {span} m, rise {rise} m, side angle {} deg",
+            trim(side_angle.to_degrees())
         ),
     };
     let vs = match a.voussoir_shape {
@@ -304,8 +392,97 @@ pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
     s
 }
 
-/// The human summary of `analyze`.
-pub fn analysis_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> String {
+/// The human summary of `analyze` with every method that ran.
+pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
+    let mut s = static_summary(scene, &a.assembly, &a.lower);
+    s.push('\n');
+    match &a.upper {
+        Ok(k) => {
+            match (k.status, k.lambda_upper) {
+                (Status::Collapse, Some(u)) => {
+                    let _ = writeln!(
+                        s,
+                        "Kinematic (upper bound): lambda = {u:.6} over {} admissible mechanisms ({:.1} ms)",
+                        k.admissible,
+                        k.wall_time_s * 1e3
+                    );
+                    if let Some(m) = &k.mechanism {
+                        let _ = writeln!(s, "  governing mechanism ({:?}):", m.family);
+                        s.push_str(&hinge_lines(&a.assembly, &m.hinges));
+                        for j in &m.open {
+                            let _ = writeln!(s, "    joint {j:>4} ({}), opens completely", joint_label(a.assembly.joints[*j].kind));
+                        }
+                    }
+                }
+                (Status::NoCollapse, _) => {
+                    let _ = writeln!(s, "Kinematic (upper bound): no admissible mechanism is driven by the load: no collapse");
+                }
+                _ => {
+                    let _ = writeln!(s, "Kinematic (upper bound): a mechanism moves under self-weight alone: cannot stand");
+                }
+            }
+            if let (Some(gap), Some(l)) = (a.gap(), a.lower.lambda) {
+                if a.sliding_governs() {
+                    let _ = writeln!(
+                        s,
+                        "  sliding governs: the static bound {l:.6} is below the rotational mechanisms ({:.2}% lower)",
+                        100.0 * gap
+                    );
+                } else {
+                    let _ = writeln!(s, "  bounds agree: relative gap {gap:.1e}");
+                }
+            } else if a.sliding_governs() {
+                let _ = writeln!(s, "  sliding governs: only sliding mechanisms collapse the structure");
+            } else if k.status != a.lower.status {
+                let _ = writeln!(
+                    s,
+                    "  WARNING: the static status is {} but the kinematic one is {}",
+                    a.lower.status.as_str(),
+                    k.status.as_str()
+                );
+            }
+        }
+        Err(note) => {
+            let _ = writeln!(s, "Kinematic (upper bound): {note}");
+        }
+    }
+    if let Some(c) = &a.continuous {
+        match c {
+            Ok(c) => {
+                let l = c.lambda_continuous.map_or("none".to_string(), |l| format!("{l:.6}"));
+                let _ = writeln!(
+                    s,
+                    "\nContinuous model (hinges anywhere, infinitely many voussoirs): lambda = {l} ({}, {:.2} ms)",
+                    c.status.as_str(),
+                    c.wall_time_s * 1e3
+                );
+                for h in &c.hinges {
+                    let at = match h.location {
+                        crate::kinematic::HingeLocation::Arch { from_vertical_deg, polar_deg } => {
+                            format!("arch section at {polar_deg:.3} deg (polar), {from_vertical_deg:.3} deg from the vertical")
+                        }
+                        crate::kinematic::HingeLocation::Pier { left, joint } => {
+                            format!("{} pier joint {joint}", if left { "left" } else { "right" })
+                        }
+                    };
+                    let end = match h.end {
+                        Some(crate::assembly::JointEnd::P1) => "p1",
+                        Some(crate::assembly::JointEnd::P2) => "p2",
+                        None => "open",
+                    };
+                    let _ = writeln!(s, "    {at}, {end}, at ({:.4}, {:.4}) m", h.x, h.y);
+                }
+            }
+            Err(note) => {
+                let _ = writeln!(s, "\nContinuous model: {note}");
+            }
+        }
+    }
+    s
+}
+
+/// The human summary of the static analysis.
+pub fn static_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> String {
     let mut s = format!(
         "{}\n  {}\n\n",
         scene.origin,
@@ -360,7 +537,12 @@ pub fn analysis_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) ->
 }
 
 /// The human summary of `min-thickness`.
-pub fn min_thickness_summary(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> String {
+pub fn min_thickness_summary(
+    scene: &Scene,
+    assembly: &Assembly,
+    m: &MinThickness,
+    rep: &MinThicknessReport,
+) -> String {
     let mut s = format!(
         "{}\n  {}\n\n",
         scene.origin,
@@ -407,6 +589,34 @@ pub fn min_thickness_summary(scene: &Scene, assembly: &Assembly, m: &MinThicknes
         }
     }
     let _ = writeln!(s, "  {} static analyses", m.search.evaluations);
+    match (rep.min_thickness_kinematic, &rep.kinematic_note) {
+        (Some(t), _) => {
+            let _ = writeln!(
+                s,
+                "Kinematic minimum thickness (lambda_upper = 0): t_min = {t:.9} m{}",
+                rep.min_thickness_gap
+                    .map_or(String::new(), |g| format!("  (relative difference {g:.1e})"))
+            );
+        }
+        (None, Some(note)) => {
+            let _ = writeln!(s, "Kinematic: {note}");
+        }
+        _ => {}
+    }
+    if let Some(c) = rep.min_thickness_continuous {
+        match c {
+            Some(t) => {
+                let _ = writeln!(
+                    s,
+                    "Continuous model minimum thickness: t_min = {t:.6} m (t_min / size = {:.6})",
+                    t / arch_size(scene)
+                );
+            }
+            None => {
+                let _ = writeln!(s, "Continuous model: no minimum thickness found");
+            }
+        }
+    }
     s
 }
 
@@ -449,4 +659,11 @@ pub fn drawing_title(scene: &Scene, lower: Option<f64>, upper: Option<f64>) -> S
         scene.arch.thickness,
         scene.arch.voussoirs
     )
+}
+
+/// A number with at most 9 significant decimals and no trailing zeros (180, 67.5).
+pub fn trim(x: f64) -> String {
+    let s = format!("{x:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
 }

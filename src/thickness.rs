@@ -8,6 +8,7 @@
 
 use crate::assembly::{Assembly, Hinge};
 use crate::error::AnalysisError;
+use crate::kinematic::{self, KinematicSettings};
 use crate::lp::{self, StandResult, StaticSettings};
 use crate::scene::Scene;
 
@@ -140,5 +141,20 @@ pub fn min_thickness(
         hinges,
         safety_factor,
         at_minimum,
+    })
+}
+
+/// The kinematic minimum thickness: the thickness at which the discrete upper bound reaches
+/// zero (the smallest t at which no admissible mechanism moves under self-weight alone).
+pub fn min_thickness_kinematic(
+    scene: &Scene,
+    max_joints: usize,
+) -> Result<ThicknessSearch, AnalysisError> {
+    let settings = KinematicSettings {
+        max_joints,
+        ..KinematicSettings::default()
+    };
+    search(scene, DEFAULT_REL_TOL, |s| {
+        kinematic::stands(s, &settings).map_err(|e| AnalysisError::Other(e.to_string()))
     })
 }

@@ -102,9 +102,9 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         };
         kinematic::analyse(&assembly, &settings).map_err(|e| e.to_string())
     };
-    let continuous = options.continuous.then(|| {
-        kinematic::continuous_with(scene, options.direction()).map_err(|e| e.to_string())
-    });
+    let continuous = options
+        .continuous
+        .then(|| kinematic::continuous_with(scene, options.direction()).map_err(|e| e.to_string()));
     Ok(SceneAnalysis {
         assembly,
         lower,

@@ -1,3 +1,4 @@
+pub mod analysis;
 pub mod assembly;
 pub mod dem;
 pub mod error;
@@ -10,4 +11,3 @@ pub mod study;
 pub mod sweep;
 pub mod thickness;
 pub mod thrustline;
-pub mod analysis;

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use voussoir::analysis;
 use voussoir::assembly::Assembly;
+use voussoir::dem;
 use voussoir::error::Error;
 use voussoir::lp::{Direction, StaticSettings};
 use voussoir::report;
@@ -89,6 +90,23 @@ enum Command {
         /// Key whose values name the lines of the chart (listed first in the legend)
         #[arg(long, value_name = "KEY")]
         series: Option<String>,
+    },
+    /// Check the collapse multiplier with the discrete element method (rigid blocks in time)
+    Dem {
+        #[command(flatten)]
+        scene: SceneArgs,
+        /// Print one JSON object instead of the summary
+        #[arg(long)]
+        json: bool,
+        /// Relative width of the final bracket [lambda_stands, lambda_collapses]
+        #[arg(long, default_value_t = 0.01)]
+        tolerance: f64,
+        /// Write block positions during the runs (CSV) into this directory
+        #[arg(long, value_name = "DIR")]
+        snapshots: Option<PathBuf>,
+        /// Draw the initial and final block positions of the collapsing run to this SVG file
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
     },
     /// Smallest arch thickness that stands under its own weight
     MinThickness {
@@ -297,6 +315,133 @@ fn run(cli: Cli) -> Result<String, Error> {
                 None => Ok(String::from_utf8_lossy(&buf).into_owned()),
             }
         }
+        Command::Dem {
+            scene,
+            json: as_json,
+            tolerance,
+            snapshots,
+            svg,
+        } => {
+            let scene = load(&scene)?;
+            let assembly = Assembly::from_scene(&scene);
+            let lower = voussoir::lp::analyse(&assembly, &StaticSettings::default())?;
+            let mut params = dem::IntegrationParameters::from_scene(&scene, &assembly)?
+                .initial_guess(lower.lambda.filter(|l| *l > 0.0));
+            if (snapshots.is_some() || svg.is_some()) && params.snapshot_interval.is_none() {
+                let every = params.ramp_time / 3.0;
+                params = params.snapshot_interval(Some(every));
+            }
+            let bar = progress_bar(1000, "dem");
+            let result = dem::collapse_multiplier(&assembly, &params, tolerance, &mut |f| {
+                bar.set_position((f.clamp(0.0, 1.0) * 1000.0) as u64)
+            })
+            .map_err(|e| Error::Analysis(voussoir::error::AnalysisError::Other(e.to_string())))?;
+            bar.finish_and_clear();
+            if let Some(dir) = &snapshots {
+                dem::write_snapshots(dir, &result).map_err(|e| Error::Output {
+                    path: dir.clone(),
+                    message: e.to_string(),
+                })?;
+            }
+            let rep = report::DemReport::new(&scene, &assembly, &result, lower.lambda);
+            if let Some(path) = svg {
+                let last = result
+                    .collapsing_run()
+                    .or_else(|| result.runs.last())
+                    .and_then(|run| run.snapshots.last());
+                // The DEM may store a block's vertices in another order: match them through
+                // the first frame, where every block is still where the assembly put it.
+                let first = result.runs.first().and_then(|run| run.snapshots.first());
+                let moves: Vec<(voussoir::geometry::Vec2, f64)> = match (first, last) {
+                    (Some(f0), Some(snap)) => assembly
+                        .blocks
+                        .iter()
+                        .enumerate()
+                        .map(|(i, b)| {
+                            let now: Vec<_> = b
+                                .polygon
+                                .iter()
+                                .map(|p| {
+                                    let k = f0.blocks[i]
+                                        .iter()
+                                        .enumerate()
+                                        .min_by(|x, y| {
+                                            (x.1 - p).norm().total_cmp(&(y.1 - p).norm())
+                                        })
+                                        .map_or(0, |(k, _)| k);
+                                    snap.blocks[i][k]
+                                })
+                                .collect();
+                            rigid_move(&b.polygon, &now, b.centroid)
+                        })
+                        .collect(),
+                    _ => Vec::new(),
+                };
+                // Collapse is detected at a small displacement: amplify it so the mechanism
+                // shows, and say so.
+                let size = assembly.size();
+                let largest = assembly
+                    .blocks
+                    .iter()
+                    .zip(&moves)
+                    .flat_map(|(b, (d, rot))| {
+                        let (sn, cs) = rot.sin_cos();
+                        b.polygon.iter().map(move |p| {
+                            let r = p - b.centroid;
+                            let q = b.centroid
+                                + d
+                                + voussoir::geometry::Vec2::new(
+                                    cs * r.x - sn * r.y,
+                                    sn * r.x + cs * r.y,
+                                );
+                            (q - p).norm()
+                        })
+                    })
+                    .fold(0.0_f64, f64::max);
+                let amp = if largest > 0.0 && largest < 0.1 * size {
+                    0.1 * size / largest
+                } else {
+                    1.0
+                };
+                let moves: Vec<_> = moves.iter().map(|(d, r)| (amp * d, amp * r)).collect();
+                let amp_note = if amp > 1.0 {
+                    format!(", displacements x{amp:.1}")
+                } else {
+                    String::new()
+                };
+                let label = match (last, result.lambda_collapses) {
+                    (Some(snap), Some(l)) => format!(
+                        "at t = {:.3} s of the run at lambda = {l:.4}{amp_note}",
+                        snap.time
+                    ),
+                    (Some(snap), None) => {
+                        format!("at t = {:.3} s of the last run{amp_note}", snap.time)
+                    }
+                    _ => String::new(),
+                };
+                let drawing = Drawing {
+                    title: format!(
+                        "{}, t = {} m: DEM\nlambda_dem = {}  (static lambda_lower = {})",
+                        report::shape_title(&scene),
+                        scene.arch.thickness,
+                        rep.lambda_dem.map_or("none".into(), |l| format!("{l:.4}")),
+                        rep.lambda_lower
+                            .map_or("none".into(), |l| format!("{l:.4}"))
+                    ),
+                    moved: (!moves.is_empty()).then_some(svg::Placements {
+                        moves: &moves,
+                        label,
+                    }),
+                    ..Default::default()
+                };
+                write_svg(&path, &assembly, &drawing)?;
+            }
+            Ok(if as_json {
+                json(&rep)
+            } else {
+                report::dem_summary(&scene, &assembly, &rep)
+            })
+        }
         Command::MinThickness {
             scene,
             json: as_json,
@@ -362,6 +507,24 @@ fn run(cli: Cli) -> Result<String, Error> {
             })
         }
     }
+}
+
+/// The rigid motion (centroid translation, rotation) that takes `before` to `after`.
+fn rigid_move(
+    before: &[voussoir::geometry::Vec2],
+    after: &[voussoir::geometry::Vec2],
+    centroid: voussoir::geometry::Vec2,
+) -> (voussoir::geometry::Vec2, f64) {
+    if before.len() < 2 || after.len() != before.len() {
+        return (voussoir::geometry::Vec2::zeros(), 0.0);
+    }
+    let (a0, a1) = (before[1] - before[0], after[1] - after[0]);
+    let rot = a1.y.atan2(a1.x) - a0.y.atan2(a0.x);
+    let (sn, cs) = rot.sin_cos();
+    let r = before[0] - centroid;
+    let moved_centroid =
+        after[0] - voussoir::geometry::Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y);
+    (moved_centroid - centroid, rot)
 }
 
 /// A progress bar on stderr when it is a terminal, hidden otherwise.

@@ -410,7 +410,11 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                         let _ = writeln!(s, "  governing mechanism ({:?}):", m.family);
                         s.push_str(&hinge_lines(&a.assembly, &m.hinges));
                         for j in &m.open {
-                            let _ = writeln!(s, "    joint {j:>4} ({}), opens completely", joint_label(a.assembly.joints[*j].kind));
+                            let _ = writeln!(
+                                s,
+                                "    joint {j:>4} ({}), opens completely",
+                                joint_label(a.assembly.joints[*j].kind)
+                            );
                         }
                     }
                 }
@@ -432,7 +436,10 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                     let _ = writeln!(s, "  bounds agree: relative gap {gap:.1e}");
                 }
             } else if a.sliding_governs() {
-                let _ = writeln!(s, "  sliding governs: only sliding mechanisms collapse the structure");
+                let _ = writeln!(
+                    s,
+                    "  sliding governs: only sliding mechanisms collapse the structure"
+                );
             } else if k.status != a.lower.status {
                 let _ = writeln!(
                     s,
@@ -449,7 +456,9 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
     if let Some(c) = &a.continuous {
         match c {
             Ok(c) => {
-                let l = c.lambda_continuous.map_or("none".to_string(), |l| format!("{l:.6}"));
+                let l = c
+                    .lambda_continuous
+                    .map_or("none".to_string(), |l| format!("{l:.6}"));
                 let _ = writeln!(
                     s,
                     "\nContinuous model (hinges anywhere, infinitely many voussoirs): lambda = {l} ({}, {:.2} ms)",
@@ -458,7 +467,10 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                 );
                 for h in &c.hinges {
                     let at = match h.location {
-                        crate::kinematic::HingeLocation::Arch { from_vertical_deg, polar_deg } => {
+                        crate::kinematic::HingeLocation::Arch {
+                            from_vertical_deg,
+                            polar_deg,
+                        } => {
                             format!("arch section at {polar_deg:.3} deg (polar), {from_vertical_deg:.3} deg from the vertical")
                         }
                         crate::kinematic::HingeLocation::Pier { left, joint } => {
@@ -594,8 +606,9 @@ pub fn min_thickness_summary(
             let _ = writeln!(
                 s,
                 "Kinematic minimum thickness (lambda_upper = 0): t_min = {t:.9} m{}",
-                rep.min_thickness_gap
-                    .map_or(String::new(), |g| format!("  (relative difference {g:.1e})"))
+                rep.min_thickness_gap.map_or(String::new(), |g| format!(
+                    "  (relative difference {g:.1e})"
+                ))
             );
         }
         (None, Some(note)) => {
@@ -666,4 +679,162 @@ pub fn trim(x: f64) -> String {
     let s = format!("{x:.9}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     s.to_string()
+}
+
+/// One DEM run in `dem --json`.
+#[derive(Debug, Serialize)]
+pub struct DemRunReport {
+    /// null for the settling run under gravity alone.
+    pub lambda: Option<f64>,
+    pub outcome: crate::dem::Outcome,
+    /// Simulated time (s) and time steps.
+    pub time: f64,
+    pub steps: u64,
+    pub max_displacement: f64,
+}
+
+/// `dem --json`.
+#[derive(Debug, Serialize)]
+pub struct DemReport {
+    /// `collapse`, `no_collapse` (none up to the DEM's max_lambda) or `cannot_stand`.
+    pub status: &'static str,
+    pub lambda_stands: Option<f64>,
+    pub lambda_collapses: Option<f64>,
+    pub lambda_dem: Option<f64>,
+    /// The static lower bound of the same assembly, for comparison.
+    pub lambda_lower: Option<f64>,
+    /// `(lambda_dem - lambda_lower) / lambda_lower`.
+    pub relative_difference: Option<f64>,
+    /// `(lambda_collapses - lambda_stands) / lambda_dem`.
+    pub bracket_width: Option<f64>,
+    pub steps: u64,
+    pub wall_time_s: f64,
+    /// Joints seen opening at one end, sliding, and opening fully at the onset of collapse.
+    pub hinges: Vec<Hinge>,
+    pub sliding: Vec<usize>,
+    pub open: Vec<usize>,
+    /// The Coulomb coefficient the contacts used; `friction_infinite` says it stands for inf.
+    pub friction: f64,
+    pub friction_infinite: bool,
+    pub time_step: f64,
+    pub undecided_runs: usize,
+    pub runs: Vec<DemRunReport>,
+    pub scene: SceneReport,
+}
+
+impl DemReport {
+    pub fn new(
+        scene: &Scene,
+        assembly: &Assembly,
+        r: &crate::dem::DemResult,
+        lambda_lower: Option<f64>,
+    ) -> Self {
+        let status = if r.cannot_stand {
+            "cannot_stand"
+        } else if r.no_collapse {
+            "no_collapse"
+        } else {
+            "collapse"
+        };
+        DemReport {
+            status,
+            lambda_stands: r.lambda_stands,
+            lambda_collapses: r.lambda_collapses,
+            lambda_dem: r.lambda_dem,
+            lambda_lower,
+            relative_difference: match (r.lambda_dem, lambda_lower) {
+                (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
+                _ => None,
+            },
+            bracket_width: r.bracket_width,
+            steps: r.steps,
+            wall_time_s: r.wall_time_s,
+            hinges: r.hinges.clone(),
+            sliding: r.sliding.clone(),
+            open: r.open.clone(),
+            friction: r.friction,
+            friction_infinite: r.friction_infinite,
+            time_step: r.time_step,
+            undecided_runs: r.undecided_runs,
+            runs: r
+                .runs
+                .iter()
+                .map(|run| DemRunReport {
+                    lambda: run.lambda,
+                    outcome: run.outcome,
+                    time: run.time,
+                    steps: run.steps,
+                    max_displacement: run.max_displacement,
+                })
+                .collect(),
+            scene: SceneReport::new(scene, assembly),
+        }
+    }
+}
+
+/// The human summary of `dem`.
+pub fn dem_summary(scene: &Scene, assembly: &Assembly, rep: &DemReport) -> String {
+    let mut s = format!(
+        "{}\n  {}\n\n",
+        scene.origin,
+        describe_scene(scene, assembly)
+    );
+    let fmt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));
+    match rep.status {
+        "collapse" => {
+            let _ = writeln!(
+                s,
+                "DEM: stands at lambda = {}, collapses at lambda = {}  ->  lambda_dem = {} (bracket {:.2}%)",
+                fmt(rep.lambda_stands),
+                fmt(rep.lambda_collapses),
+                fmt(rep.lambda_dem),
+                100.0 * rep.bracket_width.unwrap_or(f64::NAN)
+            );
+            if let (Some(l), Some(d)) = (rep.lambda_lower, rep.relative_difference) {
+                let inside = rep.lambda_stands.is_some_and(|a| a <= l)
+                    && rep.lambda_collapses.is_some_and(|b| l <= b);
+                if inside {
+                    let _ = writeln!(
+                        s,
+                        "  the static lower bound {l:.6} lies inside the DEM bracket: they agree to within its width (narrow it with --tolerance)"
+                    );
+                } else {
+                    let _ = writeln!(
+                        s,
+                        "  static lower bound {l:.6} lies outside the DEM bracket: the DEM differs by {:+.2}%",
+                        100.0 * d
+                    );
+                }
+            }
+            if !rep.hinges.is_empty() {
+                let _ = writeln!(s, "  hinges at the onset of collapse:");
+                s.push_str(&hinge_lines(assembly, &rep.hinges));
+            }
+            if !rep.sliding.is_empty() {
+                let list: Vec<String> = rep.sliding.iter().map(|j| j.to_string()).collect();
+                let _ = writeln!(s, "  sliding joints: {}", list.join(", "));
+            }
+        }
+        "no_collapse" => {
+            let _ = writeln!(s, "DEM: no collapse up to the largest multiplier tried");
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "DEM: CANNOT STAND — the blocks do not come to rest under self-weight"
+            );
+        }
+    }
+    if rep.friction_infinite {
+        let _ = writeln!(s, "  mu = inf simulated as mu = {}", rep.friction);
+    }
+    let _ = writeln!(
+        s,
+        "  {} runs, {} time steps of {:.3e} s, {:.2} s wall time",
+        rep.runs.len(),
+        rep.steps,
+        rep.time_step,
+        rep.wall_time_s
+    );
+    s
 }

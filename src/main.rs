@@ -90,6 +90,15 @@ enum Command {
         /// Key whose values name the lines of the chart (listed first in the legend)
         #[arg(long, value_name = "KEY")]
         series: Option<String>,
+        /// Add the continuous model's multiplier (column lambda_continuous)
+        #[arg(long)]
+        continuous: bool,
+        /// Add the DEM multiplier, bracketed to 1% (column lambda_dem; about a second per case)
+        #[arg(long = "dem")]
+        run_dem: bool,
+        /// Largest chain (joints) for the kinematic search; 0 turns it off
+        #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+        kinematic_max_joints: usize,
     },
     /// Check the collapse multiplier with the discrete element method (rigid blocks in time)
     Dem {
@@ -107,6 +116,17 @@ enum Command {
         /// Draw the initial and final block positions of the collapsing run to this SVG file
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
+    },
+    /// Run a parametric study file (data/studies/*.toml): writes OUT/<output>.csv and .svg
+    Study {
+        /// Study file (TOML: title, output, vary, x, series, y, baseline, [scene.*])
+        study: PathBuf,
+        /// Directory for the CSV and SVG
+        #[arg(long, value_name = "DIR", default_value = "docs/figures")]
+        out: PathBuf,
+        /// Thin every range to 3 values (a quick check of the study)
+        #[arg(long)]
+        reduced: bool,
     },
     /// Smallest arch thickness that stands under its own weight
     MinThickness {
@@ -249,6 +269,9 @@ fn run(cli: Cli) -> Result<String, Error> {
             svg,
             x,
             series,
+            continuous,
+            run_dem,
+            kinematic_max_joints,
         } => {
             let scene = load(&scene)?;
             let variations = vary
@@ -271,10 +294,14 @@ fn run(cli: Cli) -> Result<String, Error> {
             chart_for(&[])?;
             let cases = sweep::cases(&scene, &variations);
             let bar = progress_bar(cases.len() as u64, "sweep");
-            let settings = StaticSettings::default();
+            let options = analysis::Options {
+                continuous,
+                kinematic_max_joints,
+                ..analysis::Options::default()
+            };
             let rows = sweep::run(
                 &cases,
-                |values, s| sweep::static_case(values, s, &settings),
+                |values, s| sweep::case(values, s, &options, run_dem),
                 &|| bar.inc(1),
             );
             bar.finish_and_clear();
@@ -441,6 +468,57 @@ fn run(cli: Cli) -> Result<String, Error> {
             } else {
                 report::dem_summary(&scene, &assembly, &rep)
             })
+        }
+        Command::Study {
+            study,
+            out,
+            reduced,
+        } => {
+            let mut st = voussoir::study::Study::from_file(&study)?;
+            if reduced {
+                st = st.reduced(3);
+            }
+            let total: usize = st.variations.iter().map(|v| v.values.len()).product();
+            let bar = progress_bar(total as u64, "study");
+            let (rows, chart) = st.run(&|| bar.inc(1))?;
+            bar.finish_and_clear();
+            let mut buf = Vec::new();
+            sweep::write_csv(&mut buf, &st.variations, &rows).map_err(|e| Error::Output {
+                path: out.clone(),
+                message: e.to_string(),
+            })?;
+            let svg_text =
+                voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| Error::Output {
+                    path: out.clone(),
+                    message: e.to_string(),
+                })?;
+            std::fs::create_dir_all(&out).map_err(|e| Error::Output {
+                path: out.clone(),
+                message: e.to_string(),
+            })?;
+            let csv_path = out.join(format!("{}.csv", st.output));
+            let svg_path = out.join(format!("{}.svg", st.output));
+            write_atomically(&csv_path, |b| {
+                b.extend_from_slice(&buf);
+                Ok(())
+            })?;
+            write_atomically(&svg_path, |b| {
+                b.extend_from_slice(svg_text.as_bytes());
+                Ok(())
+            })?;
+            let failed = rows.iter().filter(|r| r.status == "error").count();
+            Ok(format!(
+                "{}: {} cases{} -> {} and {}",
+                st.title,
+                rows.len(),
+                if failed > 0 {
+                    format!(" ({failed} invalid)")
+                } else {
+                    String::new()
+                },
+                csv_path.display(),
+                svg_path.display()
+            ))
         }
         Command::MinThickness {
             scene,

@@ -203,11 +203,12 @@ impl Study {
             None,
         )?;
         let settings = StaticSettings::default();
+        let options = crate::analysis::Options::default();
         let cases = sweep::cases(&self.scene, &self.variations);
         let rows = sweep::run(
             &cases,
             |values, scene| {
-                let mut row = sweep::static_case(values, scene, &settings);
+                let mut row = sweep::case(values, scene, &options, false);
                 if self.baseline {
                     let base = scene
                         .as_ref()

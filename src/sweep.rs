@@ -5,9 +5,10 @@
 //! `rise/span` (span the centreline span), each setting the underlying scene key, and
 //! `e/span`, which sets a pointed arch's eccentricity while keeping its span (so R changes).
 
-use crate::assembly::{Assembly, Hinge, JointEnd};
+use crate::analysis::{self, Options};
+use crate::assembly::{Hinge, JointEnd};
 use crate::error::SceneError;
-use crate::lp::{self, StaticSettings, Status};
+use crate::lp::StaticSettings;
 use crate::scene::{parse_assignment, Scene, Shape};
 use rayon::prelude::*;
 use toml::Value;
@@ -275,9 +276,9 @@ pub struct SweepRow {
 }
 
 impl SweepRow {
-    /// Relative gap `(upper - lower) / max(1, lower)` when both bounds exist.
+    /// Relative gap `|upper - lower| / max(1, lower)` when both bounds exist.
     pub fn gap(&self) -> Option<f64> {
-        Some((self.lambda_upper? - self.lambda_lower?) / self.lambda_lower?.max(1.0))
+        Some((self.lambda_upper? - self.lambda_lower?).abs() / self.lambda_lower?.abs().max(1.0))
     }
 }
 
@@ -305,6 +306,23 @@ pub fn static_case(
     scene: &Result<Scene, SceneError>,
     settings: &StaticSettings,
 ) -> SweepRow {
+    let options = Options {
+        static_settings: settings.clone(),
+        kinematic_max_joints: 0,
+        continuous: false,
+    };
+    case(values, scene, &options, false)
+}
+
+/// One case by every method in `options` (the static bound always; the kinematic bound when
+/// the chain is small enough; the continuous model and the DEM when asked), as a row.
+/// Extra columns: `lambda_continuous` with `options.continuous`, `lambda_dem` with `dem`.
+pub fn case(
+    values: &[Value],
+    scene: &Result<Scene, SceneError>,
+    options: &Options,
+    dem: bool,
+) -> SweepRow {
     let mut row = SweepRow {
         values: values.to_vec(),
         ratios: Vec::new(),
@@ -324,18 +342,35 @@ pub fn static_case(
         }
     };
     row.ratios = ratios(scene);
-    match lp::analyse(&Assembly::from_scene(scene), settings) {
-        Ok(r) => {
-            row.status = r.status.as_str().to_string();
-            row.lambda_lower = r.lambda;
-            row.hinges = r.hinges;
-            row.solve_time_s = r.solve_time_s;
-            if r.status == Status::NoCollapse {
-                row.lambda_lower = None;
+    let start = std::time::Instant::now();
+    match analysis::analyse(scene, options) {
+        Ok(a) => {
+            row.status = a.lower.status.as_str().to_string();
+            row.lambda_lower = a.lower.lambda;
+            row.lambda_upper = a.lambda_upper();
+            row.hinges = a.lower.hinges.clone();
+            if options.continuous {
+                let c = a
+                    .continuous
+                    .as_ref()
+                    .and_then(|c| c.as_ref().ok())
+                    .and_then(|c| c.lambda_continuous);
+                row.extra.push(("lambda_continuous", c));
+            }
+            if dem {
+                let params = crate::dem::IntegrationParameters::from_scene(scene, &a.assembly)
+                    .map(|p| p.initial_guess(a.lower.lambda.filter(|l| *l > 0.0)));
+                let d = params.ok().and_then(|p| {
+                    crate::dem::collapse_multiplier(&a.assembly, &p, 0.01, &mut |_| {})
+                        .ok()
+                        .and_then(|r| r.lambda_dem)
+                });
+                row.extra.push(("lambda_dem", d));
             }
         }
         Err(e) => row.error = Some(e.to_string()),
     }
+    row.solve_time_s = start.elapsed().as_secs_f64();
     row
 }
 

@@ -460,14 +460,20 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         origin,
     ))?;
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
-    Ok(Scene {
+    let scene = Scene {
         arch,
         piers,
         material,
         dem,
         origin: origin.to_string(),
         table,
-    })
+    };
+    if !scene.dem.is_empty() {
+        // The [dem] knobs are validated here too, so a typo is caught whatever the command.
+        let assembly = crate::assembly::Assembly::from_scene(&scene);
+        crate::dem::IntegrationParameters::from_scene(&scene, &assembly)?;
+    }
+    Ok(scene)
 }
 
 fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {

@@ -218,3 +218,68 @@ fn svg_outputs_are_written_and_parse() {
         .failure();
     assert!(!bad.exists());
 }
+
+#[test]
+fn analyze_json_reports_both_bounds_and_the_continuous_model() {
+    let out = voussoir()
+        .args(["analyze", "--json", "--continuous"])
+        .arg(data("pointed.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    for key in ["lambda_upper", "gap", "mechanism_hinges", "open_joints", "sliding_governs", "lambda_continuous", "continuous_hinges"] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    let (l, u) = (v["lambda_lower"].as_f64().expect("l"), v["lambda_upper"].as_f64().expect("u"));
+    assert!((l - u).abs() <= 1e-6 * l.max(1.0), "{l} vs {u}");
+    assert_eq!(v["sliding_governs"], false);
+    assert_eq!(v["hinges"], v["mechanism_hinges"]);
+    let c = v["lambda_continuous"].as_f64().expect("continuous");
+    assert!(c > 0.0 && c <= u * (1.0 + 1e-9) + 5e-3, "{c} vs {u}");
+    // Without the flag the continuous fields are absent, the others stay.
+    let out = voussoir().args(["analyze", "--json"]).arg(data("pointed.toml")).assert().success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert!(v.get("lambda_continuous").is_none());
+    assert!(v.get("lambda_upper").is_some());
+}
+
+#[test]
+fn friction_makes_sliding_govern_in_the_json() {
+    let out = voussoir()
+        .args(["analyze", "--json", "--set", "material.friction=0.3"])
+        .arg(data("segmental.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert_eq!(v["sliding_governs"], true);
+    assert!(v["lambda_lower"].as_f64().expect("l") < v["lambda_upper"].as_f64().expect("u"));
+    assert!(!v["sliding"].as_array().expect("array").is_empty());
+}
+
+#[test]
+fn dem_json_brackets_the_static_bound() {
+    let out = voussoir()
+        .args(["dem", "--json", "--set", "arch.voussoirs=16"])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    for key in ["lambda_stands", "lambda_collapses", "lambda_dem", "lambda_lower", "relative_difference", "steps", "wall_time_s"] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    let a = v["lambda_stands"].as_f64().expect("stands");
+    let b = v["lambda_collapses"].as_f64().expect("collapses");
+    let l = v["lambda_lower"].as_f64().expect("lower");
+    assert!(a < b && (b - a) <= 0.011 * b, "[{a}, {b}]");
+    assert!((v["lambda_dem"].as_f64().expect("dem") - l).abs() <= 0.05 * l);
+}
+
+#[test]
+fn unknown_dem_keys_are_rejected_by_every_command() {
+    let out = voussoir()
+        .args(["analyze", "--set", "dem.bogus=1"])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .failure();
+    assert!(String::from_utf8_lossy(&out.get_output().stderr).contains("dem.bogus"));
+}

@@ -223,7 +223,7 @@ fn svg_outputs_are_written_and_parse() {
 fn analyze_json_reports_both_bounds_and_the_continuous_model() {
     let out = voussoir()
         .args(["analyze", "--json", "--continuous"])
-        .arg(data("pointed.toml"))
+        .arg(data("portal.toml"))
         .assert()
         .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");

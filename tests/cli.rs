@@ -227,17 +227,32 @@ fn analyze_json_reports_both_bounds_and_the_continuous_model() {
         .assert()
         .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
-    for key in ["lambda_upper", "gap", "mechanism_hinges", "open_joints", "sliding_governs", "lambda_continuous", "continuous_hinges"] {
+    for key in [
+        "lambda_upper",
+        "gap",
+        "mechanism_hinges",
+        "open_joints",
+        "sliding_governs",
+        "lambda_continuous",
+        "continuous_hinges",
+    ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
-    let (l, u) = (v["lambda_lower"].as_f64().expect("l"), v["lambda_upper"].as_f64().expect("u"));
+    let (l, u) = (
+        v["lambda_lower"].as_f64().expect("l"),
+        v["lambda_upper"].as_f64().expect("u"),
+    );
     assert!((l - u).abs() <= 1e-6 * l.max(1.0), "{l} vs {u}");
     assert_eq!(v["sliding_governs"], false);
     assert_eq!(v["hinges"], v["mechanism_hinges"]);
     let c = v["lambda_continuous"].as_f64().expect("continuous");
     assert!(c > 0.0 && c <= u * (1.0 + 1e-9) + 5e-3, "{c} vs {u}");
     // Without the flag the continuous fields are absent, the others stay.
-    let out = voussoir().args(["analyze", "--json"]).arg(data("pointed.toml")).assert().success();
+    let out = voussoir()
+        .args(["analyze", "--json"])
+        .arg(data("pointed.toml"))
+        .assert()
+        .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
     assert!(v.get("lambda_continuous").is_none());
     assert!(v.get("lambda_upper").is_some());
@@ -264,7 +279,15 @@ fn dem_json_brackets_the_static_bound() {
         .assert()
         .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
-    for key in ["lambda_stands", "lambda_collapses", "lambda_dem", "lambda_lower", "relative_difference", "steps", "wall_time_s"] {
+    for key in [
+        "lambda_stands",
+        "lambda_collapses",
+        "lambda_dem",
+        "lambda_lower",
+        "relative_difference",
+        "steps",
+        "wall_time_s",
+    ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     let a = v["lambda_stands"].as_f64().expect("stands");

@@ -297,6 +297,9 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
         coef[1] = -det3(cols[0], cols[2], cols[3]);
         coef[2] = det3(cols[0], cols[1], cols[3]);
         coef[3] = -det3(cols[0], cols[1], cols[2]);
+        if rank_deficient(&cols, &coef, actives) {
+            return None;
+        }
     } else {
         if nc != 1 {
             return None;
@@ -356,6 +359,35 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
         *o *= sigma / vmax;
     }
     Some(Motion { rel, opening })
+}
+
+/// Relative round-off level below which a 3 x 3 minor of the closure matrix counts as zero.
+/// Well below the threshold at which the discrete search treats three hinge points as
+/// collinear (`1e-11 size^2`), so no candidate of its fast paths is ever rejected here.
+const RANK_TOL: f64 = 1e-12;
+
+/// Whether every 3 x 3 minor (`coef`) of the closure matrix `cols` is zero within round-off:
+/// then the matrix has rank < 3, the active joints allow more than one degree of freedom, and
+/// the cofactors are round-off noise whose signs mean nothing. This happens when three hinges
+/// sit at one point, e.g. the intrados apex of a pointed arch in the continuous model, shared
+/// by the vertical crown joint and the last radial sections on both sides of it: the apex is
+/// computed three ways, the points differ by ~1e-16, and the noise "mechanism" can have any
+/// G/A (it made a sound pointed arch "cannot stand"). The one-degree-of-freedom members of
+/// such a set have fewer distinct active joints and are found as such.
+///
+/// A minor of `r` rotation columns `(1, p_y, -p_x)` and `3 - r` unit translations has the
+/// dimension length^(r - 1) and is computed from coordinates of size up to `x`, so its
+/// round-off is about `eps x^(r - 1)`.
+fn rank_deficient(cols: &[Twist; 4], coef: &[f64; 4], actives: &[Active]) -> bool {
+    let x = actives
+        .iter()
+        .flat_map(|a| [a.p1.norm(), a.p2.norm()])
+        .fold(0.0_f64, f64::max);
+    let rotation = |c: &Twist| c[0] != 0.0;
+    coef.iter().enumerate().all(|(k, c)| {
+        let r = (0..4).filter(|&i| i != k && rotation(&cols[i])).count() as i32;
+        c.abs() <= RANK_TOL * x.powi(r - 1)
+    })
 }
 
 /// `(sum W vx, sum W vy)` of a motion whose bodies (between consecutive active joints, and

@@ -497,3 +497,47 @@ impl<K: Clone + Ord> Extremes<K> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn hinge(x: f64, y: f64, end: JointEnd, top: Vec2) -> Active {
+        let p = Vec2::new(x, y);
+        let (p1, p2) = match end {
+            JointEnd::P1 => (p, top),
+            JointEnd::P2 => (top, p),
+        };
+        Active {
+            p1,
+            p2,
+            act: Act::Hinge(end),
+        }
+    }
+
+    /// Three hinges at one point (off by round-off, as the intrados apex of a pointed arch
+    /// computed three ways) are not a one-degree-of-freedom mechanism, whatever the signs of
+    /// the noise; two hinges at one point and two elsewhere still are.
+    #[test]
+    fn three_hinges_at_one_point_are_no_mechanism() {
+        let top = Vec2::new(0.0, 1.05);
+        let apex = 0.90312;
+        for (dx, dy) in [(1e-17, 0.0), (-1e-17, 1e-16), (0.0, -1e-16), (2e-17, 1e-16)] {
+            let actives = [
+                hinge(-0.2, 0.83, JointEnd::P1, Vec2::new(-0.26, 0.97)),
+                hinge(-1e-17, apex, JointEnd::P1, Vec2::new(-0.03, 1.05)),
+                hinge(0.0, apex + dy, JointEnd::P1, top),
+                hinge(dx, apex, JointEnd::P1, Vec2::new(0.03, 1.05)),
+            ];
+            assert!(solve_motion(&actives, true).is_none());
+        }
+        // A proper four-hinge mechanism of the same arch is still found.
+        let actives = [
+            hinge(-0.7, 0.19, JointEnd::P1, Vec2::new(-0.85, 0.22)),
+            hinge(-0.3, 0.95, JointEnd::P2, Vec2::new(-0.25, 0.8)),
+            hinge(0.5, 0.6, JointEnd::P1, Vec2::new(0.6, 0.7)),
+            hinge(0.875, 0.0, JointEnd::P2, Vec2::new(0.725, 0.0)),
+        ];
+        assert!(solve_motion(&actives, true).is_some());
+    }
+}

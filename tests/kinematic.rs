@@ -525,10 +525,6 @@ fn continuous_minimum_thickness_of_pointed_arch() {
         .search
         .min_thickness
         .expect("static minimum thickness");
-    eprintln!(
-        "continuous {} static {ts} lambda {l} hinges {:?}",
-        tc.thickness, tc.result.hinges
-    );
     assert!(
         ts <= tc.thickness + 1e-9,
         "static {ts} above continuous {}",

@@ -186,14 +186,29 @@ impl Scene {
     }
 
     /// The largest arch thickness the shape admits (exclusive): 2R for circular arches,
-    /// 2(R - e) for pointed ones, 2 r1 for basket arches.
+    /// 2 r1 for basket arches; for pointed ones 2(R - e) with two voussoirs, and with more the
+    /// thickness at which the intrados meets the axis exactly at the radial joint next to the
+    /// crown, `2 (R - e / (-cos phi_last))` (a thicker arch with n voussoirs is rejected: that
+    /// voussoir would fold over the crown joint).
     pub fn max_thickness(&self) -> f64 {
         match self.arch.shape {
             Shape::Circular { radius, .. } => 2.0 * radius,
             Shape::Pointed {
                 radius,
-                eccentricity,
-            } => 2.0 * (radius - eccentricity),
+                eccentricity: e,
+            } => {
+                let h = (self.arch.voussoirs / 2).max(1) as f64;
+                let phi_end = (-e / radius).acos();
+                let phi_last =
+                    std::f64::consts::PI - (std::f64::consts::PI - phi_end) * (h - 1.0) / h;
+                // phi_last >= phi_end >= pi/2, so -cos(phi_last) is in [0, 1] (1 for n = 2).
+                let c = -phi_last.cos();
+                if c > 0.0 {
+                    2.0 * (radius - e / c)
+                } else {
+                    2.0 * radius
+                }
+            }
             Shape::Basket {
                 span,
                 rise,

@@ -379,3 +379,160 @@ fn errors_are_typed() {
         })
     ));
 }
+
+/// The scene `text` (with `NVOUS` in place of n) at the largest allowed even n up to `max`: a
+/// pointed arch allows fewer voussoirs as e/R and t/R grow (the joint next to the crown must
+/// not cross the axis on the intrados).
+fn finest(text: &str, max: usize) -> Scene {
+    (1..=max / 2)
+        .rev()
+        .find_map(|h| {
+            Scene::from_toml_str(&text.replace("NVOUS", &(2 * h).to_string()), "test").ok()
+        })
+        .unwrap_or_else(|| panic!("no valid voussoir count for {text}"))
+}
+
+/// The continuous model against the discrete exact-annular (curved) arch at the finest n: the
+/// same status; the continuous multiplier (signed: negative when the arch cannot stand) is not
+/// above the discrete one, since every joint of the curved arch is a section of the continuum,
+/// and within 2 % of it (absolute floor 2e-4 where it is near 0). Returns the largest
+/// relative gap.
+fn continuous_matches_fine_discrete(texts: &[String]) -> f64 {
+    let settings = KinematicSettings {
+        max_joints: 300,
+        ..KinematicSettings::default()
+    };
+    let mut worst = 0.0_f64;
+    for text in texts {
+        let scene = finest(text, 128);
+        let n = scene.arch.voussoirs;
+        let c = kinematic::continuous(&scene).expect("continuous");
+        let k = kinematic::lambda_upper_of_scene(&scene, &settings).expect("discrete");
+        assert_eq!(c.status, k.status, "n = {n}:\n{text}");
+        let lc = c.lambda_signed.expect("continuous lambda");
+        let ld = k.lambda_signed.expect("discrete lambda");
+        assert!(
+            lc <= ld + 1e-9,
+            "n = {n}: continuous {lc} above discrete {ld}:\n{text}"
+        );
+        let gap = (ld - lc) / ld.abs().max(0.01);
+        assert!(
+            gap <= 0.02,
+            "n = {n}: continuous {lc} vs discrete {ld}:\n{text}"
+        );
+        if c.status == Status::Collapse {
+            assert_eq!(c.lambda_continuous, Some(lc));
+            assert!(c.family.is_some() && !c.hinges.is_empty(), "{text}");
+        }
+        worst = worst.max(gap);
+    }
+    worst
+}
+
+fn curved(arch: &str, t: f64, piers: &str) -> String {
+    format!(
+        "[arch]\n{arch}\nthickness = {t}\nvoussoirs = NVOUS\nvoussoir_shape = \"curved\"\n{piers}"
+    )
+}
+
+/// Regression: the continuous model called the bundled pointed arch (e/R = 0.2, t/R = 0.15)
+/// "cannot stand": the intrados apex is shared by the crown joint and the last radial sections
+/// on both sides, and three hinges there gave a round-off "mechanism" with G/A = -0.75. Over
+/// e/R and t/R, it must agree with the discrete curved arch at the finest n.
+#[test]
+fn continuous_pointed_matches_fine_discrete() {
+    let mut texts = Vec::new();
+    for e in [0.05, 0.1, 0.2, 0.3, 0.4] {
+        for t in [0.12, 0.15, 0.2, 0.3] {
+            let arch = format!("shape = \"pointed\"\nradius = 1.0\neccentricity = {e}");
+            texts.push(curved(&arch, t, ""));
+        }
+    }
+    let worst = continuous_matches_fine_discrete(&texts);
+    assert!(worst > 0.0);
+    // The bundled scene itself, as the CLI runs it (32 polygon voussoirs).
+    let scene = Scene::from_file(std::path::Path::new("data/pointed.toml")).expect("scene");
+    let c = kinematic::continuous(&scene).expect("continuous");
+    assert_eq!(c.status, Status::Collapse);
+    assert_eq!(c.hinges.len(), 4);
+}
+
+/// The same for basket arches, rise/span 0.25 to 0.45 (the thinnest ones cannot stand).
+#[test]
+fn continuous_basket_matches_fine_discrete() {
+    let mut texts = Vec::new();
+    for rs in [0.25, 0.3, 0.35, 0.4, 0.45] {
+        for t in [0.1, 0.2] {
+            let arch = format!("shape = \"basket\"\nspan = 2.0\nrise = {}", 2.0 * rs);
+            texts.push(curved(&arch, t, ""));
+        }
+    }
+    continuous_matches_fine_discrete(&texts);
+}
+
+/// The same for portals of each shape, with pier sway governing or the arch alone, standing
+/// or not.
+#[test]
+fn continuous_portals_match_fine_discrete() {
+    let circular = "shape = \"circular\"\nradius = 1.0";
+    let pointed = "shape = \"pointed\"\nradius = 1.0\neccentricity = 0.2";
+    let basket = "shape = \"basket\"\nspan = 2.0\nrise = 0.7";
+    let piers = |h: f64, b: f64| format!("[piers]\nheight = {h}\nwidth = {b}\ncourses = 4\n");
+    let texts = [
+        curved(circular, 0.12, &piers(1.0, 0.3)),
+        curved(circular, 0.12, &piers(0.5, 0.2)),
+        curved(pointed, 0.12, &piers(1.0, 0.3)),
+        curved(pointed, 0.2, &piers(2.0, 0.4)),
+        curved(basket, 0.2, &piers(1.0, 0.5)),
+        curved(basket, 0.12, &piers(1.0, 0.3)),
+    ];
+    continuous_matches_fine_discrete(&texts);
+}
+
+/// The continuous minimum thickness of a pointed arch against the static minimum thickness of
+/// the discrete curved arch with n = 128: the continuum has more mechanisms, so it needs at
+/// least as thick an arch, and only slightly thicker.
+#[test]
+fn continuous_minimum_thickness_of_pointed_arch() {
+    let scene = Scene::from_toml_str(
+        &curved(
+            "shape = \"pointed\"\nradius = 1.0\neccentricity = 0.2",
+            0.15,
+            "",
+        )
+        .replace("NVOUS", "128"),
+        "test",
+    )
+    .expect("scene");
+    // The thickness searches start just below the largest thickness the scene admits, which
+    // for a pointed arch depends on n (the joint next to the crown must not cross the axis).
+    let tmax = scene.max_thickness();
+    assert!(scene.with_thickness(tmax * (1.0 - 1e-6)).is_ok());
+    assert!(scene.with_thickness(tmax * (1.0 + 1e-6)).is_err());
+    let tc = kinematic::continuous_min_thickness(&scene).expect("continuous");
+    // At the root the multiplier is zero (to round-off; either side of it).
+    let l = tc
+        .result
+        .lambda_signed
+        .expect("lambda at the minimum thickness");
+    assert!(
+        l.abs() < 1e-9,
+        "lambda {l} at the continuous minimum thickness"
+    );
+    assert_eq!(tc.result.hinges.len() + tc.result.open.len(), 4);
+    let ts = voussoir::thickness::min_thickness(&scene, &StaticSettings::default())
+        .expect("static")
+        .search
+        .min_thickness
+        .expect("static minimum thickness");
+    assert!(
+        ts <= tc.thickness + 1e-9,
+        "static {ts} above continuous {}",
+        tc.thickness
+    );
+    assert!(
+        tc.thickness - ts < 1e-3 * ts,
+        "static {ts} continuous {}",
+        tc.thickness
+    );
+}

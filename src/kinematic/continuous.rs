@@ -18,6 +18,10 @@
 //!   crown joint (extrados sector minus a triangle) is rigid and moves with the left annulus
 //!   (mirror on the right). A discrete pointed arch with very many voussoirs has radial joints
 //!   inside this keystone that cross the crown joint; such voussoirs are not proper blocks.
+//!   The last radial sections on both sides and the crown joint all have the intrados apex
+//!   as their p1: three hinges there leave the closure matrix of rank 2 (every minor is
+//!   round-off), which [`super::solve_motion`] rejects; before it did, such a noise
+//!   "mechanism" made sound pointed arches "cannot stand".
 //! - Piers are kept as given: a coursed pier has horizontal bed joints, and a crack across a
 //!   course would be a tensile fracture of a stone, which the no-tension model excludes; so a
 //!   pier can only hinge or open at its bed joints (base, course joints), and the

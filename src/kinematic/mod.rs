@@ -297,6 +297,9 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
         coef[1] = -det3(cols[0], cols[2], cols[3]);
         coef[2] = det3(cols[0], cols[1], cols[3]);
         coef[3] = -det3(cols[0], cols[1], cols[2]);
+        if rank_deficient(&cols, &coef, actives) {
+            return None;
+        }
     } else {
         if nc != 1 {
             return None;
@@ -356,6 +359,35 @@ pub(crate) fn solve_motion(actives: &[Active], closed: bool) -> Option<Motion> {
         *o *= sigma / vmax;
     }
     Some(Motion { rel, opening })
+}
+
+/// Relative round-off level below which a 3 x 3 minor of the closure matrix counts as zero.
+/// Well below the threshold at which the discrete search treats three hinge points as
+/// collinear (`1e-11 size^2`), so no candidate of its fast paths is ever rejected here.
+const RANK_TOL: f64 = 1e-12;
+
+/// Whether every 3 x 3 minor (`coef`) of the closure matrix `cols` is zero within round-off:
+/// then the matrix has rank < 3, the active joints allow more than one degree of freedom, and
+/// the cofactors are round-off noise whose signs mean nothing. This happens when three hinges
+/// sit at one point, e.g. the intrados apex of a pointed arch in the continuous model, shared
+/// by the vertical crown joint and the last radial sections on both sides of it: the apex is
+/// computed three ways, the points differ by ~1e-16, and the noise "mechanism" can have any
+/// G/A (it made a sound pointed arch "cannot stand"). The one-degree-of-freedom members of
+/// such a set have fewer distinct active joints and are found as such.
+///
+/// A minor of `r` rotation columns `(1, p_y, -p_x)` and `3 - r` unit translations has the
+/// dimension length^(r - 1) and is computed from coordinates of size up to `x`, so its
+/// round-off is about `eps x^(r - 1)`.
+fn rank_deficient(cols: &[Twist; 4], coef: &[f64; 4], actives: &[Active]) -> bool {
+    let x = actives
+        .iter()
+        .flat_map(|a| [a.p1.norm(), a.p2.norm()])
+        .fold(0.0_f64, f64::max);
+    let rotation = |c: &Twist| c[0] != 0.0;
+    coef.iter().enumerate().all(|(k, c)| {
+        let r = (0..4).filter(|&i| i != k && rotation(&cols[i])).count() as i32;
+        c.abs() <= RANK_TOL * x.powi(r - 1)
+    })
 }
 
 /// `(sum W vx, sum W vy)` of a motion whose bodies (between consecutive active joints, and
@@ -463,5 +495,49 @@ impl<K: Clone + Ord> Extremes<K> {
             }
             (None, _) => (Status::NoCollapse, None),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn hinge(x: f64, y: f64, end: JointEnd, top: Vec2) -> Active {
+        let p = Vec2::new(x, y);
+        let (p1, p2) = match end {
+            JointEnd::P1 => (p, top),
+            JointEnd::P2 => (top, p),
+        };
+        Active {
+            p1,
+            p2,
+            act: Act::Hinge(end),
+        }
+    }
+
+    /// Three hinges at one point (off by round-off, as the intrados apex of a pointed arch
+    /// computed three ways) are not a one-degree-of-freedom mechanism, whatever the signs of
+    /// the noise; two hinges at one point and two elsewhere still are.
+    #[test]
+    fn three_hinges_at_one_point_are_no_mechanism() {
+        let top = Vec2::new(0.0, 1.05);
+        let apex = 0.90312;
+        for (dx, dy) in [(1e-17, 0.0), (-1e-17, 1e-16), (0.0, -1e-16), (2e-17, 1e-16)] {
+            let actives = [
+                hinge(-0.2, 0.83, JointEnd::P1, Vec2::new(-0.26, 0.97)),
+                hinge(-1e-17, apex, JointEnd::P1, Vec2::new(-0.03, 1.05)),
+                hinge(0.0, apex + dy, JointEnd::P1, top),
+                hinge(dx, apex, JointEnd::P1, Vec2::new(0.03, 1.05)),
+            ];
+            assert!(solve_motion(&actives, true).is_none());
+        }
+        // A proper four-hinge mechanism of the same arch is still found.
+        let actives = [
+            hinge(-0.7, 0.19, JointEnd::P1, Vec2::new(-0.85, 0.22)),
+            hinge(-0.3, 0.95, JointEnd::P2, Vec2::new(-0.25, 0.8)),
+            hinge(0.5, 0.6, JointEnd::P1, Vec2::new(0.6, 0.7)),
+            hinge(0.875, 0.0, JointEnd::P2, Vec2::new(0.725, 0.0)),
+        ];
+        assert!(solve_motion(&actives, true).is_some());
     }
 }

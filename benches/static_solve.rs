@@ -45,6 +45,9 @@ fn settings(
     b.build().expect("valid settings")
 }
 
+/// n, lp::analyse time, time per iteration, iterations, setup time, faer time.
+type Row = (f64, f64, f64, f64, f64, f64);
+
 struct Split {
     assembly: f64,
     build: f64,
@@ -146,7 +149,7 @@ fn main() {
         );
         rows.push((n as f64, full, solve / it as f64, it as f64, setup, faer));
     }
-    let fit = |f: fn(&(f64, f64, f64, f64, f64, f64)) -> f64| {
+    let fit = |f: fn(&Row) -> f64| {
         let pts: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.0 >= 64.0)

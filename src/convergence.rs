@@ -159,10 +159,13 @@ impl ConvergenceSettings {
                 return bad(format!("dem_start = {}: must be > 0", self.dem_start));
             }
             for c in &self.dem_cases {
-                if !(c.tolerance > 0.0 && c.tolerance < 1.0)
-                    || !(c.time_step_factor > 0.0 && c.time_step_factor <= 1.0)
-                    || !(c.stiffness_factor.is_finite() && c.stiffness_factor > 0.0)
-                {
+                let ok = c.tolerance > 0.0
+                    && c.tolerance < 1.0
+                    && c.time_step_factor > 0.0
+                    && c.time_step_factor <= 1.0
+                    && c.stiffness_factor.is_finite()
+                    && c.stiffness_factor > 0.0;
+                if !ok {
                     return bad(format!("DEM case {c:?}: tolerance in (0, 1), time step factor in (0, 1], stiffness factor > 0"));
                 }
             }
@@ -487,7 +490,6 @@ fn refine_row(
             direction: settings.direction,
             max_joints: settings.kinematic_max_joints,
             parallel: false,
-            ..KinematicSettings::default()
         };
         let clock = Instant::now();
         let k = kinematic::analyse(&assembly, &ks);

@@ -145,6 +145,30 @@ enum Command {
         #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
         kinematic_max_joints: usize,
     },
+    /// Speed against accuracy: refine the voussoir count, vary Clarabel's tolerance and the
+    /// DEM's time step, stiffness and bracket tolerance; errors against the continuous model
+    Convergence {
+        #[command(flatten)]
+        scene: SceneArgs,
+        /// Print one JSON object instead of the tables
+        #[arg(long)]
+        json: bool,
+        /// Write the refinement table (one row per voussoir count) to this CSV file
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
+        /// Draw log10 of the relative error against log10 n to this SVG file
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
+        /// Largest voussoir count of the refinement (counts double from 8)
+        #[arg(long, default_value_t = 1024)]
+        max_voussoirs: usize,
+        /// Largest chain (joints) for the exhaustive kinematic search; 0 turns it off
+        #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+        kinematic_max_joints: usize,
+        /// Skip the DEM study (a few seconds on a 16-voussoir copy of the scene)
+        #[arg(long)]
+        no_dem: bool,
+    },
 }
 
 fn load(args: &SceneArgs) -> Result<Scene, Error> {
@@ -519,6 +543,50 @@ fn run(cli: Cli) -> Result<String, Error> {
                 csv_path.display(),
                 svg_path.display()
             ))
+        }
+        Command::Convergence {
+            scene,
+            json: as_json,
+            csv,
+            svg,
+            max_voussoirs,
+            kinematic_max_joints,
+            no_dem,
+        } => {
+            let scene = load(&scene)?;
+            let settings = voussoir::convergence::ConvergenceSettings {
+                max_voussoirs,
+                kinematic_max_joints,
+                dem: !no_dem,
+                ..Default::default()
+            };
+            let bar = progress_bar(0, "convergence");
+            let c = voussoir::convergence::run(&scene, &settings, &mut |what| {
+                bar.set_prefix(format!("convergence: {what}"))
+            })
+            .map_err(|e| Error::Analysis(voussoir::error::AnalysisError::Other(e.to_string())))?;
+            bar.finish_and_clear();
+            if let Some(path) = &svg {
+                let title = format!(
+                    "{}: convergence with the number of voussoirs",
+                    report::shape_title(&scene)
+                );
+                let text =
+                    voussoir::thrustline::chart::chart_svg(&c.chart(&title)).map_err(|e| {
+                        Error::Output {
+                            path: path.clone(),
+                            message: e.to_string(),
+                        }
+                    })?;
+                write_atomically(path, |b| {
+                    b.extend_from_slice(text.as_bytes());
+                    Ok(())
+                })?;
+            }
+            if let Some(path) = &csv {
+                write_atomically(path, |b| c.write_csv(b).map_err(|e| e.to_string()))?;
+            }
+            Ok(if as_json { json(&c) } else { c.summary() })
         }
         Command::MinThickness {
             scene,

@@ -144,7 +144,7 @@ impl StaticProblem {
         if relax {
             b[row - 1] = 1.0;
         }
-        let a = CscMatrix::new_from_triplets(row, nvar, rows, cols, vals);
+        let a = csc_from_triplets(row, nvar, &rows, &cols, &vals);
         let mut q = vec![0.0; nvar];
         q[0] = if relax { 1.0 } else { -1.0 };
         StaticProblem {
@@ -166,5 +166,102 @@ impl StaticProblem {
 
     pub fn variables(&self) -> usize {
         self.q.len()
+    }
+}
+
+/// The same matrix as `CscMatrix::new_from_triplets` (entries sorted by row within each
+/// column, repeated entries summed in insertion order, explicit zeros kept), built in
+/// O(nnz): a counting sort by column, then an insertion sort of each column, whose entries
+/// arrive nearly sorted (a joint touches two neighbouring blocks; the lambda column is
+/// filled in row order). Clarabel's version sorts all triplets by (column, row) with a
+/// comparison sort, which cost as much as 2-4% of a whole solve at 1000 voussoirs.
+fn csc_from_triplets(
+    m: usize,
+    n: usize,
+    rows: &[usize],
+    cols: &[usize],
+    vals: &[f64],
+) -> CscMatrix<f64> {
+    let mut colptr = vec![0usize; n + 1];
+    for &c in cols {
+        colptr[c + 1] += 1;
+    }
+    for c in 0..n {
+        colptr[c + 1] += colptr[c];
+    }
+    let mut next = colptr.clone();
+    let mut rowval = vec![0usize; vals.len()];
+    let mut nzval = vec![0.0; vals.len()];
+    for ((&r, &c), &v) in rows.iter().zip(cols).zip(vals) {
+        let p = next[c];
+        rowval[p] = r;
+        nzval[p] = v;
+        next[c] += 1;
+    }
+    // Sort each column by row (stable, so repeated entries keep their insertion order) and
+    // sum repeated entries, compacting in place.
+    let mut write = 0;
+    for c in 0..n {
+        let (start, end) = (colptr[c], colptr[c + 1]);
+        for k in start + 1..end {
+            let (r, v) = (rowval[k], nzval[k]);
+            let mut i = k;
+            while i > start && rowval[i - 1] > r {
+                rowval[i] = rowval[i - 1];
+                nzval[i] = nzval[i - 1];
+                i -= 1;
+            }
+            rowval[i] = r;
+            nzval[i] = v;
+        }
+        colptr[c] = write;
+        for k in start..end {
+            if k > start && rowval[k] == rowval[k - 1] {
+                nzval[write - 1] += nzval[k];
+            } else {
+                rowval[write] = rowval[k];
+                nzval[write] = nzval[k];
+                write += 1;
+            }
+        }
+    }
+    colptr[n] = write;
+    rowval.truncate(write);
+    nzval.truncate(write);
+    CscMatrix::new(m, n, colptr, rowval, nzval)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The O(nnz) builder gives exactly Clarabel's matrix, repeated and zero entries included.
+    #[test]
+    fn csc_matches_clarabel_triplets() {
+        let rows = vec![3, 0, 2, 0, 1, 4, 2, 2, 0, 3];
+        let cols = vec![0, 0, 1, 0, 2, 2, 1, 1, 3, 3];
+        let vals = vec![1.0, 2.0, 0.0, -4.0, 5.0, 6.0, 7.5, 0.25, 9.0, -1.0];
+        let ours = csc_from_triplets(5, 4, &rows, &cols, &vals);
+        let theirs = CscMatrix::new_from_triplets(5, 4, rows, cols, vals);
+        assert_eq!(ours.colptr, theirs.colptr);
+        assert_eq!(ours.rowval, theirs.rowval);
+        assert_eq!(ours.nzval, theirs.nzval);
+        // Many random triplets with repeats, in no order (a simple LCG, reproducible).
+        let mut state = 12345u64;
+        let mut next = |k: u64| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 33) % k
+        };
+        let (m, n, nnz) = (40, 30, 2000);
+        let rows: Vec<usize> = (0..nnz).map(|_| next(m as u64) as usize).collect();
+        let cols: Vec<usize> = (0..nnz).map(|_| next(n as u64) as usize).collect();
+        let vals: Vec<f64> = (0..nnz).map(|_| next(1000) as f64 / 7.0 - 50.0).collect();
+        let ours = csc_from_triplets(m, n, &rows, &cols, &vals);
+        let theirs = CscMatrix::new_from_triplets(m, n, rows, cols, vals);
+        assert_eq!(ours.colptr, theirs.colptr);
+        assert_eq!(ours.rowval, theirs.rowval);
+        assert_eq!(ours.nzval, theirs.nzval);
     }
 }

@@ -33,12 +33,6 @@ fn run(study: &Study) -> (Vec<SweepRow>, Chart) {
         .unwrap_or_else(|e| panic!("{}: {e}", study.output))
 }
 
-fn num(v: &toml::Value) -> f64 {
-    v.as_float()
-        .or_else(|| v.as_integer().map(|n| n as f64))
-        .expect("a number")
-}
-
 fn extra(row: &SweepRow, name: &str) -> Option<f64> {
     row.extra
         .iter()

@@ -3,8 +3,13 @@
 //! command (`voussoir study FILE`).
 //!
 //! A study may compare each case with a baseline — the semicircular arch of the same
-//! centreline span, thickness, voussoirs, piers and material — and report
-//! `lambda_ratio = lambda / lambda_baseline`, the paper's "relative stability".
+//! centreline span (`baseline = "semicircle"`) or of the same centreline radius
+//! (`baseline = "semicircle_equal_radius"`, circular and pointed arches), with the same
+//! thickness, voussoirs, piers and material — and report
+//! `lambda_ratio = lambda / lambda_baseline`, the paper's "relative stability". On a chart
+//! of `lambda_lower` the baseline is drawn as one more line. `continuous = true` adds the
+//! continuous model (hinges anywhere in the ring, the paper's analytical model) as the
+//! column `lambda_continuous`.
 //!
 //! ```toml
 //! title = "Pointed vs semicircular arches at equal span and thickness"
@@ -13,7 +18,8 @@
 //! x = "t/span"
 //! series = "e/span"
 //! y = "lambda_ratio"                  # or "lambda_lower" (default)
-//! baseline = "semicircle"             # optional
+//! baseline = "semicircle"             # optional; or "semicircle_equal_radius"
+//! continuous = false                  # optional
 //! [scene.arch]                        # the base scene, as in a scene file
 //! shape = "pointed"
 //! ...
@@ -21,11 +27,38 @@
 
 use crate::error::SceneError;
 use crate::lp::StaticSettings;
-use crate::scene::Scene;
+use crate::scene::{Scene, Shape};
 use crate::sweep::{self, SweepRow, Variation};
-use crate::thrustline::chart::Chart;
+use crate::thrustline::chart::{Chart, Series};
 use std::path::Path;
 use toml::{Table, Value};
+
+/// The arch a study compares every case with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Baseline {
+    /// The semicircle of the same centreline span ([`semicircle_of_equal_span`]).
+    EqualSpan,
+    /// The semicircle of the same centreline radius ([`semicircle_of_equal_radius`]).
+    EqualRadius,
+}
+
+impl Baseline {
+    /// The baseline scene of `scene`.
+    pub fn scene_of(self, scene: &Scene) -> Result<Scene, SceneError> {
+        match self {
+            Baseline::EqualSpan => semicircle_of_equal_span(scene),
+            Baseline::EqualRadius => semicircle_of_equal_radius(scene),
+        }
+    }
+
+    /// How the chart and the docs name it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Baseline::EqualSpan => "semicircle of equal span",
+            Baseline::EqualRadius => "semicircle of equal radius",
+        }
+    }
+}
 
 /// A study file.
 #[derive(Debug, Clone)]
@@ -38,8 +71,10 @@ pub struct Study {
     pub series: Option<String>,
     /// Plot the ratio to the baseline instead of lambda.
     pub plot_ratio: bool,
-    /// Compare with the semicircle of equal span.
-    pub baseline: bool,
+    /// The arch every case is compared with, if any.
+    pub baseline: Option<Baseline>,
+    /// Also run the continuous model (column `lambda_continuous`).
+    pub continuous: bool,
     pub scene: Scene,
 }
 
@@ -107,25 +142,38 @@ impl Study {
             _ => return Err(err(&origin, "y", y, "\"lambda_lower\" or \"lambda_ratio\"")),
         };
         let baseline = match string(&mut table, "baseline", false)?.as_deref() {
-            None => false,
-            Some("semicircle") => true,
+            None => None,
+            Some("semicircle") => Some(Baseline::EqualSpan),
+            Some("semicircle_equal_radius") => Some(Baseline::EqualRadius),
             Some(other) => {
                 return Err(err(
                     &origin,
                     "baseline",
                     other.to_string(),
-                    "\"semicircle\"",
+                    "\"semicircle\" or \"semicircle_equal_radius\"",
                 ))
             }
         };
-        if plot_ratio && !baseline {
+        if plot_ratio && baseline.is_none() {
             return Err(err(
                 &origin,
                 "y",
                 y,
-                "lambda_ratio needs baseline = \"semicircle\"",
+                "lambda_ratio needs a baseline (\"semicircle\" or \"semicircle_equal_radius\")",
             ));
         }
+        let continuous = match table.remove("continuous") {
+            None => false,
+            Some(Value::Boolean(b)) => b,
+            Some(v) => {
+                return Err(SceneError::WrongType {
+                    origin: origin.clone(),
+                    key: "continuous".into(),
+                    value: v.to_string(),
+                    expected: "true or false".into(),
+                })
+            }
+        };
         let variations = match table.remove("vary") {
             Some(Value::Array(items)) => items
                 .iter()
@@ -161,7 +209,8 @@ impl Study {
             return Err(SceneError::UnknownKey {
                 origin,
                 key: key.clone(),
-                hint: " (allowed: title, output, vary, x, series, y, baseline, scene)".into(),
+                hint: " (allowed: title, output, vary, x, series, y, baseline, continuous, scene)"
+                    .into(),
             });
         }
         let scene = Scene::from_table(scene_table, &format!("{origin} [scene]"))?;
@@ -173,6 +222,7 @@ impl Study {
             series,
             plot_ratio,
             baseline,
+            continuous,
             scene,
         })
     }
@@ -203,30 +253,31 @@ impl Study {
             None,
         )?;
         let settings = StaticSettings::default();
-        let options = crate::analysis::Options::default();
+        let options = crate::analysis::Options {
+            continuous: self.continuous,
+            ..Default::default()
+        };
         let cases = sweep::cases(&self.scene, &self.variations);
         let rows = sweep::run(
             &cases,
             |values, scene| {
                 let mut row = sweep::case(values, scene, &options, false);
-                if self.baseline {
-                    let base = scene
-                        .as_ref()
-                        .ok()
-                        .and_then(|s| semicircle_of_equal_span(s).ok());
+                if let Some(baseline) = self.baseline {
+                    let base = scene.as_ref().ok().and_then(|s| baseline.scene_of(s).ok());
                     let lb = base
                         .and_then(|b| sweep::static_case(values, &Ok(b), &settings).lambda_lower);
                     let ratio = match (row.lambda_lower, lb) {
                         (Some(l), Some(b)) if b > 0.0 => Some(l / b),
                         _ => None,
                     };
-                    row.extra = vec![("lambda_baseline", lb), ("lambda_ratio", ratio)];
+                    row.extra
+                        .extend([("lambda_baseline", lb), ("lambda_ratio", ratio)]);
                 }
                 row
             },
             progress,
         );
-        let chart = sweep::chart_of(
+        let mut chart = sweep::chart_of(
             &self.variations,
             &rows,
             &self.x,
@@ -234,17 +285,79 @@ impl Study {
             &self.title,
             self.plot_ratio.then_some("lambda_ratio"),
         )?;
+        if let Some(baseline) = self.baseline {
+            if self.plot_ratio {
+                chart.y_label = format!("lambda / lambda of the {}", baseline.describe());
+            } else {
+                chart
+                    .series
+                    .push(baseline_series(&rows, &self.x, &self.variations, baseline));
+            }
+        }
         Ok((rows, chart))
     }
+}
+
+/// The line of the baseline's multiplier against `x` on a chart of `lambda_lower`: one point
+/// per distinct x (cases that differ only in the series key share their baseline when the
+/// baseline does not depend on it, e.g. the semicircle of equal span for several e/R at the
+/// same t/span).
+fn baseline_series(
+    rows: &[SweepRow],
+    x: &str,
+    variations: &[Variation],
+    baseline: Baseline,
+) -> Series {
+    let x_index = variations.iter().position(|v| v.key == x);
+    let mut points: Vec<(f64, Option<f64>)> = Vec::new();
+    for r in rows {
+        let xv = match x_index {
+            Some(i) => r.values[i]
+                .as_float()
+                .or(r.values[i].as_integer().map(|n| n as f64)),
+            None => r.ratios.iter().find(|(n, _)| *n == x).map(|(_, v)| *v),
+        };
+        let Some(xv) = xv else { continue };
+        let lb = r
+            .extra
+            .iter()
+            .find(|(n, _)| *n == "lambda_baseline")
+            .and_then(|(_, v)| *v);
+        if !points.iter().any(|(px, _)| *px == xv) {
+            points.push((xv, lb));
+        }
+    }
+    Series::new(baseline.describe(), points)
 }
 
 /// The semicircular arch of the same centreline span, thickness, voussoirs, voussoir shape,
 /// piers and material.
 pub fn semicircle_of_equal_span(scene: &Scene) -> Result<Scene, SceneError> {
+    semicircle_of_radius(scene, 0.5 * sweep::span(scene), "semicircle of equal span")
+}
+
+/// The semicircular arch of the same centreline radius (a circular or pointed arch's R),
+/// thickness, voussoirs, voussoir shape, piers and material.
+pub fn semicircle_of_equal_radius(scene: &Scene) -> Result<Scene, SceneError> {
+    let radius = match scene.arch.shape {
+        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
+        Shape::Basket { .. } => {
+            return Err(SceneError::OutOfRange {
+                origin: scene.origin.clone(),
+                key: "arch.shape".into(),
+                value: "\"basket\"".into(),
+                allowed: "a circular or pointed arch for a semicircle of equal radius".into(),
+            })
+        }
+    };
+    semicircle_of_radius(scene, radius, "semicircle of equal radius")
+}
+
+fn semicircle_of_radius(scene: &Scene, radius: f64, what: &str) -> Result<Scene, SceneError> {
     let mut table = scene.table().clone();
     let mut arch = Table::new();
     arch.insert("shape".into(), Value::String("circular".into()));
-    arch.insert("radius".into(), Value::Float(0.5 * sweep::span(scene)));
+    arch.insert("radius".into(), Value::Float(radius));
     arch.insert("thickness".into(), Value::Float(scene.arch.thickness));
     let n = scene.arch.voussoirs;
     arch.insert("voussoirs".into(), Value::Integer(n as i64));
@@ -256,8 +369,5 @@ pub fn semicircle_of_equal_span(scene: &Scene) -> Result<Scene, SceneError> {
         arch.insert("voussoir_shape".into(), v.clone());
     }
     table.insert("arch".into(), Value::Table(arch));
-    Scene::from_table(
-        table,
-        &format!("{} (semicircle of equal span)", scene.origin),
-    )
+    Scene::from_table(table, &format!("{} ({what})", scene.origin))
 }

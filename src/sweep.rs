@@ -93,12 +93,26 @@ pub fn apply(scene: &Scene, pairs: &[(&str, &Value)]) -> Result<Scene, SceneErro
     if derived.is_empty() {
         return Ok(scene);
     }
-    let mut targets = Vec::new();
-    for (k, v) in &derived {
-        targets.extend(derived_target(&scene, k, v)?);
+    // Shape ratios first, then the sizes measured on the reshaped arch: `t/span` together
+    // with `e/R` must use the span of the pointed arch with that eccentricity, not the span
+    // of the base scene.
+    let mut scene = scene;
+    for phase in [SHAPE_KEYS, SIZE_KEYS] {
+        let mut targets = Vec::new();
+        for (k, v) in derived.iter().filter(|(k, _)| phase.contains(k)) {
+            targets.extend(derived_target(&scene, k, v)?);
+        }
+        if !targets.is_empty() {
+            scene = scene.with_values(&targets)?;
+        }
     }
-    scene.with_values(&targets)
+    Ok(scene)
 }
+
+/// Ratios that change the shape of the arch (applied first).
+const SHAPE_KEYS: &[&str] = &["e/R", "e/span", "rise/span"];
+/// Ratios that size the ring or the piers on the shaped arch (applied second).
+const SIZE_KEYS: &[&str] = &["t/R", "t/span", "h/R", "b/R"];
 
 /// The scene key and value a ratio stands for.
 fn derived_target(

@@ -119,7 +119,7 @@ enum Command {
     },
     /// Run a parametric study file (data/studies/*.toml): writes OUT/<output>.csv and .svg
     Study {
-        /// Study file (TOML: title, output, vary, x, series, y, baseline, [scene.*])
+        /// Study file (TOML: title, output, vary, x, series, y, baseline, continuous, [scene.*])
         study: PathBuf,
         /// Directory for the CSV and SVG
         #[arg(long, value_name = "DIR", default_value = "docs/figures")]

@@ -279,3 +279,34 @@ fn mechanism_from_duals_is_a_four_hinge_mechanism() {
         "{l} {work_h} {work_v}"
     );
 }
+
+#[test]
+fn the_model_holds_only_what_the_scene_requires() {
+    // No friction rows without friction limits, two per joint with them.
+    let a = Assembly::from_scene(&semicircle(0.15, 16));
+    let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+    assert_eq!(r.model.friction_rows, 0);
+    assert_eq!(r.model.variables, 1 + 3 * a.joints.len());
+    assert_eq!(r.model.equality_rows, 3 * a.blocks.len());
+    assert_eq!(r.model.inequality_rows, 2 * a.joints.len());
+    let f = Assembly::from_scene(
+        &semicircle(0.15, 16)
+            .with_override("material.friction=0.6")
+            .expect("valid"),
+    );
+    let rf = lp::analyse(&f, &StaticSettings::default()).expect("solves");
+    assert_eq!(rf.model.friction_rows, 2 * f.joints.len());
+    // No pier blocks without piers; k courses per pier with them.
+    assert!(a
+        .blocks
+        .iter()
+        .all(|b| matches!(b.kind, voussoir::assembly::BlockKind::Voussoir(_))));
+    let p = Assembly::from_scene(
+        &semicircle(0.15, 16)
+            .with_overrides(&["piers.height=1", "piers.width=0.3", "piers.courses=3"])
+            .expect("valid"),
+    );
+    assert_eq!(p.blocks.len(), 16 + 2 * 3);
+    assert_eq!(p.joints.len(), 17 + 2 * 3);
+    assert!(p.is_chain());
+}

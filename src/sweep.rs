@@ -393,21 +393,22 @@ fn opt(x: Option<f64>) -> String {
         .map_or(String::new(), |v| v.to_string())
 }
 
-/// Write the rows as CSV: the varied keys, the dimensionless ratios, then `status,
-/// lambda_lower, lambda_upper, gap, hinges, solve_time_s, error` and any `extra` columns.
+/// Write the rows as CSV: the varied keys, then `status, lambda_lower, lambda_upper, gap,
+/// hinges, solve_time_s`, any `extra` columns, the dimensionless ratios, and `error`.
 pub fn write_csv<W: std::io::Write>(
     out: W,
     variations: &[Variation],
     rows: &[SweepRow],
 ) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
+    // The varied keys, then the results in the order the issue fixed (status ... solve_time_s),
+    // then the optional columns, the dimensionless ratios not varied, and the error message.
     let mut header: Vec<String> = variations.iter().map(|v| v.key.clone()).collect();
     let ratio_names: Vec<&str> = DERIVED_KEYS
         .iter()
         .copied()
         .filter(|k| !variations.iter().any(|v| v.key == *k))
         .collect();
-    header.extend(ratio_names.iter().map(|s| s.to_string()));
     for h in [
         "status",
         "lambda_lower",
@@ -415,7 +416,6 @@ pub fn write_csv<W: std::io::Write>(
         "gap",
         "hinges",
         "solve_time_s",
-        "error",
     ] {
         header.push(h.to_string());
     }
@@ -425,6 +425,8 @@ pub fn write_csv<W: std::io::Write>(
         .map(|r| r.extra.iter().map(|(n, _)| *n).collect())
         .unwrap_or_default();
     header.extend(extra.iter().map(|s| s.to_string()));
+    header.extend(ratio_names.iter().map(|s| s.to_string()));
+    header.push("error".to_string());
     w.write_record(&header)?;
     for r in rows {
         let mut rec: Vec<String> = r
@@ -435,17 +437,12 @@ pub fn write_csv<W: std::io::Write>(
                 other => other.to_string(),
             })
             .collect();
-        for name in &ratio_names {
-            let v = r.ratios.iter().find(|(n, _)| n == name).map(|(_, v)| *v);
-            rec.push(opt(v));
-        }
         rec.push(r.status.clone());
         rec.push(opt(r.lambda_lower));
         rec.push(opt(r.lambda_upper));
         rec.push(opt(r.gap()));
         rec.push(hinge_string(&r.hinges));
         rec.push(r.solve_time_s.to_string());
-        rec.push(r.error.clone().unwrap_or_default());
         for name in &extra {
             rec.push(opt(r
                 .extra
@@ -453,6 +450,11 @@ pub fn write_csv<W: std::io::Write>(
                 .find(|(n, _)| n == name)
                 .and_then(|(_, v)| *v)));
         }
+        for name in &ratio_names {
+            let v = r.ratios.iter().find(|(n, _)| n == name).map(|(_, v)| *v);
+            rec.push(opt(v));
+        }
+        rec.push(r.error.clone().unwrap_or_default());
         w.write_record(&rec)?;
     }
     w.flush()?;

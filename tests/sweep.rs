@@ -65,11 +65,9 @@ fn invalid_cases_stay_in_the_sweep_with_status_error() {
     sweep::write_csv(&mut csv, &variations, &rows).expect("writes");
     let text = String::from_utf8(csv).expect("utf8");
     assert_eq!(text.lines().count(), 3);
-    assert!(text
-        .lines()
-        .next()
-        .unwrap_or("")
-        .starts_with("arch.eccentricity,t/R,"));
+    assert!(text.lines().next().unwrap_or("").starts_with(
+        "arch.eccentricity,status,lambda_lower,lambda_upper,gap,hinges,solve_time_s,"
+    ));
 }
 
 #[test]

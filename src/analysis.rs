@@ -1,17 +1,22 @@
 //! One analysis of a scene by every method asked for: the static lower bound (always), the
-//! discrete kinematic upper bound (when the chain is small enough for the exhaustive search),
-//! and the continuous kinematic model (on request). The CLI and the sweeps both call this, so
+//! discrete kinematic upper bound (the exhaustive search when the chain is small enough,
+//! otherwise a local search around the static hinges when the static status is collapse), and
+//! the continuous kinematic model (on request). The CLI and the sweeps both call this, so
 //! they report the same numbers.
 
 use crate::assembly::Assembly;
 use crate::error::AnalysisError;
-use crate::kinematic::{self, ContinuousResult, KinematicResult, KinematicSettings};
+use crate::kinematic::{self, ContinuousResult, KinematicResult, KinematicSettings, Search};
 use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use crate::scene::Scene;
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
 /// grows as joints^4 (about 0.2 s at 129 joints, 3 s at 257).
 pub const KINEMATIC_DEFAULT_MAX_JOINTS: usize = 200;
+
+/// Half-width (joints) of the window around each static hinge searched by the local kinematic
+/// search on chains above `kinematic_max_joints`.
+pub const KINEMATIC_LOCAL_WINDOW: usize = kinematic::DEFAULT_LOCAL_WINDOW;
 
 /// What to run.
 #[derive(Debug, Clone)]
@@ -46,6 +51,8 @@ pub struct SceneAnalysis {
     pub lower: StaticResult,
     /// The discrete kinematic result, or why it was not run or failed.
     pub upper: Result<KinematicResult, String>,
+    /// Which kinematic search ran (also when it failed or found nothing), None when none did.
+    pub kinematic_search: Option<Search>,
     /// The continuous model, when asked for (or why it failed).
     pub continuous: Option<Result<ContinuousResult, String>>,
 }
@@ -64,11 +71,15 @@ impl SceneAnalysis {
     }
 
     /// Whether sliding governs: finite friction somewhere, and the static bound is below the
-    /// rotational upper bound.
+    /// rotational upper bound. A local search's bound may exceed the least rotational
+    /// multiplier, so then the static solution must also slide somewhere.
     pub fn sliding_governs(&self) -> bool {
         let finite = self.assembly.joints.iter().any(|j| j.friction.is_finite());
+        let local = self.upper.as_ref().is_ok_and(|k| k.search == Search::Local);
         match (self.lower.status, self.lower.lambda, self.lambda_upper()) {
-            (Status::Collapse, Some(l), Some(u)) => finite && l < u * (1.0 - 1e-6),
+            (Status::Collapse, Some(l), Some(u)) => {
+                finite && l < u * (1.0 - 1e-6) && !(local && self.lower.sliding.is_empty())
+            }
             (Status::Collapse, Some(_), None) => finite && !self.lower.sliding.is_empty(),
             (Status::CannotStand, _, _) => {
                 finite
@@ -86,21 +97,35 @@ impl SceneAnalysis {
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
     let assembly = Assembly::from_scene(scene);
     let lower = lp::analyse(&assembly, &options.static_settings)?;
-    let upper = if options.kinematic_max_joints == 0 {
-        Err("kinematic search turned off".to_string())
-    } else if assembly.joints.len() > options.kinematic_max_joints {
-        Err(format!(
-            "kinematic search skipped: {} joints is more than {} (its cost grows as joints^4; raise --kinematic-max-joints to run it)",
-            assembly.joints.len(),
-            options.kinematic_max_joints
-        ))
+    let settings = KinematicSettings {
+        direction: options.direction(),
+        max_joints: options.kinematic_max_joints,
+        ..KinematicSettings::default()
+    };
+    let too_many = format!(
+        "{} joints is more than {} (the exhaustive search's cost grows as joints^4; raise --kinematic-max-joints to run it)",
+        assembly.joints.len(),
+        options.kinematic_max_joints
+    );
+    let (upper, kinematic_search) = if options.kinematic_max_joints == 0 {
+        (Err("kinematic search turned off".to_string()), None)
+    } else if assembly.joints.len() <= options.kinematic_max_joints {
+        let k = kinematic::analyse(&assembly, &settings).map_err(|e| e.to_string());
+        (k, Some(Search::Exhaustive))
+    } else if lower.status == Status::Collapse {
+        // Too large for the exhaustive search: any admissible mechanism still bounds lambda_c
+        // from above, and the static hinges say where the governing one is.
+        let k = kinematic::analyse_local(&assembly, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
+            .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
+        let search = k.as_ref().map_or(Search::Local, |k| k.search);
+        (k, Some(search))
     } else {
-        let settings = KinematicSettings {
-            direction: options.direction(),
-            max_joints: options.kinematic_max_joints,
-            ..KinematicSettings::default()
-        };
-        kinematic::analyse(&assembly, &settings).map_err(|e| e.to_string())
+        (
+            Err(format!(
+                "kinematic search skipped: {too_many}; no local search, as the static status is not collapse"
+            )),
+            None,
+        )
     };
     let continuous = options
         .continuous
@@ -109,6 +134,7 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         assembly,
         lower,
         upper,
+        kinematic_search,
         continuous,
     })
 }

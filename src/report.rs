@@ -80,8 +80,12 @@ pub struct AnalysisReport {
     pub sliding_governs: bool,
     /// Block velocities of the kinematic mechanism `[vx, vy, omega]`.
     pub kinematic_mechanism: Vec<[f64; 3]>,
-    /// Why the kinematic search was not run or failed, when so.
+    /// Why the kinematic search was not run or failed, or what a local search covered.
     pub kinematic_note: Option<String>,
+    /// `exhaustive` (lambda_upper is the discrete kinematic multiplier), `local` (only the
+    /// mechanisms near the static hinges were searched: lambda_upper is an upper bound, null
+    /// when that search found none), or null when no kinematic search ran.
+    pub kinematic_search: Option<crate::kinematic::Search>,
     pub kinematic_time_s: Option<f64>,
     /// Continuous model (only with `--continuous`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -127,6 +131,7 @@ impl AnalysisReport {
                 report.lambda_upper = k.lambda_upper;
                 report.kinematic_status = Some(k.status);
                 report.kinematic_time_s = Some(k.wall_time_s);
+                report.kinematic_note.clone_from(&k.note);
                 if let Some(m) = &k.mechanism {
                     report.mechanism_hinges = m.hinges.clone();
                     report.open_joints = m.open.clone();
@@ -135,6 +140,7 @@ impl AnalysisReport {
             }
             Err(note) => report.kinematic_note = Some(note.clone()),
         }
+        report.kinematic_search = a.kinematic_search;
         report.gap = a.gap();
         report.sliding_governs = a.sliding_governs();
         if let Some(c) = &a.continuous {
@@ -201,6 +207,7 @@ impl AnalysisReport {
             sliding_governs: false,
             kinematic_mechanism: Vec::new(),
             kinematic_note: None,
+            kinematic_search: None,
             kinematic_time_s: None,
             lambda_continuous: None,
             continuous_hinges: None,
@@ -406,6 +413,9 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                         k.admissible,
                         k.wall_time_s * 1e3
                     );
+                    if let Some(note) = &k.note {
+                        let _ = writeln!(s, "  {note}");
+                    }
                     if let Some(m) = &k.mechanism {
                         let _ = writeln!(s, "  governing mechanism ({:?}):", m.family);
                         s.push_str(&hinge_lines(&a.assembly, &m.hinges));

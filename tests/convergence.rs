@@ -188,8 +188,9 @@ fn dem_study_row() {
 }
 
 /// Acceptance: a 1000-voussoir semicircle (t/R = 0.15) through the same library path as
-/// `voussoir analyze` with its defaults (static bound; the kinematic search skipped above 200
-/// joints): lambda within 5e-4 of 0.1443, equilibrium to round-off.
+/// `voussoir analyze` with its defaults (static bound; above 200 joints the exhaustive kinematic
+/// search is replaced by the local one around the static hinges): lambda within 5e-4 of
+/// 0.1443, equilibrium to round-off, and the local upper bound meets it.
 #[test]
 fn thousand_voussoirs_acceptance() {
     let scene = common::semicircle(0.15, 1000);
@@ -198,10 +199,14 @@ fn thousand_voussoirs_acceptance() {
     let l = a.lower.lambda.expect("lambda");
     assert!((l - 0.1443).abs() < 5e-4, "lambda {l}");
     assert!(a.lower.equilibrium_residual < 1e-9 * a.assembly.total_weight());
-    assert!(a
-        .upper
-        .as_ref()
-        .is_err_and(|e| e.contains("skipped") && e.contains("1001 joints")));
+    let k = a.upper.as_ref().expect("local kinematic search");
+    assert_eq!(k.search, voussoir::kinematic::Search::Local);
+    assert!(k
+        .note
+        .as_deref()
+        .is_some_and(|n| n.contains("of 1001 joints")));
+    let u = a.lambda_upper().expect("upper bound");
+    assert!((u - l).abs() <= 1e-6, "lower {l}, upper {u}");
     assert!(a.continuous.is_none());
     assert_eq!(a.lower.hinges.len(), 4);
 }

@@ -27,11 +27,11 @@
 
 use super::{
     motion_work, solve_motion, Act, Active, Extremes, Family, KinematicError, KinematicResult,
-    KinematicSettings, Mechanism, Sums, ADMISSIBLE_TOL,
+    KinematicSettings, Mechanism, Search, Sums, ADMISSIBLE_TOL,
 };
 use crate::assembly::{Assembly, Hinge, JointEnd};
 use crate::geometry::{cross, Vec2};
-use crate::lp::Status;
+use crate::lp::{StaticResult, Status};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -62,6 +62,16 @@ impl Key {
     }
     pub(crate) fn items(&self) -> impl Iterator<Item = (usize, u8)> + '_ {
         (0..self.count as usize).map(|i| (self.joints[i] as usize, self.acts[i]))
+    }
+
+    /// The key with joint k renamed `joints[k]` (from a restricted chain to the full one; the
+    /// map is increasing, so chain order and tie-breaking are kept).
+    fn mapped(&self, joints: &[usize]) -> Key {
+        let mut k = *self;
+        for j in k.joints.iter_mut().take(self.count as usize) {
+            *j = joints[*j as usize] as u32;
+        }
+        k
     }
 }
 
@@ -148,6 +158,24 @@ impl Chain {
         self.len.len()
     }
 
+    /// The two-support chain restricted to the joints `keep` (increasing): the mechanisms of
+    /// the result are exactly the mechanisms of `self` whose active joints are all in `keep`
+    /// (joint k of the result is joint `keep[k]`). The body between two kept joints is every
+    /// block between them, since `pre` is indexed by joint (`pre[j]` = blocks before joint j).
+    fn restricted(&self, keep: &[usize]) -> Chain {
+        debug_assert!(self.closed && keep.windows(2).all(|w| w[0] < w[1]));
+        let pick = |v: &Vec<Vec2>| keep.iter().map(|&j| v[j]).collect::<Vec<_>>();
+        Chain {
+            p: [pick(&self.p[0]), pick(&self.p[1])],
+            normal: pick(&self.normal),
+            len: keep.iter().map(|&j| self.len[j]).collect(),
+            pre: keep.iter().map(|&j| self.pre[j]).collect(),
+            sign: self.sign,
+            size: self.size,
+            closed: true,
+        }
+    }
+
     /// Sums of the blocks between joints `j1 < j2` (blocks `j1..j2`).
     #[inline]
     fn body(&self, j1: usize, j2: usize) -> Sums {
@@ -213,14 +241,7 @@ pub fn analyse(
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, KinematicError> {
     let start = Instant::now();
-    assembly.validate()?;
-    let closed = if assembly.is_chain() {
-        true
-    } else if is_column(assembly) {
-        false
-    } else {
-        return Err(KinematicError::NotAChain);
-    };
+    let closed = chain_kind(assembly)?;
     let nj = assembly.joints.len();
     if nj > settings.max_joints {
         return Err(KinematicError::TooManyJoints {
@@ -235,8 +256,46 @@ pub fn analyse(
         search_column(&chain)
     };
     let (status, key) = ext.verdict();
-    let mechanism = key.and_then(|k| mechanism_of(assembly, &chain, &k));
-    Ok(KinematicResult {
+    Ok(result(
+        assembly,
+        &chain,
+        &ext,
+        status,
+        key,
+        candidates,
+        settings,
+        (Search::Exhaustive, nj, None),
+        start,
+    ))
+}
+
+/// Whether `assembly` is a two-support chain (true) or a one-support column (false).
+fn chain_kind(assembly: &Assembly) -> Result<bool, KinematicError> {
+    assembly.validate()?;
+    if assembly.is_chain() {
+        Ok(true)
+    } else if is_column(assembly) {
+        Ok(false)
+    } else {
+        Err(KinematicError::NotAChain)
+    }
+}
+
+/// The result of a search whose extremes are `ext` (keys of the full chain) and verdict
+/// `(status, key)`.
+#[allow(clippy::too_many_arguments)]
+fn result(
+    assembly: &Assembly,
+    chain: &Chain,
+    ext: &Extremes<Key>,
+    status: Status,
+    key: Option<Key>,
+    candidates: u64,
+    settings: &KinematicSettings,
+    (search, searched_joints, note): (Search, usize, Option<String>),
+    start: Instant,
+) -> KinematicResult {
+    KinematicResult {
         status,
         lambda_upper: if status == Status::Collapse {
             ext.best.as_ref().map(|b| b.0)
@@ -245,12 +304,108 @@ pub fn analyse(
         },
         lambda_signed: ext.best.as_ref().map(|b| b.0),
         lambda_needed: ext.needed.as_ref().map(|b| b.0),
-        mechanism,
+        mechanism: key.and_then(|k| mechanism_of(assembly, chain, &k)),
         direction: settings.direction,
         candidates,
         admissible: ext.admissible,
         wall_time_s: start.elapsed().as_secs_f64(),
-    })
+        search,
+        searched_joints,
+        note,
+    }
+}
+
+/// Local kinematic search (module docs of [`crate::kinematic`]): the exhaustive search of
+/// [`analyse`] restricted to the mechanisms whose active joints all lie within `window`
+/// joints of a hinge, open or sliding joint of the static solution `around` (which must be at
+/// collapse, for the same load direction). Its `lambda_upper` is an upper bound of the
+/// collapse multiplier, flagged [`Search::Local`]. When the window covers every joint this is
+/// the exhaustive search and is flagged so. `settings.max_joints` limits the joints searched.
+///
+/// Errors: [`KinematicError::LocalNeedsCollapse`], [`KinematicError::LocalNoCentres`],
+/// [`KinematicError::LocalFoundNothing`] (no mechanism driven by the load in the window: no
+/// bound, and no claim of `NoCollapse`), besides those of [`analyse`].
+pub fn analyse_local(
+    assembly: &Assembly,
+    around: &StaticResult,
+    settings: &KinematicSettings,
+    window: usize,
+) -> Result<KinematicResult, KinematicError> {
+    let start = Instant::now();
+    if around.status != Status::Collapse {
+        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
+    }
+    let nj = assembly.joints.len();
+    if !chain_kind(assembly)? {
+        // A one-support chain has 2 N candidates: search them all.
+        return analyse(
+            assembly,
+            &KinematicSettings {
+                max_joints: nj,
+                ..settings.clone()
+            },
+        );
+    }
+    let mut centres: Vec<usize> = around
+        .hinges
+        .iter()
+        .map(|h| h.joint)
+        .chain(around.open.iter().copied())
+        .chain(around.sliding.iter().copied())
+        .filter(|&j| j < nj)
+        .collect();
+    centres.sort_unstable();
+    centres.dedup();
+    if centres.is_empty() {
+        return Err(KinematicError::LocalNoCentres);
+    }
+    let mut inside = vec![false; nj];
+    for &c in &centres {
+        for f in &mut inside[c.saturating_sub(window)..(c + window + 1).min(nj)] {
+            *f = true;
+        }
+    }
+    let keep: Vec<usize> = (0..nj).filter(|&j| inside[j]).collect();
+    if keep.len() == nj {
+        return analyse(assembly, settings);
+    }
+    if keep.len() > settings.max_joints {
+        return Err(KinematicError::TooManyJoints {
+            joints: keep.len(),
+            max: settings.max_joints,
+        });
+    }
+    let chain = Chain::new(assembly, settings.direction.sign(), true);
+    let (ext, candidates) = search_closed(&chain.restricted(&keep), settings.parallel);
+    let ext = ext.map_keys(|k| k.mapped(&keep));
+    let (status, key) = ext.verdict();
+    if status == Status::NoCollapse {
+        return Err(KinematicError::LocalFoundNothing {
+            joints: keep.len(),
+            total: nj,
+            window,
+        });
+    }
+    let list = centres
+        .iter()
+        .map(|c| c.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let note = format!(
+        "local search: {} of {nj} joints, those within {window} of the static solution's hinge, open or sliding joints {list}; lambda_upper is an upper bound from the best admissible mechanism found, not an exhaustive search",
+        keep.len()
+    );
+    Ok(result(
+        assembly,
+        &chain,
+        &ext,
+        status,
+        key,
+        candidates,
+        settings,
+        (Search::Local, keep.len(), Some(note)),
+        start,
+    ))
 }
 
 /// Discrete kinematic analysis of a scene (its assembly, default settings but `direction`).

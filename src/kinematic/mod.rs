@@ -46,6 +46,21 @@
 //! bounds the collapse multiplier from above for finite friction as well (sliding can only
 //! lower it).
 //!
+//! # Local search
+//! Any admissible mechanism bounds the collapse multiplier from above, whether or not it is the
+//! least one, so a search over a subset of the candidates still gives an upper bound. The
+//! exhaustive search costs about joints^4; [`analyse_local`] searches only the mechanisms
+//! whose active joints all lie within a window of +-w joints around the hinges (and open or
+//! sliding joints) of the static solution — which, at collapse, are the hinges of the governing
+//! mechanism (complementary slackness of the static program). It runs the same search on the
+//! chain restricted to those joints (the bodies between them keep their full weight), so its
+//! kinematics, admissibility and virtual work are those of the exhaustive search. Its result is
+//! flagged [`Search::Local`]: `lambda_upper` is the least `G/A` over the mechanisms it saw,
+//! `>= lambda_c`; when it equals the static `lambda_lower` the two bounds certify `lambda_c`.
+//! A local search that finds no mechanism driven by the load proves nothing (no `NoCollapse`):
+//! it is reported as [`KinematicError::LocalFoundNothing`]. A `CannotStand` witness (a
+//! mechanism that gravity alone drives) is a proof wherever it was found and is reported.
+//!
 //! The discrete search is in [`discrete`], the continuous model of the arch (hinges anywhere)
 //! in [`continuous`].
 
@@ -56,7 +71,7 @@ pub use continuous::{
     continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult,
     HingeLocation, MinThickness,
 };
-pub use discrete::{analyse, lambda_upper_of_scene, stands};
+pub use discrete::{analyse, analyse_local, lambda_upper_of_scene, stands};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
@@ -76,6 +91,40 @@ pub enum KinematicError {
     Scene(#[from] crate::error::SceneError),
     #[error("continuous model: {0}")]
     Continuous(String),
+    #[error("local kinematic search needs a static solution at collapse (its hinges locate the mechanism); the static status is {0}")]
+    LocalNeedsCollapse(&'static str),
+    #[error("local kinematic search: the static solution has no hinge, open or sliding joint to search around")]
+    LocalNoCentres,
+    #[error("local kinematic search found no admissible mechanism driven by the load among {joints} of {total} joints (within {window} joints of the static hinges); the search is not exhaustive, so this proves nothing: no upper bound")]
+    LocalFoundNothing {
+        joints: usize,
+        total: usize,
+        window: usize,
+    },
+}
+
+/// Default half-width (joints) of the window of the local search around each static hinge.
+pub const DEFAULT_LOCAL_WINDOW: usize = 12;
+
+/// Which candidates a kinematic search examined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Search {
+    /// Every one-degree-of-freedom mechanism with hinges at joint ends: `lambda_upper` is the
+    /// discrete kinematic multiplier, and every status is proved.
+    Exhaustive,
+    /// Only the mechanisms near the static hinges: `lambda_upper` is an upper bound of the
+    /// collapse multiplier, not necessarily the least one.
+    Local,
+}
+
+impl Search {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Search::Exhaustive => "exhaustive",
+            Search::Local => "local",
+        }
+    }
 }
 
 /// Settings of the discrete kinematic search.
@@ -161,6 +210,13 @@ pub struct KinematicResult {
     pub admissible: u64,
     /// Wall time of the search (s).
     pub wall_time_s: f64,
+    /// Exhaustive, or local (then `lambda_upper` is an upper bound, and `lambda_signed` and
+    /// `lambda_needed` are over the mechanisms searched only).
+    pub search: Search,
+    /// Joints the search placed active joints on (all of them when exhaustive).
+    pub searched_joints: usize,
+    /// What a local search covered, in words (None for the exhaustive search).
+    pub note: Option<String>,
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -458,6 +514,16 @@ impl<K: Clone + Ord> Extremes<K> {
             }
         } else if g < 0.0 && self.stalled.is_none() {
             self.stalled = Some(key());
+        }
+    }
+
+    /// The same extremes with every key mapped by `f`.
+    pub fn map_keys<L>(self, f: impl Fn(K) -> L) -> Extremes<L> {
+        Extremes {
+            best: self.best.map(|(l, k)| (l, f(k))),
+            needed: self.needed.map(|(l, k)| (l, f(k))),
+            stalled: self.stalled.map(&f),
+            admissible: self.admissible,
         }
     }
 

@@ -66,7 +66,8 @@ enum Command {
         /// Also run the continuous model (hinges anywhere: the limit of infinitely many voussoirs)
         #[arg(long)]
         continuous: bool,
-        /// Largest chain (joints) for the exhaustive kinematic search; 0 turns it off
+        /// Largest chain (joints) for the exhaustive kinematic search (above it, a local search
+        /// around the static hinges); 0 turns the kinematic analysis off
         #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
         kinematic_max_joints: usize,
     },

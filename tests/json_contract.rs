@@ -61,6 +61,7 @@ fn analyze_fields() {
             "kinematic_mechanism",
             "kinematic_note",
             "kinematic_time_s",
+            "kinematic_search",
             "lambda_continuous",
             "continuous_hinges",
         ],

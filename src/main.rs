@@ -60,7 +60,8 @@ enum Command {
         /// Direction of the horizontal acceleration
         #[arg(long, value_enum, default_value = "right")]
         direction: Dir,
-        /// Conic solver tolerance (gap and feasibility, dimensionless)
+        /// Conic solver tolerance (gap and feasibility, dimensionless; 1e-14..1e-6). Looser
+        /// tolerances would let lambda exceed the true multiplier
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
         /// Also run the continuous model (hinges anywhere: the limit of infinitely many voussoirs)
@@ -230,9 +231,9 @@ fn run(cli: Cli) -> Result<String, Error> {
             kinematic_max_joints,
         } => {
             let scene = load(&scene)?;
-            if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1e-2) {
+            if !(tolerance.is_finite() && (1e-14..=1e-6).contains(&tolerance)) {
                 return Err(Error::Analysis(voussoir::error::AnalysisError::Other(
-                    format!("--tolerance {tolerance}: must be > 0 and < 1e-2"),
+                    format!("--tolerance {tolerance}: must be from 1e-14 to 1e-6 (looser solutions are not safe: lambda may exceed the collapse multiplier)"),
                 )));
             }
             let settings = StaticSettings::default()

@@ -160,11 +160,16 @@ impl AnalysisReport {
 
     /// The static part alone.
     pub fn new_static(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
-        let points = r
+        let mut points = r
             .forces
             .as_ref()
             .map(|f| thrust_points(assembly, f))
             .unwrap_or_default();
+        for &j in &r.open {
+            if let Some(p) = points.get_mut(j) {
+                *p = None;
+            }
+        }
         let joints = assembly
             .joints
             .iter()
@@ -264,10 +269,7 @@ impl MinThicknessReport {
 
 /// The arch's own size: R (circular, pointed) or span/2 (basket).
 pub fn arch_size(scene: &Scene) -> f64 {
-    match scene.arch.shape {
-        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
-        Shape::Basket { span, .. } => 0.5 * span,
-    }
+    scene.arch_size()
 }
 
 /// Write the thrust line as CSV: one row per joint.
@@ -281,7 +283,12 @@ pub fn write_thrust_csv<W: std::io::Write>(
         "joint", "kind", "x", "y", "N", "V", "M", "e", "p1_x", "p1_y", "p2_x", "p2_y",
     ])?;
     let forces = r.forces.as_deref().unwrap_or(&[]);
-    let points = thrust_points(assembly, forces);
+    let mut points = thrust_points(assembly, forces);
+    for &j in &r.open {
+        if let Some(p) = points.get_mut(j) {
+            *p = None;
+        }
+    }
     for (i, (j, f)) in assembly.joints.iter().zip(forces).enumerate() {
         let (x, y) = points[i].map_or((String::new(), String::new()), |p| {
             (p.x.to_string(), p.y.to_string())
@@ -606,7 +613,7 @@ pub fn min_thickness_summary(
         _ => {
             let _ = writeln!(
                 s,
-                "The structure stands at every thickness down to 1e-6 of the largest admissible: no minimum thickness."
+                "The structure stands at every thickness tried, down to the thinnest a scene admits (1e-6 of the largest, at least 1e-6 m): no minimum thickness."
             );
         }
     }

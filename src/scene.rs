@@ -39,6 +39,14 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches.
+    pub fn size(&self) -> f64 {
+        match self {
+            Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => *radius,
+            Shape::Basket { span, .. } => 0.5 * span,
+        }
+    }
+
     /// The scene-file name of the shape.
     pub fn name(&self) -> &'static str {
         match self {
@@ -217,15 +225,16 @@ impl Scene {
         }
     }
 
+    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches.
+    pub fn arch_size(&self) -> f64 {
+        self.arch.shape.size()
+    }
+
     /// A characteristic length of the structure (its overall size), used to make tolerances
     /// and the conic program dimensionless.
     pub fn size(&self) -> f64 {
-        let arch = match self.arch.shape {
-            Shape::Circular { radius, .. } => radius,
-            Shape::Pointed { radius, .. } => radius,
-            Shape::Basket { span, .. } => 0.5 * span,
-        };
-        arch.max(self.piers.as_ref().map_or(0.0, |p| p.height))
+        self.arch_size()
+            .max(self.piers.as_ref().map_or(0.0, |p| p.height))
     }
 }
 
@@ -653,10 +662,7 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             ))
         }
     };
-    let size = match shape {
-        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
-        Shape::Basket { span, .. } => 0.5 * span,
-    };
+    let size = shape.size();
     if thickness < MIN_RELATIVE_THICKNESS * size {
         return Err(s.out_of_range(
             "thickness",

@@ -58,19 +58,22 @@ where
     // Geometric grid from just below the admissible maximum down to 1e-6 of it.
     const GRID: usize = 40;
     let top = t_max * (1.0 - 1e-6);
-    let bottom = t_max * 1e-6;
+    // Not below the thinnest ring a scene admits (absolute and relative to the arch's size).
+    let bottom = (t_max * 1e-6)
+        .max(crate::scene::MIN_LENGTH)
+        .max(2.0 * crate::scene::MIN_RELATIVE_THICKNESS * scene.arch_size())
+        * (1.0 + 1e-9);
     let ratio = (bottom / top).powf(1.0 / (GRID - 1) as f64);
     let mut lowest_standing = None;
     let mut below = None;
-    let mut t = top;
-    for _ in 0..GRID {
+    for k in 0..GRID {
+        let t = (top * ratio.powi(k as i32)).max(bottom);
         if test(t)? {
             lowest_standing = Some(t);
         } else if lowest_standing.is_some() {
             below = Some(t);
             break;
         }
-        t *= ratio;
     }
     let Some(mut hi) = lowest_standing else {
         return Ok(ThicknessSearch {

@@ -148,7 +148,9 @@ fn solver_tolerance_is_relative_accuracy() {
         assert_eq!(r.status, "collapse");
         let d = r.difference.expect("difference");
         assert!(d <= 10.0 * r.tolerance, "tol {}: {d}", r.tolerance);
-        assert!(r.residual_over_weight.expect("residual") < 1e-9);
+        // The reported forces are clamped to no tension, so the equilibrium residual also
+        // measures how far the solver's iterate sat outside the cones: about tol / 10.
+        assert!(r.residual_over_weight.expect("residual") <= r.tolerance);
     }
     assert_eq!(c.tolerances[3].difference, Some(0.0));
     assert!(

@@ -310,3 +310,27 @@ fn the_model_holds_only_what_the_scene_requires() {
     assert_eq!(p.joints.len(), 17 + 2 * 3);
     assert!(p.is_chain());
 }
+
+#[test]
+fn reported_resultants_stay_inside_their_joints() {
+    // A flat segmental arch whose springing opens completely at collapse, and a two-voussoir
+    // arch: solver round-off on open joints must not show up as tension or as a resultant
+    // outside the joint.
+    for s in [
+        circular(0.1, 24, 40.0, "polygon")
+            .with_override("arch.radius=2.0")
+            .expect("valid"),
+        semicircle(0.3, 2),
+    ] {
+        let a = Assembly::from_scene(&s);
+        let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+        let forces = r.forces.as_ref().expect("collapse");
+        for (j, (jt, f)) in a.joints.iter().zip(forces).enumerate() {
+            assert!(f.n >= 0.0, "joint {j}: N = {}", f.n);
+            match r.eccentricity(j) {
+                Some(e) => assert!(e.abs() <= 0.5 * jt.length(), "joint {j}: e = {e}"),
+                None => assert!(r.open.contains(&j)),
+            }
+        }
+    }
+}

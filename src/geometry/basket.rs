@@ -19,8 +19,15 @@ pub fn basket_radii(span: f64, rise: f64, b: f64) -> (f64, f64) {
 /// Voussoirs on each side arc: `max(1, round(n r1 b / (2 r1 b + r2 (pi - 2b))))`.
 pub fn side_voussoirs(n: usize, r1: f64, r2: f64, b: f64) -> usize {
     let share = n as f64 * r1 * b / (2.0 * r1 * b + r2 * (PI - 2.0 * b));
-    // f64::round rounds half away from zero, as the spec asks.
-    (share.round() as usize).max(1)
+    // Round half away from zero, as the spec asks; a share within round-off of k + 1/2 is a
+    // tie (algebraically equal forms of the denominator differ in the last bit), so it goes up.
+    let frac = share - share.floor();
+    let rounded = if (frac - 0.5).abs() <= 1e-9 * share.max(1.0) {
+        share.floor() + 1.0
+    } else {
+        share.round()
+    };
+    (rounded as usize).max(1)
 }
 
 /// Basket-handle arch; the caller has checked `0 < r1 < r2`, `t < 2 r1` and that the crown
@@ -54,4 +61,20 @@ pub fn basket(span: f64, rise: f64, b: f64, t: f64, n: usize) -> ArchGeometry {
     };
     g.symmetrise();
     g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_ties_round_up() {
+        // span 3, rise 2 - sqrt(3)/2, b = 60 deg: r1 = 1, r2 = 2, and n = 10 gives a share of
+        // exactly 2.5 voussoirs per side arc.
+        let b = 60f64.to_radians();
+        let (r1, r2) = basket_radii(3.0, 2.0 - 3f64.sqrt() / 2.0, b);
+        assert!((r1 - 1.0).abs() < 1e-12 && (r2 - 2.0).abs() < 1e-12);
+        assert_eq!(side_voussoirs(10, r1, r2, b), 3);
+        assert_eq!(side_voussoirs(9, r1, r2, b), 2);
+    }
 }

@@ -31,7 +31,18 @@ pub fn mirror(p: Vec2) -> Vec2 {
 /// Unit vector at polar angle `theta` (radians).
 #[inline]
 pub fn polar(theta: f64) -> Vec2 {
-    Vec2::new(theta.cos(), theta.sin())
+    // Springings of semicircular and pointed arches sit at exactly 0 and pi: keep their y = 0
+    // exact rather than sin(pi) = 1.2e-16.
+    use std::f64::consts::{FRAC_PI_2, PI};
+    if theta == PI {
+        Vec2::new(-1.0, 0.0)
+    } else if theta == 0.0 {
+        Vec2::new(1.0, 0.0)
+    } else if theta == FRAC_PI_2 {
+        Vec2::new(0.0, 1.0)
+    } else {
+        Vec2::new(theta.cos(), theta.sin())
+    }
 }
 
 /// Area (always positive) and centroid of a simple polygon given in either orientation.

@@ -226,8 +226,10 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
         .iter()
         .enumerate()
         .map(|(j, jt)| {
-            let c1 = x[column(j, 0)] * p.force_scale;
-            let c2 = x[column(j, 1)] * p.force_scale;
+            // Interior-point iterates sit a hair inside the cone; a fully open joint's c1, c2
+            // are round-off of either sign. Clamp so N >= 0 and |e| <= L/2 exactly.
+            let c1 = x[column(j, 0)].max(0.0) * p.force_scale;
+            let c2 = x[column(j, 1)].max(0.0) * p.force_scale;
             let v = x[column(j, 2)] * p.force_scale;
             JointForce {
                 n: c1 + c2,
@@ -284,6 +286,10 @@ fn read_mechanism(assembly: &Assembly, p: &StaticProblem, z: &[f64]) -> Vec<[f64
 impl StaticResult {
     /// Eccentricity e = M/N of each joint (None where N = 0 or there are no forces).
     pub fn eccentricity(&self, joint: usize) -> Option<f64> {
+        if self.open.contains(&joint) {
+            // An open joint carries only solver round-off: its resultant has no position.
+            return None;
+        }
         let f = self.forces.as_ref()?.get(joint)?;
         (f.n > 0.0).then(|| f.m / f.n)
     }

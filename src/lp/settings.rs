@@ -62,9 +62,12 @@ impl StaticSettings {
         self.direction = d;
         self
     }
+    /// Set the solver tolerances, and widen the hinge tolerance with them: a solution
+    /// accurate to `tol` only locates a resultant at a joint's end to about `tol`.
     pub fn tolerance(mut self, tol: f64) -> Self {
         self.tol_gap = tol;
         self.tol_feas = tol;
+        self.hinge_tolerance = self.hinge_tolerance.max(100.0 * tol);
         self
     }
     pub fn hinge_tolerance(mut self, tol: f64) -> Self {

@@ -724,6 +724,10 @@ pub struct DemReport {
     pub relative_difference: Option<f64>,
     /// `(lambda_collapses - lambda_stands) / lambda_dem`.
     pub bracket_width: Option<f64>,
+    /// Whether `lambda_lower` lies inside `[lambda_stands, lambda_collapses]`: then the DEM
+    /// confirms it to within the bracket, and `relative_difference` (the bracket's midpoint
+    /// against it, zero when the search was centred on it) is known only to half the width.
+    pub static_inside_bracket: Option<bool>,
     pub steps: u64,
     pub wall_time_s: f64,
     /// Joints seen opening at one end, sliding, and opening fully at the onset of collapse.
@@ -764,6 +768,10 @@ impl DemReport {
                 _ => None,
             },
             bracket_width: r.bracket_width,
+            static_inside_bracket: match (lambda_lower, r.lambda_stands, r.lambda_collapses) {
+                (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
+                _ => None,
+            },
             steps: r.steps,
             wall_time_s: r.wall_time_s,
             hinges: r.hinges.clone(),

@@ -381,3 +381,14 @@ fn snapshots_are_written_as_csv() {
         assert!(v);
     }
 }
+
+#[test]
+fn a_time_step_above_the_stability_limit_is_refused() {
+    let s = scene("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[dem]\ntime_step = 1e-3\n");
+    let a = Assembly::from_scene(&s);
+    let p = IntegrationParameters::from_scene(&s, &a).expect("valid table");
+    let e =
+        voussoir::dem::collapse_multiplier(&a, &p, 0.01, &mut |_| {}).expect_err("unstable step");
+    assert!(e.to_string().contains("stability limit"), "{e}");
+    assert!(voussoir::dem::Simulation::new(&a, &p).is_err());
+}

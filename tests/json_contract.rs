@@ -160,6 +160,7 @@ fn dem_fields() {
             "lambda_lower",
             "relative_difference",
             "bracket_width",
+            "static_inside_bracket",
             "steps",
             "wall_time_s",
             "hinges",

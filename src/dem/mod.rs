@@ -125,6 +125,29 @@ impl DemResult {
     }
 }
 
+/// A time step above the explicit stability limit makes the integration blow up, which
+/// would then read as a collapse: refuse it.
+fn check_time_step(world: &World) -> Result<(), DemError> {
+    if world.dt > world.stability_limit {
+        return Err(DemError::Settings(format!(
+            "dem.time_step = {:e} s exceeds the stability limit {:e} s of the stiffest contact (leave it unset to use {} of the limit)",
+            world.dt, world.stability_limit, world.params.time_step_factor
+        )));
+    }
+    Ok(())
+}
+
+/// A run whose block positions stopped being finite diverged: an error, not a collapse.
+fn check_finite(run: &Run) -> Result<(), DemError> {
+    if run.max_displacement.is_finite() {
+        Ok(())
+    } else {
+        Err(DemError::Settings(
+            "the simulation diverged (non-finite block positions): reduce dem.time_step_factor or the contact stiffness".to_string(),
+        ))
+    }
+}
+
 /// Most runs one search may take (a bisection from a 1% bracket needs a handful).
 const MAX_RUNS: usize = 60;
 
@@ -153,6 +176,7 @@ pub fn collapse_multiplier(
         },
     };
     let mut world = World::new(assembly, params);
+    check_time_step(&world)?;
     let friction_infinite = assembly.joints.iter().any(|j| j.friction.is_infinite());
     let mut result = DemResult {
         cannot_stand: false,
@@ -189,6 +213,7 @@ pub fn collapse_multiplier(
     let settle = protocol::run(&mut world, assembly, None, &mut |f| {
         report(f, 3.0, progress)
     });
+    check_finite(&settle)?;
     let settled_ok = settle.outcome == Outcome::Stands;
     result.steps += settle.steps;
     result.runs.push(settle);
@@ -238,6 +263,7 @@ pub fn collapse_multiplier(
         let r = protocol::run(&mut w, assembly, Some(x), &mut |f| {
             report(done + f, expected, progress)
         });
+        check_finite(&r)?;
         result.steps += r.steps;
         match r.outcome {
             Outcome::Stands => lo = lo.max(x),
@@ -342,9 +368,9 @@ impl Simulation {
     /// The blocks of `assembly` at rest in their assembly positions, no load applied.
     pub fn new(assembly: &Assembly, params: &IntegrationParameters) -> Result<Self, DemError> {
         assembly.validate()?;
-        Ok(Simulation {
-            world: World::new(assembly, params),
-        })
+        let world = World::new(assembly, params);
+        check_time_step(&world)?;
+        Ok(Simulation { world })
     }
     /// Set the fraction of gravity and the horizontal multiplier applied from now on.
     pub fn set_load(&mut self, gravity: f64, lambda: f64) {

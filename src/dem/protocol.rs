@@ -130,7 +130,11 @@ pub(crate) fn run(
             .zip(&start)
             .filter(|(b, _)| !b.fixed)
             .map(|(b, (pos, angle))| (b.pos - pos).norm() + (b.angle - angle).abs() * b.radius)
-            .fold(max_disp, f64::max);
+            // f64::max would drop a NaN: keep it, so a diverging run is noticed.
+            .fold(max_disp, |a, d| if d.is_nan() { d } else { a.max(d) });
+        if max_disp.is_nan() {
+            break Outcome::Undecided;
+        }
         let t = world.time - t0;
         if max_disp > p.collapse_displacement {
             break Outcome::Collapses;

@@ -70,6 +70,8 @@ pub(crate) struct World {
     pub pairs: Vec<Pair>,
     pub params: IntegrationParameters,
     pub dt: f64,
+    /// The explicit stability limit of the time step (s), whatever step is used.
+    pub stability_limit: f64,
     pub time: f64,
     pub steps: u64,
     pub load: Load,
@@ -135,15 +137,17 @@ impl World {
         } else {
             params.infinite_friction
         };
+        let stability_limit = critical_time_step(&bodies, params);
         let dt = params
             .time_step
-            .unwrap_or_else(|| critical_time_step(&bodies, params) * params.time_step_factor);
+            .unwrap_or(stability_limit * params.time_step_factor);
         let n = bodies.len();
         let mut w = World {
             bodies,
             pairs: Vec::new(),
             params: params.clone(),
             dt,
+            stability_limit,
             time: 0.0,
             steps: 0,
             load: Load::default(),

@@ -42,6 +42,8 @@ pub enum SceneError {
     },
     #[error("--set {text}: {message}")]
     BadOverride { text: String, message: String },
+    #[error("--vary {text}: {message}")]
+    BadVariation { text: String, message: String },
 }
 
 impl SceneError {

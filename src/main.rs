@@ -318,6 +318,7 @@ fn run(cli: Cli) -> Result<String, Error> {
             };
             // Check --x and --series before solving anything.
             chart_for(&[])?;
+            sweep::check_variations(&scene, &variations)?;
             let cases = sweep::cases(&scene, &variations);
             let bar = progress_bar(cases.len() as u64, "sweep");
             let options = analysis::Options {
@@ -630,6 +631,12 @@ fn run(cli: Cli) -> Result<String, Error> {
                     (Some(a), Some(b)) => Some((a - b).abs() / a),
                     _ => None,
                 };
+                if scene.material.friction.is_finite() {
+                    rep.kinematic_note = Some(format!(
+                        "the kinematic search knows rotational mechanisms only: with mu = {} sliding may govern, and then its minimum thickness is the one without sliding",
+                        scene.material.friction
+                    ));
+                }
             } else {
                 rep.kinematic_note = Some(format!(
                     "kinematic search skipped: {} joints is more than {kinematic_max_joints}",

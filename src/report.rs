@@ -619,7 +619,7 @@ pub fn min_thickness_summary(
     }
     let _ = writeln!(s, "  {} static analyses", m.search.evaluations);
     match (rep.min_thickness_kinematic, &rep.kinematic_note) {
-        (Some(t), _) => {
+        (Some(t), note) => {
             let _ = writeln!(
                 s,
                 "Kinematic minimum thickness (lambda_upper = 0): t_min = {t:.9} m{}",
@@ -627,6 +627,9 @@ pub fn min_thickness_summary(
                     "  (relative difference {g:.1e})"
                 ))
             );
+            if let Some(note) = note {
+                let _ = writeln!(s, "  note: {note}");
+            }
         }
         (None, Some(note)) => {
             let _ = writeln!(s, "Kinematic: {note}");

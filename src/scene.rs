@@ -15,6 +15,10 @@ use toml::{Table, Value};
 /// dense outputs and the discrete searches stop being useful, not just slow.
 pub const MAX_VOUSSOIRS: usize = 20_000;
 
+/// Largest finite Coulomb coefficient: beyond it the friction limit is infinite to solver
+/// precision (mu = 1e8 and inf give the same lambda to 1e-9).
+pub const MAX_FRICTION: f64 = 1e8;
+
 /// Smallest length a scene may give (m): a micrometre.
 pub const MIN_LENGTH: f64 = 1e-6;
 /// Largest length a scene may give (m): a thousand kilometres.
@@ -718,8 +722,12 @@ fn parse_material(mut s: Section) -> Result<Material, SceneError> {
     let unit_weight = s.positive("unit_weight", Some(20000.0), "")?;
     let depth = s.positive("depth", Some(1.0), "")?;
     let friction = s.opt_f64("friction")?.unwrap_or(f64::INFINITY);
-    if friction.is_nan() || friction < 0.0 {
-        return Err(s.out_of_range("friction", friction, "must be >= 0, or inf for no sliding"));
+    if friction.is_nan() || friction < 0.0 || (friction.is_finite() && friction > MAX_FRICTION) {
+        return Err(s.out_of_range(
+            "friction",
+            friction,
+            &format!("must be from 0 to {MAX_FRICTION:e}, or inf for no sliding (a larger finite coefficient is inf to solver precision, and its rows would wreck the conic program's scaling)"),
+        ));
     }
     s.finish("")?;
     Ok(Material {

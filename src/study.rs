@@ -257,6 +257,7 @@ impl Study {
             continuous: self.continuous,
             ..Default::default()
         };
+        sweep::check_variations(&self.scene, &self.variations)?;
         let cases = sweep::cases(&self.scene, &self.variations);
         let rows = sweep::run(
             &cases,

@@ -26,7 +26,7 @@ pub struct Variation {
 /// Parse `KEY=V1,V2,...` or `KEY=START:STOP:STEP` (STOP included when reached within
 /// round-off).
 pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
-    let bad = |message: String| SceneError::BadOverride {
+    let bad = |message: String| SceneError::BadVariation {
         text: text.to_string(),
         message,
     };
@@ -77,6 +77,65 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
             .collect::<Result<Vec<_>, _>>()?
     };
     Ok(Variation { key, values })
+}
+
+/// The scene keys a varied key sets (a ratio sets its underlying key).
+fn targets(key: &str) -> Vec<&str> {
+    match key {
+        "t/R" | "t/span" => vec!["arch.thickness"],
+        "e/R" => vec!["arch.eccentricity"],
+        "e/span" => vec!["arch.eccentricity", "arch.radius"],
+        "rise/span" => vec!["arch.rise"],
+        "h/R" => vec!["piers.height"],
+        "b/R" => vec!["piers.width"],
+        other => vec![other],
+    }
+}
+
+/// Check the varied keys before anything is solved: no key varied twice (directly or through
+/// a ratio that sets the same scene key), and every key known to the scene format (values out
+/// of range are the cases' own business: they stay in the sweep as rows with status `error`).
+pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), SceneError> {
+    let mut set: Vec<(&str, &str)> = Vec::new();
+    for v in variations {
+        for t in targets(&v.key) {
+            if let Some((other, _)) = set.iter().find(|(_, s)| *s == t) {
+                return Err(SceneError::BadVariation {
+                    text: v.key.clone(),
+                    message: if *other == v.key {
+                        "this key is varied twice".to_string()
+                    } else {
+                        format!("sets `{t}`, which `--vary {other}` already sets")
+                    },
+                });
+            }
+            set.push((&v.key, t));
+        }
+    }
+    for v in variations {
+        let Some(first) = v.values.first() else {
+            return Err(SceneError::BadVariation {
+                text: v.key.clone(),
+                message: "no values".into(),
+            });
+        };
+        match apply(base, &[(v.key.as_str(), first)]) {
+            Err(e @ (SceneError::UnknownKey { .. } | SceneError::WrongType { .. })) => {
+                return Err(SceneError::BadVariation {
+                    text: format!("{}={first}", v.key),
+                    message: e.to_string(),
+                })
+            }
+            Err(SceneError::BadOverride { message, .. }) => {
+                return Err(SceneError::BadVariation {
+                    text: format!("{}={first}", v.key),
+                    message,
+                })
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// Apply `key = value` pairs to a scene: scene keys first (together), then the

@@ -50,6 +50,7 @@ fn each_invalid_scene_names_its_key() {
         ("[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = 120\nthickness = 0.1\nvoussoirs = 8\n[piers]\nheight = 1.0\nwidth = 0.3\n", "arch.embrace_deg", "120"),
         (&format!("{GOOD}[material]\nfriction = -0.5\n"), "material.friction", "-0.5"),
         (&format!("{GOOD}[material]\nfriction = nan\n"), "material.friction", "NaN"),
+        (&format!("{GOOD}[material]\nfriction = 1e12\n"), "material.friction", "1000000000000"),
         (&format!("{GOOD}[material]\nunit_weight = 0\n"), "material.unit_weight", "0"),
         (&format!("{GOOD}[material]\ndepth = true\n"), "material.depth", "true"),
         (&format!("{GOOD}[materials]\ndepth = 1.0\n"), "materials", ""),

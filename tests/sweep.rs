@@ -85,3 +85,27 @@ fn ranges_include_their_end_and_reject_nonsense() {
         assert!(sweep::parse_variation(bad).is_err(), "{bad}");
     }
 }
+
+#[test]
+fn clashing_or_unknown_varied_keys_are_refused_before_solving() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    for bad in [
+        vec!["arch.thickness=0.1", "t/R=0.2"],
+        vec!["t/R=0.1", "t/R=0.2"],
+        vec!["t/span=0.1", "t/R=0.2"],
+        vec!["e/span=0.1", "arch.radius=2"],
+        vec!["arch.colour=1,2"],
+        vec!["T/R=1,2"],
+        vec!["nosuch.key=1"],
+    ] {
+        let vars: Vec<_> = bad
+            .iter()
+            .map(|v| sweep::parse_variation(v).expect("parses"))
+            .collect();
+        let e = sweep::check_variations(&base, &vars).expect_err(&bad.join(" "));
+        assert!(e.to_string().starts_with("--vary "), "{e}");
+    }
+    // Out-of-range values are the cases' own business.
+    let vars = vec![sweep::parse_variation("arch.thickness=0.1,5").expect("parses")];
+    assert!(sweep::check_variations(&base, &vars).is_ok());
+}

@@ -59,14 +59,19 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
             )));
         }
         let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
+        let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
         if count > 100_000 {
             return Err(bad(format!(
                 "`{spec}` gives {count} values; at most 100000"
             )));
         }
         (0..count)
-            // Round to 12 significant digits so 0.1 + 0.05 * 1 prints as 0.15.
+            // Whole-number ranges (voussoirs, courses) stay integers; others are rounded to
+            // 12 significant digits so 0.1 + 0.05 * 1 prints as 0.15.
             .map(|i| {
+                if let [Some(a), Some(_), Some(st)] = whole[..] {
+                    return Value::Integer(a + st * i as i64);
+                }
                 let x = start + step * i as f64;
                 Value::Float(format!("{x:.11e}").parse().unwrap_or(x))
             })

@@ -642,7 +642,13 @@ struct MaskTables {
     b: [u16; 256],
     c: [u16; 256],
     d: [u16; 256],
+    /// The patterns that use an end choice flagged in a triangle's collinearity byte (the
+    /// high byte of its sign word), for the triangles (b,c,d), (a,c,d), (a,b,d), (a,b,c).
+    uses: [[u16; 256]; 4],
 }
+
+/// The mask tables depend on nothing: built once per process.
+static MASKS: std::sync::OnceLock<MaskTables> = std::sync::OnceLock::new();
 
 fn mask_tables() -> MaskTables {
     let mut t = MaskTables {
@@ -650,7 +656,24 @@ fn mask_tables() -> MaskTables {
         b: [0; 256],
         c: [0; 256],
         d: [0; 256],
+        uses: [[0; 256]; 4],
     };
+    for y in 0..256usize {
+        for pat in 0..16usize {
+            let (ea, eb, ec, ed) = ((pat >> 3) & 1, (pat >> 2) & 1, (pat >> 1) & 1, pat & 1);
+            let combos = [
+                eb << 2 | ec << 1 | ed,
+                ea << 2 | ec << 1 | ed,
+                ea << 2 | eb << 1 | ed,
+                ea << 2 | eb << 1 | ec,
+            ];
+            for (u, combo) in t.uses.iter_mut().zip(combos) {
+                if (y >> combo) & 1 == 1 {
+                    u[y] |= 1 << pat;
+                }
+            }
+        }
+    }
     for y in 0..256usize {
         let bit = |i: usize| (y >> i) & 1 == 1;
         for pat in 0..16usize {
@@ -775,7 +798,7 @@ struct BcdConst {
 pub(crate) struct FourTables {
     idx: TripleIndex,
     signs: Vec<u16>,
-    masks: MaskTables,
+    masks: &'static MaskTables,
 }
 
 impl FourTables {
@@ -785,7 +808,7 @@ impl FourTables {
         FourTables {
             idx,
             signs,
-            masks: mask_tables(),
+            masks: MASKS.get_or_init(mask_tables),
         }
     }
 }
@@ -847,12 +870,6 @@ fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &
             let ybcd = signs[idx.c3[d] + idx.c2[c] + b];
             let base_abc = idx.c3[c] + idx.c2[b];
             let base_abd = idx.c3[d] + idx.c2[b];
-            if ybcd >> 8 != 0 {
-                for a in 0..b {
-                    slow_quadruple(chain, [a, b, c, d], sink);
-                }
-                continue;
-            }
             let sbc = chain.body(b, c);
             for (combo, k) in konst.iter_mut().enumerate() {
                 let pb = chain.p[(combo >> 2) & 1][b];
@@ -867,20 +884,29 @@ fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &
                 };
             }
             let ma = masks.a[(ybcd & 0xff) as usize];
+            let ua = masks.uses[0][(ybcd >> 8) as usize];
             let pre_c = chain.pre[c];
             for a in 0..b {
                 let yabc = signs[base_abc + a];
                 let yabd = signs[base_abd + a];
                 let yacd = signs[base_acd + a];
-                if (yabc | yabd | yacd) >> 8 != 0 {
-                    slow_quadruple(chain, [a, b, c, d], sink);
-                    continue;
+                // Patterns whose hinge points are collinear within round-off in one of the
+                // four triangles: their sign conditions are undecided by the tables, so they
+                // are evaluated directly (with the admissibility tolerance). The other
+                // patterns of the quadruple use only decided signs and take the fast path.
+                let mut slow = 0;
+                if (ybcd | yabc | yabd | yacd) >> 8 != 0 {
+                    slow = ua
+                        | masks.uses[1][(yacd >> 8) as usize]
+                        | masks.uses[2][(yabd >> 8) as usize]
+                        | masks.uses[3][(yabc >> 8) as usize];
+                    slow_patterns(chain, [a, b, c, d], slow, sink);
                 }
                 let mb = masks.b[(yacd & 0xff) as usize];
                 let mc = masks.c[(yabd & 0xff) as usize];
                 let md = masks.d[(yabc & 0xff) as usize];
-                let plus = ma & mb & mc & md;
-                let minus = !ma & !mb & !mc & !md;
+                let plus = ma & mb & mc & md & !slow;
+                let minus = !ma & !mb & !mc & !md & !slow;
                 if plus | minus == 0 {
                     continue;
                 }
@@ -940,9 +966,19 @@ fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64,
 }
 
 /// All 16 end patterns of a quadruple by direct evaluation (near-collinear hinge points).
-#[cold]
+#[cfg(test)]
 fn slow_quadruple<S: Sink>(chain: &Chain, j: [usize; 4], sink: &mut S) {
-    for pat in 0..16 {
+    slow_patterns(chain, j, 0xffff, sink);
+}
+
+/// The end patterns `pats` (bit mask) of a quadruple by direct evaluation (near-collinear
+/// hinge points).
+#[cold]
+fn slow_patterns<S: Sink>(chain: &Chain, j: [usize; 4], pats: u16, sink: &mut S) {
+    let mut bits = pats;
+    while bits != 0 {
+        let pat = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
         let key = quad_key(j, pat);
         if let Some((a, g, _)) = chain.evaluate(&key) {
             sink.count(1);

@@ -61,9 +61,15 @@ fn main() {
     }
     println!();
     println!(
-        "{:<40} {:>8} {:>7} {:>6} {:>12} {:>10}",
-        "continuous model", "sections", "refined", "evals", "lambda", "best ms"
+        "{:<40} {:>8} {:>7} {:>6} {:>12} {:>10} {:>10}",
+        "continuous model", "sections", "refined", "evals", "lambda", "best ms", "1 thread"
     );
+    // The continuous model uses the rayon pool (coarse search and refinement); its
+    // single-thread time is measured in a pool of one thread.
+    let one = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+        Ok(p) => p,
+        Err(e) => panic!("rayon pool: {e}"),
+    };
     let geoms = [
         ("semicircle t/R=0.15", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.15\nvoussoirs=16\n"),
         ("segmental 120 deg t/R=0.1", "[arch]\nshape='circular'\nradius=1.0\nembrace_deg=120\nthickness=0.1\nvoussoirs=16\n"),
@@ -77,14 +83,16 @@ fn main() {
     for (label, text) in geoms {
         let s = scene(text);
         let (t, r) = time(20, || kinematic::continuous(&s));
+        let (t1, _) = one.install(|| time(20, || kinematic::continuous(&s)));
         match r {
             Ok(r) => println!(
-                "{label:<40} {:>8} {:>7} {:>6} {:>12.8} {:>10.3}",
+                "{label:<40} {:>8} {:>7} {:>6} {:>12.8} {:>10.3} {:>10.3}",
                 r.coarse_sections,
                 r.refined,
                 r.evaluations,
                 r.lambda_signed.unwrap_or(f64::NAN),
-                1e3 * t
+                1e3 * t,
+                1e3 * t1
             ),
             Err(e) => println!("{label:<40} error: {e}"),
         }

@@ -47,7 +47,7 @@
 //! from the crown direction, e.g. the haunch hinge of the semicircle at minimum thickness at
 //! 54.5 deg.
 
-use super::discrete::{visit_all, Chain, Key, Sink};
+use super::discrete::{visit_all_par, Chain, Key, Sink};
 use super::{
     motion_work, solve_motion, Act, Active, Direction, Extremes, Family, KinematicError, Status,
     Sums,
@@ -55,8 +55,11 @@ use super::{
 use crate::assembly::{Assembly, JointEnd, JointKind};
 use crate::geometry::{basket_radii, polar, polygon_area_centroid, Vec2};
 use crate::scene::{Scene, Shape};
+use rayon::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::hash::BuildHasherDefault;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 /// Sections of the coarse global search along the arch.
@@ -418,20 +421,87 @@ impl Structure {
     }
 }
 
-/// Best coarse mechanism of each signature (the item and action of each active section).
+/// A signature: the item and action of each active section.
+type Signature = [(usize, u8); 4];
+
+/// Multiplicative hash for the few small integers of a signature (the std SipHash, built
+/// against adversarial keys, was a tenth of the coarse search).
+#[derive(Default)]
+struct SignatureHasher(u64);
+
+impl std::hash::Hasher for SignatureHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u8(&mut self, i: u8) {
+        self.write_u64(u64::from(i));
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.write_u64(i as u64);
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+/// Best coarse mechanism of each signature.
 struct Collector<'a> {
     ext: Extremes<Key>,
-    best: HashMap<[(usize, u8); 4], (f64, Key)>,
+    best: HashMap<Signature, (f64, Key), BuildHasherDefault<SignatureHasher>>,
     coarse: &'a [Pos],
+    /// Signatures are refined only within `REFINE_MARGIN` of the best; keep every candidate
+    /// below this looser cut (the best can only decrease as the search goes on). Updated with
+    /// the best.
+    cut: f64,
+    /// The lowest cut of all the collectors of a parallel search (bits of an f64): a
+    /// collector skips what another one's best already puts out of reach.
+    shared: &'a AtomicU64,
 }
 
 impl Collector<'_> {
-    /// Signatures are refined only within `REFINE_MARGIN` of the best; keep every candidate
-    /// below this looser cut (the best can only decrease as the search goes on).
-    fn cut(&self) -> f64 {
-        self.ext.best.as_ref().map_or(f64::INFINITY, |b| {
-            b.0 + 2.0 * REFINE_MARGIN * b.0.abs().max(0.05)
-        })
+    /// The cut of a best multiplier `b`.
+    fn cut_of(b: f64) -> f64 {
+        b + 2.0 * REFINE_MARGIN * b.abs().max(0.05)
+    }
+
+    /// Lower the own and the shared cut to that of the own best.
+    fn update_cut(&mut self) {
+        if let Some(b) = &self.ext.best {
+            self.cut = Self::cut_of(b.0);
+            let mut cur = self.shared.load(Ordering::Relaxed);
+            while self.cut < f64::from_bits(cur) {
+                match self.shared.compare_exchange_weak(
+                    cur,
+                    self.cut.to_bits(),
+                    Ordering::Relaxed,
+                    Ordering::Relaxed,
+                ) {
+                    Ok(_) => break,
+                    Err(now) => cur = now,
+                }
+            }
+        }
+    }
+}
+
+impl Collector<'_> {
+    /// The collector of the mechanisms of both (the best of each signature is the lower one,
+    /// ties to the lower key, so the result does not depend on the order of the merges).
+    fn merge(mut self, o: Self) -> Self {
+        self.ext = self.ext.merge(o.ext);
+        for (sig, (l, key)) in o.best {
+            let e = self.best.entry(sig).or_insert((l, key));
+            if l < e.0 || (l == e.0 && key < e.1) {
+                *e = (l, key);
+            }
+        }
+        self.update_cut();
+        self
     }
 }
 
@@ -441,7 +511,8 @@ const REFINE_MARGIN: f64 = 0.2;
 impl Sink for Collector<'_> {
     fn wants(&self, ax: f64, g: f64) -> bool {
         if ax > 0.0 {
-            g <= self.cut() * ax
+            let shared = f64::from_bits(self.shared.load(Ordering::Relaxed));
+            g <= self.cut.min(shared) * ax
         } else {
             self.ext.wants(ax, g)
         }
@@ -449,6 +520,7 @@ impl Sink for Collector<'_> {
     fn take(&mut self, ax: f64, g: f64, key: Key) {
         self.ext.record(ax, g, || key);
         if ax > 0.0 {
+            self.update_cut();
             let l = g / ax;
             let mut sig = [(usize::MAX, 0u8); 4];
             for (k, (j, a)) in key.items().enumerate() {
@@ -491,32 +563,49 @@ pub fn continuous_with(
     let sections: Vec<(Vec2, Vec2)> = coarse.iter().map(|p| st.section(*p)).collect();
     let segments: Vec<Sums> = coarse.windows(2).map(|w| st.between(w[0], w[1])).collect();
     let chain = Chain::from_sections(&sections, &segments, sign, st.size);
-    let mut col = Collector {
+    let shared = AtomicU64::new(f64::INFINITY.to_bits());
+    let make = || Collector {
         ext: Extremes::new(),
-        best: HashMap::new(),
+        best: HashMap::default(),
         coarse: &coarse,
+        cut: f64::INFINITY,
+        shared: &shared,
     };
-    visit_all(&chain, &mut col);
+    let col = visit_all_par(&chain, make, Collector::merge);
 
     // Refine the signatures whose coarse multiplier is near the best one.
     let mut cands: Vec<(f64, Key)> = col.best.values().copied().collect();
     cands.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut evaluations = 0u64;
-    let mut refined = 0;
-    let mut best: Option<(f64, Vec<Pos>, Vec<Act>)> = None;
-    if let Some(&(l0, _)) = cands.first() {
-        let margin = REFINE_MARGIN * l0.abs().max(0.05);
-        for (l, key) in cands.iter().take(8) {
-            if *l > l0 + margin {
-                break;
-            }
-            refined += 1;
+    let chosen: Vec<Key> = match cands.first() {
+        Some(&(l0, _)) => {
+            let margin = REFINE_MARGIN * l0.abs().max(0.05);
+            cands
+                .iter()
+                .take(8)
+                .take_while(|(l, _)| *l <= l0 + margin)
+                .map(|(_, key)| *key)
+                .collect()
+        }
+        None => Vec::new(),
+    };
+    let refined = chosen.len();
+    // The signatures are refined independently (in parallel), then taken in the order of
+    // their coarse multipliers: the first strictly lowest wins, as in a sequential loop.
+    let runs: Vec<(f64, Vec<Pos>, Vec<Act>, u64)> = chosen
+        .par_iter()
+        .map(|key| {
             let pos: Vec<Pos> = key.items().map(|(j, _)| coarse[j]).collect();
             let acts: Vec<Act> = key.items().map(|(_, a)| act_of(a)).collect();
-            let (lr, pr) = refine(&st, pos, &acts, sign, &mut evaluations);
-            if best.as_ref().is_none_or(|b| lr < b.0) {
-                best = Some((lr, pr, acts));
-            }
+            let mut ev = 0u64;
+            let (lr, pr) = refine(&st, pos, &acts, sign, &mut ev);
+            (lr, pr, acts, ev)
+        })
+        .collect();
+    let evaluations: u64 = runs.iter().map(|r| r.3).sum();
+    let mut best: Option<(f64, Vec<Pos>, Vec<Act>)> = None;
+    for (lr, pr, acts, _) in runs {
+        if best.as_ref().is_none_or(|b| lr < b.0) {
+            best = Some((lr, pr, acts));
         }
     }
     let mut ext = col.ext.clone();
@@ -630,7 +719,8 @@ fn refine(
             _ => f64::INFINITY,
         }
     };
-    let vars: Vec<usize> = (0..pos.len())
+    let n = pos.len();
+    let vars: Vec<usize> = (0..n)
         .filter(|&k| matches!(st.items[pos[k].item], Item::Annulus(_)))
         .collect();
     let mut best = f(&pos, evaluations);
@@ -660,10 +750,45 @@ fn refine(
             let u0 = pos[k].u;
             let (mut x0, mut x3) = ((u0 - width[vi]).max(lo), (u0 + width[vi]).min(hi));
             let r = 0.5 * (5f64.sqrt() - 1.0);
+            // Only section k moves: the other sections and the bodies not bounded by it are
+            // computed once per coordinate (the same functions of the same positions as
+            // `Structure::evaluate`, so every value is bit for bit the same).
             let mut trial = pos.clone();
+            let mut actives = [Active {
+                p1: Vec2::zeros(),
+                p2: Vec2::zeros(),
+                act: Act::Open,
+            }; 4];
+            for (j, (p, a)) in trial.iter().zip(acts).enumerate() {
+                let (p1, p2) = st.section(*p);
+                actives[j] = Active { p1, p2, act: *a };
+            }
+            let mut bodies = [Sums::default(); 3];
+            for j in 0..n - 1 {
+                bodies[j] = st.between(trial[j], trial[j + 1]);
+            }
             let mut eval = |u: f64, ev: &mut u64| {
+                *ev += 1;
                 trial[k].u = u;
-                f(&trial, ev)
+                let (p1, p2) = st.section(trial[k]);
+                actives[k].p1 = p1;
+                actives[k].p2 = p2;
+                if k > 0 {
+                    bodies[k - 1] = st.between(trial[k - 1], trial[k]);
+                }
+                if k + 1 < n {
+                    bodies[k] = st.between(trial[k], trial[k + 1]);
+                }
+                let Some(m) = solve_motion(&actives[..n], true) else {
+                    return f64::INFINITY;
+                };
+                let (ax, g) = motion_work(&m, &bodies[..n - 1]);
+                let ax = sign * ax;
+                if ax > 0.0 {
+                    g / ax
+                } else {
+                    f64::INFINITY
+                }
             };
             let mut x1 = x3 - r * (x3 - x0);
             let mut x2 = x0 + r * (x3 - x0);

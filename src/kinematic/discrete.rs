@@ -836,27 +836,59 @@ fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
     }
 }
 
-/// Every admissible mechanism of a chain, in any order, to `sink` (sequential).
-pub(crate) fn visit_all<S: Sink>(chain: &Chain, sink: &mut S) {
+/// Every admissible mechanism of a chain, in any order, to the sinks of rayon tasks: every
+/// task fills its own sink from `make`, and the sinks are folded with `merge` (which must not
+/// depend on the order of the mechanisms, as a search's extremes and their tie-breaks by key
+/// do not).
+pub(crate) fn visit_all_par<S, M, F>(chain: &Chain, make: M, merge: F) -> S
+where
+    S: Sink + Send,
+    M: Fn() -> S + Sync + Send,
+    F: Fn(S, S) -> S + Sync + Send,
+{
     let n = chain.joints();
-    if n >= 4 {
-        let tables = FourTables::new(chain, false);
-        for d in 3..n {
-            four_hinges_at(chain, &tables, d, sink);
+    let four = || {
+        if n < 4 {
+            return make();
         }
-    }
-    for o in 0..n {
-        two_hinges_one_open_at(chain, o, sink);
-    }
-    for j1 in 0..n {
-        for j2 in j1 + 1..n {
-            let key = Key::new(&[(j1, OPEN), (j2, OPEN)]);
-            if let Some((a, g, _)) = chain.evaluate(&key) {
-                sink.count(1);
-                sink.take(a, g, key);
+        let tables = FourTables::new(chain, true);
+        // The work of a last joint d grows as d^3: the largest first.
+        (3..n)
+            .into_par_iter()
+            .rev()
+            .map(|d| {
+                let mut sink = make();
+                four_hinges_at(chain, &tables, d, &mut sink);
+                sink
+            })
+            .reduce(&make, &merge)
+    };
+    let three = || {
+        (0..n)
+            .into_par_iter()
+            .map(|o| {
+                let mut sink = make();
+                two_hinges_one_open_at(chain, o, &mut sink);
+                sink
+            })
+            .reduce(&make, &merge)
+    };
+    let two = || {
+        let mut sink = make();
+        for j1 in 0..n {
+            for j2 in j1 + 1..n {
+                let key = Key::new(&[(j1, OPEN), (j2, OPEN)]);
+                if let Some((a, g, _)) = chain.evaluate(&key) {
+                    sink.count(1);
+                    sink.take(a, g, key);
+                }
             }
         }
-    }
+        sink
+    };
+    // The families run side by side, so no thread idles at the end of one of them.
+    let (four, (three, two)) = rayon::join(four, || rayon::join(three, two));
+    merge(merge(four, three), two)
 }
 
 /// The four-hinge quadruples whose last hinge is at joint `d`.

@@ -39,6 +39,14 @@
 //! coordinate at a time, until the multiplier stops decreasing. Pier joints stay where they
 //! are.
 //!
+//! Both stages use the rayon pool. The coarse families run on separate tasks, each keeping
+//! the best of every signature below a cut (the best so far plus twice the refinement
+//! margin), the lowest cut shared between tasks; since the cut never falls below the final
+//! best plus the margin, every signature within the margin is kept with its exact coarse
+//! minimum, whatever the order of the tasks. The chosen signatures are refined independently
+//! and compared in the order of their coarse multipliers. The result is that of a sequential
+//! run, bit for bit.
+//!
 //! # Angles
 //! A section's `polar_deg` is the polar angle of its direction p1 -> p2 (intrados to extrados),
 //! in degrees: for a radial section, the centreline angle about its arc's centre (180 at the

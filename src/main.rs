@@ -203,15 +203,29 @@ fn write_atomically(
         })
 }
 
+/// Write text to a file whole or not at all.
+fn write_text(path: &Path, text: &str) -> Result<(), Error> {
+    write_atomically(path, |b| {
+        b.extend_from_slice(text.as_bytes());
+        Ok(())
+    })
+}
+
+/// Draw a chart to an SVG file.
+fn write_chart(path: &Path, chart: &voussoir::thrustline::chart::Chart) -> Result<(), Error> {
+    let text = voussoir::thrustline::chart::chart_svg(chart).map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    write_text(path, &text)
+}
+
 fn write_svg(path: &Path, assembly: &Assembly, drawing: &Drawing) -> Result<(), Error> {
     let text = svg::structure_svg(assembly, drawing).map_err(|e| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    write_atomically(path, |b| {
-        b.extend_from_slice(text.as_bytes());
-        Ok(())
-    })
+    write_text(path, &text)
 }
 
 fn json<T: serde::Serialize>(value: &T) -> String {
@@ -333,15 +347,7 @@ fn run(cli: Cli) -> Result<String, Error> {
             );
             bar.finish_and_clear();
             if let (Some(path), Some(chart)) = (&svg, chart_for(&rows)?) {
-                let text =
-                    voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| Error::Output {
-                        path: path.clone(),
-                        message: e.to_string(),
-                    })?;
-                write_atomically(path, |b| {
-                    b.extend_from_slice(text.as_bytes());
-                    Ok(())
-                })?;
+                write_chart(path, &chart)?;
             }
             let mut buf = Vec::new();
             sweep::write_csv(&mut buf, &variations, &rows).map_err(|e| Error::Output {
@@ -351,7 +357,7 @@ fn run(cli: Cli) -> Result<String, Error> {
             match csv {
                 Some(path) => {
                     write_atomically(&path, |b| {
-                        b.extend_from_slice(&buf);
+                        *b = buf;
                         Ok(())
                     })?;
                     let failed = rows.iter().filter(|r| r.status == "error").count();
@@ -514,11 +520,6 @@ fn run(cli: Cli) -> Result<String, Error> {
                 path: out.clone(),
                 message: e.to_string(),
             })?;
-            let svg_text =
-                voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| Error::Output {
-                    path: out.clone(),
-                    message: e.to_string(),
-                })?;
             std::fs::create_dir_all(&out).map_err(|e| Error::Output {
                 path: out.clone(),
                 message: e.to_string(),
@@ -526,13 +527,10 @@ fn run(cli: Cli) -> Result<String, Error> {
             let csv_path = out.join(format!("{}.csv", st.output));
             let svg_path = out.join(format!("{}.svg", st.output));
             write_atomically(&csv_path, |b| {
-                b.extend_from_slice(&buf);
+                *b = buf;
                 Ok(())
             })?;
-            write_atomically(&svg_path, |b| {
-                b.extend_from_slice(svg_text.as_bytes());
-                Ok(())
-            })?;
+            write_chart(&svg_path, &chart)?;
             let failed = rows.iter().filter(|r| r.status == "error").count();
             Ok(format!(
                 "{}: {} cases{} -> {} and {}",
@@ -574,17 +572,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                     "{}: convergence with the number of voussoirs",
                     report::shape_title(&scene)
                 );
-                let text =
-                    voussoir::thrustline::chart::chart_svg(&c.chart(&title)).map_err(|e| {
-                        Error::Output {
-                            path: path.clone(),
-                            message: e.to_string(),
-                        }
-                    })?;
-                write_atomically(path, |b| {
-                    b.extend_from_slice(text.as_bytes());
-                    Ok(())
-                })?;
+                write_chart(path, &c.chart(&title))?;
             }
             if let Some(path) = &csv {
                 write_atomically(path, |b| c.write_csv(b).map_err(|e| e.to_string()))?;

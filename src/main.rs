@@ -44,7 +44,7 @@ struct SceneArgs {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Collapse multiplier of a scene (static lower bound)
+    /// Collapse multiplier of a scene: static lower bound, kinematic upper bound, mechanism
     Analyze {
         #[command(flatten)]
         scene: SceneArgs,

@@ -7,7 +7,6 @@ use crate::kinematic::ContinuousHinge;
 use crate::lp::{Direction, ModelSize, StaticResult, Status};
 use crate::scene::{Scene, Shape, VoussoirShape};
 use crate::thickness::{MinThickness, ThicknessOutcome};
-use crate::thrustline::thrust_points;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -160,16 +159,7 @@ impl AnalysisReport {
 
     /// The static part alone.
     pub fn new_static(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
-        let mut points = r
-            .forces
-            .as_ref()
-            .map(|f| thrust_points(assembly, f))
-            .unwrap_or_default();
-        for &j in &r.open {
-            if let Some(p) = points.get_mut(j) {
-                *p = None;
-            }
-        }
+        let points = r.thrust_points(assembly);
         let joints = assembly
             .joints
             .iter()
@@ -252,7 +242,7 @@ impl MinThicknessReport {
         MinThicknessReport {
             outcome: m.search.outcome,
             min_thickness: m.search.min_thickness,
-            min_thickness_ratio: m.search.min_thickness.map(|t| t / arch_size(scene)),
+            min_thickness_ratio: m.search.min_thickness.map(|t| t / scene.arch_size()),
             hinges: m.hinges.clone(),
             safety_factor: m.safety_factor,
             thickness: scene.arch.thickness,
@@ -267,11 +257,6 @@ impl MinThicknessReport {
     }
 }
 
-/// The arch's own size: R (circular, pointed) or span/2 (basket).
-pub fn arch_size(scene: &Scene) -> f64 {
-    scene.arch_size()
-}
-
 /// Write the thrust line as CSV: one row per joint.
 pub fn write_thrust_csv<W: std::io::Write>(
     out: W,
@@ -283,12 +268,7 @@ pub fn write_thrust_csv<W: std::io::Write>(
         "joint", "kind", "x", "y", "N", "V", "M", "e", "p1_x", "p1_y", "p2_x", "p2_y",
     ])?;
     let forces = r.forces.as_deref().unwrap_or(&[]);
-    let mut points = thrust_points(assembly, forces);
-    for &j in &r.open {
-        if let Some(p) = points.get_mut(j) {
-            *p = None;
-        }
-    }
+    let points = r.thrust_points(assembly);
     for (i, (j, f)) in assembly.joints.iter().zip(forces).enumerate() {
         let (x, y) = points[i].map_or((String::new(), String::new()), |p| {
             (p.x.to_string(), p.y.to_string())
@@ -586,7 +566,7 @@ pub fn min_thickness_summary(
                     Shape::Basket { .. } => "(span/2)",
                     _ => "R",
                 },
-                t / arch_size(scene)
+                t / scene.arch_size()
             );
             if let Some(f) = m.safety_factor {
                 let _ = writeln!(
@@ -642,7 +622,7 @@ pub fn min_thickness_summary(
                 let _ = writeln!(
                     s,
                     "Continuous model minimum thickness: t_min = {t:.6} m (t_min / size = {:.6})",
-                    t / arch_size(scene)
+                    t / scene.arch_size()
                 );
             }
             None => {

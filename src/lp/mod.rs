@@ -144,7 +144,10 @@ pub fn analyse(
                 result.status = Status::Collapse;
                 result.lambda = Some(lambda);
                 result.equilibrium_residual = residual;
-                classify_joints(assembly, &forces, settings.hinge_tolerance, &mut result);
+                let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
+                result.hinges = states.hinges;
+                result.sliding = states.sliding;
+                result.open = states.open;
                 result.mechanism = read_mechanism(assembly, &problem, &sol.z);
                 result.forces = Some(forces);
             }
@@ -240,29 +243,34 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
         .collect()
 }
 
-fn classify_joints(
-    assembly: &Assembly,
-    forces: &[JointForce],
-    tol: f64,
-    result: &mut StaticResult,
-) {
+/// What the joint forces say about each joint: hinges, sliding joints, open joints.
+#[derive(Debug, Default)]
+struct JointStates {
+    hinges: Vec<Hinge>,
+    sliding: Vec<usize>,
+    open: Vec<usize>,
+}
+
+fn classify_joints(assembly: &Assembly, forces: &[JointForce], tol: f64) -> JointStates {
+    let mut states = JointStates::default();
     let nmax = forces.iter().fold(0.0_f64, |a, f| a.max(f.n));
     for (j, (jt, f)) in assembly.joints.iter().zip(forces).enumerate() {
         if f.n <= tol * nmax {
-            result.open.push(j);
+            states.open.push(j);
             continue;
         }
         let half = 0.5 * jt.length();
         let e = f.m / f.n;
         if e >= half * (1.0 - 2.0 * tol) {
-            result.hinges.push(Hinge::at(assembly, j, JointEnd::P2));
+            states.hinges.push(Hinge::at(assembly, j, JointEnd::P2));
         } else if e <= -half * (1.0 - 2.0 * tol) {
-            result.hinges.push(Hinge::at(assembly, j, JointEnd::P1));
+            states.hinges.push(Hinge::at(assembly, j, JointEnd::P1));
         }
         if jt.friction.is_finite() && f.v.abs() >= (1.0 - tol) * jt.friction * f.n {
-            result.sliding.push(j);
+            states.sliding.push(j);
         }
     }
+    states
 }
 
 fn read_mechanism(assembly: &Assembly, p: &StaticProblem, z: &[f64]) -> Vec<[f64; 3]> {
@@ -285,6 +293,18 @@ fn read_mechanism(assembly: &Assembly, p: &StaticProblem, z: &[f64]) -> Vec<[f64
 
 impl StaticResult {
     /// Eccentricity e = M/N of each joint (None where N = 0 or there are no forces).
+    /// The thrust-line point of every joint (`p_mid + e u`), None where the joint carries no
+    /// force or has opened completely.
+    pub fn thrust_points(&self, assembly: &Assembly) -> Vec<Option<crate::geometry::Vec2>> {
+        (0..assembly.joints.len())
+            .map(|j| {
+                let jt = &assembly.joints[j];
+                self.eccentricity(j)
+                    .map(|e| jt.midpoint() + e * jt.tangent())
+            })
+            .collect()
+    }
+
     pub fn eccentricity(&self, joint: usize) -> Option<f64> {
         if self.open.contains(&joint) {
             // An open joint carries only solver round-off: its resultant has no position.
@@ -331,27 +351,12 @@ pub fn stands(
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
     let residual = equilibrium_residual(assembly, &forces, 0.0, 1.0);
-    let mut hinges = Vec::new();
     let stands = tau <= 0.0;
-    if stands {
-        let mut tmp = StaticResult {
-            status: Status::Collapse,
-            lambda: Some(0.0),
-            forces: None,
-            hinges: Vec::new(),
-            sliding: Vec::new(),
-            open: Vec::new(),
-            mechanism: Vec::new(),
-            equilibrium_residual: residual,
-            direction: settings.direction,
-            solve_time_s: 0.0,
-            iterations: sol.iterations,
-            solver_status: format!("{:?}", sol.status),
-            model: problem_size(&problem),
-        };
-        classify_joints(assembly, &forces, settings.hinge_tolerance, &mut tmp);
-        hinges = tmp.hinges;
-    }
+    let hinges = if stands {
+        classify_joints(assembly, &forces, settings.hinge_tolerance).hinges
+    } else {
+        Vec::new()
+    };
     Ok(StandResult {
         stands,
         tension: tau * problem.force_scale,

@@ -405,78 +405,23 @@ fn run(cli: Cli) -> Result<String, Error> {
             }
             let rep = report::DemReport::new(&scene, &assembly, &result, lower.lambda);
             if let Some(path) = svg {
-                let last = result
-                    .collapsing_run()
-                    .or_else(|| result.runs.last())
-                    .and_then(|run| run.snapshots.last());
-                // The DEM may store a block's vertices in another order: match them through
-                // the first frame, where every block is still where the assembly put it.
-                let first = result.runs.first().and_then(|run| run.snapshots.first());
-                let moves: Vec<(voussoir::geometry::Vec2, f64)> = match (first, last) {
-                    (Some(f0), Some(snap)) => assembly
-                        .blocks
-                        .iter()
-                        .enumerate()
-                        .map(|(i, b)| {
-                            let now: Vec<_> = b
-                                .polygon
-                                .iter()
-                                .map(|p| {
-                                    let k = f0.blocks[i]
-                                        .iter()
-                                        .enumerate()
-                                        .min_by(|x, y| {
-                                            (x.1 - p).norm().total_cmp(&(y.1 - p).norm())
-                                        })
-                                        .map_or(0, |(k, _)| k);
-                                    snap.blocks[i][k]
-                                })
-                                .collect();
-                            rigid_move(&b.polygon, &now, b.centroid)
-                        })
-                        .collect(),
-                    _ => Vec::new(),
-                };
                 // Collapse is detected at a small displacement: amplify it so the mechanism
                 // shows, and say so.
-                let size = assembly.size();
-                let largest = assembly
-                    .blocks
-                    .iter()
-                    .zip(&moves)
-                    .flat_map(|(b, (d, rot))| {
-                        let (sn, cs) = rot.sin_cos();
-                        b.polygon.iter().map(move |p| {
-                            let r = p - b.centroid;
-                            let q = b.centroid
-                                + d
-                                + voussoir::geometry::Vec2::new(
-                                    cs * r.x - sn * r.y,
-                                    sn * r.x + cs * r.y,
-                                );
-                            (q - p).norm()
-                        })
-                    })
-                    .fold(0.0_f64, f64::max);
-                let amp = if largest > 0.0 && largest < 0.1 * size {
-                    0.1 * size / largest
-                } else {
-                    1.0
-                };
-                let moves: Vec<_> = moves.iter().map(|(d, r)| (amp * d, amp * r)).collect();
+                let placed = result.final_placements(&assembly);
+                let (moves, amp) = placed
+                    .as_ref()
+                    .map_or((Vec::new(), 1.0), |p| p.amplified(&assembly, 0.1));
                 let amp_note = if amp > 1.0 {
                     format!(", displacements x{amp:.1}")
                 } else {
                     String::new()
                 };
-                let label = match (last, result.lambda_collapses) {
-                    (Some(snap), Some(l)) => format!(
+                let label = match (&placed, result.lambda_collapses) {
+                    (Some(p), Some(l)) => format!(
                         "at t = {:.3} s of the run at lambda = {l:.4}{amp_note}",
-                        snap.time
+                        p.time
                     ),
-                    (Some(snap), None) => {
-                        format!("at t = {:.3} s of the last run{amp_note}", snap.time)
-                    }
+                    (Some(p), None) => format!("at t = {:.3} s of the last run{amp_note}", p.time),
                     _ => String::new(),
                 };
                 let drawing = Drawing {
@@ -650,24 +595,6 @@ fn run(cli: Cli) -> Result<String, Error> {
             })
         }
     }
-}
-
-/// The rigid motion (centroid translation, rotation) that takes `before` to `after`.
-fn rigid_move(
-    before: &[voussoir::geometry::Vec2],
-    after: &[voussoir::geometry::Vec2],
-    centroid: voussoir::geometry::Vec2,
-) -> (voussoir::geometry::Vec2, f64) {
-    if before.len() < 2 || after.len() != before.len() {
-        return (voussoir::geometry::Vec2::zeros(), 0.0);
-    }
-    let (a0, a1) = (before[1] - before[0], after[1] - after[0]);
-    let rot = a1.y.atan2(a1.x) - a0.y.atan2(a0.x);
-    let (sn, cs) = rot.sin_cos();
-    let r = before[0] - centroid;
-    let moved_centroid =
-        after[0] - voussoir::geometry::Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y);
-    (moved_centroid - centroid, rot)
 }
 
 /// A progress bar on stderr when it is a terminal, hidden otherwise.

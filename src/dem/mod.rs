@@ -36,6 +36,7 @@ pub use protocol::{Onset, Outcome, Run, Snapshot};
 
 use crate::assembly::{Assembly, Hinge};
 use crate::error::AnalysisError;
+use crate::geometry::Vec2;
 use crate::lp;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -145,6 +146,100 @@ fn check_finite(run: &Run) -> Result<(), DemError> {
         Err(DemError::Settings(
             "the simulation diverged (non-finite block positions): reduce dem.time_step_factor or the contact stiffness".to_string(),
         ))
+    }
+}
+
+/// Block positions at one instant of a DEM run, as rigid motions of the assembly's blocks.
+#[derive(Debug, Clone)]
+pub struct Placements {
+    /// Per block: translation of its centroid and rotation about it (rad).
+    pub moves: Vec<(Vec2, f64)>,
+    /// Simulated time of the snapshot within its run (s).
+    pub time: f64,
+}
+
+impl Placements {
+    /// The moves scaled so the largest corner displacement is `share` of the structure's
+    /// size (never shrunk), with the factor used: collapse is detected at a small
+    /// displacement, which a drawing must amplify to show.
+    pub fn amplified(&self, assembly: &Assembly, share: f64) -> (Vec<(Vec2, f64)>, f64) {
+        let largest = assembly
+            .blocks
+            .iter()
+            .zip(&self.moves)
+            .flat_map(|(b, &(d, rot))| {
+                b.polygon
+                    .iter()
+                    .map(move |p| (moved(*p, b.centroid, d, rot) - p).norm())
+            })
+            .fold(0.0_f64, f64::max);
+        let target = share * assembly.size();
+        let amp = if largest > 0.0 && largest < target {
+            target / largest
+        } else {
+            1.0
+        };
+        (
+            self.moves.iter().map(|(d, r)| (amp * d, amp * r)).collect(),
+            amp,
+        )
+    }
+}
+
+/// Where `p` of a block with centroid `c` goes under the rigid motion `(d, rot)`.
+fn moved(p: Vec2, c: Vec2, d: Vec2, rot: f64) -> Vec2 {
+    let (sn, cs) = rot.sin_cos();
+    let r = p - c;
+    c + d + Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y)
+}
+
+/// The rigid motion (centroid translation, rotation) that takes polygon `before` (centroid
+/// `c`) to `after`, vertex for vertex.
+fn rigid_motion(before: &[Vec2], after: &[Vec2], c: Vec2) -> (Vec2, f64) {
+    if before.len() < 2 || after.len() != before.len() {
+        return (Vec2::zeros(), 0.0);
+    }
+    let (a0, a1) = (before[1] - before[0], after[1] - after[0]);
+    let rot = a1.y.atan2(a1.x) - a0.y.atan2(a0.x);
+    let at_origin = moved(before[0], c, Vec2::zeros(), rot) - c;
+    (after[0] - at_origin - c, rot)
+}
+
+impl DemResult {
+    /// The blocks at the last snapshot of the collapsing run (or of the last run), when
+    /// snapshots were recorded.
+    pub fn final_placements(&self, assembly: &Assembly) -> Option<Placements> {
+        let last = self
+            .collapsing_run()
+            .or_else(|| self.runs.last())
+            .and_then(|run| run.snapshots.last())?;
+        // The simulation may store a block's vertices in another order: match them through
+        // the first frame, where every block is still where the assembly put it.
+        let first = self.runs.first().and_then(|run| run.snapshots.first())?;
+        let moves = assembly
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let now: Vec<Vec2> = b
+                    .polygon
+                    .iter()
+                    .map(|p| {
+                        let k = first.blocks[i]
+                            .iter()
+                            .enumerate()
+                            .min_by(|x, y| (x.1 - p).norm().total_cmp(&(y.1 - p).norm()))
+                            .map_or(0, |(k, _)| k);
+                        last.blocks[i][k]
+                    })
+                    .collect();
+                rigid_motion(&b.polygon, &now, b.centroid)
+            })
+            .collect();
+        Some(Placements {
+            moves,
+            time: last.time,
+        })
     }
 }
 

@@ -1,17 +1,7 @@
 //! End-to-end runs of the `voussoir` binary.
 
-use assert_cmd::Command;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("data")
-        .join(name)
-}
-
-fn voussoir() -> Command {
-    Command::cargo_bin("voussoir").expect("binary built")
-}
+mod common;
+use common::{data, voussoir};
 
 #[test]
 fn analyze_prints_a_summary() {

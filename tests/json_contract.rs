@@ -1,22 +1,11 @@
 //! The JSON printed by the CLI is a contract for scripts: later versions add fields, never
 //! rename or remove them. These lists pin every field that exists today.
 
-use assert_cmd::Command;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("data")
-        .join(name)
-}
+mod common;
+use common::{data, voussoir};
 
 fn json(args: &[&str], scene: &str) -> serde_json::Value {
-    let out = Command::cargo_bin("voussoir")
-        .expect("binary")
-        .args(args)
-        .arg(data(scene))
-        .assert()
-        .success();
+    let out = voussoir().args(args).arg(data(scene)).assert().success();
     serde_json::from_slice(&out.get_output().stdout).expect("one JSON object")
 }
 

@@ -41,6 +41,17 @@ pub(crate) struct Contact {
     pub sliding: bool,
 }
 
+impl Contact {
+    /// `(vertex body, edge body)` of this contact in `pair`.
+    fn bodies(&self, pair_a: usize, pair_b: usize) -> (usize, usize) {
+        if self.flipped {
+            (pair_b, pair_a)
+        } else {
+            (pair_a, pair_b)
+        }
+    }
+}
+
 /// A candidate pair of bodies and its contacts (`a < b`).
 #[derive(Debug, Clone)]
 pub(crate) struct Pair {
@@ -240,11 +251,7 @@ impl World {
         }
         for pair in &mut self.pairs {
             for c in &mut pair.contacts {
-                let (vi, ei) = if c.flipped {
-                    (pair.b, pair.a)
-                } else {
-                    (pair.a, pair.b)
-                };
+                let (vi, ei) = c.bodies(pair.a, pair.b);
                 let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
                 c.depth = -(vb.world[c.vertex] - eb.world[c.edge]).dot(&eb.normals[c.edge]);
             }
@@ -298,11 +305,7 @@ impl World {
             let cn = 2.0 * p.contact_damping * pair.sqrt_km;
             let cs = cn * (p.shear_stiffness / p.normal_stiffness).sqrt();
             for c in &mut pair.contacts {
-                let (vi, ei) = if c.flipped {
-                    (pair.b, pair.a)
-                } else {
-                    (pair.a, pair.b)
-                };
+                let (vi, ei) = c.bodies(pair.a, pair.b);
                 let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
                 let point = vb.world[c.vertex];
                 // Outward normal of the touched edge: it pushes the vertex's body away.

@@ -61,3 +61,15 @@ pub fn single_block(b: f64, h: f64, mu: f64) -> Assembly {
         joints: vec![hjoint(0.5 * b, -0.5 * b, 0.0, None, Some(0), mu)],
     }
 }
+
+/// A bundled scene file under `data/`.
+pub fn data(name: &str) -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("data")
+        .join(name)
+}
+
+/// The `voussoir` binary, for end-to-end runs.
+pub fn voussoir() -> assert_cmd::Command {
+    assert_cmd::Command::cargo_bin("voussoir").expect("binary built")
+}

@@ -533,7 +533,13 @@ fn run(cli: Cli) -> Result<String, Error> {
         } => {
             let scene = load(&scene)?;
             let assembly = Assembly::from_scene(&scene);
-            let m = thickness::min_thickness(&scene, &StaticSettings::default())?;
+            let t = thickness::analyse(
+                &scene,
+                &StaticSettings::default(),
+                kinematic_max_joints,
+                continuous,
+            )?;
+            let m = &t.lower;
             if let Some(path) = svg {
                 match (&m.at_minimum, m.search.min_thickness) {
                     (Some((at, stand)), Some(t)) => {
@@ -556,42 +562,11 @@ fn run(cli: Cli) -> Result<String, Error> {
                     ),
                 }
             }
-            let mut rep = report::MinThicknessReport::new(&scene, &assembly, &m);
-            if kinematic_max_joints > 0 && assembly.joints.len() <= kinematic_max_joints {
-                let k = thickness::min_thickness_kinematic(&scene, kinematic_max_joints)?;
-                rep.min_thickness_kinematic = k.min_thickness;
-                rep.min_thickness_gap = match (m.search.min_thickness, k.min_thickness) {
-                    (Some(a), Some(b)) => Some((a - b).abs() / a),
-                    _ => None,
-                };
-                if scene.material.friction.is_finite() {
-                    rep.kinematic_note = Some(format!(
-                        "the kinematic search knows rotational mechanisms only: with mu = {} sliding may govern, and then its minimum thickness is the one without sliding",
-                        scene.material.friction
-                    ));
-                }
-            } else {
-                rep.kinematic_note = Some(format!(
-                    "kinematic search skipped: {} joints is more than {kinematic_max_joints}",
-                    assembly.joints.len()
-                ));
-            }
-            if continuous {
-                match voussoir::kinematic::continuous_min_thickness(&scene) {
-                    Ok(c) => {
-                        rep.min_thickness_continuous = Some(Some(c.thickness));
-                        rep.continuous_hinges = Some(c.result.hinges.clone());
-                    }
-                    Err(e) => {
-                        rep.min_thickness_continuous = Some(None);
-                        rep.kinematic_note = Some(format!("continuous model: {e}"));
-                    }
-                }
-            }
+            let rep = report::MinThicknessReport::new(&scene, &assembly, &t);
             Ok(if as_json {
                 json(&rep)
             } else {
-                report::min_thickness_summary(&scene, &assembly, &m, &rep)
+                report::min_thickness_summary(&scene, &assembly, m, &rep)
             })
         }
     }

@@ -6,7 +6,7 @@ use crate::assembly::{Assembly, Hinge, JointKind};
 use crate::kinematic::ContinuousHinge;
 use crate::lp::{Direction, ModelSize, StaticResult, Status};
 use crate::scene::{Scene, Shape, VoussoirShape};
-use crate::thickness::{MinThickness, ThicknessOutcome};
+use crate::thickness::{MinThickness, ThicknessAnalysis, ThicknessOutcome};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -235,10 +235,34 @@ pub struct MinThicknessReport {
     pub min_thickness_continuous: Option<Option<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous_hinges: Option<Vec<ContinuousHinge>>,
+    /// Why the continuous model failed (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_note: Option<String>,
 }
 
 impl MinThicknessReport {
-    pub fn new(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> Self {
+    /// The report of every method in `t`.
+    pub fn new(scene: &Scene, assembly: &Assembly, t: &ThicknessAnalysis) -> Self {
+        let mut rep = MinThicknessReport::new_static(scene, assembly, &t.lower);
+        rep.min_thickness_kinematic = t.kinematic.as_ref().and_then(|k| k.min_thickness);
+        rep.min_thickness_gap = t.gap();
+        rep.kinematic_note = t.kinematic_note.clone();
+        match &t.continuous {
+            Some(Ok(c)) => {
+                rep.min_thickness_continuous = Some(Some(c.thickness));
+                rep.continuous_hinges = Some(c.result.hinges.clone());
+            }
+            Some(Err(e)) => {
+                rep.min_thickness_continuous = Some(None);
+                rep.continuous_note = Some(format!("continuous model: {e}"));
+            }
+            None => {}
+        }
+        rep
+    }
+
+    /// The static part alone.
+    pub fn new_static(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> Self {
         MinThicknessReport {
             outcome: m.search.outcome,
             min_thickness: m.search.min_thickness,
@@ -253,6 +277,7 @@ impl MinThicknessReport {
             kinematic_note: None,
             min_thickness_continuous: None,
             continuous_hinges: None,
+            continuous_note: None,
         }
     }
 }
@@ -626,7 +651,13 @@ pub fn min_thickness_summary(
                 );
             }
             None => {
-                let _ = writeln!(s, "Continuous model: no minimum thickness found");
+                let _ = writeln!(
+                    s,
+                    "Continuous model: no minimum thickness found{}",
+                    rep.continuous_note
+                        .as_ref()
+                        .map_or(String::new(), |n| format!(" ({n})"))
+                );
             }
         }
     }

@@ -161,3 +161,65 @@ pub fn min_thickness_kinematic(
         kinematic::stands(s, &settings).map_err(|e| AnalysisError::Other(e.to_string()))
     })
 }
+
+/// The minimum thickness by every method asked for.
+#[derive(Debug, Clone)]
+pub struct ThicknessAnalysis {
+    /// The static search (always run).
+    pub lower: MinThickness,
+    /// The kinematic search (exhaustive, so only up to a chain size).
+    pub kinematic: Option<ThicknessSearch>,
+    /// Why the kinematic value is missing, or what it means here.
+    pub kinematic_note: Option<String>,
+    /// The continuous model's minimum thickness, when asked (or why it failed).
+    pub continuous: Option<Result<crate::kinematic::MinThickness, String>>,
+}
+
+impl ThicknessAnalysis {
+    /// `|t_static - t_kinematic| / t_static` when both exist.
+    pub fn gap(&self) -> Option<f64> {
+        let a = self.lower.search.min_thickness?;
+        let b = self.kinematic.as_ref()?.min_thickness?;
+        Some((a - b).abs() / a)
+    }
+}
+
+/// The static minimum thickness, the kinematic one when the chain has at most
+/// `kinematic_max_joints` joints (0: never), and the continuous one when `continuous`.
+pub fn analyse(
+    scene: &Scene,
+    settings: &StaticSettings,
+    kinematic_max_joints: usize,
+    continuous: bool,
+) -> Result<ThicknessAnalysis, AnalysisError> {
+    let lower = min_thickness(scene, settings)?;
+    let joints = Assembly::from_scene(scene).joints.len();
+    let (kinematic, kinematic_note) = if kinematic_max_joints > 0 && joints <= kinematic_max_joints
+    {
+        let note = scene.material.friction.is_finite().then(|| {
+            format!(
+                "the kinematic search knows rotational mechanisms only: with mu = {} sliding may govern, and then its minimum thickness is the one without sliding",
+                scene.material.friction
+            )
+        });
+        (
+            Some(min_thickness_kinematic(scene, kinematic_max_joints)?),
+            note,
+        )
+    } else {
+        (
+            None,
+            Some(format!(
+                "kinematic search skipped: {joints} joints is more than {kinematic_max_joints}"
+            )),
+        )
+    };
+    let continuous =
+        continuous.then(|| kinematic::continuous_min_thickness(scene).map_err(|e| e.to_string()));
+    Ok(ThicknessAnalysis {
+        lower,
+        kinematic,
+        kinematic_note,
+        continuous,
+    })
+}

@@ -296,13 +296,16 @@ impl StaticResult {
     /// The thrust-line point of every joint (`p_mid + e u`), None where the joint carries no
     /// force or has opened completely.
     pub fn thrust_points(&self, assembly: &Assembly) -> Vec<Option<crate::geometry::Vec2>> {
-        (0..assembly.joints.len())
-            .map(|j| {
-                let jt = &assembly.joints[j];
-                self.eccentricity(j)
-                    .map(|e| jt.midpoint() + e * jt.tangent())
-            })
-            .collect()
+        // One pass, not eccentricity() per joint: that scans `open` each time.
+        let mut points = self
+            .forces
+            .as_ref()
+            .map(|f| crate::thrustline::thrust_points(assembly, f))
+            .unwrap_or_else(|| vec![None; assembly.joints.len()]);
+        for &j in &self.open {
+            points[j] = None;
+        }
+        points
     }
 
     pub fn eccentricity(&self, joint: usize) -> Option<f64> {

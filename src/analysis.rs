@@ -4,10 +4,10 @@
 //! the continuous kinematic model (on request). The CLI and the sweeps both call this, so
 //! they report the same numbers.
 
-use crate::assembly::Assembly;
 use crate::error::AnalysisError;
 use crate::kinematic::{self, ContinuousResult, KinematicResult, KinematicSettings, Search};
 use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
+use crate::model::{self, Model};
 use crate::scene::Scene;
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
@@ -47,7 +47,8 @@ impl Options {
 /// The results of every method run on one scene.
 #[derive(Debug, Clone)]
 pub struct SceneAnalysis {
-    pub assembly: Assembly,
+    /// The assembly and load case that were analysed.
+    pub model: Model,
     pub lower: StaticResult,
     /// The discrete kinematic result, or why it was not run or failed.
     pub upper: Result<KinematicResult, String>,
@@ -74,7 +75,12 @@ impl SceneAnalysis {
     /// rotational upper bound. A local search's bound may exceed the least rotational
     /// multiplier, so then the static solution must also slide somewhere.
     pub fn sliding_governs(&self) -> bool {
-        let finite = self.assembly.joints.iter().any(|j| j.friction.is_finite());
+        let finite = self
+            .model
+            .assembly
+            .joints
+            .iter()
+            .any(|j| j.friction.is_finite());
         let local = self.upper.as_ref().is_ok_and(|k| k.search == Search::Local);
         match (self.lower.status, self.lower.lambda, self.lambda_upper()) {
             (Status::Collapse, Some(l), Some(u)) => {
@@ -95,8 +101,9 @@ impl SceneAnalysis {
 
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
-    let assembly = Assembly::from_scene(scene);
-    let lower = lp::analyse(&assembly, &options.static_settings)?;
+    let model = model::build(scene)?;
+    let assembly = &model.assembly;
+    let lower = lp::analyse(&model, &options.static_settings)?;
     let settings = KinematicSettings {
         direction: options.direction(),
         max_joints: options.kinematic_max_joints,
@@ -110,12 +117,12 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
     let (upper, kinematic_search) = if options.kinematic_max_joints == 0 {
         (Err("kinematic search turned off".to_string()), None)
     } else if assembly.joints.len() <= options.kinematic_max_joints {
-        let k = kinematic::analyse(&assembly, &settings).map_err(|e| e.to_string());
+        let k = kinematic::analyse(&model, &settings).map_err(|e| e.to_string());
         (k, Some(Search::Exhaustive))
     } else if lower.status == Status::Collapse {
         // Too large for the exhaustive search: any admissible mechanism still bounds lambda_c
         // from above, and the static hinges say where the governing one is.
-        let k = kinematic::analyse_local(&assembly, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
+        let k = kinematic::analyse_local(&model, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
             .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
         let search = k.as_ref().map_or(Search::Local, |k| k.search);
         (k, Some(search))
@@ -131,7 +138,7 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         .continuous
         .then(|| kinematic::continuous_with(scene, options.direction()).map_err(|e| e.to_string()));
     Ok(SceneAnalysis {
-        assembly,
+        model,
         lower,
         upper,
         kinematic_search,

@@ -9,8 +9,8 @@
 //! midpoint is `M`, positive when the resultant sits toward `p2` (`e = M/N`).
 
 use crate::error::AnalysisError;
-use crate::geometry::{self, polygon_area_centroid, Vec2};
-use crate::scene::{Scene, VoussoirShape};
+use crate::geometry::{self, Vec2};
+use crate::model::LoadCase;
 
 /// What a block is, for labels and drawings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -215,120 +215,6 @@ impl Assembly {
             .collect();
         Assembly { blocks, joints }
     }
-
-    /// Build the blocks and joints of a scene: the left pier courses from the base up, the
-    /// voussoirs from left to right, the right pier courses from the top down (a chain).
-    pub fn from_scene(scene: &Scene) -> Assembly {
-        let a = &scene.arch;
-        let t = a.thickness;
-        let g = match a.shape {
-            crate::scene::Shape::Circular { radius, embrace } => {
-                geometry::circular(radius, t, embrace, a.voussoirs)
-            }
-            crate::scene::Shape::Pointed {
-                radius,
-                eccentricity,
-            } => geometry::pointed(radius, eccentricity, t, a.voussoirs),
-            crate::scene::Shape::Basket {
-                span,
-                rise,
-                side_angle,
-            } => geometry::basket(span, rise, side_angle, t, a.voussoirs),
-        };
-        let gamma = scene.material.unit_weight * scene.material.depth;
-        let mu = scene.material.friction;
-        let curved = a.voussoir_shape == VoussoirShape::Curved;
-        let n = g.voussoirs();
-
-        let mut blocks = Vec::new();
-        let mut joints = Vec::new();
-        let k = scene.piers.as_ref().map_or(0, |p| p.courses);
-        let chain_joint = |p1, p2, idx: usize, last: usize, kind| Joint {
-            p1,
-            p2,
-            from: idx.checked_sub(1),
-            to: (idx < last).then_some(idx),
-            friction: mu,
-            kind,
-        };
-        let total_blocks = n + 2 * k;
-
-        // Left pier, base to top.
-        let xi = g.joints[0].0.x;
-        let xe = g.joints[0].1.x;
-        if let Some(p) = &scene.piers {
-            let (h, b) = (p.height, p.width);
-            for c in 0..k {
-                let y0 = -h + h * c as f64 / k as f64;
-                let y1 = -h + h * (c + 1) as f64 / k as f64;
-                let poly = vec![
-                    Vec2::new(xi - b, y0),
-                    Vec2::new(xi, y0),
-                    Vec2::new(xi, y1),
-                    Vec2::new(xi - b, y1),
-                ];
-                blocks.push(rect_block(poly, gamma, BlockKind::LeftPier(c)));
-                let idx = joints.len();
-                joints.push(chain_joint(
-                    Vec2::new(xi, y0),
-                    Vec2::new(xi - b, y0),
-                    idx,
-                    total_blocks,
-                    JointKind::LeftPier(c),
-                ));
-            }
-        }
-        // Arch joints and voussoirs.
-        for j in 0..=n {
-            let (mut p1, mut p2) = g.joints[j];
-            if let Some(p) = &scene.piers {
-                // The arch rests on the pier top only where the springing joint lies on it.
-                if j == 0 {
-                    p2 = Vec2::new(xe.max(xi - p.width), 0.0);
-                    p1 = Vec2::new(xi, 0.0);
-                } else if j == n {
-                    p1 = Vec2::new(-xi, 0.0);
-                    p2 = Vec2::new(-(xe.max(xi - p.width)), 0.0);
-                }
-            }
-            let idx = joints.len();
-            joints.push(chain_joint(p1, p2, idx, total_blocks, JointKind::Arch(j)));
-            if j < n {
-                let (area, centroid) = g.voussoir_area_centroid(j, curved);
-                blocks.push(Block {
-                    polygon: g.quad(j).to_vec(),
-                    area,
-                    centroid,
-                    weight: gamma * area,
-                    kind: BlockKind::Voussoir(j),
-                });
-            }
-        }
-        // Right pier, top to base: the mirror image of the left one.
-        if let Some(p) = &scene.piers {
-            let (h, b) = (p.height, p.width);
-            for c in (0..k).rev() {
-                let y0 = -h + h * c as f64 / k as f64;
-                let y1 = -h + h * (c + 1) as f64 / k as f64;
-                let poly = vec![
-                    Vec2::new(-xi, y0),
-                    Vec2::new(-xi + b, y0),
-                    Vec2::new(-xi + b, y1),
-                    Vec2::new(-xi, y1),
-                ];
-                blocks.push(rect_block(poly, gamma, BlockKind::RightPier(c)));
-                let idx = joints.len();
-                joints.push(chain_joint(
-                    Vec2::new(-xi, y0),
-                    Vec2::new(-xi + b, y0),
-                    idx,
-                    total_blocks,
-                    JointKind::RightPier(c),
-                ));
-            }
-        }
-        Assembly { blocks, joints }
-    }
 }
 
 /// Whether a polygon is convex (every turn the same way; straight angles allowed).
@@ -351,17 +237,6 @@ pub fn is_convex(polygon: &[Vec2]) -> bool {
         }
     }
     !(pos && neg)
-}
-
-fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
-    let (area, centroid) = polygon_area_centroid(&polygon);
-    Block {
-        polygon,
-        area,
-        centroid,
-        weight: gamma * area,
-        kind,
-    }
 }
 
 /// Which end of a joint a hinge sits at.
@@ -408,27 +283,34 @@ pub struct JointForce {
     pub m: f64,
 }
 
-/// Largest out-of-balance force (N) of any block under joint forces `forces`, weights and the
-/// seismic load `lambda * sign * W` (moments divided by the structure's size so they are
-/// forces too).
+/// Largest out-of-balance force (N) of any block under joint forces `forces` and the loads
+/// of `loads` with the seismic forces times `lambda` in direction `sign` (moments divided by
+/// the structure's size so they are forces too).
 pub fn equilibrium_residual(
     assembly: &Assembly,
+    loads: &LoadCase,
     forces: &[JointForce],
     lambda: f64,
     sign: f64,
 ) -> f64 {
     let size = assembly.size();
-    let mut res: Vec<[f64; 3]> = assembly
-        .blocks
-        .iter()
-        .map(|b| [sign * lambda * b.weight, -b.weight, 0.0])
+    let mut res: Vec<[f64; 3]> = (0..assembly.blocks.len())
+        .map(|i| {
+            let p = loads.permanent(i);
+            let s = loads.seismic(i, sign);
+            [
+                p.force.x + lambda * s.force.x,
+                p.force.y + lambda * s.force.y,
+                (p.moment + lambda * s.moment) / size,
+            ]
+        })
         .collect();
     for (jt, f) in assembly.joints.iter().zip(forces) {
         let force = f.n * jt.normal() + f.v * jt.tangent();
         let mid = jt.midpoint();
         for (side, s) in [(jt.to, 1.0), (jt.from, -1.0)] {
             if let Some(b) = side {
-                let g = assembly.blocks[b].centroid;
+                let g = loads.reference(b);
                 res[b][0] += s * force.x;
                 res[b][1] += s * force.y;
                 // The couple of a resultant offset toward p2 turns clockwise: u x n = -1.

@@ -28,10 +28,10 @@
 use std::time::Instant;
 
 use crate::analysis::KINEMATIC_DEFAULT_MAX_JOINTS;
-use crate::assembly::Assembly;
 use crate::dem::{self, IntegrationParameters};
 use crate::kinematic::{self, KinematicSettings};
 use crate::lp::{self, Direction, StaticSettings, Status};
+use crate::model::{self, Model};
 use crate::scene::Scene;
 use crate::thrustline::chart::{Chart, Series};
 
@@ -341,13 +341,13 @@ pub fn run(
 
     let mut tolerances = Vec::new();
     if !settings.solver_tolerances.is_empty() {
-        let assembly = Assembly::from_scene(scene);
+        let model = model::build(scene)?;
         let mut tols = settings.solver_tolerances.clone();
         tols.sort_by(|a, b| b.total_cmp(a));
         for tol in tols {
             progress(&format!("tolerance {tol:e}"));
             let clock = Instant::now();
-            let r = lp::analyse(&assembly, &static_settings.clone().tolerance(tol));
+            let r = lp::analyse(&model, &static_settings.clone().tolerance(tol));
             let time_s = clock.elapsed().as_secs_f64();
             tolerances.push(match r {
                 Ok(r) => ToleranceRow {
@@ -358,7 +358,7 @@ pub fn run(
                     difference: None,
                     residual_over_weight: r
                         .lambda
-                        .map(|_| r.equilibrium_residual / assembly.total_weight()),
+                        .map(|_| r.equilibrium_residual / model.loads.force_scale()),
                     iterations: r.iterations,
                     time_s,
                     error: None,
@@ -387,18 +387,18 @@ pub fn run(
     if settings.dem && !settings.dem_cases.is_empty() {
         let n = settings.dem_voussoirs.min(scene.arch.voussoirs);
         let small = with_voussoirs(scene, n)?;
-        let assembly = Assembly::from_scene(&small);
-        let lambda_static = lp::analyse(&assembly, &static_settings)
+        let model = model::build(&small)?;
+        let lambda_static = lp::analyse(&model, &static_settings)
             .ok()
             .and_then(|r| r.lambda);
-        let base = IntegrationParameters::from_scene(&small, &assembly)?;
+        let base = IntegrationParameters::from_scene(&small, &model.assembly)?;
         for case in &settings.dem_cases {
             progress(&format!(
                 "DEM n = {n}, tolerance {}, time step x{}, stiffness x{}",
                 case.tolerance, case.time_step_factor, case.stiffness_factor
             ));
             dem_rows.push(dem_row(
-                &assembly,
+                &model,
                 &base,
                 case,
                 n,
@@ -466,8 +466,15 @@ fn refine_row(
         }
     };
     let clock = Instant::now();
-    let assembly = Assembly::from_scene(&s);
-    let lower = lp::analyse(&assembly, static_settings);
+    let model = match model::build(&s) {
+        Ok(m) => m,
+        Err(e) => {
+            row.error = Some(e.to_string());
+            return row;
+        }
+    };
+    let assembly = &model.assembly;
+    let lower = lp::analyse(&model, static_settings);
     row.lower_time_s = clock.elapsed().as_secs_f64();
     row.joints = assembly.joints.len();
     match lower {
@@ -492,7 +499,7 @@ fn refine_row(
             parallel: false,
         };
         let clock = Instant::now();
-        let k = kinematic::analyse(&assembly, &ks);
+        let k = kinematic::analyse(&model, &ks);
         row.upper_time_s = Some(clock.elapsed().as_secs_f64());
         match k {
             Ok(k) => {
@@ -510,7 +517,7 @@ fn refine_row(
 }
 
 fn dem_row(
-    assembly: &Assembly,
+    model: &Model,
     base: &IntegrationParameters,
     case: &DemCase,
     n: usize,
@@ -524,7 +531,7 @@ fn dem_row(
         .shear_stiffness(base.shear_stiffness * case.stiffness_factor)
         .initial_guess(Some(start));
     let clock = Instant::now();
-    let r = dem::collapse_multiplier(assembly, &params, case.tolerance, &mut |_| {});
+    let r = dem::collapse_multiplier(model, &params, case.tolerance, &mut |_| {});
     let time_s = clock.elapsed().as_secs_f64();
     match r {
         Ok(r) => DemRow {

@@ -6,6 +6,7 @@ pub mod error;
 pub mod geometry;
 pub mod kinematic;
 pub mod lp;
+pub mod model;
 pub mod report;
 pub mod scene;
 pub mod study;

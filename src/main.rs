@@ -262,7 +262,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                 continuous,
             };
             let a = analysis::analyse(&scene, &options)?;
-            let (assembly, result) = (&a.assembly, &a.lower);
+            let (assembly, result) = (&a.model.assembly, &a.lower);
             let mut notes = String::new();
             if let Some(path) = thrust_csv {
                 if result.forces.is_some() {
@@ -383,8 +383,9 @@ fn run(cli: Cli) -> Result<String, Error> {
             svg,
         } => {
             let scene = load(&scene)?;
-            let assembly = Assembly::from_scene(&scene);
-            let lower = voussoir::lp::analyse(&assembly, &StaticSettings::default())?;
+            let model = voussoir::model::build(&scene)?;
+            let assembly = &model.assembly;
+            let lower = voussoir::lp::analyse(&model, &StaticSettings::default())?;
             let mut params = dem::IntegrationParameters::from_scene(&scene, &assembly)?
                 .initial_guess(lower.lambda.filter(|l| *l > 0.0));
             if (snapshots.is_some() || svg.is_some()) && params.snapshot_interval.is_none() {
@@ -392,7 +393,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                 params = params.snapshot_interval(Some(every));
             }
             let bar = progress_bar(1000, "dem");
-            let result = dem::collapse_multiplier(&assembly, &params, tolerance, &mut |f| {
+            let result = dem::collapse_multiplier(&model, &params, tolerance, &mut |f| {
                 bar.set_position((f.clamp(0.0, 1.0) * 1000.0) as u64)
             })
             .map_err(|e| Error::Analysis(voussoir::error::AnalysisError::Other(e.to_string())))?;
@@ -532,7 +533,8 @@ fn run(cli: Cli) -> Result<String, Error> {
             kinematic_max_joints,
         } => {
             let scene = load(&scene)?;
-            let assembly = Assembly::from_scene(&scene);
+            let model = voussoir::model::build(&scene)?;
+            let assembly = &model.assembly;
             let t = thickness::analyse(
                 &scene,
                 &StaticSettings::default(),
@@ -553,7 +555,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                             hinges: &stand.hinges,
                             ..Default::default()
                         };
-                        write_svg(&path, at, &drawing)?;
+                        write_svg(&path, &at.assembly, &drawing)?;
                     }
                     _ => eprintln!(
                         "note: no minimum thickness ({:?}): {} not written",
@@ -562,11 +564,11 @@ fn run(cli: Cli) -> Result<String, Error> {
                     ),
                 }
             }
-            let rep = report::MinThicknessReport::new(&scene, &assembly, &t);
+            let rep = report::MinThicknessReport::new(&scene, assembly, &t);
             Ok(if as_json {
                 json(&rep)
             } else {
-                report::min_thickness_summary(&scene, &assembly, m, &rep)
+                report::min_thickness_summary(&scene, assembly, m, &rep)
             })
         }
     }

@@ -124,7 +124,7 @@ impl SceneReport {
 
 impl AnalysisReport {
     pub fn new(scene: &Scene, a: &SceneAnalysis) -> Self {
-        let mut report = AnalysisReport::new_static(scene, &a.assembly, &a.lower);
+        let mut report = AnalysisReport::new_static(scene, &a.model.assembly, &a.lower);
         match &a.upper {
             Ok(k) => {
                 report.lambda_upper = k.lambda_upper;
@@ -413,7 +413,7 @@ pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
 
 /// The human summary of `analyze` with every method that ran.
 pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
-    let mut s = static_summary(scene, &a.assembly, &a.lower);
+    let mut s = static_summary(scene, &a.model.assembly, &a.lower);
     s.push('\n');
     match &a.upper {
         Ok(k) => {
@@ -430,12 +430,12 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                     }
                     if let Some(m) = &k.mechanism {
                         let _ = writeln!(s, "  governing mechanism ({:?}):", m.family);
-                        s.push_str(&hinge_lines(&a.assembly, &m.hinges));
+                        s.push_str(&hinge_lines(&a.model.assembly, &m.hinges));
                         for j in &m.open {
                             let _ = writeln!(
                                 s,
                                 "    joint {j:>4} ({}), opens completely",
-                                joint_label(a.assembly.joints[*j].kind)
+                                joint_label(a.model.assembly.joints[*j].kind)
                             );
                         }
                     }

@@ -51,6 +51,26 @@ impl Shape {
         }
     }
 
+    /// Height of the extrados at the crown (m) for thickness `t`: the highest point of the
+    /// arch ring.
+    pub fn crown_extrados(&self, t: f64) -> f64 {
+        match *self {
+            Shape::Circular { radius, .. } => radius + 0.5 * t,
+            Shape::Pointed {
+                radius,
+                eccentricity,
+            } => ((radius + 0.5 * t).powi(2) - eccentricity * eccentricity).sqrt(),
+            Shape::Basket {
+                span,
+                rise,
+                side_angle,
+            } => {
+                let (r1, r2) = basket_radii(span, rise, side_angle);
+                r2 + 0.5 * t - (r2 - r1) * side_angle.sin()
+            }
+        }
+    }
+
     /// The scene-file name of the shape.
     pub fn name(&self) -> &'static str {
         match self {
@@ -103,12 +123,66 @@ pub struct Material {
     pub friction: f64,
 }
 
+/// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
+/// [`crate::model::build`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadSpec {
+    /// A force at a point, carried by the block whose outline contains the point.
+    Point {
+        /// Point of application (m).
+        at: [f64; 2],
+        /// Permanent force (N).
+        force: [f64; 2],
+        /// Whether the load is a seismic mass `|force_y| / g`.
+        seismic: bool,
+    },
+    /// A vertical load per metre of horizontal length on the extrados, downward.
+    Line {
+        from_x: f64,
+        to_x: f64,
+        /// N/m, downward.
+        intensity: f64,
+        seismic: bool,
+    },
+}
+
+impl LoadSpec {
+    pub fn seismic(&self) -> bool {
+        match self {
+            LoadSpec::Point { seismic, .. } | LoadSpec::Line { seismic, .. } => *seismic,
+        }
+    }
+}
+
+/// Fill (or masonry) above the arch up to a level, carried by the voussoirs below it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FillSpec {
+    /// y of the top surface (m).
+    pub level: f64,
+    /// Unit weight (N/m^3), times the scene depth.
+    pub unit_weight: f64,
+    pub seismic: bool,
+}
+
+/// The seismic action beyond its horizontal component.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SeismicSpec {
+    /// Vertical seismic force per unit horizontal one (+y up), -1..1.
+    pub vertical_ratio: f64,
+}
+
 /// A validated scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
     pub arch: ArchSpec,
     pub piers: Option<Piers>,
     pub material: Material,
+    /// Loads beyond self-weight (`[[loads]]`), in file order.
+    pub loads: Vec<LoadSpec>,
+    /// `[fill]`, when given.
+    pub fill: Option<FillSpec>,
+    /// `[seismic]` (defaults: horizontal ground motion only).
+    pub seismic: SeismicSpec,
     /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem`; empty when
     /// the scene has none.
     pub dem: Table,
@@ -292,21 +366,23 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     }
 }
 
-const SECTIONS: &[&str] = &["arch", "piers", "material", "dem"];
+const SECTIONS: &[&str] = &[
+    "arch", "piers", "material", "dem", "fill", "seismic", "loads",
+];
 
 /// Reads one section, remembering which keys were used so that the rest are reported as
 /// unknown.
 struct Section<'a> {
-    name: &'static str,
+    name: String,
     table: &'a Table,
     origin: &'a str,
     used: BTreeSet<&'static str>,
 }
 
 impl<'a> Section<'a> {
-    fn new(name: &'static str, table: &'a Table, origin: &'a str) -> Self {
+    fn new(name: impl Into<String>, table: &'a Table, origin: &'a str) -> Self {
         Section {
-            name,
+            name: name.into(),
             table,
             origin,
             used: BTreeSet::new(),
@@ -418,6 +494,43 @@ impl<'a> Section<'a> {
         Ok(v as usize)
     }
 
+    /// A finite number, required.
+    fn finite(&mut self, key: &'static str, what: &str) -> Result<f64, SceneError> {
+        let v = self.opt_f64(key)?.ok_or_else(|| self.missing(key, what))?;
+        if !v.is_finite() {
+            return Err(self.out_of_range(key, v, "must be a finite number"));
+        }
+        Ok(v)
+    }
+
+    /// A pair `[x, y]` of finite numbers, required.
+    fn pair(&mut self, key: &'static str, what: &str) -> Result<[f64; 2], SceneError> {
+        self.used.insert(key);
+        let v = self.table.get(key).ok_or_else(|| self.missing(key, what))?;
+        let num = |x: &Value| match x {
+            Value::Float(f) => Some(*f),
+            Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        match v {
+            Value::Array(a) if a.len() == 2 => match (num(&a[0]), num(&a[1])) {
+                (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
+                (Some(_), Some(_)) => Err(self.out_of_range(key, v, "both numbers must be finite")),
+                _ => Err(self.wrong_type(key, v, "a pair of numbers [x, y]")),
+            },
+            _ => Err(self.wrong_type(key, v, "a pair of numbers [x, y]")),
+        }
+    }
+
+    fn boolean(&mut self, key: &'static str, default: bool) -> Result<bool, SceneError> {
+        self.used.insert(key);
+        match self.table.get(key) {
+            None => Ok(default),
+            Some(Value::Boolean(b)) => Ok(*b),
+            Some(v) => Err(self.wrong_type(key, v, "true or false")),
+        }
+    }
+
     fn string(&mut self, key: &'static str, default: Option<&str>) -> Result<String, SceneError> {
         self.used.insert(key);
         match (self.table.get(key), default) {
@@ -488,18 +601,33 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         origin,
     ))?;
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
+    let loads = parse_loads(&table, origin)?;
+    let fill = match section(&table, "fill", origin)? {
+        Some(t) => Some(parse_fill(Section::new("fill", t, origin), &arch)?),
+        None => None,
+    };
+    let seismic = parse_seismic(Section::new(
+        "seismic",
+        section(&table, "seismic", origin)?.unwrap_or(&empty),
+        origin,
+    ))?;
     let scene = Scene {
         arch,
         piers,
         material,
+        loads,
+        fill,
+        seismic,
         dem,
         origin: origin.to_string(),
         table,
     };
+    // Loads are placed on blocks here too (a point outside every block is an error of the
+    // scene, whatever the command).
+    let model = crate::model::build(&scene)?;
     if !scene.dem.is_empty() {
         // The [dem] knobs are validated here too, so a typo is caught whatever the command.
-        let assembly = crate::assembly::Assembly::from_scene(&scene);
-        crate::dem::IntegrationParameters::from_scene(&scene, &assembly)?;
+        crate::dem::IntegrationParameters::from_scene(&scene, &model.assembly)?;
     }
     Ok(scene)
 }
@@ -716,6 +844,113 @@ fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
         width,
         courses,
     })
+}
+
+fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError> {
+    let items = match table.get("loads") {
+        None => return Ok(Vec::new()),
+        Some(Value::Array(a)) => a,
+        Some(v) => {
+            return Err(SceneError::WrongType {
+                origin: origin.to_string(),
+                key: "loads".to_string(),
+                value: v.to_string(),
+                expected: "a list of [[loads]] tables".to_string(),
+            })
+        }
+    };
+    let mut loads = Vec::with_capacity(items.len());
+    for (k, item) in items.iter().enumerate() {
+        let Value::Table(t) = item else {
+            return Err(SceneError::WrongType {
+                origin: origin.to_string(),
+                key: format!("loads[{k}]"),
+                value: item.to_string(),
+                expected: "a [[loads]] table".to_string(),
+            });
+        };
+        let mut s = Section::new(format!("loads[{k}]"), t, origin);
+        let kind = s.string("type", None)?;
+        let seismic = s.boolean("seismic", true)?;
+        let load = match kind.as_str() {
+            "point" => {
+                let at = s.pair("at", "point of application [x, y] in metres")?;
+                let force = s.pair("force", "force [fx, fy] in newtons")?;
+                LoadSpec::Point { at, force, seismic }
+            }
+            "line" => {
+                let from_x = s.finite("from_x", "start x of the loaded length in metres")?;
+                let to_x = s.finite("to_x", "end x of the loaded length in metres")?;
+                if to_x <= from_x {
+                    return Err(s.out_of_range(
+                        "to_x",
+                        to_x,
+                        &format!("must be greater than from_x = {from_x}"),
+                    ));
+                }
+                let intensity = s.finite("intensity", "load per metre in N/m, downward")?;
+                if intensity < 0.0 {
+                    return Err(s.out_of_range(
+                        "intensity",
+                        intensity,
+                        "must be >= 0 (N/m, acting downward)",
+                    ));
+                }
+                LoadSpec::Line {
+                    from_x,
+                    to_x,
+                    intensity,
+                    seismic,
+                }
+            }
+            other => {
+                return Err(s.out_of_range(
+                    "type",
+                    format!("\"{other}\""),
+                    "must be \"point\" or \"line\"",
+                ))
+            }
+        };
+        s.finish(&format!("for type = \"{kind}\" "))?;
+        loads.push(load);
+    }
+    Ok(loads)
+}
+
+fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
+    let level = s.finite("level", "y of the fill's top surface in metres")?;
+    let unit_weight = s.opt_f64("unit_weight")?.unwrap_or(18000.0);
+    if !(unit_weight.is_finite() && unit_weight >= 0.0) {
+        return Err(s.out_of_range(
+            "unit_weight",
+            unit_weight,
+            "must be a finite number >= 0 (N/m^3)",
+        ));
+    }
+    let seismic = s.boolean("seismic", true)?;
+    s.finish("")?;
+    let crown = arch.shape.crown_extrados(arch.thickness);
+    if level < crown {
+        return Err(s.out_of_range(
+            "level",
+            level,
+            &format!("must not be below the crown extrados, y = {crown}"),
+        ));
+    }
+    Ok(FillSpec {
+        level,
+        unit_weight,
+        seismic,
+    })
+}
+
+fn parse_seismic(mut s: Section) -> Result<SeismicSpec, SceneError> {
+    let r = s.opt_f64("vertical_ratio")?.unwrap_or(0.0);
+    if !(r.is_finite() && (-1.0..=1.0).contains(&r)) {
+        return Err(s.out_of_range("vertical_ratio", r, "must be from -1 to 1"));
+    }
+    s.finish("")?;
+    Ok(SeismicSpec { vertical_ratio: r })
 }
 
 fn parse_material(mut s: Section) -> Result<Material, SceneError> {

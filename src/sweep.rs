@@ -436,10 +436,11 @@ pub fn case(
                 row.extra.push(("lambda_continuous", c));
             }
             if dem {
-                let params = crate::dem::IntegrationParameters::from_scene(scene, &a.assembly)
-                    .map(|p| p.initial_guess(a.lower.lambda.filter(|l| *l > 0.0)));
+                let params =
+                    crate::dem::IntegrationParameters::from_scene(scene, &a.model.assembly)
+                        .map(|p| p.initial_guess(a.lower.lambda.filter(|l| *l > 0.0)));
                 let d = params.ok().and_then(|p| {
-                    crate::dem::collapse_multiplier(&a.assembly, &p, 0.01, &mut |_| {})
+                    crate::dem::collapse_multiplier(&a.model, &p, 0.01, &mut |_| {})
                         .ok()
                         .and_then(|r| r.lambda_dem)
                 });

@@ -6,10 +6,11 @@
 //! (for portals it need not be): it scans a geometric grid from the top down to find the
 //! smallest standing grid point, then bisects the interval below it to a relative tolerance.
 
-use crate::assembly::{Assembly, Hinge};
+use crate::assembly::Hinge;
 use crate::error::AnalysisError;
 use crate::kinematic::{self, KinematicSettings};
-use crate::lp::{self, StandResult, StaticSettings};
+use crate::lp::{self, StandResult, StaticSettings, Status};
+use crate::model::{self, Model};
 use crate::scene::Scene;
 
 /// Relative tolerance of the bisection on t.
@@ -116,12 +117,12 @@ pub struct MinThickness {
     /// The scene's own thickness divided by the minimum thickness.
     pub safety_factor: Option<f64>,
     /// The static analysis at the minimum thickness.
-    pub at_minimum: Option<(Assembly, StandResult)>,
+    pub at_minimum: Option<(Model, StandResult)>,
 }
 
 /// Whether the static program finds equilibrium at lambda = 0.
 pub fn stands_static(scene: &Scene, settings: &StaticSettings) -> Result<bool, AnalysisError> {
-    Ok(lp::stands(&Assembly::from_scene(scene), settings)?.stands)
+    Ok(lp::stands(&model::build(scene)?, settings)?.stands)
 }
 
 /// The static minimum thickness of `scene`.
@@ -133,10 +134,10 @@ pub fn min_thickness(
     let mut hinges = Vec::new();
     let mut at_minimum = None;
     if let Some(t) = search.min_thickness {
-        let assembly = Assembly::from_scene(&scene.with_thickness(t)?);
-        let r = lp::stands(&assembly, settings)?;
+        let model = model::build(&scene.with_thickness(t)?)?;
+        let r = lp::stands(&model, settings)?;
         hinges = r.hinges.clone();
-        at_minimum = Some((assembly, r));
+        at_minimum = Some((model, r));
     }
     let safety_factor = search.min_thickness.map(|t| scene.arch.thickness / t);
     Ok(MinThickness {
@@ -158,7 +159,9 @@ pub fn min_thickness_kinematic(
         ..KinematicSettings::default()
     };
     search(scene, DEFAULT_REL_TOL, |s| {
-        kinematic::stands(s, &settings).map_err(|e| AnalysisError::Other(e.to_string()))
+        let k = kinematic::analyse(&model::build(s)?, &settings)
+            .map_err(|e| AnalysisError::Other(e.to_string()))?;
+        Ok(k.status != Status::CannotStand)
     })
 }
 
@@ -193,7 +196,7 @@ pub fn analyse(
     continuous: bool,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
     let lower = min_thickness(scene, settings)?;
-    let joints = Assembly::from_scene(scene).joints.len();
+    let joints = model::build(scene)?.assembly.joints.len();
     let (kinematic, kinematic_note) = if kinematic_max_joints > 0 && joints <= kinematic_max_joints
     {
         let note = scene.material.friction.is_finite().then(|| {

@@ -38,6 +38,7 @@ use crate::assembly::{Assembly, Hinge};
 use crate::error::AnalysisError;
 use crate::geometry::Vec2;
 use crate::lp;
+use crate::model::Model;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
@@ -249,12 +250,13 @@ const MAX_RUNS: usize = 60;
 /// Bracket the collapse multiplier of `assembly` by DEM runs, to a relative width of
 /// `tolerance` (e.g. 0.01). `progress` receives a fraction of the expected work in [0, 1].
 pub fn collapse_multiplier(
-    assembly: &Assembly,
+    model: &Model,
     params: &IntegrationParameters,
     tolerance: f64,
     progress: &mut dyn FnMut(f64),
 ) -> Result<DemResult, DemError> {
     let clock = Instant::now();
+    let assembly = &model.assembly;
     assembly.validate()?;
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
         return Err(DemError::Settings(format!(
@@ -263,7 +265,7 @@ pub fn collapse_multiplier(
     }
     let (guess, guess_source) = match params.initial_guess {
         Some(g) => (g, GuessSource::Given),
-        None => match lp::analyse(assembly, &lp::StaticSettings::default()) {
+        None => match lp::analyse(model, &lp::StaticSettings::default()) {
             Ok(r) if r.lambda.is_some_and(|l| l > 0.0) => {
                 (r.lambda.unwrap_or(0.2), GuessSource::Static)
             }

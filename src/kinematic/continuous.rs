@@ -60,7 +60,7 @@ use super::{
     motion_work, solve_motion, Act, Active, Direction, Extremes, Family, KinematicError, Status,
     Sums,
 };
-use crate::assembly::{Assembly, JointEnd, JointKind};
+use crate::assembly::{BlockKind, JointEnd, JointKind};
 use crate::geometry::{basket_radii, polar, polygon_area_centroid, Vec2};
 use crate::scene::{Scene, Shape};
 use rayon::prelude::*;
@@ -146,6 +146,8 @@ struct Annulus {
     head: Sums,
     tail: Sums,
     gamma: f64,
+    /// Seismic force per unit lambda and unit weight (`(d, r)`).
+    seismic: Vec2,
 }
 
 impl Annulus {
@@ -165,11 +167,12 @@ impl Annulus {
         let mid = self.theta0 + self.dir * 0.5 * (u0 + u1);
         let w = self.gamma * r * t * du;
         let k = self.gamma * t * (r * r + t * t / 12.0) * 2.0 * (0.5 * du).sin();
-        Sums {
+        Sums::of_mass(
             w,
-            wx: self.centre.x * w + k * mid.cos(),
-            wy: self.centre.y * w + k * mid.sin(),
-        }
+            self.centre.x * w + k * mid.cos(),
+            self.centre.y * w + k * mid.sin(),
+            self.seismic,
+        )
     }
 }
 
@@ -195,18 +198,30 @@ struct Structure {
 }
 
 impl Structure {
-    fn from_scene(scene: &Scene) -> Result<Structure, KinematicError> {
-        let asm = Assembly::from_scene(scene);
+    fn from_scene(scene: &Scene, direction: Direction) -> Result<Structure, KinematicError> {
+        let model = crate::model::build(scene)?;
+        let asm = &model.assembly;
         asm.validate()?;
         let k = scene.piers.as_ref().map_or(0, |p| p.courses);
         let n = scene.arch.voussoirs;
         let gamma = scene.material.unit_weight * scene.material.depth;
         let t = scene.arch.thickness;
-        let sums_of = |b: &crate::assembly::Block| Sums {
-            w: b.weight,
-            wx: b.weight * b.centroid.x,
-            wy: b.weight * b.centroid.y,
-        };
+        let sign = direction.sign();
+        let seismic = model.loads.seismic_direction(sign);
+        // The ring is a continuum here: its own weight is integrated exactly between any two
+        // sections, but loads placed on voussoirs (point, line, fill) belong to the discrete
+        // blocks and have no place between arbitrary sections.
+        if let Some(l) = model.loads.applied().iter().find(|l| {
+            l.source != crate::model::LoadSource::SelfWeight
+                && matches!(asm.blocks[l.block].kind, BlockKind::Voussoir(_))
+        }) {
+            return Err(KinematicError::Continuous(format!(
+                "loads on the arch ring ({:?} on voussoir {}) are not modelled by the continuous model: it carries the ring's self-weight (with any vertical seismic ratio) and loads on the piers",
+                l.source,
+                l.block - k
+            )));
+        }
+        let sums_of = |i: usize| Sums::of_block(&model.loads, i, sign);
         let joint = |j: usize| {
             let jt = &asm.joints[j];
             Item::Joint {
@@ -218,7 +233,7 @@ impl Structure {
         let mut items = Vec::new();
         for c in 0..k {
             items.push(joint(c));
-            items.push(Item::Block(sums_of(&asm.blocks[c])));
+            items.push(Item::Block(sums_of(c)));
         }
         items.push(joint(k));
         let ring = |centre: Vec2, r: f64, theta0: f64, len: f64| Annulus {
@@ -231,6 +246,7 @@ impl Structure {
             head: Sums::default(),
             tail: Sums::default(),
             gamma,
+            seismic,
         };
         match scene.arch.shape {
             Shape::Circular { radius, embrace } => {
@@ -265,16 +281,13 @@ impl Structure {
                 let sk = gamma * re * re * re / 3.0 * 2.0 * (0.5 * d).sin();
                 let (ta, tc) = polygon_area_centroid(&[o, apex_i, apex_e]);
                 let tw = gamma * ta;
-                let key_left = Sums {
-                    w: sw - tw,
-                    wx: o.x * sw + sk * mid.cos() - tw * tc.x,
-                    wy: o.y * sw + sk * mid.sin() - tw * tc.y,
-                };
-                let key_right = Sums {
-                    w: key_left.w,
-                    wx: -key_left.wx,
-                    wy: key_left.wy,
-                };
+                let (kw, kwx, kwy) = (
+                    sw - tw,
+                    o.x * sw + sk * mid.cos() - tw * tc.x,
+                    o.y * sw + sk * mid.sin() - tw * tc.y,
+                );
+                let key_left = Sums::of_mass(kw, kwx, kwy, seismic);
+                let key_right = Sums::of_mass(kw, -kwx, kwy, seismic);
                 let mut left = ring(o, radius, PI, PI - phi_i);
                 left.tail = key_left;
                 let mut right = ring(Vec2::new(-e, 0.0), radius, PI - phi_i, PI - phi_i);
@@ -315,7 +328,7 @@ impl Structure {
         }
         items.push(joint(k + n));
         for c in 0..k {
-            items.push(Item::Block(sums_of(&asm.blocks[k + n + c])));
+            items.push(Item::Block(sums_of(k + n + c)));
             items.push(joint(k + n + 1 + c));
         }
         let full = items
@@ -409,7 +422,7 @@ impl Structure {
     }
 
     /// `(A, G)` of the mechanism with active sections `pos` doing `acts`, if admissible.
-    fn evaluate(&self, pos: &[Pos], acts: &[Act], sign: f64) -> Option<(f64, f64)> {
+    fn evaluate(&self, pos: &[Pos], acts: &[Act]) -> Option<(f64, f64)> {
         let mut actives = [Active {
             p1: Vec2::zeros(),
             p2: Vec2::zeros(),
@@ -424,8 +437,7 @@ impl Structure {
         for k in 0..pos.len() - 1 {
             bodies[k] = self.between(pos[k], pos[k + 1]);
         }
-        let (ax, g) = motion_work(&m, &bodies[..pos.len() - 1]);
-        Some((sign * ax, g))
+        Some(motion_work(&m, &bodies[..pos.len() - 1]))
     }
 }
 
@@ -565,12 +577,11 @@ pub fn continuous_with(
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
     let start = Instant::now();
-    let st = Structure::from_scene(scene)?;
-    let sign = direction.sign();
+    let st = Structure::from_scene(scene, direction)?;
     let coarse = st.coarse();
     let sections: Vec<(Vec2, Vec2)> = coarse.iter().map(|p| st.section(*p)).collect();
     let segments: Vec<Sums> = coarse.windows(2).map(|w| st.between(w[0], w[1])).collect();
-    let chain = Chain::from_sections(&sections, &segments, sign, st.size);
+    let chain = Chain::from_sections(&sections, &segments, st.size);
     let shared = AtomicU64::new(f64::INFINITY.to_bits());
     let make = || Collector {
         ext: Extremes::new(),
@@ -605,7 +616,7 @@ pub fn continuous_with(
             let pos: Vec<Pos> = key.items().map(|(j, _)| coarse[j]).collect();
             let acts: Vec<Act> = key.items().map(|(_, a)| act_of(a)).collect();
             let mut ev = 0u64;
-            let (lr, pr) = refine(&st, pos, &acts, sign, &mut ev);
+            let (lr, pr) = refine(&st, pos, &acts, &mut ev);
             (lr, pr, acts, ev)
         })
         .collect();
@@ -717,12 +728,11 @@ fn refine(
     st: &Structure,
     mut pos: Vec<Pos>,
     acts: &[Act],
-    sign: f64,
     evaluations: &mut u64,
 ) -> (f64, Vec<Pos>) {
     let f = |pos: &[Pos], ev: &mut u64| -> f64 {
         *ev += 1;
-        match st.evaluate(pos, acts, sign) {
+        match st.evaluate(pos, acts) {
             Some((ax, g)) if ax > 0.0 => g / ax,
             _ => f64::INFINITY,
         }
@@ -791,7 +801,6 @@ fn refine(
                     return f64::INFINITY;
                 };
                 let (ax, g) = motion_work(&m, &bodies[..n - 1]);
-                let ax = sign * ax;
                 if ax > 0.0 {
                     g / ax
                 } else {

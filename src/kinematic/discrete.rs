@@ -17,7 +17,7 @@
 //! (collinear hinge points, e.g. along a pier face) the quadruple falls back to the direct
 //! evaluation of all 16 patterns with a tolerance. Only the survivors (typically the two
 //! alternating intrados/extrados patterns) get their virtual work evaluated, in O(1) from
-//! prefix sums of W, W x, W y along the chain.
+//! prefix sums of the load resultants ([`super::Sums`]) along the chain.
 //!
 //! The two-hinges-one-open family (N C(N-1,2) joint choices times 4 end patterns) uses the
 //! closed forms of its cofactors: with the open joint's line through p with unit normal n and
@@ -32,7 +32,7 @@ use super::{
 use crate::assembly::{Assembly, Hinge, JointEnd};
 use crate::geometry::{cross, Vec2};
 use crate::lp::{StaticResult, Status};
-use crate::scene::Scene;
+use crate::model::Model;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -83,8 +83,6 @@ pub(crate) struct Chain {
     len: Vec<f64>,
     /// `pre[k]`: sums over blocks `0..k`.
     pre: Vec<Sums>,
-    /// +1: load toward +x, -1: toward -x.
-    sign: f64,
     /// Size of the structure (m), for round-off thresholds.
     size: f64,
     /// Whether both ends are supported.
@@ -92,16 +90,13 @@ pub(crate) struct Chain {
 }
 
 impl Chain {
-    fn new(a: &Assembly, sign: f64, closed: bool) -> Chain {
+    fn new(model: &Model, sign: f64, closed: bool) -> Chain {
+        let a = &model.assembly;
         let mut pre = Vec::with_capacity(a.blocks.len() + 1);
         let mut s = Sums::default();
         pre.push(s);
-        for b in &a.blocks {
-            s = s + Sums {
-                w: b.weight,
-                wx: b.weight * b.centroid.x,
-                wy: b.weight * b.centroid.y,
-            };
+        for i in 0..a.blocks.len() {
+            s = s + Sums::of_block(&model.loads, i, sign);
             pre.push(s);
         }
         Chain {
@@ -112,7 +107,6 @@ impl Chain {
             normal: a.joints.iter().map(|j| j.normal()).collect(),
             len: a.joints.iter().map(|j| j.length()).collect(),
             pre,
-            sign,
             size: a.size(),
             closed,
         }
@@ -120,12 +114,7 @@ impl Chain {
 
     /// A two-support chain of sections `(p1, p2)` with the material `segments[k]` between
     /// sections k and k + 1.
-    pub(crate) fn from_sections(
-        sections: &[(Vec2, Vec2)],
-        segments: &[Sums],
-        sign: f64,
-        size: f64,
-    ) -> Chain {
+    pub(crate) fn from_sections(sections: &[(Vec2, Vec2)], segments: &[Sums], size: f64) -> Chain {
         let mut pre = Vec::with_capacity(segments.len() + 1);
         let mut s = Sums::default();
         pre.push(s);
@@ -148,7 +137,6 @@ impl Chain {
             normal,
             len: sections.iter().map(|(p1, p2)| (p2 - p1).norm()).collect(),
             pre,
-            sign,
             size,
             closed: true,
         }
@@ -170,7 +158,6 @@ impl Chain {
             normal: pick(&self.normal),
             len: keep.iter().map(|&j| self.len[j]).collect(),
             pre: keep.iter().map(|&j| self.pre[j]).collect(),
-            sign: self.sign,
             size: self.size,
             closed: true,
         }
@@ -219,7 +206,7 @@ impl Chain {
             count
         };
         let (ax, g) = motion_work(&m, &bodies[..nbodies]);
-        Some((self.sign * ax, g, m))
+        Some((ax, g, m))
     }
 }
 
@@ -237,11 +224,12 @@ pub fn is_column(a: &Assembly) -> bool {
 /// Discrete kinematic analysis of a chain assembly: the least multiplier over all admissible
 /// one-degree-of-freedom mechanisms whose hinges sit at joint ends.
 pub fn analyse(
-    assembly: &Assembly,
+    model: &Model,
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, KinematicError> {
     let start = Instant::now();
-    let closed = chain_kind(assembly)?;
+    let assembly = &model.assembly;
+    let closed = chain_kind(model)?;
     let nj = assembly.joints.len();
     if nj > settings.max_joints {
         return Err(KinematicError::TooManyJoints {
@@ -249,7 +237,7 @@ pub fn analyse(
             max: settings.max_joints,
         });
     }
-    let chain = Chain::new(assembly, settings.direction.sign(), closed);
+    let chain = Chain::new(model, settings.direction.sign(), closed);
     let (ext, candidates) = if closed {
         search_closed(&chain, settings.parallel)
     } else {
@@ -269,9 +257,11 @@ pub fn analyse(
     ))
 }
 
-/// Whether `assembly` is a two-support chain (true) or a one-support column (false).
-fn chain_kind(assembly: &Assembly) -> Result<bool, KinematicError> {
+/// Whether the model is a two-support chain (true) or a one-support column (false).
+fn chain_kind(model: &Model) -> Result<bool, KinematicError> {
+    let assembly = &model.assembly;
     assembly.validate()?;
+    model.loads.validate(assembly)?;
     if assembly.is_chain() {
         Ok(true)
     } else if is_column(assembly) {
@@ -326,7 +316,7 @@ fn result(
 /// [`KinematicError::LocalFoundNothing`] (no mechanism driven by the load in the window: no
 /// bound, and no claim of `NoCollapse`), besides those of [`analyse`].
 pub fn analyse_local(
-    assembly: &Assembly,
+    model: &Model,
     around: &StaticResult,
     settings: &KinematicSettings,
     window: usize,
@@ -335,11 +325,12 @@ pub fn analyse_local(
     if around.status != Status::Collapse {
         return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
     }
+    let assembly = &model.assembly;
     let nj = assembly.joints.len();
-    if !chain_kind(assembly)? {
+    if !chain_kind(model)? {
         // A one-support chain has 2 N candidates: search them all.
         return analyse(
-            assembly,
+            model,
             &KinematicSettings {
                 max_joints: nj,
                 ..settings.clone()
@@ -367,7 +358,7 @@ pub fn analyse_local(
     }
     let keep: Vec<usize> = (0..nj).filter(|&j| inside[j]).collect();
     if keep.len() == nj {
-        return analyse(assembly, settings);
+        return analyse(model, settings);
     }
     if keep.len() > settings.max_joints {
         return Err(KinematicError::TooManyJoints {
@@ -375,7 +366,7 @@ pub fn analyse_local(
             max: settings.max_joints,
         });
     }
-    let chain = Chain::new(assembly, settings.direction.sign(), true);
+    let chain = Chain::new(model, settings.direction.sign(), true);
     let (ext, candidates) = search_closed(&chain.restricted(&keep), settings.parallel);
     let ext = ext.map_keys(|k| k.mapped(&keep));
     let (status, key) = ext.verdict();
@@ -406,20 +397,6 @@ pub fn analyse_local(
         (Search::Local, keep.len(), Some(note)),
         start,
     ))
-}
-
-/// Discrete kinematic analysis of a scene (its assembly, default settings but `direction`).
-pub fn lambda_upper_of_scene(
-    scene: &Scene,
-    settings: &KinematicSettings,
-) -> Result<KinematicResult, KinematicError> {
-    analyse(&Assembly::from_scene(scene), settings)
-}
-
-/// The kinematic "stands" predicate for a bisection on thickness: true unless some admissible
-/// mechanism makes the structure unable to carry its own weight (status `CannotStand`).
-pub fn stands(scene: &Scene, settings: &KinematicSettings) -> Result<bool, KinematicError> {
-    Ok(lambda_upper_of_scene(scene, settings)?.status != Status::CannotStand)
 }
 
 /// The mechanism of `key`, with block velocities normalised (fastest centroid at speed 1).
@@ -616,7 +593,7 @@ fn two_hinges_one_open_at<S: Sink>(chain: &Chain, o: usize, sink: &mut S) {
                     ];
                     let (a1, g1) = super::work(t1, chain.body(items[0].0, items[1].0));
                     let (a2, g2) = super::work(t2, chain.body(items[1].0, items[2].0));
-                    let (ax, g) = (chain.sign * (a1 + a2), g1 + g2);
+                    let (ax, g) = (a1 + a2, g1 + g2);
                     if sink.wants(ax, g) {
                         sink.take(
                             ax,
@@ -911,8 +888,8 @@ fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &
                     ca: cross(pc - pb, pd - pb),
                     al: [cross(pc, pd), pc.y - pd.y, pd.x - pc.x],
                     be: [cross(pb, pc), pb.y - pc.y, pc.x - pb.x],
-                    kb: [pb.y * sbc.w - sbc.wy, sbc.wx - pb.x * sbc.w],
-                    kd: [pd.y * scd.w - scd.wy, scd.wx - pd.x * scd.w],
+                    kb: super::rot_work(pb, &sbc).into(),
+                    kd: super::rot_work(pd, &scd).into(),
                 };
             }
             let ma = masks.a[(ybcd & 0xff) as usize];
@@ -954,9 +931,10 @@ fn four_hinges_at<S: Sink>(chain: &Chain, tables: &FourTables, d: usize, sink: &
                         // c_B = -T(a,c,d), c_D = -T(a,b,c); the sign sigma is applied last.
                         let cb = -(k.al[0] + k.al[1] * pa.x + k.al[2] * pa.y);
                         let cd = -(k.be[0] + k.be[1] * pa.x + k.be[2] * pa.y);
-                        let ax = k.ca * (pa.y * sac.w - sac.wy) + cb * k.kb[0] - cd * k.kd[0];
-                        let g = k.ca * (sac.wx - pa.x * sac.w) + cb * k.kb[1] - cd * k.kd[1];
-                        let (ax, g) = (sigma * chain.sign * ax, sigma * g);
+                        let (wa, ga) = super::rot_work(pa, &sac);
+                        let ax = k.ca * wa + cb * k.kb[0] - cd * k.kd[0];
+                        let g = k.ca * ga + cb * k.kb[1] - cd * k.kd[1];
+                        let (ax, g) = (sigma * ax, sigma * g);
                         if sink.wants(ax, g) {
                             sink.take(ax, g, quad_key([a, b, c, d], pat));
                         }
@@ -991,10 +969,10 @@ fn quadruple_work(chain: &Chain, j: [usize; 4], pat: usize, sigma: f64) -> (f64,
     let sac = chain.pre[j[2]] - chain.pre[j[0]];
     let sbc = chain.pre[j[2]] - chain.pre[j[1]];
     let scd = chain.pre[j[3]] - chain.pre[j[2]];
-    let ax =
-        ca * (a.y * sac.w - sac.wy) + cb * (b.y * sbc.w - sbc.wy) - cd * (d.y * scd.w - scd.wy);
-    let g = ca * (sac.wx - a.x * sac.w) + cb * (sbc.wx - b.x * sbc.w) - cd * (scd.wx - d.x * scd.w);
-    (chain.sign * ax, g)
+    let (wa, ga) = super::rot_work(a, &sac);
+    let (wb, gb) = super::rot_work(b, &sbc);
+    let (wd, gd) = super::rot_work(d, &scd);
+    (ca * wa + cb * wb - cd * wd, ca * ga + cb * gb - cd * gd)
 }
 
 /// All 16 end patterns of a quadruple by direct evaluation (near-collinear hinge points).
@@ -1023,16 +1001,18 @@ fn slow_patterns<S: Sink>(chain: &Chain, j: [usize; 4], pats: u16, sink: &mut S)
 mod tests {
     use super::*;
 
-    /// The fast paths agree with the generic cofactor evaluation on every candidate.
+    /// The fast paths agree with the generic cofactor evaluation on every candidate, under
+    /// loads that are not parallel to the weights (an inclined point load, fill, a vertical
+    /// seismic component).
     #[test]
     fn fast_paths_match_generic_evaluation() {
-        let scene = Scene::from_toml_str(
-            "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.2\nthickness=0.2\nvoussoirs=6\n[piers]\nheight=0.8\nwidth=0.35\ncourses=2\n",
+        let scene = crate::scene::Scene::from_toml_str(
+            "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.2\nthickness=0.2\nvoussoirs=6\n[piers]\nheight=0.8\nwidth=0.35\ncourses=2\n[[loads]]\ntype='point'\nat=[-0.9, -0.2]\nforce=[300.0, -2000.0]\n[fill]\nlevel=1.3\n[seismic]\nvertical_ratio=0.2\n",
             "t",
         )
         .unwrap();
-        let asm = Assembly::from_scene(&scene);
-        let chain = Chain::new(&asm, 1.0, true);
+        let model = crate::model::build(&scene).unwrap();
+        let chain = Chain::new(&model, 1.0, true);
         let n = chain.joints();
         // Four hinges: quadruple_work against evaluate, where admissible.
         let mut checked = 0;

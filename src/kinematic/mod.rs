@@ -28,10 +28,12 @@
 //! # Admissibility and virtual work
 //! A hinge at p1 needs the relative rotation to be negative (so that p2 opens), at p2 positive;
 //! an open joint needs both ends to separate. The mechanism's sign is fixed by these
-//! conditions (or it is inadmissible). The virtual-work equation with the horizontal load
-//! `lambda W` at each centroid, `lambda sum(W vx) = sum(W vy)` (the load's power equals the
-//! rate of increase of potential energy; hinges dissipate nothing), gives
-//! `lambda = G / A` with `G = sum(W vy)`, `A = d sum(W vx)` (d = +-1 the load direction).
+//! conditions (or it is inadmissible). The virtual-work equation `lambda A = G`, with `A` the
+//! power of the seismic forces per unit lambda and `G` minus the power of the permanent
+//! forces (the load's power equals the rate of increase of potential energy; hinges dissipate
+//! nothing), gives `lambda = G / A`. Both come from the [`crate::model::LoadCase`] through
+//! per-body resultants ([`Sums`]); with self-weight alone, `G = sum(W vy)` and
+//! `A = d sum(W vx)` (d = +-1 the load direction), the seed paper's equation.
 //! Equilibrium at lambda is possible iff `lambda A <= G` for every admissible mechanism, so
 //! the static set of multipliers is `[max_{A<0} G/A, min_{A>0} G/A]` (LP duality with the
 //! static program of `crate::lp`). Hence:
@@ -71,7 +73,7 @@ pub use continuous::{
     continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult,
     HingeLocation, MinThickness,
 };
-pub use discrete::{analyse, analyse_local, lambda_upper_of_scene, stands};
+pub use discrete::{analyse, analyse_local};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
@@ -271,21 +273,45 @@ impl Active {
     }
 }
 
-/// Weight and first moments `(W, sum W x, sum W y)` of the blocks of a body.
+/// Load resultants of a body, for virtual work: its permanent forces `p` and its seismic
+/// forces per unit lambda `s` (load direction included), each as `[Fx, Fy, M]` with `M` the
+/// moment about the origin. Sums of bodies add.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct Sums {
-    pub w: f64,
-    pub wx: f64,
-    pub wy: f64,
+    pub p: [f64; 3],
+    pub s: [f64; 3],
+}
+
+impl Sums {
+    /// Self-weight-like material of weight `w` with first moments `wx = sum W x`,
+    /// `wy = sum W y`: its weight down, and a seismic mass of the same weight whose force per
+    /// unit lambda and unit weight is `dir` (`(d, r)`, see [`crate::model::LoadCase`]).
+    pub fn of_mass(w: f64, wx: f64, wy: f64, dir: Vec2) -> Sums {
+        Sums {
+            p: [0.0, -w, -wx],
+            s: [dir.x * w, dir.y * w, dir.y * wx - dir.x * wy],
+        }
+    }
+
+    /// The loads of block `i` of a load case, seismic forces toward `sign`.
+    pub fn of_block(loads: &crate::model::LoadCase, i: usize, sign: f64) -> Sums {
+        let g = loads.reference(i);
+        let p = loads.permanent(i).moved(g, Vec2::zeros());
+        let s = loads.seismic(i, sign).moved(g, Vec2::zeros());
+        Sums {
+            p: [p.force.x, p.force.y, p.moment],
+            s: [s.force.x, s.force.y, s.moment],
+        }
+    }
 }
 
 impl std::ops::Add for Sums {
     type Output = Sums;
     fn add(self, o: Sums) -> Sums {
+        let f = |a: [f64; 3], b: [f64; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
         Sums {
-            w: self.w + o.w,
-            wx: self.wx + o.wx,
-            wy: self.wy + o.wy,
+            p: f(self.p, o.p),
+            s: f(self.s, o.s),
         }
     }
 }
@@ -293,18 +319,32 @@ impl std::ops::Add for Sums {
 impl std::ops::Sub for Sums {
     type Output = Sums;
     fn sub(self, o: Sums) -> Sums {
+        let f = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         Sums {
-            w: self.w - o.w,
-            wx: self.wx - o.wx,
-            wy: self.wy - o.wy,
+            p: f(self.p, o.p),
+            s: f(self.s, o.s),
         }
     }
 }
 
-/// `(sum W vx, sum W vy)` of a body moving with twist `t`.
+/// `(A, G)` of a body moving with twist `t`: `A` the power of its seismic forces per unit
+/// lambda, `G` minus the power of its permanent forces (for self-weight, `sum W vy`). The
+/// virtual-work equation `lambda A = G` gives the multiplier of a mechanism.
 #[inline]
 pub(crate) fn work(t: Twist, s: Sums) -> (f64, f64) {
-    (t[1] * s.w - t[0] * s.wy, t[2] * s.w + t[0] * s.wx)
+    (
+        t[1] * s.s[0] + t[2] * s.s[1] + t[0] * s.s[2],
+        -(t[1] * s.p[0] + t[2] * s.p[1] + t[0] * s.p[2]),
+    )
+}
+
+/// [`work`] of the unit rotation about `p` (twist `(1, p_y, -p_x)`).
+#[inline]
+pub(crate) fn rot_work(p: Vec2, s: &Sums) -> (f64, f64) {
+    (
+        p.y * s.s[0] - p.x * s.s[1] + s.s[2],
+        -(p.y * s.p[0] - p.x * s.p[1] + s.p[2]),
+    )
 }
 
 /// An admissible mechanism: the relative twist of each active joint (sign fixed by
@@ -446,7 +486,7 @@ fn rank_deficient(cols: &[Twist; 4], coef: &[f64; 4], actives: &[Active]) -> boo
     })
 }
 
-/// `(sum W vx, sum W vy)` of a motion whose bodies (between consecutive active joints, and
+/// `(A, G)` (see [`work`]) of a motion whose bodies (between consecutive active joints, and
 /// after the last one for a one-support chain) have sums `bodies`.
 pub(crate) fn motion_work(m: &Motion, bodies: &[Sums]) -> (f64, f64) {
     let mut t = [0.0; 3];

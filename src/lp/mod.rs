@@ -15,6 +15,7 @@ pub use settings::{Direction, StaticSettings};
 
 use crate::assembly::{equilibrium_residual, Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
+use crate::model::Model;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 
@@ -82,17 +83,16 @@ pub struct StaticResult {
 /// Beyond this multiplier (a ground tilt of 89.99 deg) a structure is said not to collapse.
 pub const LAMBDA_CAP: f64 = 1e4;
 
-/// Run the static analysis of `assembly`.
-pub fn analyse(
-    assembly: &Assembly,
-    settings: &StaticSettings,
-) -> Result<StaticResult, AnalysisError> {
+/// Run the static analysis of `model` (an assembly and its loads).
+pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
+    let (assembly, loads) = (&model.assembly, &model.loads);
     assembly.validate()?;
+    loads.validate(assembly)?;
     let sign = settings.direction.sign();
-    let problem = StaticProblem::new(assembly, Objective::MaxLambda { sign, cap: None });
+    let problem = StaticProblem::new(assembly, loads, Objective::MaxLambda { sign, cap: None });
     let mut sol = run(&problem, settings)?;
-    let mut model = problem_size(&problem);
+    let mut size = problem_size(&problem);
     let mut lambda_capped = false;
     if matches!(
         sol.status,
@@ -101,13 +101,14 @@ pub fn analyse(
         // Unbounded above, or both infeasible: a capped program tells which.
         let capped = StaticProblem::new(
             assembly,
+            loads,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
             },
         );
         sol = run(&capped, settings)?;
-        model = problem_size(&capped);
+        size = problem_size(&capped);
         lambda_capped = true;
     }
     let mut result = StaticResult {
@@ -123,13 +124,13 @@ pub fn analyse(
         solve_time_s: 0.0,
         iterations: sol.iterations,
         solver_status: format!("{:?}", sol.status),
-        model,
+        model: size,
     };
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let lambda = sol.x[0];
             let forces = read_forces(assembly, &problem, &sol.x);
-            let residual = equilibrium_residual(assembly, &forces, lambda, sign);
+            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
             if sol.status == SolverStatus::AlmostSolved && residual > 1e-6 * problem.force_scale {
                 return Err(AnalysisError::SolverFailed {
                     status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
@@ -159,7 +160,7 @@ pub fn analyse(
             // Just below the minimum thickness the lambda program is nearly infeasible and
             // the interior-point method may stall. The phase-one program settles it: a
             // positive least tension certifies that nothing stands at lambda = 0.
-            let stand = stands(assembly, settings)?;
+            let stand = stands(model, settings)?;
             if stand.stands {
                 return Err(AnalysisError::SolverFailed {
                     status: format!("{other:?}"),
@@ -333,13 +334,13 @@ pub struct StandResult {
     pub equilibrium_residual: f64,
 }
 
-/// Whether `assembly` can stand under its own weight (lambda = 0), by the phase-one program.
-pub fn stands(
-    assembly: &Assembly,
-    settings: &StaticSettings,
-) -> Result<StandResult, AnalysisError> {
+/// Whether `model` can stand under its permanent loads (lambda = 0), by the phase-one
+/// program.
+pub fn stands(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
+    let (assembly, loads) = (&model.assembly, &model.loads);
     assembly.validate()?;
-    let problem = StaticProblem::new(assembly, Objective::MinTension);
+    loads.validate(assembly)?;
+    let problem = StaticProblem::new(assembly, loads, Objective::MinTension);
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -353,7 +354,7 @@ pub fn stands(
     let tau = sol.x[0];
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
-    let residual = equilibrium_residual(assembly, &forces, 0.0, 1.0);
+    let residual = equilibrium_residual(assembly, loads, &forces, 0.0, 1.0);
     let stands = tau <= 0.0;
     let hinges = if stands {
         classify_joints(assembly, &forces, settings.hinge_tolerance).hinges

@@ -5,7 +5,9 @@
 //! are the compressive forces at the ends p1, p2 of each joint and V its shear, divided by the
 //! total weight. Lengths are divided by the structure's size. Rows:
 //! 1. zero cone, 3 per block: equilibrium of forces and of moments about the block centroid,
-//!    `sum_j +-(c1 n + c2 n + V u) + lambda d W e_x - W e_y = 0`;
+//!    `sum_j +-(c1 n + c2 n + V u) + lambda S + P = 0`, with `P` the block's permanent loads
+//!    and `S` its seismic forces per unit lambda, both from the [`LoadCase`] (for self-weight
+//!    alone `P = -W e_y`, `S = d W e_x`);
 //! 2. nonnegative cone: `c1, c2 >= 0` (no tension, resultant inside the joint), then for joints
 //!    with finite friction `mu (c1 + c2) - V >= 0` and `mu (c1 + c2) + V >= 0` (the planar
 //!    Coulomb cone is a pair of half-planes, so no second-order cone is needed).
@@ -22,6 +24,7 @@
 
 use crate::assembly::Assembly;
 use crate::geometry::{cross, Vec2};
+use crate::model::LoadCase;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
 
@@ -34,7 +37,7 @@ pub struct StaticProblem {
     pub cones: Vec<SupportedConeT<f64>>,
     /// Length scale (m).
     pub length_scale: f64,
-    /// Force scale (N): the total weight.
+    /// Force scale (N): [`LoadCase::force_scale`] (the total weight under self-weight).
     pub force_scale: f64,
     /// Joints with friction rows, in row order.
     pub friction_joints: Vec<usize>,
@@ -60,9 +63,9 @@ pub fn column(joint: usize, which: usize) -> usize {
 }
 
 impl StaticProblem {
-    /// Build the program for `assembly` with the load in direction `sign` (+1 right, -1 left).
-    /// `lambda_cap`, when given, adds the row `lambda <= cap`.
-    pub fn new(assembly: &Assembly, objective: Objective) -> StaticProblem {
+    /// Build the program for `assembly` under `loads`, with the seismic load in direction
+    /// `sign` (+1 right, -1 left). `lambda_cap`, when given, adds the row `lambda <= cap`.
+    pub fn new(assembly: &Assembly, loads: &LoadCase, objective: Objective) -> StaticProblem {
         let (sign, lambda_cap, relax) = match objective {
             Objective::MaxLambda { sign, cap } => (sign, cap, false),
             Objective::MinTension => (0.0, None, true),
@@ -70,7 +73,7 @@ impl StaticProblem {
         let nb = assembly.blocks.len();
         let nj = assembly.joints.len();
         let ls = assembly.size();
-        let fs = assembly.total_weight();
+        let fs = loads.force_scale();
         let nvar = 1 + 3 * nj;
 
         let mut rows = Vec::new();
@@ -83,12 +86,22 @@ impl StaticProblem {
         };
 
         let mut b = vec![0.0; 3 * nb];
-        for (i, blk) in assembly.blocks.iter().enumerate() {
-            let w = blk.weight / fs;
+        for i in 0..nb {
             if !relax {
-                push(3 * i, 0, sign * w);
+                let s = loads.seismic(i, sign);
+                for (k, v) in [s.force.x / fs, s.force.y / fs, s.moment / (fs * ls)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    if v != 0.0 {
+                        push(3 * i + k, 0, v);
+                    }
+                }
             }
-            b[3 * i + 1] = w;
+            let p = loads.permanent(i);
+            b[3 * i] = -p.force.x / fs;
+            b[3 * i + 1] = -p.force.y / fs;
+            b[3 * i + 2] = -p.moment / (fs * ls);
         }
         for (j, jt) in assembly.joints.iter().enumerate() {
             let n = jt.normal();

@@ -1,0 +1,453 @@
+//! The one place a scene becomes a model: the blocks and joints of the arch (and piers), then
+//! the loads of `[[loads]]`, `[fill]` and `[seismic]` placed on those blocks.
+//!
+//! Load placement (the scene-key contract of the load-case issue):
+//! - a point load acts on the block whose outline contains `at` (the first such block in chain
+//!   order when the point lies on a joint);
+//! - a line load of intensity `q` over `[from_x, to_x]` puts `q * overlap` on every voussoir,
+//!   where `overlap` is the overlap of `[from_x, to_x]` with the x-range of its extrados edge,
+//!   at the point of that edge at the overlap's mid x; on a portal the exposed part of each
+//!   pier top (outside the arch's springing) is loaded the same way;
+//! - the fill over voussoir i is the region above its extrados edge (the chord for polygon
+//!   voussoirs, the arc for curved ones), below `y = level`, between the verticals through its
+//!   two extrados corners; its weight `unit_weight * depth * area` acts at the region's
+//!   centroid;
+//! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap`
+//!   (line) or its own weight (fill) at the same point.
+
+use super::loads::{AppliedLoad, LoadCase, LoadSource};
+use super::Model;
+use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
+use crate::error::SceneError;
+use crate::geometry::{self, circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
+use crate::scene::{LoadSpec, Scene, Shape, VoussoirShape};
+
+/// Build the assembly and load case of a scene.
+pub fn build(scene: &Scene) -> Result<Model, SceneError> {
+    let (assembly, arch) = build_assembly(scene);
+    let loads = build_loads(scene, &assembly, &arch)?;
+    Ok(Model { assembly, loads })
+}
+
+/// The arch geometry of a scene's shape.
+fn arch_geometry(scene: &Scene) -> ArchGeometry {
+    let a = &scene.arch;
+    let t = a.thickness;
+    match a.shape {
+        Shape::Circular { radius, embrace } => geometry::circular(radius, t, embrace, a.voussoirs),
+        Shape::Pointed {
+            radius,
+            eccentricity,
+        } => geometry::pointed(radius, eccentricity, t, a.voussoirs),
+        Shape::Basket {
+            span,
+            rise,
+            side_angle,
+        } => geometry::basket(span, rise, side_angle, t, a.voussoirs),
+    }
+}
+
+/// Where the arch's blocks sit in the assembly, for placing loads.
+struct ArchPlacement {
+    geometry: ArchGeometry,
+    /// Index of voussoir 0 in the assembly.
+    first: usize,
+    curved: bool,
+    /// Exposed pier tops `(block, x_from, x_to)` at y = 0.
+    pier_tops: Vec<(usize, f64, f64)>,
+}
+
+/// The blocks and joints of a scene: the left pier courses from the base up, the voussoirs
+/// from left to right, the right pier courses from the top down (a chain).
+fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
+    let a = &scene.arch;
+    let g = arch_geometry(scene);
+    let gamma = scene.material.unit_weight * scene.material.depth;
+    let mu = scene.material.friction;
+    let curved = a.voussoir_shape == VoussoirShape::Curved;
+    let n = g.voussoirs();
+
+    let mut blocks = Vec::new();
+    let mut joints = Vec::new();
+    let k = scene.piers.as_ref().map_or(0, |p| p.courses);
+    let chain_joint = |p1, p2, idx: usize, last: usize, kind| Joint {
+        p1,
+        p2,
+        from: idx.checked_sub(1),
+        to: (idx < last).then_some(idx),
+        friction: mu,
+        kind,
+    };
+    let total_blocks = n + 2 * k;
+    let mut pier_tops = Vec::new();
+
+    // Left pier, base to top.
+    let xi = g.joints[0].0.x;
+    let xe = g.joints[0].1.x;
+    if let Some(p) = &scene.piers {
+        let (h, b) = (p.height, p.width);
+        for c in 0..k {
+            let y0 = -h + h * c as f64 / k as f64;
+            let y1 = -h + h * (c + 1) as f64 / k as f64;
+            let poly = vec![
+                Vec2::new(xi - b, y0),
+                Vec2::new(xi, y0),
+                Vec2::new(xi, y1),
+                Vec2::new(xi - b, y1),
+            ];
+            blocks.push(rect_block(poly, gamma, BlockKind::LeftPier(c)));
+            let idx = joints.len();
+            joints.push(chain_joint(
+                Vec2::new(xi, y0),
+                Vec2::new(xi - b, y0),
+                idx,
+                total_blocks,
+                JointKind::LeftPier(c),
+            ));
+        }
+        if xe > xi - b {
+            pier_tops.push((k - 1, xi - b, xe));
+        }
+    }
+    let first = blocks.len();
+    // Arch joints and voussoirs.
+    for j in 0..=n {
+        let (mut p1, mut p2) = g.joints[j];
+        if let Some(p) = &scene.piers {
+            // The arch rests on the pier top only where the springing joint lies on it.
+            if j == 0 {
+                p2 = Vec2::new(xe.max(xi - p.width), 0.0);
+                p1 = Vec2::new(xi, 0.0);
+            } else if j == n {
+                p1 = Vec2::new(-xi, 0.0);
+                p2 = Vec2::new(-(xe.max(xi - p.width)), 0.0);
+            }
+        }
+        let idx = joints.len();
+        joints.push(chain_joint(p1, p2, idx, total_blocks, JointKind::Arch(j)));
+        if j < n {
+            let (area, centroid) = g.voussoir_area_centroid(j, curved);
+            blocks.push(Block {
+                polygon: g.quad(j).to_vec(),
+                area,
+                centroid,
+                weight: gamma * area,
+                kind: BlockKind::Voussoir(j),
+            });
+        }
+    }
+    // Right pier, top to base: the mirror image of the left one.
+    if let Some(p) = &scene.piers {
+        let (h, b) = (p.height, p.width);
+        if xe > xi - b {
+            pier_tops.push((blocks.len(), -xe, -(xi - b)));
+        }
+        for c in (0..k).rev() {
+            let y0 = -h + h * c as f64 / k as f64;
+            let y1 = -h + h * (c + 1) as f64 / k as f64;
+            let poly = vec![
+                Vec2::new(-xi, y0),
+                Vec2::new(-xi + b, y0),
+                Vec2::new(-xi + b, y1),
+                Vec2::new(-xi, y1),
+            ];
+            blocks.push(rect_block(poly, gamma, BlockKind::RightPier(c)));
+            let idx = joints.len();
+            joints.push(chain_joint(
+                Vec2::new(-xi, y0),
+                Vec2::new(-xi + b, y0),
+                idx,
+                total_blocks,
+                JointKind::RightPier(c),
+            ));
+        }
+    }
+    let placement = ArchPlacement {
+        geometry: g,
+        first,
+        curved,
+        pier_tops,
+    };
+    (Assembly { blocks, joints }, placement)
+}
+
+fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
+    let (area, centroid) = polygon_area_centroid(&polygon);
+    Block {
+        polygon,
+        area,
+        centroid,
+        weight: gamma * area,
+        kind,
+    }
+}
+
+fn build_loads(
+    scene: &Scene,
+    assembly: &Assembly,
+    arch: &ArchPlacement,
+) -> Result<LoadCase, SceneError> {
+    let mut case =
+        LoadCase::self_weight(assembly).with_vertical_ratio(scene.seismic.vertical_ratio);
+    let size = assembly.size();
+    for (k, spec) in scene.loads.iter().enumerate() {
+        match *spec {
+            LoadSpec::Point { at, force, seismic } => {
+                let p = Vec2::new(at[0], at[1]);
+                let block = containing_block(assembly, arch, p, 1e-9 * size).ok_or_else(|| {
+                    let (b, d) = nearest_block(assembly, p);
+                    SceneError::OutOfRange {
+                        origin: scene.origin.clone(),
+                        key: format!("loads[{k}].at"),
+                        value: format!("[{}, {}]", at[0], at[1]),
+                        allowed: format!(
+                            "the point lies outside every block (the nearest is block {b}, {} at {d:.3e} m; a polygon voussoir's extrados is the chord between its corners)",
+                            describe(assembly.blocks[b].kind)
+                        ),
+                    }
+                })?;
+                let force = Vec2::new(force[0], force[1]);
+                case.add(AppliedLoad {
+                    block,
+                    point: p,
+                    force,
+                    seismic_weight: if seismic { force.y.abs() } else { 0.0 },
+                    source: LoadSource::Load(k),
+                    region: None,
+                });
+            }
+            LoadSpec::Line {
+                from_x,
+                to_x,
+                intensity,
+                seismic,
+            } => {
+                for (block, a, b, on_edge) in loaded_edges(arch) {
+                    let lo = from_x.max(a.x.min(b.x));
+                    let hi = to_x.min(a.x.max(b.x));
+                    if hi <= lo {
+                        continue;
+                    }
+                    let x = 0.5 * (lo + hi);
+                    let w = intensity * (hi - lo);
+                    case.add(AppliedLoad {
+                        block,
+                        point: on_edge(x),
+                        force: Vec2::new(0.0, -w),
+                        seismic_weight: if seismic { w } else { 0.0 },
+                        source: LoadSource::Load(k),
+                        region: None,
+                    });
+                }
+            }
+        }
+    }
+    if let Some(fill) = &scene.fill {
+        let gamma = fill.unit_weight * scene.material.depth;
+        let g = &arch.geometry;
+        for j in 0..g.voussoirs() {
+            let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+            let Some((area, centroid, region)) =
+                fill_region(a, b, fill.level, arch.curved.then(|| extrados_arc(g, j)))
+            else {
+                continue;
+            };
+            let w = gamma * area;
+            case.add(AppliedLoad {
+                block: arch.first + j,
+                point: centroid,
+                force: Vec2::new(0.0, -w),
+                seismic_weight: if fill.seismic { w } else { 0.0 },
+                source: LoadSource::Fill,
+                region: Some(region),
+            });
+        }
+    }
+    Ok(case)
+}
+
+/// Centre and radius of the extrados arc of voussoir `j`.
+fn extrados_arc(g: &ArchGeometry, j: usize) -> (Vec2, f64) {
+    let arc = g.arcs[j];
+    (arc.centre, arc.radius + 0.5 * g.thickness)
+}
+
+/// The edges that carry line loads: `(block, end a, end b, point of the edge at x)`.
+#[allow(clippy::type_complexity)]
+fn loaded_edges(arch: &ArchPlacement) -> Vec<(usize, Vec2, Vec2, Box<dyn Fn(f64) -> Vec2 + '_>)> {
+    let g = &arch.geometry;
+    let mut edges: Vec<(usize, Vec2, Vec2, Box<dyn Fn(f64) -> Vec2 + '_>)> = Vec::new();
+    for &(block, x0, x1) in &arch.pier_tops {
+        edges.push((
+            block,
+            Vec2::new(x0, 0.0),
+            Vec2::new(x1, 0.0),
+            Box::new(|x| Vec2::new(x, 0.0)),
+        ));
+    }
+    for j in 0..g.voussoirs() {
+        let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+        let arc = arch.curved.then(|| extrados_arc(g, j));
+        edges.push((
+            arch.first + j,
+            a,
+            b,
+            Box::new(move |x| edge_point(a, b, arc, x)),
+        ));
+    }
+    edges
+}
+
+/// The point of the extrados edge from `a` to `b` (a chord, or the arc `(centre, radius)`
+/// bulging away from its centre) at abscissa `x` within the edge's x-range.
+fn edge_point(a: Vec2, b: Vec2, arc: Option<(Vec2, f64)>, x: f64) -> Vec2 {
+    if let Some((c, r)) = arc {
+        // The arc point at x on the far side of the chord from the centre.
+        let dy = (r * r - (x - c.x).powi(2)).max(0.0).sqrt();
+        let candidates = [Vec2::new(x, c.y + dy), Vec2::new(x, c.y - dy)];
+        let mid = 0.5 * (a + b);
+        let out = mid - c;
+        return if (candidates[0] - c).dot(&out) >= (candidates[1] - c).dot(&out) {
+            candidates[0]
+        } else {
+            candidates[1]
+        };
+    }
+    if a.x == b.x {
+        return 0.5 * (a + b);
+    }
+    let s = (x - a.x) / (b.x - a.x);
+    a + s * (b - a)
+}
+
+/// Area, centroid and outline of the region above the extrados edge from `a` to `b` (chord,
+/// or arc when `arc` is given), below `y = level`, between the verticals through `a` and `b`.
+/// None when the region is empty (a vertical edge).
+fn fill_region(
+    a: Vec2,
+    b: Vec2,
+    level: f64,
+    arc: Option<(Vec2, f64)>,
+) -> Option<(f64, Vec2, Vec<Vec2>)> {
+    if a.x == b.x {
+        return None;
+    }
+    let trapezoid = vec![a, b, Vec2::new(b.x, level), Vec2::new(a.x, level)];
+    let (at, ct) = polygon_area_centroid(&trapezoid);
+    let (mut area, mut moment) = (at, at * ct);
+    let mut outline = trapezoid;
+    if let Some((c, r)) = arc {
+        // The circular segment between chord and arc lies on the side away from the centre:
+        // it takes area from the fill when above the chord, adds it when below.
+        let (as_, cs) = circular_segment(c, r, a, b);
+        let chord_y = edge_point(a, b, None, cs.x).y;
+        let sign = if cs.y > chord_y { -1.0 } else { 1.0 };
+        area += sign * as_;
+        moment += sign * as_ * cs;
+        // Outline for drawings: the arc sampled from b back to a, then the level line.
+        let (ta, tb) = ((a - c).y.atan2((a - c).x), (b - c).y.atan2((b - c).x));
+        let mut d = tb - ta;
+        if d > std::f64::consts::PI {
+            d -= 2.0 * std::f64::consts::PI;
+        } else if d < -std::f64::consts::PI {
+            d += 2.0 * std::f64::consts::PI;
+        }
+        let steps = 8;
+        outline = (0..=steps)
+            .map(|i| {
+                let t = ta + d * i as f64 / steps as f64;
+                c + r * Vec2::new(t.cos(), t.sin())
+            })
+            .collect();
+        outline.push(Vec2::new(b.x, level));
+        outline.push(Vec2::new(a.x, level));
+    }
+    if area <= 0.0 {
+        return None;
+    }
+    Some((area, moment / area, outline))
+}
+
+/// The first block (chain order) whose outline contains `p` within `tol`.
+fn containing_block(assembly: &Assembly, arch: &ArchPlacement, p: Vec2, tol: f64) -> Option<usize> {
+    (0..assembly.blocks.len()).find(|&i| {
+        let poly = &assembly.blocks[i].polygon;
+        let j = i.wrapping_sub(arch.first);
+        if arch.curved && j < arch.geometry.voussoirs() {
+            inside_curved(&arch.geometry, j, p, tol)
+        } else {
+            inside_convex(poly, p, tol)
+        }
+    })
+}
+
+/// Whether `p` lies in the convex polygon (either orientation) or within `tol` of it.
+fn inside_convex(poly: &[Vec2], p: Vec2, tol: f64) -> bool {
+    let m = poly.len();
+    let orient = {
+        let mut s = 0.0;
+        for k in 0..m {
+            s += cross(poly[k], poly[(k + 1) % m]);
+        }
+        s.signum()
+    };
+    (0..m).all(|k| {
+        let (a, b) = (poly[k], poly[(k + 1) % m]);
+        let e = b - a;
+        let len = e.norm();
+        len == 0.0 || orient * cross(e, p - a) / len >= -tol
+    })
+}
+
+/// Whether `p` lies in the exact annular piece of curved voussoir `j`.
+fn inside_curved(g: &ArchGeometry, j: usize, p: Vec2, tol: f64) -> bool {
+    let q = g.quad(j);
+    let arc = g.arcs[j];
+    let (ri, re) = (
+        arc.radius - 0.5 * g.thickness,
+        arc.radius + 0.5 * g.thickness,
+    );
+    let r = (p - arc.centre).norm();
+    // Between the two joint lines (the quad's sides p1(j)-p2(j) and p2(j+1)-p1(j+1)), and
+    // between the intrados and extrados circles.
+    let side = |a: Vec2, b: Vec2, inner: Vec2| {
+        let e = b - a;
+        let s = cross(e, inner - a).signum();
+        s * cross(e, p - a) / e.norm() >= -tol
+    };
+    let centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    side(q[0], q[1], centre) && side(q[2], q[3], centre) && r >= ri - tol && r <= re + tol
+}
+
+/// The block nearest to `p` (by distance to its outline's vertices and edges) and that
+/// distance.
+fn nearest_block(assembly: &Assembly, p: Vec2) -> (usize, f64) {
+    let mut best = (0, f64::INFINITY);
+    for (i, b) in assembly.blocks.iter().enumerate() {
+        let m = b.polygon.len();
+        for k in 0..m {
+            let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+            let e = c - a;
+            let s = if e.norm_squared() > 0.0 {
+                ((p - a).dot(&e) / e.norm_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let d = (a + s * e - p).norm();
+            if d < best.1 {
+                best = (i, d);
+            }
+        }
+    }
+    best
+}
+
+/// A block's kind in words.
+fn describe(kind: BlockKind) -> String {
+    match kind {
+        BlockKind::Voussoir(j) => format!("voussoir {j}"),
+        BlockKind::LeftPier(c) => format!("left pier course {c}"),
+        BlockKind::RightPier(c) => format!("right pier course {c}"),
+        BlockKind::Other => "a block".to_string(),
+    }
+}

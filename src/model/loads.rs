@@ -1,0 +1,332 @@
+//! Load cases: every force an analysis applies to the blocks, resolved per block.
+//!
+//! A block carries two kinds of load:
+//! - **permanent** forces (self-weight, fill, point and line loads), each a force with its
+//!   point of application, kept per block as their resultant: a [`Wrench`] (force and moment
+//!   about the block's centroid);
+//! - **seismic masses**: the self-weight of the block and every load marked `seismic`, whose
+//!   weight `m g` also takes the seismic body force `lambda m g (d, r)` (d = +-1 the horizontal
+//!   direction of the ground motion, r the vertical ratio). All seismic forces are parallel,
+//!   so a block's seismic masses act as one weight at their centre ([`SeismicMass`]).
+//!
+//! The collapse multiplier `lambda` multiplies the seismic forces only; the permanent forces
+//! stay as they are. With self-weight alone (r = 0) this is the load model of the seed paper:
+//! `W` down and `lambda W` across at every centroid.
+//!
+//! Every analysis (static program, kinematic searches, DEM, drawings) reads its loads from a
+//! [`LoadCase`] and from nowhere else.
+
+use crate::assembly::Assembly;
+use crate::geometry::{cross, Vec2};
+
+/// A force system in the plane reduced to a point: the resultant force and its moment
+/// (counter-clockwise positive) about that point.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Wrench {
+    pub force: Vec2,
+    pub moment: f64,
+}
+
+impl Wrench {
+    /// The force `force` acting at `point`, reduced to `about`.
+    pub fn of_force(force: Vec2, point: Vec2, about: Vec2) -> Wrench {
+        Wrench {
+            force,
+            moment: cross(point - about, force),
+        }
+    }
+
+    /// The same force system reduced to `to` instead of `from`.
+    pub fn moved(&self, from: Vec2, to: Vec2) -> Wrench {
+        Wrench {
+            force: self.force,
+            moment: self.moment + cross(from - to, self.force),
+        }
+    }
+}
+
+impl std::ops::Add for Wrench {
+    type Output = Wrench;
+    fn add(self, o: Wrench) -> Wrench {
+        Wrench {
+            force: self.force + o.force,
+            moment: self.moment + o.moment,
+        }
+    }
+}
+
+/// Seismic masses of a block, as one weight (N) at their centre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeismicMass {
+    /// Sum of the weights `m g` of the block's seismic masses (N).
+    pub weight: f64,
+    /// Their centre (m); the block's centroid when it has no seismic mass.
+    pub centre: Vec2,
+}
+
+/// Where an applied load came from, for reports and drawings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case", tag = "type", content = "index")]
+pub enum LoadSource {
+    /// The block's own weight.
+    SelfWeight,
+    /// Entry k of the scene's `[[loads]]` list.
+    Load(usize),
+    /// The scene's `[fill]`.
+    Fill,
+}
+
+/// One load as applied to one block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AppliedLoad {
+    pub block: usize,
+    /// Point of application (m).
+    pub point: Vec2,
+    /// Permanent force (N).
+    pub force: Vec2,
+    /// Weight (N) of the seismic mass attached to this load (0 when not seismic).
+    pub seismic_weight: f64,
+    pub source: LoadSource,
+    /// For fill: the outline of the filled region over the block (for drawings).
+    pub region: Option<Vec<Vec2>>,
+}
+
+/// The loads of every block of an assembly, and the direction of the seismic forces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadCase {
+    /// Resultant permanent force of each block, about its centroid.
+    permanent: Vec<Wrench>,
+    /// Seismic masses of each block.
+    seismic: Vec<SeismicMass>,
+    /// Block centroids (the reference points of `permanent`).
+    centroids: Vec<Vec2>,
+    /// Vertical seismic component per unit horizontal one: the seismic force on a weight
+    /// `m g` is `lambda m g (d, vertical_ratio)`.
+    vertical_ratio: f64,
+    /// Every load as applied, self-weights first, in the order they were added.
+    applied: Vec<AppliedLoad>,
+}
+
+impl LoadCase {
+    /// Self-weight only: each block's weight `W` down at its centroid, and a seismic mass of
+    /// weight `W` there (the seed paper's load model).
+    pub fn self_weight(assembly: &Assembly) -> LoadCase {
+        let centroids: Vec<Vec2> = assembly.blocks.iter().map(|b| b.centroid).collect();
+        let permanent = assembly
+            .blocks
+            .iter()
+            .map(|b| Wrench {
+                force: Vec2::new(0.0, -b.weight),
+                moment: 0.0,
+            })
+            .collect();
+        let seismic = assembly
+            .blocks
+            .iter()
+            .map(|b| SeismicMass {
+                weight: b.weight,
+                centre: b.centroid,
+            })
+            .collect();
+        let applied = assembly
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| AppliedLoad {
+                block: i,
+                point: b.centroid,
+                force: Vec2::new(0.0, -b.weight),
+                seismic_weight: b.weight,
+                source: LoadSource::SelfWeight,
+                region: None,
+            })
+            .collect();
+        LoadCase {
+            permanent,
+            seismic,
+            centroids,
+            vertical_ratio: 0.0,
+            applied,
+        }
+    }
+
+    /// Add a permanent force `force` at `point` on `block`; when `seismic_weight > 0`, a
+    /// seismic mass of that weight at the same point.
+    ///
+    /// # Panics
+    /// When `block` is out of range (a programming error: builders resolve blocks first).
+    pub fn add(&mut self, load: AppliedLoad) {
+        let i = load.block;
+        let g = self.centroids[i];
+        self.permanent[i] = self.permanent[i] + Wrench::of_force(load.force, load.point, g);
+        let s = &mut self.seismic[i];
+        let w = s.weight + load.seismic_weight;
+        if w > 0.0 && load.seismic_weight > 0.0 {
+            s.centre = (s.weight * s.centre + load.seismic_weight * load.point) / w;
+            s.weight = w;
+        }
+        self.applied.push(load);
+    }
+
+    /// The same load case with the vertical seismic ratio `r` (seismic force
+    /// `lambda m g (d, r)`).
+    pub fn with_vertical_ratio(mut self, r: f64) -> LoadCase {
+        self.vertical_ratio = r;
+        self
+    }
+
+    pub fn vertical_ratio(&self) -> f64 {
+        self.vertical_ratio
+    }
+
+    /// Number of blocks.
+    pub fn len(&self) -> usize {
+        self.permanent.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.permanent.is_empty()
+    }
+
+    /// Resultant permanent force of block `i`, about its centroid.
+    pub fn permanent(&self, i: usize) -> Wrench {
+        self.permanent[i]
+    }
+
+    /// Seismic masses of block `i`.
+    pub fn seismic_mass(&self, i: usize) -> SeismicMass {
+        self.seismic[i]
+    }
+
+    /// The seismic body force per unit weight and unit lambda: `(sign, vertical_ratio)`,
+    /// `sign` = +1 for ground motion toward +x, -1 toward -x.
+    pub fn seismic_direction(&self, sign: f64) -> Vec2 {
+        Vec2::new(sign, self.vertical_ratio)
+    }
+
+    /// Seismic force on block `i` per unit lambda (`sign` as in
+    /// [`LoadCase::seismic_direction`]), about its centroid.
+    pub fn seismic(&self, i: usize, sign: f64) -> Wrench {
+        let s = self.seismic[i];
+        Wrench::of_force(
+            s.weight * self.seismic_direction(sign),
+            s.centre,
+            self.centroids[i],
+        )
+    }
+
+    /// The reference point (block centroid) the wrenches of block `i` are reduced to.
+    pub fn reference(&self, i: usize) -> Vec2 {
+        self.centroids[i]
+    }
+
+    /// Every load as applied (self-weights first).
+    pub fn applied(&self) -> &[AppliedLoad] {
+        &self.applied
+    }
+
+    /// Total downward permanent force (N): the sum of the vertical components, sign
+    /// reversed.
+    pub fn permanent_weight(&self) -> f64 {
+        -self.permanent.iter().map(|w| w.force.y).sum::<f64>()
+    }
+
+    /// Total weight of the seismic masses (N).
+    pub fn seismic_weight(&self) -> f64 {
+        self.seismic.iter().map(|s| s.weight).sum()
+    }
+
+    /// A force scale (N) for dimensionless programs: the larger of the summed magnitudes of
+    /// the permanent forces and the seismic weight. For self-weight alone, the total weight.
+    pub fn force_scale(&self) -> f64 {
+        let p: f64 = self.permanent.iter().map(|w| w.force.norm()).sum();
+        p.max(self.seismic_weight())
+    }
+
+    /// Whether the loads are self-weight alone with no vertical seismic component.
+    pub fn is_self_weight_only(&self) -> bool {
+        self.vertical_ratio == 0.0
+            && self
+                .applied
+                .iter()
+                .all(|a| a.source == LoadSource::SelfWeight)
+    }
+
+    /// The same load case for the mirrored assembly ([`Assembly::mirrored`]): block order
+    /// reversed and x negated.
+    pub fn mirrored(&self) -> LoadCase {
+        let nb = self.len();
+        let m = crate::geometry::mirror;
+        LoadCase {
+            permanent: self
+                .permanent
+                .iter()
+                .rev()
+                .map(|w| Wrench {
+                    force: m(w.force),
+                    moment: -w.moment,
+                })
+                .collect(),
+            seismic: self
+                .seismic
+                .iter()
+                .rev()
+                .map(|s| SeismicMass {
+                    weight: s.weight,
+                    centre: m(s.centre),
+                })
+                .collect(),
+            centroids: self.centroids.iter().rev().map(|c| m(*c)).collect(),
+            vertical_ratio: self.vertical_ratio,
+            applied: self
+                .applied
+                .iter()
+                .map(|a| AppliedLoad {
+                    block: nb - 1 - a.block,
+                    point: m(a.point),
+                    force: m(a.force),
+                    region: a
+                        .region
+                        .as_ref()
+                        .map(|r| r.iter().rev().map(|p| m(*p)).collect()),
+                    ..a.clone()
+                })
+                .collect(),
+        }
+    }
+
+    /// Check the load case against its assembly: one entry per block, finite values,
+    /// non-negative seismic weights.
+    pub fn validate(&self, assembly: &Assembly) -> Result<(), crate::error::AnalysisError> {
+        use crate::error::AnalysisError;
+        if self.len() != assembly.blocks.len() {
+            return Err(AnalysisError::Assembly(format!(
+                "the load case has {} blocks, the assembly {}",
+                self.len(),
+                assembly.blocks.len()
+            )));
+        }
+        if !(self.vertical_ratio.is_finite() && (-1.0..=1.0).contains(&self.vertical_ratio)) {
+            return Err(AnalysisError::Assembly(format!(
+                "vertical seismic ratio {} is outside -1..1",
+                self.vertical_ratio
+            )));
+        }
+        for i in 0..self.len() {
+            let p = self.permanent[i];
+            let s = self.seismic[i];
+            if !(p.force.x.is_finite() && p.force.y.is_finite() && p.moment.is_finite()) {
+                return Err(AnalysisError::Assembly(format!(
+                    "block {i} has a permanent load that is not finite"
+                )));
+            }
+            if !(s.weight.is_finite() && s.weight >= 0.0) {
+                return Err(AnalysisError::Assembly(format!(
+                    "block {i} has seismic weight {}",
+                    s.weight
+                )));
+            }
+        }
+        Ok(())
+    }
+}

@@ -404,7 +404,7 @@ fn run(cli: Cli) -> Result<String, Error> {
                     message: e.to_string(),
                 })?;
             }
-            let rep = report::DemReport::new(&scene, &assembly, &result, lower.lambda);
+            let rep = report::DemReport::new(&scene, &model, &result, lower.lambda);
             if let Some(path) = svg {
                 // Collapse is detected at a small displacement: amplify it so the mechanism
                 // shows, and say so.
@@ -445,7 +445,7 @@ fn run(cli: Cli) -> Result<String, Error> {
             Ok(if as_json {
                 json(&rep)
             } else {
-                report::dem_summary(&scene, &assembly, &rep)
+                report::dem_summary(&scene, &model, &rep)
             })
         }
         Command::Study {
@@ -534,7 +534,6 @@ fn run(cli: Cli) -> Result<String, Error> {
         } => {
             let scene = load(&scene)?;
             let model = voussoir::model::build(&scene)?;
-            let assembly = &model.assembly;
             let t = thickness::analyse(
                 &scene,
                 &StaticSettings::default(),
@@ -564,11 +563,11 @@ fn run(cli: Cli) -> Result<String, Error> {
                     ),
                 }
             }
-            let rep = report::MinThicknessReport::new(&scene, assembly, &t);
+            let rep = report::MinThicknessReport::new(&scene, &model, &t);
             Ok(if as_json {
                 json(&rep)
             } else {
-                report::min_thickness_summary(&scene, assembly, m, &rep)
+                report::min_thickness_summary(&scene, &model, m, &rep)
             })
         }
     }

@@ -5,7 +5,8 @@ use crate::analysis::SceneAnalysis;
 use crate::assembly::{Assembly, Hinge, JointKind};
 use crate::kinematic::ContinuousHinge;
 use crate::lp::{Direction, ModelSize, StaticResult, Status};
-use crate::scene::{Scene, Shape, VoussoirShape};
+use crate::model::Model;
+use crate::scene::{FillSpec, LoadSpec, Scene, Shape, VoussoirShape};
 use crate::thickness::{MinThickness, ThicknessAnalysis, ThicknessOutcome};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -47,6 +48,36 @@ pub struct SceneReport {
     pub total_weight: f64,
 }
 
+/// The loads of a scene as read, and their totals (fields `loads`, `fill`, `vertical_ratio`,
+/// `permanent_weight`, `seismic_weight` of every JSON report).
+#[derive(Debug, Serialize)]
+pub struct LoadsReport {
+    /// The `[[loads]]` entries as read (`type`, and `at`/`force` or `from_x`/`to_x`/
+    /// `intensity`, and `seismic`).
+    pub loads: Vec<LoadSpec>,
+    /// `[fill]` as read, or null.
+    pub fill: Option<FillSpec>,
+    /// `[seismic] vertical_ratio`.
+    pub vertical_ratio: f64,
+    /// Total downward permanent force (N): self-weight, fill, point and line loads.
+    pub permanent_weight: f64,
+    /// Total weight of the seismic masses (N): the horizontal seismic force is lambda times
+    /// this.
+    pub seismic_weight: f64,
+}
+
+impl LoadsReport {
+    pub fn new(scene: &Scene, model: &Model) -> Self {
+        LoadsReport {
+            loads: scene.loads.clone(),
+            fill: scene.fill.clone(),
+            vertical_ratio: scene.seismic.vertical_ratio,
+            permanent_weight: model.loads.permanent_weight(),
+            seismic_weight: model.loads.seismic_weight(),
+        }
+    }
+}
+
 /// `analyze --json`.
 #[derive(Debug, Serialize)]
 pub struct AnalysisReport {
@@ -64,6 +95,9 @@ pub struct AnalysisReport {
     pub iterations: u32,
     pub model: ModelSize,
     pub scene: SceneReport,
+    /// The loads beyond self-weight and the weights they add up to.
+    #[serde(flatten)]
+    pub loads: LoadsReport,
     /// Discrete kinematic (upper-bound) multiplier, or null (no collapse, cannot stand, or
     /// the search was not run: see `kinematic_note`).
     pub lambda_upper: Option<f64>,
@@ -105,7 +139,7 @@ fn finite_or_null(x: f64) -> Option<f64> {
 }
 
 impl SceneReport {
-    pub fn new(scene: &Scene, assembly: &Assembly) -> Self {
+    pub fn new(scene: &Scene, model: &Model) -> Self {
         SceneReport {
             origin: scene.origin.clone(),
             shape: scene.arch.shape.name(),
@@ -117,14 +151,14 @@ impl SceneReport {
             },
             portal: scene.piers.is_some(),
             friction: finite_or_null(scene.material.friction),
-            total_weight: assembly.total_weight(),
+            total_weight: model.assembly.total_weight(),
         }
     }
 }
 
 impl AnalysisReport {
     pub fn new(scene: &Scene, a: &SceneAnalysis) -> Self {
-        let mut report = AnalysisReport::new_static(scene, &a.model.assembly, &a.lower);
+        let mut report = AnalysisReport::new_static(scene, &a.model, &a.lower);
         match &a.upper {
             Ok(k) => {
                 report.lambda_upper = k.lambda_upper;
@@ -158,7 +192,8 @@ impl AnalysisReport {
     }
 
     /// The static part alone.
-    pub fn new_static(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> Self {
+    pub fn new_static(scene: &Scene, model: &Model, r: &StaticResult) -> Self {
+        let assembly = &model.assembly;
         let points = r.thrust_points(assembly);
         let joints = assembly
             .joints
@@ -193,7 +228,8 @@ impl AnalysisReport {
             solver_status: r.solver_status.clone(),
             iterations: r.iterations,
             model: r.model,
-            scene: SceneReport::new(scene, assembly),
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
             lambda_upper: None,
             kinematic_status: None,
             gap: None,
@@ -225,6 +261,8 @@ pub struct MinThicknessReport {
     pub thickness: f64,
     pub evaluations: usize,
     pub scene: SceneReport,
+    #[serde(flatten)]
+    pub loads: LoadsReport,
     /// Kinematic minimum thickness (where lambda_upper reaches 0), or null when not run.
     pub min_thickness_kinematic: Option<f64>,
     /// `|t_static - t_kinematic| / t_static`.
@@ -242,8 +280,8 @@ pub struct MinThicknessReport {
 
 impl MinThicknessReport {
     /// The report of every method in `t`.
-    pub fn new(scene: &Scene, assembly: &Assembly, t: &ThicknessAnalysis) -> Self {
-        let mut rep = MinThicknessReport::new_static(scene, assembly, &t.lower);
+    pub fn new(scene: &Scene, model: &Model, t: &ThicknessAnalysis) -> Self {
+        let mut rep = MinThicknessReport::new_static(scene, model, &t.lower);
         rep.min_thickness_kinematic = t.kinematic.as_ref().and_then(|k| k.min_thickness);
         rep.min_thickness_gap = t.gap();
         rep.kinematic_note = t.kinematic_note.clone();
@@ -262,7 +300,7 @@ impl MinThicknessReport {
     }
 
     /// The static part alone.
-    pub fn new_static(scene: &Scene, assembly: &Assembly, m: &MinThickness) -> Self {
+    pub fn new_static(scene: &Scene, model: &Model, m: &MinThickness) -> Self {
         MinThicknessReport {
             outcome: m.search.outcome,
             min_thickness: m.search.min_thickness,
@@ -271,7 +309,8 @@ impl MinThicknessReport {
             safety_factor: m.safety_factor,
             thickness: scene.arch.thickness,
             evaluations: m.search.evaluations,
-            scene: SceneReport::new(scene, assembly),
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
             min_thickness_kinematic: None,
             min_thickness_gap: None,
             kinematic_note: None,
@@ -356,7 +395,8 @@ pub fn hinge_lines(assembly: &Assembly, hinges: &[Hinge]) -> String {
 }
 
 /// A one-paragraph description of the scene.
-pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
+pub fn describe_scene(scene: &Scene, model: &Model) -> String {
+    let assembly = &model.assembly;
     let a = &scene.arch;
     let shape = match a.shape {
         Shape::Circular { radius, embrace } => {
@@ -408,12 +448,52 @@ pub fn describe_scene(scene: &Scene, assembly: &Assembly) -> String {
         assembly.joints.len(),
         assembly.total_weight() / 1000.0
     );
+    if !model.loads.is_self_weight_only() {
+        let _ = write!(s, "\n  {}", describe_loads(scene, model));
+    }
     s
+}
+
+/// One or two lines on the loads beyond self-weight and their totals.
+pub fn describe_loads(scene: &Scene, model: &Model) -> String {
+    let count = |line: bool| {
+        scene
+            .loads
+            .iter()
+            .filter(|l| matches!(l, LoadSpec::Line { .. }) == line)
+            .count()
+    };
+    let plural = |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
+    let mut parts = Vec::new();
+    if count(false) > 0 {
+        parts.push(plural(count(false), "point load"));
+    }
+    if count(true) > 0 {
+        parts.push(plural(count(true), "line load"));
+    }
+    if let Some(f) = &scene.fill {
+        parts.push(format!(
+            "fill to y = {} m ({} N/m^3{})",
+            f.level,
+            f.unit_weight,
+            if f.seismic { "" } else { ", not seismic" }
+        ));
+    }
+    let r = scene.seismic.vertical_ratio;
+    if r != 0.0 {
+        parts.push(format!("vertical seismic ratio {r}"));
+    }
+    format!(
+        "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",
+        parts.join(", "),
+        model.loads.permanent_weight() / 1000.0,
+        model.loads.seismic_weight() / 1000.0
+    )
 }
 
 /// The human summary of `analyze` with every method that ran.
 pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
-    let mut s = static_summary(scene, &a.model.assembly, &a.lower);
+    let mut s = static_summary(scene, &a.model, &a.lower);
     s.push('\n');
     match &a.upper {
         Ok(k) => {
@@ -516,12 +596,9 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
 }
 
 /// The human summary of the static analysis.
-pub fn static_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> String {
-    let mut s = format!(
-        "{}\n  {}\n\n",
-        scene.origin,
-        describe_scene(scene, assembly)
-    );
+pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String {
+    let assembly = &model.assembly;
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
     let dir = match r.direction {
         Direction::Right => "toward +x (right)",
         Direction::Left => "toward -x (left)",
@@ -542,7 +619,7 @@ pub fn static_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> S
                 s,
                 "  equilibrium residual {:.2e} N ({:.1e} of the weight)",
                 r.equilibrium_residual,
-                r.equilibrium_residual / assembly.total_weight()
+                r.equilibrium_residual / model.loads.force_scale()
             );
         }
         (Status::NoCollapse, _) => {
@@ -573,15 +650,12 @@ pub fn static_summary(scene: &Scene, assembly: &Assembly, r: &StaticResult) -> S
 /// The human summary of `min-thickness`.
 pub fn min_thickness_summary(
     scene: &Scene,
-    assembly: &Assembly,
+    model: &Model,
     m: &MinThickness,
     rep: &MinThicknessReport,
 ) -> String {
-    let mut s = format!(
-        "{}\n  {}\n\n",
-        scene.origin,
-        describe_scene(scene, assembly)
-    );
+    let assembly = &model.assembly;
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
     match (m.search.outcome, m.search.min_thickness) {
         (ThicknessOutcome::Found, Some(t)) => {
             let _ = writeln!(
@@ -755,12 +829,14 @@ pub struct DemReport {
     pub undecided_runs: usize,
     pub runs: Vec<DemRunReport>,
     pub scene: SceneReport,
+    #[serde(flatten)]
+    pub loads: LoadsReport,
 }
 
 impl DemReport {
     pub fn new(
         scene: &Scene,
-        assembly: &Assembly,
+        model: &Model,
         r: &crate::dem::DemResult,
         lambda_lower: Option<f64>,
     ) -> Self {
@@ -806,18 +882,15 @@ impl DemReport {
                     max_displacement: run.max_displacement,
                 })
                 .collect(),
-            scene: SceneReport::new(scene, assembly),
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
         }
     }
 }
 
 /// The human summary of `dem`.
-pub fn dem_summary(scene: &Scene, assembly: &Assembly, rep: &DemReport) -> String {
-    let mut s = format!(
-        "{}\n  {}\n\n",
-        scene.origin,
-        describe_scene(scene, assembly)
-    );
+pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
     let fmt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));
     match rep.status {
         "collapse" => {
@@ -847,7 +920,7 @@ pub fn dem_summary(scene: &Scene, assembly: &Assembly, rep: &DemReport) -> Strin
             }
             if !rep.hinges.is_empty() {
                 let _ = writeln!(s, "  hinges at the onset of collapse:");
-                s.push_str(&hinge_lines(assembly, &rep.hinges));
+                s.push_str(&hinge_lines(&model.assembly, &rep.hinges));
             }
             if !rep.sliding.is_empty() {
                 let list: Vec<String> = rep.sliding.iter().map(|j| j.to_string()).collect();

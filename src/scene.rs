@@ -125,7 +125,8 @@ pub struct Material {
 
 /// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
 /// [`crate::model::build`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
 pub enum LoadSpec {
     /// A force at a point, carried by the block whose outline contains the point.
     Point {
@@ -155,7 +156,7 @@ impl LoadSpec {
 }
 
 /// Fill (or masonry) above the arch up to a level, carried by the voussoirs below it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct FillSpec {
     /// y of the top surface (m).
     pub level: f64,

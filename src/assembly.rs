@@ -283,6 +283,17 @@ pub struct JointForce {
     pub m: f64,
 }
 
+/// The thrust-line point of each joint, `p_mid + (M/N) u` (None where the joint carries no
+/// force).
+pub fn thrust_points(assembly: &Assembly, forces: &[JointForce]) -> Vec<Option<Vec2>> {
+    assembly
+        .joints
+        .iter()
+        .zip(forces)
+        .map(|(j, f)| (f.n > 0.0).then(|| j.midpoint() + (f.m / f.n) * j.tangent()))
+        .collect()
+}
+
 /// Largest out-of-balance force (N) of any block under joint forces `forces` and the loads
 /// of `loads` with the seismic forces times `lambda` in direction `sign` (moments divided by
 /// the structure's size so they are forces too).

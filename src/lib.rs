@@ -7,6 +7,7 @@ pub mod geometry;
 pub mod kinematic;
 pub mod lp;
 pub mod model;
+pub mod outcome;
 pub mod report;
 pub mod scene;
 pub mod study;

@@ -77,7 +77,7 @@ pub use discrete::{analyse, analyse_local};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
-pub use crate::lp::{Direction, Status};
+pub use crate::outcome::{Direction, Status};
 use thiserror::Error;
 
 /// Errors of the kinematic analyses (physical outcomes are statuses, not errors).
@@ -596,7 +596,7 @@ impl<K: Clone + Ord> Extremes<K> {
             (Some((b, _)), Some((n, nk))) if n > b => (Status::CannotStand, Some(nk.clone())),
             (Some((b, k)), _) if *b < 0.0 => (Status::CannotStand, Some(k.clone())),
             (Some((_, k)), _) => (Status::Collapse, Some(k.clone())),
-            (None, Some((n, nk))) if *n > crate::lp::LAMBDA_CAP => {
+            (None, Some((n, nk))) if *n > crate::outcome::LAMBDA_CAP => {
                 (Status::CannotStand, Some(nk.clone()))
             }
             (None, _) => (Status::NoCollapse, None),

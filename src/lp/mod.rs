@@ -10,36 +10,15 @@
 mod problem;
 mod settings;
 
+pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
-pub use settings::{Direction, StaticSettings};
+pub use settings::StaticSettings;
 
 use crate::assembly::{equilibrium_residual, Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
 use crate::model::Model;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
-
-/// Outcome of the static analysis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Status {
-    /// A finite collapse multiplier was found.
-    Collapse,
-    /// Equilibrium is possible for every lambda (the program is unbounded).
-    NoCollapse,
-    /// No equilibrium even at lambda = 0: the structure cannot carry its own weight.
-    CannotStand,
-}
-
-impl Status {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Status::Collapse => "collapse",
-            Status::NoCollapse => "no_collapse",
-            Status::CannotStand => "cannot_stand",
-        }
-    }
-}
 
 /// Size of the conic program that was solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -79,9 +58,6 @@ pub struct StaticResult {
     pub solver_status: String,
     pub model: ModelSize,
 }
-
-/// Beyond this multiplier (a ground tilt of 89.99 deg) a structure is said not to collapse.
-pub const LAMBDA_CAP: f64 = 1e4;
 
 /// Run the static analysis of `model` (an assembly and its loads).
 pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult, AnalysisError> {
@@ -301,7 +277,7 @@ impl StaticResult {
         let mut points = self
             .forces
             .as_ref()
-            .map(|f| crate::thrustline::thrust_points(assembly, f))
+            .map(|f| crate::assembly::thrust_points(assembly, f))
             .unwrap_or_else(|| vec![None; assembly.joints.len()]);
         for &j in &self.open {
             points[j] = None;

@@ -1,25 +1,6 @@
 //! Settings of the static analysis, gathered in one struct with documented defaults.
 
-/// Direction of the horizontal acceleration.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Direction {
-    /// Toward +x (left to right), the spec's positive lambda.
-    #[default]
-    Right,
-    /// Toward -x.
-    Left,
-}
-
-impl Direction {
-    /// +1 for right, -1 for left.
-    pub fn sign(self) -> f64 {
-        match self {
-            Direction::Right => 1.0,
-            Direction::Left => -1.0,
-        }
-    }
-}
+pub use crate::outcome::Direction;
 
 /// Settings of the static (lower-bound) conic program.
 #[derive(Debug, Clone)]

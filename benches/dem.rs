@@ -3,9 +3,9 @@
 //! Run with `cargo bench --bench dem`.
 
 use std::time::Instant;
-use voussoir::assembly::Assembly;
 use voussoir::dem::{self, IntegrationParameters};
 use voussoir::lp;
+use voussoir::model;
 use voussoir::scene::Scene;
 
 fn main() {
@@ -44,17 +44,23 @@ fn main() {
             eprintln!("{name}: bad scene");
             continue;
         };
-        let a = Assembly::from_scene(&scene);
-        let Ok(p) = IntegrationParameters::from_scene(&scene, &a) else {
+        let m = match model::build(&scene) {
+            Ok(m) => m,
+            Err(e) => {
+                eprintln!("{name}: {e}");
+                continue;
+            }
+        };
+        let Ok(p) = IntegrationParameters::from_scene(&scene, &m.assembly) else {
             eprintln!("{name}: bad [dem]");
             continue;
         };
         let clock = Instant::now();
         // The static bound starts the bracket, as the CLI does; its time is included.
-        let lower = lp::analyse(&a, &lp::StaticSettings::default())
+        let lower = lp::analyse(&m, &lp::StaticSettings::default())
             .ok()
             .and_then(|r| r.lambda);
-        let r = match dem::collapse_multiplier(&a, &p.initial_guess(lower), 0.01, &mut |_| {}) {
+        let r = match dem::collapse_multiplier(&m, &p.initial_guess(lower), 0.01, &mut |_| {}) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("{name}: {e}");
@@ -70,7 +76,7 @@ fn main() {
         println!(
             "{:<28} {:>6} {:>9} {:>9} {:>9} {:>8} {:>5} {:>9} {:>9.2e} {:>8.2}",
             name,
-            a.blocks.len(),
+            m.assembly.blocks.len(),
             f(lower),
             f(r.lambda_stands),
             f(r.lambda_collapses),

@@ -6,6 +6,7 @@ use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind}
 use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
 use voussoir::geometry::Vec2;
 use voussoir::lp::{self, Status};
+use voussoir::model::{self, Model};
 use voussoir::scene::Scene;
 
 /// A rectangular block b x h standing on the ground (one support joint along its base).
@@ -52,8 +53,12 @@ fn arch(n: usize, t: f64, mu: f64) -> Scene {
     ))
 }
 
-fn run(assembly: &Assembly, params: &IntegrationParameters, tol: f64) -> DemResult {
-    dem::collapse_multiplier(assembly, params, tol, &mut |_| {}).expect("DEM runs")
+fn build(s: &Scene) -> Model {
+    model::build(s).expect("model")
+}
+
+fn run(model: &Model, params: &IntegrationParameters, tol: f64) -> DemResult {
+    dem::collapse_multiplier(model, params, tol, &mut |_| {}).expect("DEM runs")
 }
 
 /// The bracket is made of DEM runs: one that stood at `lambda_stands` (or the settling run)
@@ -84,7 +89,7 @@ fn single_block_rocks_at_b_over_h() {
     let a = block(b, h, f64::INFINITY);
     // Start the search away from the answer so the bracket is found by the DEM alone.
     let p = IntegrationParameters::for_assembly(&a).initial_guess(Some(0.3));
-    let r = run(&a, &p, 0.01);
+    let r = run(&Model::self_weight(a), &p, 0.01);
     let (_, _, mid) = check_bracket(&r, 0.01);
     let exact = b / h;
     println!(
@@ -104,7 +109,7 @@ fn single_block_slides_at_mu() {
     let (b, h, mu) = (1.0, 0.5, 0.4);
     let a = block(b, h, mu);
     let p = IntegrationParameters::for_assembly(&a).initial_guess(Some(0.6));
-    let r = run(&a, &p, 0.01);
+    let r = run(&Model::self_weight(a), &p, 0.01);
     let (_, _, mid) = check_bracket(&r, 0.01);
     println!(
         "sliding: lambda_dem {mid:.5} vs mu {mu} ({:+.3}%)",
@@ -120,12 +125,12 @@ fn single_block_slides_at_mu() {
 /// starts from the static value, so a first bracket that verifies puts its midpoint on it:
 /// `tol` well below 1% makes the DEM find its own threshold inside.
 fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
-    let a = Assembly::from_scene(s);
-    let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+    let m = build(s);
+    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse);
     let lower = st.lambda.expect("lambda");
-    let p = IntegrationParameters::from_scene(s, &a).expect("params");
-    let r = run(&a, &p, tol);
+    let p = IntegrationParameters::from_scene(s, &m.assembly).expect("params");
+    let r = run(&m, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     let diff = mid / lower - 1.0;
     println!(
@@ -210,13 +215,13 @@ fn other_shapes_agree_with_the_static_bound_with_default_settings() {
 fn sliding_case_against_the_associative_bound() {
     for (t, mu) in [(0.25, 0.35), (0.15, 0.4)] {
         let s = arch(16, t, mu);
-        let a = Assembly::from_scene(&s);
-        let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+        let m = build(&s);
+        let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
         let assoc = st.lambda.expect("collapse");
         assert!(!st.sliding.is_empty());
-        let p = IntegrationParameters::from_scene(&s, &a).expect("params");
+        let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("params");
         let tol = 0.005;
-        let r = run(&a, &p, tol);
+        let r = run(&m, &p, tol);
         let (lo, hi, mid) = check_bracket(&r, tol);
         let diff = mid / assoc - 1.0;
         println!(
@@ -242,11 +247,11 @@ fn sliding_case_against_the_associative_bound() {
 #[test]
 fn an_arch_that_cannot_stand_says_so() {
     let s = arch(16, 0.25, 0.3);
-    let a = Assembly::from_scene(&s);
-    let st = lp::analyse(&a, &lp::StaticSettings::default()).expect("static");
+    let m = build(&s);
+    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
-    let p = IntegrationParameters::from_scene(&s, &a).expect("params");
-    let r = run(&a, &p, 0.01);
+    let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("params");
+    let r = run(&m, &p, 0.01);
     assert!(r.cannot_stand);
     assert!(r.lambda_dem.is_none());
     assert_ne!(r.runs[0].outcome, Outcome::Stands);
@@ -257,14 +262,15 @@ fn an_arch_that_cannot_stand_says_so() {
 fn energy_error(time_step_factor: f64, duration: f64) -> (f64, f64, f64) {
     // No friction limit: a slipping contact would dissipate.
     let s = arch(16, 0.25, f64::INFINITY);
-    let a = Assembly::from_scene(&s);
-    let p = IntegrationParameters::from_scene(&s, &a)
+    let m = build(&s);
+    let a = &m.assembly;
+    let p = IntegrationParameters::from_scene(&s, a)
         .expect("params")
         .contact_damping(0.0)
         .time_step_factor(time_step_factor);
-    let mut sim = dem::Simulation::new(&a, &p).expect("sim");
+    let mut sim = dem::Simulation::new(&m, &p).expect("sim");
     // Settle with local damping only, then switch it off.
-    assert_eq!(sim.settle(&a).outcome, Outcome::Stands);
+    assert_eq!(sim.settle(a).outcome, Outcome::Stands);
     sim.set_local_damping(0.0);
     sim.set_load(1.01, 0.0);
     let contacts = sim.active_contacts();
@@ -310,7 +316,7 @@ fn energy_is_conserved_without_damping() {
 fn dem_table_is_validated_and_applied() {
     let base = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
     let s = scene(&format!("{base}[dem]\nlocal_damping = 0.3\nmax_time = 5\n"));
-    let a = Assembly::from_scene(&s);
+    let a = build(&s).assembly;
     let p = IntegrationParameters::from_scene(&s, &a).expect("valid");
     assert_eq!(p.local_damping, 0.3);
     assert_eq!(p.max_time, 5.0);
@@ -333,7 +339,7 @@ fn dem_table_is_validated_and_applied() {
     // settings (stiffness x weight / length, times x sqrt(length)).
     let big =
         scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
-    let ab = Assembly::from_scene(&big);
+    let ab = build(&big).assembly;
     let pb = IntegrationParameters::from_scene(&big, &ab).expect("valid");
     let p0 = IntegrationParameters::for_assembly(&a);
     let w = ab.total_weight() / a.total_weight();
@@ -345,11 +351,12 @@ fn dem_table_is_validated_and_applied() {
 #[test]
 fn snapshots_are_written_as_csv() {
     let s = arch(16, 0.25, 0.8);
-    let a = Assembly::from_scene(&s);
-    let p = IntegrationParameters::from_scene(&s, &a)
+    let m = build(&s);
+    let a = &m.assembly;
+    let p = IntegrationParameters::from_scene(&s, a)
         .expect("params")
         .snapshot_interval(Some(0.05));
-    let r = run(&a, &p, 0.02);
+    let r = run(&m, &p, 0.02);
     let dir = tempfile::tempdir().expect("tempdir");
     let files = dem::write_snapshots(dir.path(), &r).expect("written");
     let names: Vec<_> = files
@@ -385,10 +392,151 @@ fn snapshots_are_written_as_csv() {
 #[test]
 fn a_time_step_above_the_stability_limit_is_refused() {
     let s = scene("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[dem]\ntime_step = 1e-3\n");
-    let a = Assembly::from_scene(&s);
-    let p = IntegrationParameters::from_scene(&s, &a).expect("valid table");
+    let m = build(&s);
+    let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("valid table");
     let e =
-        voussoir::dem::collapse_multiplier(&a, &p, 0.01, &mut |_| {}).expect_err("unstable step");
+        voussoir::dem::collapse_multiplier(&m, &p, 0.01, &mut |_| {}).expect_err("unstable step");
     assert!(e.to_string().contains("stability limit"), "{e}");
-    assert!(voussoir::dem::Simulation::new(&a, &p).is_err());
+    assert!(voussoir::dem::Simulation::new(&m, &p).is_err());
+}
+
+/// The DEM honours the loads of the model: with loads that move the static multiplier well
+/// away from its self-weight value, the DEM bracket (relative width `tol`, 0.2% as for the
+/// semicircles: a bracket that narrow shows the DEM's own threshold) still contains the
+/// static `lambda_lower` of the loaded model, not the unloaded one, and its collapse
+/// mechanism has the static hinges. Returns (static, bracket).
+fn loaded_bracket_contains_static(
+    name: &str,
+    loaded: &Scene,
+    unloaded: &Scene,
+    tol: f64,
+) -> (f64, f64, f64) {
+    let m = build(loaded);
+    assert!(!m.loads.is_self_weight_only(), "{name}: no loads");
+    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+    assert_eq!(st.status, Status::Collapse, "{name}");
+    let lower = st.lambda.expect("lambda");
+    let bare = build(unloaded);
+    let bare_lower = lp::analyse(&bare, &lp::StaticSettings::default())
+        .expect("static")
+        .lambda
+        .expect("lambda");
+    let p = IntegrationParameters::from_scene(loaded, &m.assembly).expect("params");
+    let r = run(&m, &p, tol);
+    let (lo, hi, mid) = check_bracket(&r, tol);
+    println!(
+        "{name}: lambda_lower {lower:.5} (without the loads {bare_lower:.5})  DEM [{lo:.5}, \
+         {hi:.5}] mid {mid:.5} ({:+.2}%)  runs {}  steps {}  {:.2} s  hinges {:?}",
+        100.0 * (mid / lower - 1.0),
+        r.runs.len(),
+        r.steps,
+        r.wall_time_s,
+        r.hinges
+            .iter()
+            .map(|h| (h.joint, h.end))
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        lo <= lower && lower <= hi,
+        "{name}: static {lower} outside the DEM bracket [{lo}, {hi}]"
+    );
+    // The loads matter: the self-weight value lies outside the bracket.
+    assert!(
+        !(lo..=hi).contains(&bare_lower),
+        "{name}: the bracket [{lo}, {hi}] also holds the unloaded {bare_lower}"
+    );
+    // The DEM sees hinges at the joints the static solution puts them at.
+    for h in &st.hinges {
+        assert!(
+            r.hinges
+                .iter()
+                .any(|d| d.end == h.end && d.joint.abs_diff(h.joint) <= 1),
+            "{name}: static hinge {:?} not seen by the DEM ({:?})",
+            (h.joint, h.end),
+            r.hinges
+        );
+    }
+    (lower, lo, hi)
+}
+
+const PORTAL: &str = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 10\n\
+                      [piers]\nheight = 1.0\nwidth = 0.4\ncourses = 2\n[material]\nfriction = 0.8\n";
+
+/// A portal with a point load of 3 kN on the voussoir right of the crown (on the
+/// centreline, at 81 deg), a seismic mass: the static value lies inside the DEM bracket.
+#[test]
+fn loaded_portal_bracket_contains_the_static_value() {
+    let at = 81f64.to_radians();
+    let loaded = scene(&format!(
+        "{PORTAL}[[loads]]\ntype = \"point\"\nat = [{}, {}]\nforce = [0.0, -3000.0]\n",
+        at.cos(),
+        at.sin()
+    ));
+    loaded_bracket_contains_static("portal + point load", &loaded, &scene(PORTAL), 0.002);
+}
+
+/// A semicircular arch under a fill up to 0.1 m above its crown extrados (18 kN/m^3, a
+/// seismic mass): the static value lies inside the DEM bracket.
+#[test]
+fn filled_arch_bracket_contains_the_static_value() {
+    let bare = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 12\n\
+                [material]\nfriction = 0.8\n";
+    let loaded = scene(&format!(
+        "{bare}[fill]\nlevel = 1.2\nunit_weight = 18000.0\n"
+    ));
+    loaded_bracket_contains_static("filled arch", &loaded, &scene(bare), 0.002);
+}
+
+/// A vertical seismic component (r = 0.3, upward with the horizontal one) on a small arch:
+/// the static value lies inside the DEM bracket.
+#[test]
+fn vertical_seismic_component_bracket_contains_the_static_value() {
+    let bare = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.25\nvoussoirs = 12\n\
+                [material]\nfriction = 0.8\n";
+    let loaded = scene(&format!("{bare}[seismic]\nvertical_ratio = 0.3\n"));
+    loaded_bracket_contains_static("vertical ratio 0.3", &loaded, &scene(bare), 0.002);
+}
+
+/// A single block b x h with a point load P at (x, y) (block frame: base centre at the
+/// origin) rocks about its downstream corner when the seismic moment about it overcomes the
+/// restoring one: lambda = (W b/2 + P (b/2 - x)) / (W h/2 + S y), with S = P when the load
+/// is a seismic mass and 0 when it is not. The load rides on the block (its point turns with
+/// it) and its seismic mass adds to the block's.
+#[test]
+fn single_block_with_a_point_load_rocks_at_the_hand_value() {
+    use voussoir::model::{AppliedLoad, LoadSource};
+    let (b, h) = (0.5, 1.0);
+    let (x, y, load) = (-0.15, 0.9, 5000.0);
+    for seismic in [true, false] {
+        let a = block(b, h, f64::INFINITY);
+        let w = a.blocks[0].weight;
+        let mut m = Model::self_weight(a);
+        m.loads.add(AppliedLoad {
+            block: 0,
+            point: Vec2::new(x, y),
+            force: Vec2::new(0.0, -load),
+            seismic_weight: if seismic { load } else { 0.0 },
+            source: LoadSource::Load(0),
+            region: None,
+        });
+        let s = if seismic { load } else { 0.0 };
+        let exact = (w * 0.5 * b + load * (0.5 * b - x)) / (w * 0.5 * h + s * y);
+        let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+        let lower = st.lambda.expect("lambda");
+        assert!(
+            (lower / exact - 1.0).abs() < 1e-6,
+            "static {lower} vs {exact}"
+        );
+        let p = IntegrationParameters::for_assembly(&m.assembly).initial_guess(Some(0.3));
+        let r = run(&m, &p, 0.01);
+        let (lo, hi, mid) = check_bracket(&r, 0.01);
+        println!(
+            "block + point load (seismic {seismic}): DEM [{lo:.5}, {hi:.5}] mid {mid:.5} vs \
+             hand {exact:.5} ({:+.3}%)",
+            100.0 * (mid / exact - 1.0)
+        );
+        assert!((mid / exact - 1.0).abs() < 0.01);
+        assert_eq!(r.hinges.len(), 1);
+        assert_eq!(r.hinges[0].end, JointEnd::P2);
+    }
 }

@@ -1,8 +1,72 @@
 //! Rigid bodies: a convex polygon with its mass and rotational inertia about its centroid,
-//! its position (centroid) and rotation, and their rates. Fixed bodies (the ground under the
-//! supports) never move.
+//! its position (centroid) and rotation, and their rates, and the loads it carries
+//! ([`BodyLoads`]). Fixed bodies (the ground under the supports) never move.
 
 use crate::geometry::{cross, polygon_area_centroid, Vec2};
+
+/// The loads a block carries, in its own frame (they move and turn with it).
+///
+/// The block's own weight `m0 g` acts at its centroid, as a permanent force `(0, -m0 g)` and
+/// as a seismic weight. The other loads of the load case (point, line, fill) are forces `F_k`
+/// at body-fixed points whose offset from the centroid is `r_k` at rotation 0, and seismic
+/// weights `S_k` at the same points. Turned by `th`, a force `F` at `r` has the moment
+/// `cross(R r, F) = cos(th) cross(r, F) - sin(th) dot(r, F)` about the centroid, so the
+/// permanent ones reduce to their resultant and two scalars, and the (parallel) seismic ones
+/// to their total weight at their centre.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BodyLoads {
+    /// Own weight `m0 g` (N) of the block (its polygon), at the centroid.
+    pub weight: f64,
+    /// The other loads, `None` when the block carries none (self-weight only: the
+    /// arithmetic is then exactly that of the self-weight model).
+    pub extra: Option<ExtraLoads>,
+    /// Force scale of the block (N) for the rest test: its own weight plus the magnitude of
+    /// every other load it carries.
+    pub scale: f64,
+}
+
+/// The loads of a block other than its own weight (see [`BodyLoads`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ExtraLoads {
+    /// Resultant permanent force `sum F_k` (N).
+    pub force: Vec2,
+    /// `sum cross(r_k, F_k)` and `-sum dot(r_k, F_k)` (N m): the moment of the permanent
+    /// forces about the centroid at rotation `th` is `cos(th) a + sin(th) b`.
+    pub a: f64,
+    pub b: f64,
+    /// Total seismic weight `sum S_k` (N) and the offset of its centre from the centroid at
+    /// rotation 0.
+    pub seismic_weight: f64,
+    pub seismic_offset: Vec2,
+}
+
+impl ExtraLoads {
+    /// Add a permanent force `force` and a seismic weight `seismic` (N) at offset `r`.
+    pub fn add(&mut self, r: Vec2, force: Vec2, seismic: f64) {
+        self.force += force;
+        self.a += cross(r, force);
+        self.b -= r.dot(&force);
+        let w = self.seismic_weight + seismic;
+        if seismic > 0.0 && w > 0.0 {
+            self.seismic_offset = (self.seismic_weight * self.seismic_offset + seismic * r) / w;
+            self.seismic_weight = w;
+        }
+    }
+
+    /// Moment (N m) of the permanent forces about the centroid with the body turned by
+    /// `(sin, cos)` of its rotation.
+    #[inline]
+    pub fn moment(&self, sin: f64, cos: f64) -> f64 {
+        cos * self.a + sin * self.b
+    }
+
+    /// `sum F_k . (R r_k)` (N m): the potential of the permanent forces is
+    /// `-(F . pos + this)`.
+    #[inline]
+    pub fn lever(&self, sin: f64, cos: f64) -> f64 {
+        sin * self.a - cos * self.b
+    }
+}
 
 /// A rigid convex polygon block.
 #[derive(Debug, Clone)]
@@ -34,6 +98,8 @@ pub(crate) struct Body {
     pub block: Option<usize>,
     /// Centroid in the assembly's geometry (rotation 0 there).
     pub home: Vec2,
+    /// The loads it carries (none for ground bodies).
+    pub loads: BodyLoads,
 }
 
 impl Body {
@@ -83,9 +149,20 @@ impl Body {
             hi: Vec2::zeros(),
             block,
             home: centroid,
+            loads: BodyLoads::default(),
         };
         body.refresh();
         body
+    }
+
+    /// Add `mass` (kg) carried with the body (the seismic mass of the loads on it), scaling
+    /// the rotational inertia in the same proportion.
+    pub fn add_mass(&mut self, mass: f64) {
+        if mass > 0.0 && self.mass > 0.0 {
+            let total = self.mass + mass;
+            self.inertia *= total / self.mass;
+            self.mass = total;
+        }
     }
 
     /// Recompute world vertices, normals and bounding box from the position and rotation.

@@ -1,15 +1,26 @@
-//! Discrete element check of the collapse multiplier: the blocks of an assembly as 2D rigid
-//! convex polygons moving in time under gravity and a constant horizontal acceleration
-//! `lambda g`, touching through no-tension, cohesionless Coulomb contacts — the distinct
-//! element method of Cundall (1971; Cundall & Strack 1979) as used for masonry arches in
-//! UDEC (Lemos 2007, "Discrete element modeling of masonry structures", Int. J. Archit.
-//! Herit. 1:190-213; DeJong, De Lorenzis, Adams & Ochsendorf 2008).
+//! Discrete element check of the collapse multiplier: the blocks of a model's assembly as 2D
+//! rigid convex polygons moving in time under the model's permanent loads and its seismic
+//! loads scaled by a constant multiplier `lambda`, touching through no-tension, cohesionless
+//! Coulomb contacts — the distinct element method of Cundall (1971; Cundall & Strack 1979) as
+//! used for masonry arches in UDEC (Lemos 2007, "Discrete element modeling of masonry
+//! structures", Int. J. Archit. Herit. 1:190-213; DeJong, De Lorenzis, Adams & Ochsendorf
+//! 2008).
 //!
 //! Model (see [`world`] for the equations):
 //! - every assembly block is a rigid convex polygon with the mass and polar moment of the
 //!   uniform polygon (`unit_weight depth / g` per unit area). Curved voussoirs are simulated
 //!   by their chord polygon (the DEM does not model circular faces): their weight and centroid
 //!   then differ slightly from the exact annular ones the static analysis uses;
+//! - the loads come from the model's [`crate::model::LoadCase`] and nowhere else: each block's
+//!   own weight `m0 g` down at its centroid, every other permanent load (point, line, fill) as
+//!   a force fixed to the block at its point of application (it turns with the block, so its
+//!   moment about the centroid is `cross(R r, F)`), and the seismic force
+//!   `lambda W_s (1, vertical_ratio)` of the block's seismic weight `W_s` at its centre (the
+//!   DEM shakes toward +x, the static program's default direction). The block's mass is its
+//!   own plus the seismic masses `S / g` of its other loads, its polar inertia scaled in the
+//!   same proportion; loads that are not seismic add force, not mass. With self-weight alone
+//!   this is `W` down and `lambda W` along +x at every centroid, computed exactly as before
+//!   loads existed;
 //! - the ground is a fixed rectangle under every support joint;
 //! - vertex-to-edge contacts, found by a sort-and-sweep broad phase and a vertex-in-polygon
 //!   narrow phase every step, so blocks that separate and touch again are handled;
@@ -19,11 +30,12 @@
 //! - symplectic Euler (central differences) with Cundall's local damping, time step from the
 //!   stability limit of the stiffest block.
 //!
-//! Protocol ([`collapse_multiplier`]): settle under gravity ramped from 0; then, from the
-//! settled state, runs at constant `lambda` (ramped in, then held) that end at rest, in
-//! collapse (a block point moved by the collapse displacement) or creeping (the displacement
-//! kept growing at a non-decreasing rate for five windows); a bracket `[lambda_stands, lambda_collapses]` is searched from a first guess
-//! (the static lower bound by default) and narrowed by bisection until its width is below
+//! Protocol ([`collapse_multiplier`]): settle under the permanent loads ramped from 0; then,
+//! from the settled state, runs at constant `lambda` (ramped in, then held) that end at rest,
+//! in collapse (a block point moved by the collapse displacement) or creeping (the
+//! displacement kept growing at a non-decreasing rate for five windows); a bracket
+//! `[lambda_stands, lambda_collapses]` is searched from a first guess (the static lower bound
+//! of the same model by default) and narrowed by bisection until its width is below
 //! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
 
 mod body;
@@ -125,6 +137,26 @@ impl DemResult {
             .iter()
             .find(|r| r.outcome != Outcome::Stands && r.lambda == Some(l))
     }
+}
+
+/// The model must be valid: a valid assembly, and a load case that matches it with finite
+/// loads on existing blocks.
+fn check_model(model: &Model) -> Result<(), DemError> {
+    model.assembly.validate()?;
+    model.loads.validate(&model.assembly)?;
+    let nb = model.assembly.blocks.len();
+    for (k, l) in model.loads.applied().iter().enumerate() {
+        let finite = [l.point.x, l.point.y, l.force.x, l.force.y, l.seismic_weight]
+            .iter()
+            .all(|v| v.is_finite());
+        if l.block >= nb || !finite || l.seismic_weight < 0.0 {
+            return Err(DemError::Assembly(AnalysisError::Assembly(format!(
+                "applied load {k} (on block {} of {nb}) is not a finite load on a block",
+                l.block
+            ))));
+        }
+    }
+    Ok(())
 }
 
 /// A time step above the explicit stability limit makes the integration blow up, which
@@ -247,7 +279,7 @@ impl DemResult {
 /// Most runs one search may take (a bisection from a 1% bracket needs a handful).
 const MAX_RUNS: usize = 60;
 
-/// Bracket the collapse multiplier of `assembly` by DEM runs, to a relative width of
+/// Bracket the collapse multiplier of `model` (its assembly under its load case) by DEM runs, to a relative width of
 /// `tolerance` (e.g. 0.01). `progress` receives a fraction of the expected work in [0, 1].
 pub fn collapse_multiplier(
     model: &Model,
@@ -257,7 +289,7 @@ pub fn collapse_multiplier(
 ) -> Result<DemResult, DemError> {
     let clock = Instant::now();
     let assembly = &model.assembly;
-    assembly.validate()?;
+    check_model(model)?;
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
         return Err(DemError::Settings(format!(
             "tolerance = {tolerance}: must be > 0 and < 1"
@@ -272,7 +304,7 @@ pub fn collapse_multiplier(
             _ => (0.2, GuessSource::Default),
         },
     };
-    let mut world = World::new(assembly, params);
+    let mut world = World::new(model, params);
     check_time_step(&world)?;
     let friction_infinite = assembly.joints.iter().any(|j| j.friction.is_infinite());
     let mut result = DemResult {
@@ -462,14 +494,16 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// The blocks of `assembly` at rest in their assembly positions, no load applied.
-    pub fn new(assembly: &Assembly, params: &IntegrationParameters) -> Result<Self, DemError> {
-        assembly.validate()?;
-        let world = World::new(assembly, params);
+    /// The blocks of the model's assembly at rest in their assembly positions, carrying the
+    /// model's loads at factor 0 (none applied yet).
+    pub fn new(model: &Model, params: &IntegrationParameters) -> Result<Self, DemError> {
+        check_model(model)?;
+        let world = World::new(model, params);
         check_time_step(&world)?;
         Ok(Simulation { world })
     }
-    /// Set the fraction of gravity and the horizontal multiplier applied from now on.
+    /// Set the fraction of the permanent loads (gravity) and the seismic multiplier applied
+    /// from now on.
     pub fn set_load(&mut self, gravity: f64, lambda: f64) {
         self.world.load = world::Load { gravity, lambda };
     }
@@ -494,7 +528,8 @@ impl Simulation {
     pub fn settle(&mut self, assembly: &Assembly) -> Run {
         protocol::run(&mut self.world, assembly, None, &mut |_| {})
     }
-    /// Ramp the horizontal multiplier `lambda` in (full gravity) and run to rest or collapse.
+    /// Ramp the seismic multiplier `lambda` in (full permanent loads) and run to rest or
+    /// collapse.
     pub fn run_at(&mut self, assembly: &Assembly, lambda: f64) -> Run {
         protocol::run(&mut self.world, assembly, Some(lambda), &mut |_| {})
     }
@@ -575,8 +610,9 @@ impl Simulation {
             .map(|b| (b.pos, b.angle))
             .collect()
     }
-    /// Largest speed of a block point (m/s) and largest unbalanced force over block weight,
-    /// from the last step.
+    /// Largest speed of a block point (m/s) and largest unbalanced force over the block's
+    /// load scale (its weight plus the magnitudes of the other loads it carries), from the
+    /// last step.
     pub fn max_speed(&self) -> f64 {
         self.world.max_speed
     }

@@ -13,11 +13,11 @@
 //! | `local_damping`         | 0.5                         | Cundall's non-viscous local damping: every block force is reduced by `alpha |F| sign(v)`; it removes energy from every mode at any frequency and can never hold a block that is out of balance (the damping force is below the unbalanced force), so it settles quasi-statically without moving the collapse threshold |
 //! | `hold_damping`          | 0.5                         | the same local damping once the load is held: with 0 the residual vibration of a structure just below its threshold kicks it into the mechanism (DEM multiplier 0.5-1% low); a mechanism slowed to a steady creep by the damping is caught by the creep test of the protocol |
 //! | `time_step_factor`      | 0.9                         | fraction of the explicit stability limit `2 / omega_max (sqrt(1 + z^2) - z)` of the stiffest block (a Gershgorin bound over all its possible contacts, with the damping ratio `z` its dashpots give that mode) |
-//! | `ramp_time`             | `0.3 T`                     | gravity and the horizontal load are applied over a linear ramp, so there is no dynamic overshoot of a step load |
+//! | `ramp_time`             | `0.3 T`                     | the permanent loads (settling) and the seismic ones are applied over a linear ramp, so there is no dynamic overshoot of a step load |
 //! | `max_time`              | `40 T`                      | longest run after the ramp before a run is declared undecided |
 //! | `collapse_displacement` | `0.01 L`                    | a run collapses when a block point has moved by more than this since the start of the run: 300 times the elastic overlaps, and the arch mechanisms soften geometrically, so a mechanism that has moved this far does not come back |
 //! | `rest_velocity`         | `1e-5 sqrt(g L)`            | a run is at rest when no block point moves faster than this ... |
-//! | `rest_force`            | `1e-5`                      | ... and no block has an unbalanced force (or moment / its radius) above this fraction of its weight |
+//! | `rest_force`            | `1e-5`                      | ... and no block has an unbalanced force (or moment / its radius) above this fraction of its load scale (its weight plus the magnitudes of the other loads it carries) |
 //! | `infinite_friction`     | 1000                        | the Coulomb coefficient used for `friction = inf` |
 //! | `contact_tolerance`     | `1e-3 t`                    | corner rounding: a vertex pressing into an edge still touches it this far beyond the edge's end; also the window for choosing the edge near a corner. Several times the elastic overlaps, and small against any joint |
 //! | `max_lambda`            | 10                          | above this multiplier (84 deg tilt) the structure is said not to collapse |
@@ -57,7 +57,8 @@ pub struct IntegrationParameters {
     pub time_step_factor: f64,
     /// An explicit time step (s) instead of the one from `time_step_factor`.
     pub time_step: Option<f64>,
-    /// Duration of the linear ramp of gravity (settling) and of the horizontal load (s).
+    /// Duration of the linear ramp of the permanent loads (settling) and of the seismic
+    /// ones (s).
     /// Default `0.3 sqrt(L/g)`.
     pub ramp_time: f64,
     /// Longest time a run may last after its ramp before it is declared undecided (s).
@@ -69,8 +70,9 @@ pub struct IntegrationParameters {
     /// Largest speed (m/s) of any block point for the run to count as at rest. Default
     /// `1e-5 sqrt(g L)`.
     pub rest_velocity: f64,
-    /// Largest unbalanced force of any block, as a fraction of its weight, for the run to
-    /// count as at rest. Default 1e-5.
+    /// Largest unbalanced force of any block, as a fraction of its load scale (its weight
+    /// plus the magnitudes of the other loads it carries), for the run to count as at rest.
+    /// Default 1e-5.
     pub rest_force: f64,
     /// Friction coefficient used for joints with `friction = inf`. Default 1000.
     pub infinite_friction: f64,

@@ -1,6 +1,6 @@
-//! The collapse protocol: settle under gravity, then runs at constant horizontal
-//! accelerations `lambda g`, each ending at rest or in collapse, and a bracket search on
-//! lambda.
+//! The collapse protocol: settle under the permanent loads (gravity), then runs at constant
+//! seismic multipliers `lambda` (the model's seismic forces `lambda W_s (1, r)`), each ending
+//! at rest or in collapse, and a bracket search on lambda.
 
 use super::world::{Load, World};
 use crate::assembly::{Assembly, Hinge, JointEnd};
@@ -29,7 +29,7 @@ pub enum Outcome {
 pub struct Snapshot {
     /// Simulated time since the start of the run (s).
     pub time: f64,
-    /// Horizontal multiplier applied at that instant (ramped).
+    /// Seismic multiplier applied at that instant (ramped).
     pub lambda: f64,
     /// World vertices of every assembly block, in block order.
     pub blocks: Vec<Vec<Vec2>>,
@@ -50,7 +50,7 @@ pub struct Onset {
 /// One DEM run.
 #[derive(Debug, Clone)]
 pub struct Run {
-    /// `None` for the settling run under gravity alone.
+    /// `None` for the settling run under the permanent loads alone.
     pub lambda: Option<f64>,
     pub outcome: Outcome,
     /// Simulated time (s) and steps the run took.
@@ -68,9 +68,11 @@ const CREEP_WINDOWS: usize = 5;
 /// the round-off of a structure at rest, well below the elastic response to the ramp.
 const CREEP_GROWTH: f64 = 2e-4;
 
-/// Run `world` from its current state with gravity ramped to 1 (`lambda = None`), or with
-/// full gravity and the horizontal load ramped to `lambda`, until rest, collapse or
-/// `max_time`. `progress` receives the fraction of `max_time` used.
+/// Run `world` from its current state with the permanent loads ramped to 1 (`lambda =
+/// None`), or with full permanent loads and the seismic ones ramped to `lambda`, until rest,
+/// collapse or `max_time`. `assembly` (the world's, in its initial geometry) is read for the
+/// joints at the onset of collapse, not for loads. `progress` receives the fraction of
+/// `max_time` used.
 pub(crate) fn run(
     world: &mut World,
     assembly: &Assembly,

@@ -15,13 +15,22 @@
 //!    block's centroid and rotation, with Cundall's local damping `F <- F - alpha |F| sign(v)`
 //!    per degree of freedom.
 //!
-//! Loads: weight `m g` down and `lambda m g` along +x at each block's centroid, both scaled
-//! by the ramp factors the protocol sets.
+//! Loads (all from the model's [`crate::model::LoadCase`], scaled by the factors the protocol
+//! sets: `Load::gravity` for the permanent forces, `Load::lambda` for the seismic ones):
+//! - each block's own weight `m0 g` down at its centroid, and its seismic force
+//!   `lambda m0 g (1, r)` there (`r` the load case's vertical ratio);
+//! - every other load of the block (point, line, fill) as a force fixed to the block at its
+//!   point of application: the force keeps its direction, its point turns with the block, so
+//!   its moment about the centroid is `cross(R r_k, F_k)` with `R` the block's rotation;
+//! - the seismic masses of those loads, `lambda S_k (1, r)` at their (body-fixed) centre.
+//!   They also move with the block: its mass is `m0 + sum S_k / g`, its polar inertia scaled
+//!   in the same proportion (the added mass is spread like the block's own). Loads that are
+//!   not seismic add force and no mass.
 
-use super::body::Body;
+use super::body::{Body, BodyLoads, ExtraLoads};
 use super::params::IntegrationParameters;
-use crate::assembly::Assembly;
 use crate::geometry::{cross, Vec2};
+use crate::model::{LoadSource, Model};
 
 /// One vertex-to-edge contact: vertex `vertex` of one body of the pair touches edge `edge` of
 /// the other.
@@ -68,9 +77,10 @@ pub(crate) struct Pair {
 /// The load factors the protocol applies.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Load {
-    /// Fraction of gravity applied (ramped from 0 to 1 while settling).
+    /// Fraction of the permanent loads (gravity) applied (ramped from 0 to 1 while
+    /// settling).
     pub gravity: f64,
-    /// Horizontal multiplier currently applied (ramped to the target of a run).
+    /// Seismic multiplier currently applied (ramped to the target of a run).
     pub lambda: f64,
 }
 
@@ -86,6 +96,9 @@ pub(crate) struct World {
     pub time: f64,
     pub steps: u64,
     pub load: Load,
+    /// Direction of the seismic body force per unit weight and unit lambda,
+    /// `(+1, vertical_ratio)`.
+    pub seismic_direction: Vec2,
     /// Cundall's local damping coefficient applied now (the protocol switches it).
     pub local_damping: f64,
     /// Coulomb coefficient used for contacts (scene friction, or `infinite_friction`).
@@ -104,10 +117,13 @@ pub(crate) struct World {
 }
 
 impl World {
-    /// Bodies from the blocks of `assembly` (their polygons, with the polygon's mass and
-    /// centroid: for curved voussoirs the DEM simulates the chord polygon) plus one fixed
-    /// ground body under every support joint.
-    pub fn new(assembly: &Assembly, params: &IntegrationParameters) -> World {
+    /// Bodies from the blocks of the model's assembly (their polygons, with the polygon's
+    /// mass and centroid: for curved voussoirs the DEM simulates the chord polygon) carrying
+    /// the model's loads (see [`BodyLoads`]), plus one fixed ground body under every support
+    /// joint. The seismic forces act along `loads.seismic_direction(+1)`: ground motion
+    /// toward +x, as the static program's default direction.
+    pub fn new(model: &Model, params: &IntegrationParameters) -> World {
+        let assembly = &model.assembly;
         let g = params.gravity;
         let size = assembly.size();
         let mut bodies: Vec<Body> = assembly
@@ -118,9 +134,33 @@ impl World {
                 // Unit weight x depth from the block's own weight and area; the DEM mass is
                 // that of its polygon.
                 let gamma = b.weight / b.area;
-                Body::new(&b.polygon, gamma / g, false, Some(i))
+                let mut body = Body::new(&b.polygon, gamma / g, false, Some(i));
+                let weight = body.mass * g;
+                body.loads = BodyLoads {
+                    weight,
+                    extra: None,
+                    scale: weight,
+                };
+                body
             })
             .collect();
+        // The loads other than self-weight, at their offsets from the body's centroid; their
+        // seismic masses move with the block (added mass, inertia scaled alike).
+        for load in model.loads.applied() {
+            if load.source == LoadSource::SelfWeight {
+                continue;
+            }
+            let Some(body) = bodies.get_mut(load.block) else {
+                continue;
+            };
+            let r = load.point - body.home;
+            let l = &mut body.loads;
+            l.extra
+                .get_or_insert_with(ExtraLoads::default)
+                .add(r, load.force, load.seismic_weight);
+            l.scale += load.force.norm().max(load.seismic_weight);
+            body.add_mass(load.seismic_weight / g);
+        }
         for j in assembly.joints.iter().filter(|j| j.is_support()) {
             // The ground is a fixed rectangle on the far side of the support joint, three
             // joint lengths wide, so a block can rock or slide on it without falling off.
@@ -162,6 +202,7 @@ impl World {
             time: 0.0,
             steps: 0,
             load: Load::default(),
+            seismic_direction: model.loads.seismic_direction(1.0),
             local_damping: params.local_damping,
             mu,
             margin: (0.01 * size).max(4.0 * params.contact_tolerance),
@@ -349,20 +390,29 @@ impl World {
 
     /// Stage 4: loads, local damping and symplectic Euler on every free block.
     pub fn integrate(&mut self) {
-        let p = &self.params;
-        let g = p.gravity;
         let alpha = self.local_damping;
         let dt = self.dt;
+        let d = self.seismic_direction;
         let mut unbalanced: f64 = 0.0;
         let mut max_speed: f64 = 0.0;
         for (body, (fc, mc)) in self.bodies.iter_mut().zip(&self.force) {
             if body.fixed {
                 continue;
             }
-            let w = body.mass * g;
-            let f = fc + Vec2::new(self.load.lambda * w, -self.load.gravity * w);
-            let m = *mc;
-            unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / w);
+            let l = &body.loads;
+            let w = l.weight;
+            // Own weight and its seismic force at the centroid.
+            let sw = self.load.lambda * w;
+            let mut f = fc + Vec2::new(sw * d.x, -self.load.gravity * w + sw * d.y);
+            let mut m = *mc;
+            if let Some(e) = &l.extra {
+                let (sin, cos) = body.angle.sin_cos();
+                let se = self.load.lambda * e.seismic_weight;
+                f += self.load.gravity * e.force + se * d;
+                m += self.load.gravity * e.moment(sin, cos)
+                    + se * cross(body.rotate(e.seismic_offset), d);
+            }
+            unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / l.scale);
             // Cundall's local damping opposes the motion of each degree of freedom with a
             // force proportional to the unbalanced force, never larger than it.
             let damp = |force: f64, v: f64| {
@@ -391,16 +441,28 @@ impl World {
         self.bodies.iter().map(Body::kinetic_energy).sum()
     }
 
-    /// Potential energy of the applied loads (gravity and the horizontal load at their
+    /// Potential energy of the applied loads (the permanent and seismic forces at their
     /// current factors, measured from the origin) plus the elastic energy of the contact
-    /// springs (J).
+    /// springs (J). A constant force `F` at a body point `p` has the potential `-F . p`.
     pub fn potential_energy(&self) -> f64 {
-        let g = self.params.gravity;
+        let d = self.seismic_direction;
         let loads: f64 = self
             .bodies
             .iter()
             .filter(|b| !b.fixed)
-            .map(|b| b.mass * g * (self.load.gravity * b.pos.y - self.load.lambda * b.pos.x))
+            .map(|b| {
+                let l = &b.loads;
+                let own = l.weight
+                    * (self.load.gravity * b.pos.y
+                        - self.load.lambda * (d.x * b.pos.x + d.y * b.pos.y));
+                let extra = l.extra.as_ref().map_or(0.0, |e| {
+                    let (sin, cos) = b.angle.sin_cos();
+                    let permanent = e.force.dot(&b.pos) + e.lever(sin, cos);
+                    let seismic = e.seismic_weight * d.dot(&(b.pos + b.rotate(e.seismic_offset)));
+                    -self.load.gravity * permanent - self.load.lambda * seismic
+                });
+                own + extra
+            })
             .sum();
         loads + self.elastic_energy()
     }

@@ -6,30 +6,35 @@ use roxmltree::{Document, Node};
 use voussoir::assembly::{Assembly, Hinge};
 use voussoir::geometry::Vec2;
 use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
+use voussoir::model::{self, LoadSource, Model};
 use voussoir::scene::Scene;
 use voussoir::thrustline::chart::{self, Chart, Series};
-use voussoir::thrustline::svg::{self, Drawing, Mechanism, Placements, SvgError, DASH};
+use voussoir::thrustline::svg::{
+    self, Drawing, Mechanism, Placements, SvgError, DASH, POINT_LOAD_SHARE,
+};
 use voussoir::thrustline::thrust_points;
 
 fn scene(text: &str) -> Scene {
     Scene::from_toml_str(text, "test").expect("valid scene")
 }
 
-fn semicircle(t: f64, n: usize) -> Assembly {
-    Assembly::from_scene(&scene(&format!(
+fn semicircle(t: f64, n: usize) -> Model {
+    model::build(&scene(&format!(
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\n"
     )))
+    .expect("valid model")
 }
 
-fn portal() -> Assembly {
-    Assembly::from_scene(&scene(
+fn portal() -> Model {
+    model::build(&scene(
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n\
          [piers]\nheight = 1.2\nwidth = 0.35\ncourses = 2\n",
     ))
+    .expect("valid model")
 }
 
-fn analyse(a: &Assembly) -> StaticResult {
-    let r = lp::analyse(a, &StaticSettings::default()).expect("analysis runs");
+fn analyse(m: &Model) -> StaticResult {
+    let r = lp::analyse(m, &StaticSettings::default()).expect("analysis runs");
     assert_eq!(r.status, Status::Collapse);
     r
 }
@@ -121,8 +126,9 @@ fn near(p: (f64, f64), q: (f64, f64), tol: f64) -> bool {
 
 #[test]
 fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
-    let a = semicircle(0.15, 32);
-    let r = analyse(&a);
+    let m = semicircle(0.15, 32);
+    let a = &m.assembly;
+    let r = analyse(&m);
     let forces = r.forces.as_deref().expect("forces at collapse");
     let d = Drawing {
         title: format!(
@@ -139,13 +145,13 @@ fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
         load: Some(Direction::Right),
         ..Default::default()
     };
-    let text = svg::structure_svg(&a, &d).expect("drawing");
+    let text = svg::structure_svg(a, &d).expect("drawing");
     keep("semicircle.svg", &text);
     let doc = Document::parse(&text).expect("well-formed XML");
     assert!(doc.root_element().has_tag_name("svg"));
 
     // To scale: the outline spans 2 (R + t/2) by R + t/2.
-    let (x0, y0, s) = fit_frame(&doc, &a);
+    let (x0, y0, s) = fit_frame(&doc, a);
     let all: Vec<_> = children(group(&doc, "blocks"), "polygon")
         .iter()
         .flat_map(points)
@@ -164,7 +170,7 @@ fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
         "every joint is compressed: one unbroken line"
     );
     let drawn = points(&lines[0]);
-    let expected: Vec<Vec2> = thrust_points(&a, forces).into_iter().flatten().collect();
+    let expected: Vec<Vec2> = thrust_points(a, forces).into_iter().flatten().collect();
     assert_eq!(drawn.len(), a.joints.len());
     for (p, q) in drawn.iter().zip(&expected) {
         assert!(
@@ -172,14 +178,17 @@ fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
             "{p:?} vs {q:?}"
         );
     }
-    assert_eq!(children(group(&doc, "line-of-action"), "polyline").len(), 1);
+    // No line of action: it lay under the thrust line, listed in the legend but unseen.
+    assert!(doc
+        .descendants()
+        .all(|n| n.attribute("id") != Some("line-of-action")));
 
     // Four hinges, circles at the joint ends the analysis names.
     let circles = children(group(&doc, "hinges"), "circle");
     assert_eq!(r.hinges.len(), 4);
     assert_eq!(circles.len(), r.hinges.len());
     for (c, hg) in circles.iter().zip(&r.hinges) {
-        let end = Hinge::at(&a, hg.joint, hg.end);
+        let end = Hinge::at(a, hg.joint, hg.end);
         let c = (attr_f(c, "cx"), attr_f(c, "cy"));
         assert!(near(c, (x0 + s * end.x, y0 - s * end.y), 2.0));
     }
@@ -204,13 +213,39 @@ fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
         assert!(p.0 >= minx - reach && p.0 <= maxx + reach);
     }
 
+    // The hinges are numbered 1..4 in chain order, each number beside its circle.
+    let numbers = children(group(&doc, "hinge-numbers"), "text");
+    assert_eq!(numbers.len(), 4);
+    for (k, (t, c)) in numbers.iter().zip(&circles).enumerate() {
+        assert_eq!(t.text(), Some((k + 1).to_string().as_str()));
+        let d = (attr_f(t, "x") - attr_f(c, "cx")).hypot(attr_f(t, "y") - attr_f(c, "cy"));
+        assert!(
+            d > 8.0 && d < 25.0,
+            "number {} at {d} px from its hinge",
+            k + 1
+        );
+    }
+    assert!(r.hinges.windows(2).all(|w| w[0].joint < w[1].joint));
+
     let t = texts(&doc);
-    for want in ["thrust line", "line of action", "hinge (4)", "support"] {
+    for want in [
+        "thrust line",
+        "hinge (4), numbered along the chain",
+        "support",
+    ] {
         assert!(t.iter().any(|s| s == want), "legend lacks {want}: {t:?}");
     }
-    assert!(t
-        .iter()
-        .any(|s| s.starts_with("collapse mechanism") && s.contains("10% of size")));
+    assert!(!t.iter().any(|s| s.contains("line of action")));
+    // The default factor shrinks the virtual displacements here: the legend says so.
+    assert!(
+        t.iter().any(
+            |s| s.starts_with("collapse mechanism, displacements scaled x0.")
+                && s.contains("10% of size")
+        ),
+        "{t:?}"
+    );
+    assert!(!t.iter().any(|s| s.contains("amplified")));
+    assert_inside_canvas(&doc);
     assert!(t.iter().any(|s| s.starts_with("semicircular arch")));
     assert_eq!(
         doc.descendants()
@@ -222,8 +257,9 @@ fn semicircle_shows_blocks_thrust_line_hinges_and_mechanism() {
 
 #[test]
 fn portal_shows_piers_supports_and_its_mechanism() {
-    let a = portal();
-    let r = analyse(&a);
+    let m = portal();
+    let a = &m.assembly;
+    let r = analyse(&m);
     let d = Drawing {
         title: "portal".into(),
         forces: r.forces.as_deref(),
@@ -235,10 +271,10 @@ fn portal_shows_piers_supports_and_its_mechanism() {
         }),
         ..Default::default()
     };
-    let text = svg::structure_svg(&a, &d).expect("drawing");
+    let text = svg::structure_svg(a, &d).expect("drawing");
     keep("portal.svg", &text);
     let doc = Document::parse(&text).expect("well-formed XML");
-    let (_, y0, s) = fit_frame(&doc, &a);
+    let (_, y0, s) = fit_frame(&doc, a);
     assert_eq!(a.blocks.len(), 16 + 2 * 2);
 
     // Two supports (the pier bases at y = -1.2), hatched below the base.
@@ -266,7 +302,8 @@ fn portal_shows_piers_supports_and_its_mechanism() {
 
 #[test]
 fn second_positions_are_the_blocks_moved_rigidly() {
-    let a = semicircle(0.2, 8);
+    let m = semicircle(0.2, 8);
+    let a = &m.assembly;
     let moves: Vec<(Vec2, f64)> = (0..8)
         .map(|i| (Vec2::new(0.03 * i as f64, -0.02), 0.05 * i as f64))
         .collect();
@@ -278,10 +315,10 @@ fn second_positions_are_the_blocks_moved_rigidly() {
         }),
         ..Default::default()
     };
-    let text = svg::structure_svg(&a, &d).expect("drawing");
+    let text = svg::structure_svg(a, &d).expect("drawing");
     keep("dem.svg", &text);
     let doc = Document::parse(&text).expect("well-formed XML");
-    let (x0, y0, s) = fit_frame(&doc, &a);
+    let (x0, y0, s) = fit_frame(&doc, a);
     let moved = children(group(&doc, "moved-blocks"), "polygon");
     assert_eq!(moved.len(), 8);
     for ((poly, b), (t, th)) in moved.iter().zip(&a.blocks).zip(&moves) {
@@ -302,15 +339,16 @@ fn second_positions_are_the_blocks_moved_rigidly() {
 
 #[test]
 fn drawing_rejects_data_that_do_not_fit_the_assembly() {
-    let a = semicircle(0.15, 8);
-    let r = analyse(&a);
+    let m = semicircle(0.15, 8);
+    let a = &m.assembly;
+    let r = analyse(&m);
     let forces = r.forces.as_deref().expect("forces");
     let short = Drawing {
         forces: Some(&forces[1..]),
         ..Drawing::new("x")
     };
     assert!(matches!(
-        svg::structure_svg(&a, &short),
+        svg::structure_svg(a, &short),
         Err(SvgError::Invalid(_))
     ));
     let v = vec![[0.0, 0.0, 1.0]; 3];
@@ -322,7 +360,7 @@ fn drawing_rejects_data_that_do_not_fit_the_assembly() {
         ..Drawing::new("x")
     };
     assert!(matches!(
-        svg::structure_svg(&a, &wrong),
+        svg::structure_svg(a, &wrong),
         Err(SvgError::Invalid(_))
     ));
     let bad = Drawing {
@@ -330,18 +368,19 @@ fn drawing_rejects_data_that_do_not_fit_the_assembly() {
         ..Drawing::new("x")
     };
     assert!(matches!(
-        svg::structure_svg(&a, &bad),
+        svg::structure_svg(a, &bad),
         Err(SvgError::Invalid(_))
     ));
 }
 
 #[test]
 fn draw_structure_writes_the_file() {
-    let a = semicircle(0.15, 8);
+    let m = semicircle(0.15, 8);
+    let a = &m.assembly;
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("a.svg");
     let title = "blocks only: t < R & \"quoted\"";
-    svg::draw_structure(&path, &a, &Drawing::new(title)).expect("written");
+    svg::draw_structure(&path, a, &Drawing::new(title)).expect("written");
     let text = std::fs::read_to_string(&path).expect("read back");
     let doc = Document::parse(&text).expect("well-formed XML");
     assert!(
@@ -351,7 +390,7 @@ fn draw_structure_writes_the_file() {
     assert_eq!(children(group(&doc, "blocks"), "polygon").len(), 8);
     let missing = dir.path().join("no/such/dir/a.svg");
     assert!(matches!(
-        svg::draw_structure(&missing, &a, &Drawing::new("x")),
+        svg::draw_structure(&missing, a, &Drawing::new("x")),
         Err(SvgError::Io { .. })
     ));
 }
@@ -467,8 +506,9 @@ fn every_kind_of_structure_draws() {
     ];
     let mut slid = 0;
     for (name, text, dir) in cases {
-        let a = Assembly::from_scene(&scene(text));
-        let r = lp::analyse(&a, &StaticSettings::default().direction(dir)).expect("runs");
+        let m = model::build(&scene(text)).expect("valid model");
+        let a = &m.assembly;
+        let r = lp::analyse(&m, &StaticSettings::default().direction(dir)).expect("runs");
         assert_eq!(r.status, Status::Collapse, "{name}");
         let forces = r.forces.as_deref().expect("forces");
         let d = Drawing {
@@ -483,10 +523,11 @@ fn every_kind_of_structure_draws() {
             load: Some(dir),
             ..Default::default()
         };
-        let text = svg::structure_svg(&a, &d).expect("drawing");
+        let text = svg::structure_svg(a, &d).expect("drawing");
         keep(&format!("{name}.svg"), &text);
         let doc = Document::parse(&text).expect("well-formed XML");
-        let (x0, y0, s) = fit_frame(&doc, &a);
+        assert_inside_canvas(&doc);
+        let (x0, y0, s) = fit_frame(&doc, a);
 
         // Every drawn pressure point lies on its joint (within the pixel rounding).
         let line: Vec<_> = children(group(&doc, "thrust-line"), "polyline")
@@ -496,7 +537,7 @@ fn every_kind_of_structure_draws() {
         let on_joints: Vec<_> = a
             .joints
             .iter()
-            .zip(thrust_points(&a, forces))
+            .zip(thrust_points(a, forces))
             .filter_map(|(j, p)| p.map(|_| j))
             .collect();
         assert_eq!(line.len(), on_joints.len(), "{name}");
@@ -531,4 +572,420 @@ fn every_kind_of_structure_draws() {
         }
     }
     assert!(slid > 0, "the friction case slides");
+}
+
+/// Every text's estimated extent lies inside the canvas: a generous width (0.6 em per
+/// character, 0.66 em bold) placed by its anchor, its height from its baseline shift;
+/// labels rotated by 270 degrees (the y axis title) turned accordingly.
+fn assert_inside_canvas(doc: &Document) {
+    let svg = doc.root_element();
+    let (w, h) = (attr_f(&svg, "width"), attr_f(&svg, "height"));
+    for n in doc.descendants().filter(|n| n.has_tag_name("text")) {
+        let Some(s) = n.text().map(str::trim).filter(|s| !s.is_empty()) else {
+            continue;
+        };
+        let fs = attr_f(&n, "font-size");
+        let bold = n.attribute("font-weight") == Some("bold");
+        let tw = if bold { 0.66 } else { 0.6 } * fs * s.chars().count() as f64;
+        let (x, y) = (attr_f(&n, "x"), attr_f(&n, "y"));
+        let (a, b) = match n.attribute("text-anchor") {
+            Some("middle") => (-0.5 * tw, 0.5 * tw),
+            Some("end") => (-tw, 0.0),
+            _ => (0.0, tw),
+        };
+        let dy = n.attribute("dy").map_or(0.0, |d| {
+            if let Some(v) = d.strip_suffix("em") {
+                v.parse::<f64>().expect("dy") * fs
+            } else if let Some(v) = d.strip_suffix("ex") {
+                v.parse::<f64>().expect("dy") * 0.5 * fs
+            } else {
+                d.parse().expect("dy")
+            }
+        });
+        // Across the text: from 0.8 em above its baseline to 0.25 em below.
+        let (above, below) = (dy - 0.8 * fs, dy + 0.25 * fs);
+        let (left, right, top, bottom) = match n.attribute("transform") {
+            Some(t) if t.starts_with("rotate(270") => (x + above, x + below, y - b, y - a),
+            Some(t) => panic!("unexpected transform {t}"),
+            None => (x + a, x + b, y + above, y + below),
+        };
+        assert!(
+            left >= 0.0 && right <= w && top >= 0.0 && bottom <= h,
+            "text {s:?} spans x {left:.0}..{right:.0}, y {top:.0}..{bottom:.0} on a {w} x {h} canvas"
+        );
+    }
+}
+
+fn model_of(text: &str) -> Model {
+    model::build(&scene(text)).expect("valid model")
+}
+
+const SEMI: &str = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 32\n";
+const PORTAL: &str =
+    "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n\
+     [piers]\nheight = 1.2\nwidth = 0.35\ncourses = 2\n";
+
+/// A drawing of everything an analysis gives, with the loads of `m`.
+fn full_drawing<'a>(title: &str, m: &'a Model, r: &'a StaticResult, dir: Direction) -> Drawing<'a> {
+    Drawing {
+        title: title.into(),
+        forces: r.forces.as_deref(),
+        hinges: &r.hinges,
+        sliding: &r.sliding,
+        mechanism: (!r.mechanism.is_empty()).then_some(Mechanism {
+            velocities: &r.mechanism,
+            amplification: None,
+        }),
+        load: Some(dir),
+        loads: Some(&m.loads),
+        ..Default::default()
+    }
+}
+
+fn draw(name: &str, m: &Model, dir: Direction, title: &str) -> (StaticResult, String) {
+    let r = lp::analyse(m, &StaticSettings::default().direction(dir)).expect("analysis runs");
+    let text = svg::structure_svg(&m.assembly, &full_drawing(title, m, &r, dir)).expect("drawing");
+    keep(name, &text);
+    (r, text)
+}
+
+/// Ids of the top-level groups, in drawing order.
+fn layer_order(doc: &Document) -> Vec<String> {
+    doc.root_element()
+        .children()
+        .filter_map(|n| n.attribute("id").map(str::to_string))
+        .collect()
+}
+
+fn head_tips(g: Node) -> Vec<(f64, f64)> {
+    g.descendants()
+        .filter(|n| n.has_tag_name("polygon") && n.attribute("class") == Some("arrow-head"))
+        .map(|n| points(&n)[0])
+        .collect()
+}
+
+#[test]
+fn fill_is_a_shaded_region_behind_the_blocks() {
+    let m = model_of(&format!("{SEMI}[fill]\nlevel = 1.3\n"));
+    let (_, text) = draw(
+        "fill.svg",
+        &m,
+        Direction::Right,
+        "semicircle with fill to 1.3 m",
+    );
+    let doc = Document::parse(&text).expect("well-formed XML");
+    let (x0, y0, s) = fit_frame(&doc, &m.assembly);
+    let regions: Vec<&Vec<Vec2>> = m
+        .loads
+        .applied()
+        .iter()
+        .filter(|a| a.source == LoadSource::Fill)
+        .filter_map(|a| a.region.as_ref())
+        .collect();
+    assert_eq!(regions.len(), 32, "every voussoir carries fill");
+    let fill = group(&doc, "fill");
+    let polys: Vec<_> = children(fill, "polygon")
+        .into_iter()
+        .filter(|p| p.attribute("class") == Some("fill-region"))
+        .collect();
+    assert_eq!(polys.len(), regions.len(), "one shaded polygon per region");
+    for (p, reg) in polys.iter().zip(&regions) {
+        let drawn = points(p);
+        assert_eq!(drawn.len(), reg.len());
+        for (d, w) in drawn.iter().zip(reg.iter()) {
+            assert!(
+                near(*d, (x0 + s * w.x, y0 - s * w.y), 1.0),
+                "{d:?} vs {w:?}"
+            );
+        }
+    }
+    // One colour, the stroke the same as the fill: no lines between the pieces.
+    let styles: std::collections::BTreeSet<_> = polys
+        .iter()
+        .map(|p| (p.attribute("fill"), p.attribute("stroke")))
+        .collect();
+    assert_eq!(styles.len(), 1);
+    let (f, st) = styles.into_iter().next().expect("one style");
+    assert_eq!(f, st);
+    // Hatched over the whole.
+    assert!(children(fill, "path")
+        .iter()
+        .any(|p| p.attribute("fill") == Some("url(#fill-hatch)")));
+    assert!(fill.descendants().any(|n| n.has_tag_name("pattern")));
+    // Behind the blocks.
+    let order = layer_order(&doc);
+    let at = |id: &str| order.iter().position(|g| g == id).expect(id);
+    assert!(at("fill") < at("blocks"), "{order:?}");
+    // The union's outline reaches the level, y = 1.3.
+    let outline: Vec<_> = children(fill, "polyline").iter().flat_map(points).collect();
+    assert!(!outline.is_empty());
+    let top = outline.iter().map(|p| p.1).fold(f64::MAX, f64::min);
+    assert!((top - (y0 - 1.3 * s)).abs() < 1.0, "outline top {top}");
+    assert!(texts(&doc).iter().any(|t| t == "fill up to y = 1.3 m"));
+    assert_inside_canvas(&doc);
+}
+
+#[test]
+fn point_loads_are_arrows_ending_at_their_points() {
+    let thick = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.25\nvoussoirs = 16\n\
+                 [piers]\nheight = 1.2\nwidth = 0.5\ncourses = 2\n";
+    let m = model_of(&format!(
+        "{thick}[[loads]]\ntype = \"point\"\nat = [0.3, 0.95]\nforce = [0.0, -2000.0]\n\
+         [[loads]]\ntype = \"point\"\nat = [-0.6, 0.75]\nforce = [500.0, 0.0]\n"
+    ));
+    let (r, text) = draw(
+        "point-loads.svg",
+        &m,
+        Direction::Right,
+        "portal with point loads",
+    );
+    assert_eq!(r.status, Status::Collapse);
+    let doc = Document::parse(&text).expect("well-formed XML");
+    let (x0, y0, s) = fit_frame(&doc, &m.assembly);
+    let arrows: Vec<_> = group(&doc, "point-loads")
+        .children()
+        .filter(|n| n.attribute("class") == Some("point-load"))
+        .collect();
+    assert_eq!(arrows.len(), 2);
+    let size = m.assembly.size();
+    for (g, (at, force, label)) in arrows.iter().zip([
+        (Vec2::new(0.3, 0.95), Vec2::new(0.0, -2000.0), "2 kN"),
+        (Vec2::new(-0.6, 0.75), Vec2::new(500.0, 0.0), "0.5 kN"),
+    ]) {
+        let tip = head_tips(*g)[0];
+        assert!(
+            near(tip, (x0 + s * at.x, y0 - s * at.y), 1.0),
+            "arrow ends at {tip:?}, the load acts at {at:?}"
+        );
+        // The shaft starts at the tail: against the force, the largest 15 % of the size
+        // long, the other in proportion (0.5 / 2 >= 0.2, the shortest drawn in proportion).
+        let line = children(*g, "line")[0];
+        let tail = (attr_f(&line, "x1"), attr_f(&line, "y1"));
+        let len = POINT_LOAD_SHARE * size * force.norm() / 2000.0 * s;
+        let d = force / force.norm();
+        let expected = (tip.0 - len * d.x, tip.1 + len * d.y);
+        assert!(near(tail, expected, 1.0), "{tail:?} vs {expected:?}");
+        assert_eq!(children(*g, "text")[0].text(), Some(label));
+    }
+    let t = texts(&doc);
+    assert!(t.iter().any(|s| s == "point load"), "{t:?}");
+    assert_inside_canvas(&doc);
+}
+
+#[test]
+fn line_loads_are_a_row_of_arrows_labelled_with_their_intensity() {
+    let m = model_of(&format!(
+        "{SEMI}[[loads]]\ntype = \"line\"\nfrom_x = -0.4\nto_x = 0.4\nintensity = 3000.0\n"
+    ));
+    let (_, text) = draw(
+        "line-load.svg",
+        &m,
+        Direction::Right,
+        "semicircle, line load",
+    );
+    let doc = Document::parse(&text).expect("well-formed XML");
+    let (x0, y0, s) = fit_frame(&doc, &m.assembly);
+    let g = group(&doc, "line-loads");
+    let rows: Vec<_> = g
+        .children()
+        .filter(|n| n.attribute("class") == Some("line-load"))
+        .collect();
+    assert_eq!(rows.len(), 1, "one row for the line load");
+    let tips: Vec<Vec2> = head_tips(rows[0])
+        .iter()
+        .map(|p| Vec2::new((p.0 - x0) / s, (y0 - p.1) / s))
+        .collect();
+    assert!(tips.len() >= 5, "{} arrows", tips.len());
+    // The arrows span the loaded length and end on the extrados (between the chords and
+    // the circle through the extrados corners).
+    let px = 1.5 / s;
+    assert!((tips[0].x + 0.4).abs() < px && (tips[tips.len() - 1].x - 0.4).abs() < px);
+    let re = 1.075;
+    let chord = re * (std::f64::consts::PI / 64.0).cos();
+    for t in &tips {
+        assert!(t.norm() >= chord - px && t.norm() <= re + px, "tip {t:?}");
+    }
+    assert_eq!(
+        children(rows[0], "text")[0].text(),
+        Some("q = 3 kN/m"),
+        "the intensity is recovered from the pieces"
+    );
+    assert!(texts(&doc).iter().any(|s| s == "line load"));
+    assert_inside_canvas(&doc);
+}
+
+/// Whether pixel point `p` lies strictly inside the convex polygon `poly`.
+fn strictly_inside(poly: &[(f64, f64)], p: (f64, f64)) -> bool {
+    let n = poly.len();
+    let side = |k: usize| {
+        let (a, b) = (poly[k], poly[(k + 1) % n]);
+        (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)
+    };
+    (0..n).all(|k| side(k) > 0.5) || (0..n).all(|k| side(k) < -0.5)
+}
+
+#[test]
+fn seismic_load_direction_is_drawn_on_the_structure() {
+    for (name, extra, dir, r) in [
+        ("seismic-right.svg", "", Direction::Right, 0.0_f64),
+        (
+            "seismic-r03.svg",
+            "[seismic]\nvertical_ratio = 0.3\n",
+            Direction::Right,
+            0.3,
+        ),
+        (
+            "seismic-left-r-02.svg",
+            "[seismic]\nvertical_ratio = -0.2\n",
+            Direction::Left,
+            -0.2,
+        ),
+    ] {
+        let m = model_of(&format!("{SEMI}{extra}"));
+        let (_, text) = draw(name, &m, dir, name);
+        let doc = Document::parse(&text).expect("well-formed XML");
+        let g = group(&doc, "seismic");
+        let lines: Vec<_> = g.descendants().filter(|n| n.has_tag_name("line")).collect();
+        let tips = head_tips(g);
+        assert_eq!(tips.len(), if r == 0.0 { 1 } else { 2 }, "{name}");
+        // The horizontal arrow points the way of the ground motion.
+        let tail = (attr_f(&lines[0], "x1"), attr_f(&lines[0], "y1"));
+        let along = tips[0].0 - tail.0;
+        assert!((tips[0].1 - tail.1).abs() < 0.5, "{name}: horizontal");
+        assert!(
+            along * dir.sign() > 40.0,
+            "{name}: {tail:?} -> {:?}",
+            tips[0]
+        );
+        let t: Vec<String> = g
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .filter_map(|n| n.text().map(str::to_string))
+            .collect();
+        assert!(t.iter().any(|s| s == "\u{3bb}g"), "{name}: {t:?}");
+        if r != 0.0 {
+            // The vertical component from the same tail, up for r > 0.
+            let tail2 = (attr_f(&lines[1], "x1"), attr_f(&lines[1], "y1"));
+            assert!(near(tail, tail2, 0.5));
+            assert!((tips[1].0 - tail.0).abs() < 0.5);
+            assert!(
+                (tips[1].1 - tail.1) * r.signum() < -10.0,
+                "{name}: up when r > 0"
+            );
+            assert!(
+                t.iter().any(|s| s.contains(&format!("r = {r}"))),
+                "{name}: {t:?}"
+            );
+            assert!(texts(&doc)
+                .iter()
+                .any(|s| s.starts_with("seismic load") && s.contains(&format!("r = {r}"))));
+        }
+        // On the drawing, clear of the blocks.
+        let blocks: Vec<Vec<(f64, f64)>> = children(group(&doc, "blocks"), "polygon")
+            .iter()
+            .map(points)
+            .collect();
+        let ends = lines
+            .iter()
+            .flat_map(|l| {
+                [
+                    (attr_f(l, "x1"), attr_f(l, "y1")),
+                    (attr_f(l, "x2"), attr_f(l, "y2")),
+                ]
+            })
+            .chain(tips.iter().copied());
+        for p in ends {
+            assert!(
+                blocks.iter().all(|b| !strictly_inside(b, p)),
+                "{name}: arrow point {p:?} inside a block"
+            );
+        }
+        assert_inside_canvas(&doc);
+    }
+}
+
+#[test]
+fn scale_bar_has_a_round_length_to_scale() {
+    for (text, want) in [
+        (SEMI.to_string(), 0.5),
+        (PORTAL.to_string(), 0.5),
+        (
+            SEMI.replace("radius = 1.0", "radius = 12.0")
+                .replace("0.15", "1.8"),
+            5.0,
+        ),
+    ] {
+        let m = model_of(&text);
+        let r = analyse(&m);
+        let out = svg::structure_svg(&m.assembly, &full_drawing("x", &m, &r, Direction::Right))
+            .expect("drawing");
+        let doc = Document::parse(&out).expect("well-formed XML");
+        let (_, _, s) = fit_frame(&doc, &m.assembly);
+        let g = group(&doc, "scale-bar");
+        let bar = children(g, "rect")
+            .into_iter()
+            .find(|r| r.attribute("class") == Some("scale-bar"))
+            .expect("the bar");
+        let label = children(g, "text")[0].text().expect("label").to_string();
+        let metres: f64 = label
+            .strip_suffix(" m")
+            .expect("in metres")
+            .parse()
+            .expect("number");
+        assert_eq!(metres, want, "{label}");
+        assert!(
+            (attr_f(&bar, "width") - metres * s).abs() < 0.05,
+            "bar {} px for {label} at {s} px/m",
+            attr_f(&bar, "width")
+        );
+        assert_inside_canvas(&doc);
+    }
+}
+
+#[test]
+fn mechanism_legend_says_amplified_only_when_it_is() {
+    let m = semicircle(0.15, 8);
+    let r = analyse(&m);
+    let d = Drawing {
+        mechanism: Some(Mechanism {
+            velocities: &r.mechanism,
+            amplification: Some(3.0),
+        }),
+        ..Drawing::new("x")
+    };
+    let doc_text = svg::structure_svg(&m.assembly, &d).expect("drawing");
+    let doc = Document::parse(&doc_text).expect("well-formed XML");
+    let t = texts(&doc);
+    assert!(
+        t.iter()
+            .any(|s| s.starts_with("collapse mechanism, displacements amplified x3 (")),
+        "{t:?}"
+    );
+}
+
+#[test]
+fn long_titles_stay_inside_the_canvas() {
+    let mut c = study();
+    c.title = "basket-handle arches, rise/span = 0.3, side angle 60 deg: lambda_c against \
+               t/span for every number of voussoirs"
+        .into();
+    let text = chart::chart_svg(&c).expect("chart");
+    keep("chart-long-title.svg", &text);
+    let doc = Document::parse(&text).expect("well-formed XML");
+    assert!(texts(&doc).iter().any(|s| s == &c.title));
+    assert_inside_canvas(&doc);
+    // A short title is centred on the canvas.
+    let doc_text = chart::chart_svg(&study()).expect("chart");
+    let doc = Document::parse(&doc_text).expect("well-formed XML");
+    let title = children(group(&doc, "title"), "text")[0];
+    assert_eq!(title.text().map(str::trim), Some("circular arches"));
+    assert_eq!(attr_f(&title, "x"), 480.0);
+    assert_inside_canvas(&doc);
+
+    let m = semicircle(0.15, 8);
+    let long = "a semicircular arch of radius 1 m and thickness 0.15 m in 8 voussoirs, with its \
+                thrust line at collapse and the mechanism";
+    let text = svg::structure_svg(&m.assembly, &Drawing::new(long)).expect("drawing");
+    let doc = Document::parse(&text).expect("well-formed XML");
+    assert_inside_canvas(&doc);
 }

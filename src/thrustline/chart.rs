@@ -15,11 +15,13 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::element::{Circle, PathElement, Text};
 use plotters::prelude::SVGBackend;
 use plotters::series::LineSeries;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, FontStyle, IntoFont, RGBAColor, RGBColor, TextStyle, WHITE};
 
 use super::svg::colours::TEXT;
 use super::svg::{
-    draw_legend, font_size, plot_err, text_width, write_file, Glyph, Layers, Root, Slot, SvgError,
+    draw_legend, fit_px, font_size, plot_err, text_width, write_file, Glyph, Layers, Root, Slot,
+    SvgError,
 };
 
 /// One named line of a chart.
@@ -188,7 +190,7 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
 
     svg.layer("axes", |root| {
         let (left, _) = root.split_horizontally(plot_w);
-        let mut c = builder(&left, chart, true, (x0..x1, y0..y1))?;
+        let mut c = builder(&left, chart, (x0..x1, y0..y1))?;
         let label = TextStyle::from(("sans-serif", font_size(13.0)).into_font());
         let desc = TextStyle::from(("sans-serif", font_size(16.0)).into_font());
         c.configure_mesh()
@@ -216,7 +218,7 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
         let colour = PALETTE[k % PALETTE.len()];
         svg.layer_class(&format!("series-{k}"), "series", |root| {
             let (left, _) = root.split_horizontally(plot_w);
-            let mut c = builder(&left, chart, false, (x0..x1, y0..y1))?;
+            let mut c = builder(&left, chart, (x0..x1, y0..y1))?;
             for run in runs {
                 if run.len() > 1 {
                     c.draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))
@@ -226,6 +228,26 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
                     .map_err(plot_err)?;
             }
             Ok(())
+        })?;
+    }
+    if !chart.title.is_empty() {
+        // Centred on the canvas (not on the plot, whose centre sits left of the canvas's:
+        // a long title would start left of it), in a smaller font when it is too wide.
+        let px = fit_px(&chart.title, TITLE_PX, true, WIDTH as f64 - 32.0, 8.0);
+        svg.layer("title", |root| {
+            let style = TextStyle::from(
+                ("sans-serif", font_size(px))
+                    .into_font()
+                    .style(FontStyle::Bold),
+            )
+            .color(&TEXT)
+            .pos(Pos::new(HPos::Center, VPos::Top));
+            root.draw(&Text::new(
+                chart.title.clone(),
+                ((WIDTH / 2) as i32, TITLE_TOP),
+                style,
+            ))
+            .map_err(plot_err)
         })?;
     }
     svg.layer("legend", |root| {
@@ -265,27 +287,26 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
 /// Transparent: the backend writes no element for it.
 const INVISIBLE: RGBAColor = RGBAColor(255, 255, 255, 0.0);
 
+/// Font size (px) of the title, and its top (px).
+const TITLE_PX: f64 = 20.0;
+const TITLE_TOP: i32 = 18;
+
 /// The chart's coordinate system on `area`. Every pass builds it the same way, so all passes
-/// share one mapping; the caption takes its room in every pass but is drawn only once.
+/// share one mapping; the caption is invisible: it only takes the title's room, the title is
+/// drawn on its own (centred on the canvas).
 fn builder<'a, 'b>(
     area: &'a Root<'b>,
     chart: &Chart,
-    with_caption: bool,
     (xr, yr): (std::ops::Range<f64>, std::ops::Range<f64>),
 ) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>, SvgError>
 {
     let mut b = ChartBuilder::on(area);
     b.margin(16).x_label_area_size(56).y_label_area_size(72);
     if !chart.title.is_empty() {
-        let font = ("sans-serif", font_size(20.0))
+        let font = ("sans-serif", font_size(TITLE_PX))
             .into_font()
             .style(FontStyle::Bold);
-        let style = if with_caption {
-            TextStyle::from(font).color(&TEXT)
-        } else {
-            TextStyle::from(font).color(&INVISIBLE)
-        };
-        b.caption(chart.title.clone(), style);
+        b.caption(" ", TextStyle::from(font).color(&INVISIBLE));
     }
     b.build_cartesian_2d(xr, yr).map_err(plot_err)
 }

@@ -4,24 +4,29 @@
 //! [`Drawing`] asks for:
 //! - the thrust line (line of pressure): the points `p_mid + (M/N) u` where the resultant
 //!   crosses each joint (`thrustline::thrust_points`), joined in joint order;
-//! - for chains, the line of action of the resultant (the funicular polygon): inside block k
-//!   the resultant runs along the force of joint k, `F_k = N_k n_k + V_k u_k`, through its
-//!   pressure point, until the block's load line, where it turns into the force of joint
-//!   k + 1. The corner is the intersection of the two force lines (by moment equilibrium of
-//!   the block it lies on the line of action of the block's load `W (lambda, -1)`, see Heyman,
-//!   *The Stone Skeleton*, 1995, ch. 3, and Ochsendorf's thrust-line analysis);
-//! - hinges as circles at the joint end where the resultant (or the rotation centre) sits;
+//! - hinges as circles at the joint end where the resultant (or the rotation centre) sits,
+//!   numbered 1, 2, ... in the order given (chain order, the order of the text summary);
 //! - sliding joints as thick orange segments;
 //! - supports: ground hatching on the ground side of every joint to the ground;
 //! - the collapse mechanism as dashed outlines of the displaced blocks: a point `p` of block
 //!   `i` moves by `A (v_i + omega_i x (p - c_i))` (first-order rigid-body displacement,
 //!   `omega x r = (-omega r_y, omega r_x)`; first order keeps the blocks on either side of a
-//!   hinge joined at the hinge). The default amplification `A` makes the largest displacement
-//!   of any block corner 10 % of the structure's size; the legend says `A` and that size.
+//!   hinge joined at the hinge). The default factor `A` makes the largest displacement of any
+//!   block corner 10 % of the structure's size; the legend says `A` ("scaled x0.19" or
+//!   "amplified x3") and that size.
 //!   Blocks that move together as one rigid body are outlined as one piece (their shared
 //!   joints are left out), so a 1000-voussoir arch shows its four pieces, not 1000 dashes;
 //! - a second set of block positions (for DEM: final positions) as translucent blue blocks,
-//!   each block `i` moved by a translation `t_i` and a rotation `theta_i` about its centroid.
+//!   each block `i` moved by a translation `t_i` and a rotation `theta_i` about its centroid;
+//! - the loads of a [`LoadCase`]: the fill as a shaded, hatched region behind the blocks (the
+//!   `region` outlines of its `Fill` loads), point loads as arrows ending at their point of
+//!   application (the largest 15 % of the structure's size long, the others in proportion,
+//!   labelled in kN), line loads as a row of small arrows on the loaded extrados labelled
+//!   `q = ... kN/m` (a load of `[[loads]]` applied as more than one piece is a line load);
+//! - the seismic load direction on the structure: an arrow `lambda g` in the direction of the
+//!   ground motion (with its vertical component `r lambda g` when the vertical ratio r is not
+//!   0), in free space near the top left of the structure;
+//! - a scale bar of a round length under the structure.
 //!
 //! Plotters writes the elements (the SVG backend needs no fonts: without the `ttf` feature
 //! its text layout is a width estimate and text is written as SVG `<text>` elements, which
@@ -40,7 +45,8 @@ use plotters::style::{Color, FontStyle, IntoFont, RGBColor, ShapeStyle, TextStyl
 
 use crate::assembly::{Assembly, Hinge, JointForce};
 use crate::geometry::Vec2;
-use crate::lp::Direction;
+use crate::model::{AppliedLoad, LoadCase, LoadSource};
+use crate::outcome::Direction;
 
 /// Errors of the drawings.
 #[derive(Debug, thiserror::Error)]
@@ -69,8 +75,6 @@ pub mod colours {
     pub const BLOCK_EDGE: RGBColor = RGBColor(0x7A, 0x6A, 0x50);
     /// Thrust line (line of pressure).
     pub const THRUST: RGBColor = RGBColor(0xD6, 0x27, 0x28);
-    /// Line of action of the resultant (funicular polygon).
-    pub const ACTION: RGBColor = RGBColor(0xEE, 0x82, 0x82);
     /// Hinge markers.
     pub const HINGE: RGBColor = RGBColor(0x1A, 0x1A, 0x1A);
     /// Sliding joints.
@@ -83,6 +87,14 @@ pub mod colours {
     pub const GROUND: RGBColor = RGBColor(0x40, 0x40, 0x40);
     /// Text.
     pub const TEXT: RGBColor = RGBColor(0x10, 0x10, 0x10);
+    /// Fill region.
+    pub const FILL: RGBColor = RGBColor(0xE4, 0xE4, 0xE0);
+    /// Hatching and outline of the fill region.
+    pub const FILL_EDGE: RGBColor = RGBColor(0x9A, 0x9A, 0x92);
+    /// Point and line loads.
+    pub const LOAD: RGBColor = RGBColor(0x2E, 0x7D, 0x32);
+    /// Seismic load direction.
+    pub const SEISMIC: RGBColor = RGBColor(0x8E, 0x24, 0xAA);
 }
 
 use colours::*;
@@ -123,8 +135,12 @@ pub struct Drawing<'a> {
     pub mechanism: Option<Mechanism<'a>>,
     /// A second set of block positions (DEM final positions).
     pub moved: Option<Placements<'a>>,
-    /// Direction of the horizontal load, shown in the legend as an arrow.
+    /// Direction of the horizontal seismic load: drawn as an arrow `lambda g` on the
+    /// structure (with the vertical component of `loads`, when given) and in the legend.
     pub load: Option<Direction>,
+    /// The load case (e.g. `Model::loads`): draws the fill, the point and line loads, and
+    /// the vertical seismic component. `None`: self-weight only, no load marks.
+    pub loads: Option<&'a LoadCase>,
     /// Leave out the ground hatching under supports.
     pub hide_supports: bool,
 }
@@ -191,6 +207,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             })
             .collect()
     });
+    let marks = drawing.loads.map(|l| LoadMarks::new(l, size));
 
     // World bounding box of everything drawn in world coordinates.
     let mut lo = Vec2::repeat(f64::INFINITY);
@@ -210,30 +227,60 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     if let Some(mv) = &moved {
         mv.iter().flatten().for_each(&mut grow);
     }
+    if let Some(mk) = &marks {
+        mk.world_points().iter().for_each(&mut grow);
+    }
     let ext = hi - lo;
     if !(ext.x.is_finite() && ext.y.is_finite() && ext.max() > 0.0) {
         return Err(SvgError::Invalid(
             "the blocks have no extent (empty or non-finite outlines)".into(),
         ));
     }
-    // A flat structure still gets some height (and a thin one some width).
-    let ext = ext.sup(&Vec2::repeat(0.02 * ext.max()));
-    let mid = 0.5 * (lo + hi);
 
-    // Layout (pixels): title, the structure to scale in a box, the legend below.
+    // Layout (pixels): title, the structure to scale in a box, the scale bar and the legend
+    // below.
     let width: u32 = 1000;
     let margin = 24.0;
-    let pad = 22.0; // room for hatching and hinge circles around the structure
-    let title_lines: Vec<&str> = drawing.title.lines().collect();
-    let title_h = title_lines
-        .iter()
+    let pad = 22.0; // room for hatching, hinge circles and their numbers around the structure
+    let room = width as f64 - 2.0 * margin;
+    // Each title line: font size (shrunk to fit the width), line height, bold.
+    let title_lines: Vec<(&str, f64, f64, bool)> = drawing
+        .title
+        .lines()
         .enumerate()
-        .map(|(i, _)| if i == 0 { 28.0 } else { 22.0 })
-        .sum::<f64>();
+        .map(|(i, line)| {
+            let (px, h, bold) = if i == 0 {
+                (20.0, 28.0, true)
+            } else {
+                (15.0, 22.0, false)
+            };
+            (line, fit_px(line, px, bold, room, 8.0), h, bold)
+        })
+        .collect();
+    let title_h = title_lines.iter().map(|l| l.2).sum::<f64>();
     let top = margin + title_h + 6.0;
-    let max_w = width as f64 - 2.0 * margin - 2.0 * pad;
+    let max_w = room - 2.0 * pad;
     let max_h = 620.0;
-    let scale = (max_w / ext.x).min(max_h / ext.y);
+    // A flat structure still gets some height (and a thin one some width).
+    let fit = |lo: Vec2, hi: Vec2| {
+        let e = (hi - lo).sup(&Vec2::repeat(0.02 * (hi - lo).max()));
+        ((max_w / e.x).min(max_h / e.y), e)
+    };
+    // Load labels take a fixed room in pixels beyond their anchors: fit twice.
+    let (mut scale, mut ext) = fit(lo, hi);
+    let (mut llo, mut lhi) = (lo, hi);
+    if let Some(mk) = &marks {
+        for _ in 0..2 {
+            (llo, lhi) = (lo, hi);
+            for l in mk.labels(scale) {
+                llo = llo.inf(&(l.centre - l.half));
+                lhi = lhi.sup(&(l.centre + l.half));
+            }
+            (scale, ext) = fit(llo, lhi);
+        }
+    }
+    let mid = 0.5 * (llo + lhi);
+    let plot_w = ext.x * scale;
     let plot_h = ext.y * scale;
     let frame = Frame {
         scale,
@@ -241,6 +288,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         cy: top + pad + plot_h / 2.0,
         mid,
     };
+    let bar = ScaleBar::new(ext.x.max(0.5 * ext.y), scale);
+    let bar_y = top + plot_h + 2.0 * pad + 12.0;
+    let bar_right = (frame.cx + 0.5 * plot_w).min(width as f64 - margin);
 
     let mut legend = Vec::new();
     let blocks_label = if drawing.moved.is_some() {
@@ -249,15 +299,18 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         "blocks (to scale)"
     };
     legend.push((Glyph::Block, blocks_label.to_string()));
+    if let Some(level) = marks.as_ref().and_then(|m| m.level()) {
+        legend.push((Glyph::Fill, format!("fill up to y = {} m", sig(level))));
+    }
     let thrust = drawing.forces.map(|f| super::thrust_points(assembly, f));
     if thrust.is_some() {
         legend.push((Glyph::Line(THRUST, 3, false), "thrust line".into()));
-        if assembly.is_chain() {
-            legend.push((Glyph::Line(ACTION, 2, false), "line of action".into()));
-        }
     }
     if !drawing.hinges.is_empty() {
-        legend.push((Glyph::Hinge, format!("hinge ({})", drawing.hinges.len())));
+        legend.push((
+            Glyph::Hinge,
+            format!("hinge ({}), numbered along the chain", drawing.hinges.len()),
+        ));
     }
     if !drawing.sliding.is_empty() {
         legend.push((Glyph::Line(SLIDING, 6, false), "sliding joint".into()));
@@ -270,8 +323,8 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         legend.push((
             Glyph::Mechanism,
             format!(
-                "collapse mechanism, displacements x{} (largest {} m = {:.0}% of size {} m)",
-                sig(m.amplification),
+                "collapse mechanism, displacements {} (largest {} m = {:.0}% of size {} m)",
+                factor_words(m.amplification),
                 sig(m.largest),
                 100.0 * m.largest / size,
                 sig(size)
@@ -281,18 +334,23 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     if let Some(pl) = &drawing.moved {
         legend.push((Glyph::Moved, pl.label.clone()));
     }
+    if let Some(mk) = &marks {
+        if !mk.points.is_empty() {
+            legend.push((Glyph::Arrow(LOAD, false), "point load".into()));
+        }
+        if !mk.lines.is_empty() {
+            legend.push((Glyph::Arrow(LOAD, false), "line load".into()));
+        }
+    }
+    let vertical_ratio = drawing.loads.map_or(0.0, |l| l.vertical_ratio());
     if let Some(d) = drawing.load {
-        let arrow = match d {
-            Direction::Right => "\u{2192}",
-            Direction::Left => "\u{2190}",
-        };
         legend.push((
-            Glyph::Text(arrow.into()),
-            "horizontal load \u{3bb}W at each centroid".into(),
+            Glyph::Arrow(SEISMIC, d == Direction::Left),
+            seismic_words(d, drawing.loads),
         ));
     }
-    let legend_top = top + plot_h + 2.0 * pad + 10.0;
-    let legend_rows = flow_legend(&legend, width as f64 - 2.0 * margin);
+    let legend_top = bar_y + 18.0;
+    let legend_rows = flow_legend(&legend, room);
     let rows = legend_rows.iter().map(|r| r.row).max().map_or(0, |r| r + 1);
     let height = (legend_top + rows as f64 * LEGEND_ROW + margin).ceil() as u32;
 
@@ -301,6 +359,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         root.fill(&WHITE).map_err(plot_err)?;
         Ok(())
     })?;
+    if let Some(mk) = marks.as_ref().filter(|m| !m.fill.is_empty()) {
+        svg.raw("fill", &fill_svg(&mk.fill, &frame, size));
+    }
     if has_supports {
         svg.layer("supports", |root| {
             for j in assembly.joints.iter().filter(|j| j.is_support()) {
@@ -421,18 +482,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         }
         svg.raw("mechanism", &text);
     }
-    if let (Some(points), Some(forces)) = (&thrust, drawing.forces) {
-        if assembly.is_chain() {
-            let action = line_of_action(assembly, forces, points);
-            svg.layer("line-of-action", |root| {
-                for run in action {
-                    let pts: Vec<_> = run.iter().map(|p| frame.px(*p)).collect();
-                    root.draw(&PathElement::new(pts, ACTION.stroke_width(2)))
-                        .map_err(plot_err)?;
-                }
-                Ok(())
-            })?;
-        }
+    if let Some(points) = &thrust {
         svg.layer("thrust-line", |root| {
             for run in runs(
                 points
@@ -451,6 +501,88 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             Ok(())
         })?;
     }
+
+    // Everything drawn so far that the seismic arrow should not cover, in pixels.
+    let mut obstacles: Vec<Vec<Px>> = Vec::new();
+    let px_poly = |poly: &[Vec2]| poly.iter().map(|p| frame.pxf(*p)).collect::<Vec<_>>();
+    obstacles.extend(assembly.blocks.iter().map(|b| px_poly(&b.polygon)));
+    if let Some(m) = &mech {
+        obstacles.extend(m.blocks.iter().map(|b| px_poly(b)));
+    }
+    if let Some(mv) = &moved {
+        obstacles.extend(mv.iter().map(|b| px_poly(b)));
+    }
+    if has_supports {
+        for j in assembly.joints.iter().filter(|j| j.is_support()) {
+            obstacles.push(
+                Rect::around(&[frame.pxf(j.p1), frame.pxf(j.p2)])
+                    .grown(14.0)
+                    .corners(),
+            );
+        }
+    }
+
+    // Where the loads are drawn: hinge numbers keep clear of them.
+    let mut load_boxes: Vec<Vec<Px>> = Vec::new();
+    if let Some(mk) = &marks {
+        let labels = mk.labels(scale);
+        let mut text = String::new();
+        for (line, label) in mk.lines.iter().zip(&labels[mk.points.len()..]) {
+            let up = Vec2::new(0.0, line.len);
+            let tails: Vec<String> = line
+                .path
+                .iter()
+                .map(|p| {
+                    let (x, y) = frame.pxf(p + up);
+                    format!("{x:.1},{y:.1}")
+                })
+                .collect();
+            text.push_str(&format!(
+                "<g class=\"line-load\">\n<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" \
+                 stroke-linejoin=\"round\" points=\"{}\"/>\n",
+                hex(LOAD),
+                tails.join(" ")
+            ));
+            for tip in &line.tips {
+                text.push_str(&arrow_svg(
+                    frame.pxf(tip + up),
+                    frame.pxf(*tip),
+                    LOAD,
+                    1.5,
+                    7.0,
+                ));
+            }
+            let (x, y) = frame.pxf(label.centre);
+            text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
+            text.push_str("</g>\n");
+            for tip in &line.tips {
+                load_boxes.push(
+                    Rect::around(&[frame.pxf(*tip), frame.pxf(tip + up)])
+                        .grown(4.0)
+                        .corners(),
+                );
+            }
+            load_boxes.push(label.rect(&frame).corners());
+        }
+        if !text.is_empty() {
+            svg.raw("line-loads", &text);
+        }
+        let mut text = String::new();
+        for (p, label) in mk.points.iter().zip(&labels) {
+            let (tail, tip) = (frame.pxf(p.tail), frame.pxf(p.tip));
+            text.push_str("<g class=\"point-load\">\n");
+            text.push_str(&arrow_svg(tail, tip, LOAD, 2.5, 12.0));
+            let (x, y) = frame.pxf(label.centre);
+            text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
+            text.push_str("</g>\n");
+            load_boxes.push(Rect::around(&[tail, tip]).grown(7.0).corners());
+            load_boxes.push(label.rect(&frame).corners());
+        }
+        if !text.is_empty() {
+            svg.raw("point-loads", &text);
+        }
+    }
+    obstacles.extend(load_boxes.iter().cloned());
     if !drawing.hinges.is_empty() {
         svg.layer("hinges", |root| {
             for h in drawing.hinges {
@@ -460,15 +592,71 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             }
             Ok(())
         })?;
+        // Numbers beside the circles, away from the joint's middle (outside the extrados,
+        // inside the intrados) unless a load or another number is there, in the order
+        // given: the order of the text summary.
+        let mut text = String::new();
+        let half = 0.5 * HINGE_FONT + 1.0;
+        for (i, h) in drawing.hinges.iter().enumerate() {
+            let at = frame.pxf(Vec2::new(h.x, h.y));
+            let m = frame.pxf(assembly.joints[h.joint].midpoint());
+            let (dx, dy) = (at.0 - m.0, at.1 - m.1);
+            let n = dx.hypot(dy);
+            let (ux, uy) = if n > 1e-9 {
+                (dx / n, dy / n)
+            } else {
+                (0.0, -1.0)
+            };
+            let label = (i + 1).to_string();
+            let place = |deg: f64| {
+                let (s, c) = deg.to_radians().sin_cos();
+                (
+                    at.0 + 17.0 * (c * ux - s * uy),
+                    at.1 + 17.0 * (s * ux + c * uy),
+                )
+            };
+            let (x, y) = [0.0, 45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0]
+                .into_iter()
+                .map(place)
+                .find(|&p| {
+                    let r = Rect::around(&[p]).grown(half);
+                    !load_boxes.iter().any(|o| r.overlaps(o))
+                })
+                .unwrap_or_else(|| place(0.0));
+            load_boxes.push(Rect::around(&[(x, y)]).grown(half).corners());
+            text.push_str(&format!(
+                "<text class=\"hinge-number\" x=\"{x:.1}\" y=\"{y:.1}\" dy=\"0.35em\" \
+                 text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"{HINGE_FONT}\" \
+                 font-weight=\"bold\" fill=\"{}\" stroke=\"white\" stroke-width=\"3\" \
+                 stroke-linejoin=\"round\" paint-order=\"stroke\">{label}</text>\n",
+                hex(HINGE)
+            ));
+            obstacles.push(Rect::around(&[at]).grown(9.0).corners());
+            obstacles.push(
+                Rect::around(&[(x, y)])
+                    .grown(0.5 * HINGE_FONT + 2.0)
+                    .corners(),
+            );
+        }
+        svg.raw("hinge-numbers", &text);
     }
+    if let Some(d) = drawing.load {
+        let glyph = SeismicGlyph::new(d, vertical_ratio);
+        // Within the structure's box (the fill is no obstacle: the labels have a halo).
+        let region = Rect {
+            x0: frame.cx - 0.5 * plot_w,
+            y0: top + pad,
+            x1: frame.cx + 0.5 * plot_w,
+            y1: top + pad + plot_h,
+        }
+        .grown(-6.0);
+        let origin = free_spot(&glyph.bounds, &region, &obstacles);
+        svg.raw("seismic", &glyph.svg(origin));
+    }
+    svg.raw("scale-bar", &bar.svg(bar_right, bar_y));
     svg.layer("title", |root| {
         let mut y = margin;
-        for (i, line) in title_lines.iter().enumerate() {
-            let (px, h, bold) = if i == 0 {
-                (20.0, 28.0, true)
-            } else {
-                (15.0, 22.0, false)
-            };
+        for &(line, px, h, bold) in &title_lines {
             let mut font = ("sans-serif", font_size(px)).into_font();
             if bold {
                 font = font.style(FontStyle::Bold);
@@ -488,6 +676,57 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         draw_legend(root, &legend, &legend_rows, margin, legend_top)
     })?;
     Ok(svg.finish(&drawing.title))
+}
+
+/// The mechanism's displacement factor in words: "scaled x0.19" below 1, "amplified x3" above.
+fn factor_words(a: f64) -> String {
+    if (a - 1.0).abs() < 0.005 {
+        "to scale (x1)".to_string()
+    } else if a > 1.0 {
+        format!("amplified x{}", sig(a))
+    } else {
+        format!("scaled x{}", sig(a))
+    }
+}
+
+/// The legend text of the seismic load.
+fn seismic_words(d: Direction, loads: Option<&LoadCase>) -> String {
+    let r = loads.map_or(0.0, |l| l.vertical_ratio());
+    let masses = loads.is_some_and(|l| {
+        l.applied()
+            .iter()
+            .any(|a| a.source != LoadSource::SelfWeight && a.seismic_weight > 0.0)
+    });
+    let at = if masses {
+        "each seismic mass (blocks and seismic loads)"
+    } else {
+        "each centroid"
+    };
+    if r == 0.0 {
+        format!("horizontal load \u{3bb}W at {at}")
+    } else {
+        let s = match d {
+            Direction::Right => "1",
+            Direction::Left => "-1",
+        };
+        format!("seismic load \u{3bb}W ({s}, r) at {at}, r = {}", sig(r))
+    }
+}
+
+/// Font size (px) that fits `text` into `room` pixels, from `px` down to `min`.
+pub(crate) fn fit_px(text: &str, px: f64, bold: bool, room: f64, min: f64) -> f64 {
+    let w = wide_text_width(text, px, bold);
+    if w <= room {
+        px
+    } else {
+        (px * room / w).max(min)
+    }
+}
+
+/// A generous text width estimate (wider than most sans-serif fonts), for text that must
+/// not leave the canvas.
+pub(crate) fn wide_text_width(text: &str, px: f64, bold: bool) -> f64 {
+    (if bold { 0.66 } else { 0.6 }) * px * text.chars().count() as f64
 }
 
 /// Validate the drawing against the assembly, so nothing below indexes out of range.
@@ -537,6 +776,30 @@ fn check(assembly: &Assembly, d: &Drawing) -> Result<(), SvgError> {
             if !(a.is_finite() && a > 0.0) {
                 return Err(SvgError::Invalid(format!(
                     "mechanism amplification {a} must be positive"
+                )));
+            }
+        }
+    }
+    if let Some(l) = d.loads {
+        let nb = assembly.blocks.len();
+        if l.len() != nb {
+            return Err(SvgError::Invalid(format!(
+                "the load case has {} blocks, the assembly {nb}",
+                l.len()
+            )));
+        }
+        let finite = |p: &Vec2| p.x.is_finite() && p.y.is_finite();
+        for a in l.applied() {
+            if a.block >= nb {
+                return Err(SvgError::Invalid(format!(
+                    "a load on block {}, but there are {nb} blocks",
+                    a.block
+                )));
+            }
+            if !(finite(&a.point) && finite(&a.force) && a.region.iter().flatten().all(finite)) {
+                return Err(SvgError::Invalid(format!(
+                    "a load on block {} has non-finite values",
+                    a.block
                 )));
             }
         }
@@ -701,57 +964,6 @@ fn chain(segments: &[(Px, Px)]) -> Vec<Vec<Px>> {
     out
 }
 
-/// The funicular polygon of a chain: pressure points joined through the corners where the
-/// force lines of consecutive joints meet, in runs broken where a joint carries no force.
-fn line_of_action(
-    assembly: &Assembly,
-    forces: &[JointForce],
-    points: &[Option<Vec2>],
-) -> Vec<Vec<Vec2>> {
-    let dir = |k: usize| {
-        let j = &assembly.joints[k];
-        forces[k].n * j.normal() + forces[k].v * j.tangent()
-    };
-    let mut seq: Vec<Option<Vec2>> = Vec::new();
-    for k in 0..assembly.joints.len() {
-        seq.push(points[k]);
-        if k < assembly.blocks.len() {
-            let corner = match (points[k], points[k + 1]) {
-                (Some(a), Some(b)) => {
-                    let (da, db) = (dir(k), dir(k + 1));
-                    let den = crate::geometry::cross(da, db);
-                    let bl = &assembly.blocks[k];
-                    if den.abs() > 1e-12 * da.norm() * db.norm() {
-                        // a + s da = b + r db  =>  s = ((b - a) x db) / (da x db)
-                        let s = crate::geometry::cross(b - a, db) / den;
-                        let c = a + s * da;
-                        // Nearly parallel forces (a pier course under a small lambda, the
-                        // block at a support) put the corner outside the block, even below
-                        // the ground: true, but it reads as a stray spike. Draw the corner
-                        // only where the line turns inside the block; elsewhere the run
-                        // joins the pressure points.
-                        inside(&bl.polygon, c).then_some(c)
-                    } else {
-                        None
-                    }
-                }
-                _ => None,
-            };
-            if let Some(c) = corner {
-                seq.push(Some(c));
-            }
-        }
-    }
-    runs(seq.into_iter())
-}
-
-/// Whether `p` lies in the convex polygon `poly` (either orientation), edges included.
-fn inside(poly: &[Vec2], p: Vec2) -> bool {
-    let n = poly.len();
-    let side = |k: usize| crate::geometry::cross(poly[(k + 1) % n] - poly[k], p - poly[k]);
-    (0..n).all(|k| side(k) >= 0.0) || (0..n).all(|k| side(k) <= 0.0)
-}
-
 /// Runs of consecutive `Some` points.
 fn runs(points: impl Iterator<Item = Option<Vec2>>) -> Vec<Vec<Vec2>> {
     let mut out = Vec::new();
@@ -770,6 +982,616 @@ fn runs(points: impl Iterator<Item = Option<Vec2>>) -> Vec<Vec<Vec2>> {
         out.push(cur);
     }
     out
+}
+
+// ---------------------------------------------------------------------------------------------
+// Loads.
+
+/// Share of the structure's size taken by the arrow of the largest point load.
+pub const POINT_LOAD_SHARE: f64 = 0.15;
+/// Share of the structure's size taken by the arrows of line loads.
+const LINE_LOAD_SHARE: f64 = 0.05;
+/// Spacing of the arrows of a line load, as a share of the structure's size.
+const LINE_LOAD_SPACING: f64 = 0.045;
+/// Font size (px) of load labels and hinge numbers.
+const LOAD_FONT: f64 = 13.0;
+const HINGE_FONT: f64 = 13.0;
+
+/// A point load as drawn: an arrow from `tail` to `tip`, the point of application.
+struct PointMark {
+    tail: Vec2,
+    tip: Vec2,
+    label: String,
+}
+
+/// A line load as drawn: a row of arrows of length `len` ending on the extrados.
+struct LineMark {
+    /// The loaded extrados, in x order (the arrows' tails run `len` above it).
+    path: Vec<Vec2>,
+    /// Arrow tips, on `path`.
+    tips: Vec<Vec2>,
+    len: f64,
+    label: String,
+}
+
+/// The loads of a load case as drawn, in world coordinates.
+struct LoadMarks {
+    /// Outlines of the fill regions.
+    fill: Vec<Vec<Vec2>>,
+    points: Vec<PointMark>,
+    lines: Vec<LineMark>,
+}
+
+/// A text label: centre and half extent in world coordinates.
+struct Label {
+    centre: Vec2,
+    half: Vec2,
+    text: String,
+}
+
+impl Label {
+    fn rect(&self, frame: &Frame) -> Rect {
+        let (x, y) = frame.pxf(self.centre);
+        let (hx, hy) = (self.half.x * frame.scale, self.half.y * frame.scale);
+        Rect {
+            x0: x - hx,
+            y0: y - hy,
+            x1: x + hx,
+            y1: y + hy,
+        }
+    }
+}
+
+impl LoadMarks {
+    /// Fill regions, point loads (a `[[loads]]` entry applied as one piece) and line loads
+    /// (applied as several pieces) of `loads`.
+    fn new(loads: &LoadCase, size: f64) -> LoadMarks {
+        let applied = loads.applied();
+        let fill = applied
+            .iter()
+            .filter(|a| a.source == LoadSource::Fill)
+            .filter_map(|a| a.region.clone())
+            .filter(|r| r.len() >= 3)
+            .collect();
+        let mut groups: std::collections::BTreeMap<usize, Vec<&AppliedLoad>> = Default::default();
+        for a in applied {
+            if let LoadSource::Load(k) = a.source {
+                groups.entry(k).or_default().push(a);
+            }
+        }
+        let fmax = groups
+            .values()
+            .filter(|g| g.len() == 1)
+            .map(|g| g[0].force.norm())
+            .fold(0.0, f64::max);
+        let mut points = Vec::new();
+        let mut lines = Vec::new();
+        for g in groups.values() {
+            if let [a] = g.as_slice() {
+                let f = a.force.norm();
+                if f > 0.0 {
+                    let len = POINT_LOAD_SHARE * size * (f / fmax).max(0.2);
+                    points.push(PointMark {
+                        tail: a.point - a.force * (len / f),
+                        tip: a.point,
+                        label: format!("{} kN", sig(f / 1000.0)),
+                    });
+                }
+            } else if let Some(l) = LineMark::new(g, size) {
+                lines.push(l);
+            }
+        }
+        LoadMarks {
+            fill,
+            points,
+            lines,
+        }
+    }
+
+    /// The fill's top surface: the highest point of its regions.
+    fn level(&self) -> Option<f64> {
+        self.fill.iter().flatten().map(|p| p.y).reduce(f64::max)
+    }
+
+    /// Every point drawn in world coordinates (labels aside).
+    fn world_points(&self) -> Vec<Vec2> {
+        let mut out: Vec<Vec2> = self.fill.iter().flatten().copied().collect();
+        for p in &self.points {
+            out.extend([p.tail, p.tip]);
+        }
+        for l in &self.lines {
+            let up = Vec2::new(0.0, l.len);
+            out.extend(l.path.iter().flat_map(|p| [*p, p + up]));
+        }
+        out
+    }
+
+    /// The labels at drawing scale `scale` (px per m): point loads first, then line loads.
+    /// A point load's label sits beyond its arrow's tail, a line load's above its arrows.
+    fn labels(&self, scale: f64) -> Vec<Label> {
+        let h = LOAD_FONT + 2.0;
+        let size = |text: &str| {
+            Vec2::new(
+                0.5 * (wide_text_width(text, LOAD_FONT, false) + 4.0),
+                0.5 * h,
+            ) / scale
+        };
+        let mut out = Vec::new();
+        for p in &self.points {
+            let d = (p.tip - p.tail).normalize();
+            let half = size(&p.label) * scale;
+            let gap = 5.0 + (half.x * d.x).abs() + (half.y * d.y).abs();
+            out.push(Label {
+                centre: p.tail - d * (gap / scale),
+                half: half / scale,
+                text: p.label.clone(),
+            });
+        }
+        for l in &self.lines {
+            let half = size(&l.label);
+            let (x0, x1) = (l.path[0].x, l.path[l.path.len() - 1].x);
+            let xm = 0.5 * (x0 + x1);
+            // Above the highest tail under the label.
+            let top = l
+                .path
+                .iter()
+                .filter(|p| (p.x - xm).abs() <= half.x)
+                .map(|p| p.y)
+                .chain([
+                    interpolate(&l.path, xm - half.x),
+                    interpolate(&l.path, xm),
+                    interpolate(&l.path, xm + half.x),
+                ])
+                .fold(f64::NEG_INFINITY, f64::max);
+            out.push(Label {
+                centre: Vec2::new(xm, top + l.len + half.y + 4.0 / scale),
+                half,
+                text: l.label.clone(),
+            });
+        }
+        out
+    }
+}
+
+impl LineMark {
+    /// A line load from its pieces (one per loaded block, each `q * overlap` at the middle
+    /// of its overlap, on the extrados). None when it carries nothing.
+    fn new(pieces: &[&AppliedLoad], size: f64) -> Option<LineMark> {
+        let mut pts: Vec<(Vec2, f64)> = pieces.iter().map(|a| (a.point, a.force.norm())).collect();
+        pts.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+        let total: f64 = pts.iter().map(|p| p.1).sum();
+        // Forces are finite (checked), so the total is a number >= 0.
+        if total <= 0.0 {
+            return None;
+        }
+        // The overlaps tile the loaded length, each centred on its piece: the centres of two
+        // neighbours lie (w_i + w_i+1) / 2q apart. This gives q, and the ends of the load.
+        let dx = pts[pts.len() - 1].0.x - pts[0].0.x;
+        let sum: f64 = pts.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1)).sum();
+        let q = sum / dx;
+        let tiled = dx > 0.0
+            && q.is_finite()
+            && pts.windows(2).all(|w| {
+                let want = 0.5 * (w[0].1 + w[1].1);
+                (want - q * (w[1].0.x - w[0].0.x)).abs() <= 1e-6 * want.max(1e-12 * total)
+            });
+        let mut path: Vec<Vec2> = pts.iter().map(|p| p.0).collect();
+        let label = if tiled {
+            let n = pts.len();
+            let start = pts[0].0.x - 0.5 * pts[0].1 / q;
+            let end = pts[n - 1].0.x + 0.5 * pts[n - 1].1 / q;
+            let first = extrapolate(path[0], path[1], start);
+            let last = extrapolate(path[n - 1], path[n - 2], end);
+            path.insert(0, first);
+            path.push(last);
+            format!("q = {} kN/m", sig(q / 1000.0))
+        } else {
+            format!("{} kN in all", sig(total / 1000.0))
+        };
+        let (x0, x1) = (path[0].x, path[path.len() - 1].x);
+        let arrows = (((x1 - x0) / (LINE_LOAD_SPACING * size)).round() as usize).max(1) + 1;
+        let tips = (0..arrows)
+            .map(|i| {
+                let x = x0 + (x1 - x0) * i as f64 / (arrows - 1) as f64;
+                Vec2::new(x, interpolate(&path, x))
+            })
+            .collect();
+        Some(LineMark {
+            path,
+            tips,
+            len: LINE_LOAD_SHARE * size,
+            label,
+        })
+    }
+}
+
+/// The point at abscissa `x` on the line through `a` and `b` (`a` when the line is vertical).
+fn extrapolate(a: Vec2, b: Vec2, x: f64) -> Vec2 {
+    if a.x == b.x {
+        return a;
+    }
+    Vec2::new(x, a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x))
+}
+
+/// The y of the polyline `path` (in x order) at `x`, held at its ends beyond them.
+fn interpolate(path: &[Vec2], x: f64) -> f64 {
+    let n = path.len();
+    if x <= path[0].x {
+        return path[0].y;
+    }
+    if x >= path[n - 1].x {
+        return path[n - 1].y;
+    }
+    let k = path.partition_point(|p| p.x <= x).clamp(1, n - 1);
+    extrapolate(path[k - 1], path[k], x).y
+}
+
+/// The fill: every region shaded, hatched over the whole, and the outline of the union
+/// (its level and end walls: the region edges no other region shares that are horizontal
+/// or vertical; the rest lies on the extrados, under the blocks).
+fn fill_svg(regions: &[Vec<Vec2>], frame: &Frame, size: f64) -> String {
+    let fill = hex(FILL);
+    let edge = hex(FILL_EDGE);
+    let mut out = format!(
+        "<defs><pattern id=\"fill-hatch\" patternUnits=\"userSpaceOnUse\" width=\"8\" \
+         height=\"8\" patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" \
+         y2=\"8\" stroke=\"{edge}\" stroke-width=\"1\"/></pattern></defs>\n"
+    );
+    let mut d = String::new();
+    for r in regions {
+        let pts: Vec<String> = r
+            .iter()
+            .map(|p| {
+                let (x, y) = frame.pxf(*p);
+                format!("{x:.1},{y:.1}")
+            })
+            .collect();
+        // A stroke of the fill colour closes the hairline seams between regions.
+        out.push_str(&format!(
+            "<polygon class=\"fill-region\" fill=\"{fill}\" stroke=\"{fill}\" \
+             stroke-width=\"1\" stroke-linejoin=\"round\" points=\"{}\"/>\n",
+            pts.join(" ")
+        ));
+        d.push_str(&format!("M{} Z ", pts.join(" L")));
+    }
+    out.push_str(&format!(
+        "<path fill=\"url(#fill-hatch)\" stroke=\"none\" d=\"{}\"/>\n",
+        d.trim_end()
+    ));
+    let tol = 1e-7 * size;
+    let key = |p: Vec2| ((p.x / tol).round() as i64, (p.y / tol).round() as i64);
+    // Edges by their (rounded) end points, either way round.
+    type EdgeKey = ((i64, i64), (i64, i64));
+    let mut count: std::collections::HashMap<EdgeKey, usize> = Default::default();
+    let edges: Vec<(Vec2, Vec2)> = regions
+        .iter()
+        .flat_map(|r| (0..r.len()).map(move |k| (r[k], r[(k + 1) % r.len()])))
+        .filter(|(a, b)| (a - b).norm() > tol)
+        .collect();
+    let undirected = |a: Vec2, b: Vec2| {
+        let (ka, kb) = (key(a), key(b));
+        if ka <= kb {
+            (ka, kb)
+        } else {
+            (kb, ka)
+        }
+    };
+    for (a, b) in &edges {
+        *count.entry(undirected(*a, *b)).or_default() += 1;
+    }
+    let straight = |a: Vec2, b: Vec2| (a.x - b.x).abs() <= tol || (a.y - b.y).abs() <= tol;
+    let outline: Vec<(Px, Px)> = edges
+        .iter()
+        .filter(|(a, b)| count[&undirected(*a, *b)] == 1 && straight(*a, *b))
+        .map(|(a, b)| (frame.pxf(*a), frame.pxf(*b)))
+        .collect();
+    for line in chain(&outline) {
+        let pts: Vec<String> = line.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+        out.push_str(&format!(
+            "<polyline class=\"fill-outline\" fill=\"none\" stroke=\"{edge}\" \
+             stroke-width=\"1.2\" points=\"{}\"/>\n",
+            pts.join(" ")
+        ));
+    }
+    out
+}
+
+/// An arrow from `tail` to `tip` (pixels): a shaft and a filled head whose first point is
+/// the tip.
+fn arrow_svg(tail: Px, tip: Px, colour: RGBColor, width: f64, head: f64) -> String {
+    let (dx, dy) = (tip.0 - tail.0, tip.1 - tail.1);
+    let len = dx.hypot(dy);
+    if len <= 0.0 {
+        return String::new();
+    }
+    let (ux, uy) = (dx / len, dy / len);
+    let head = head.min(0.6 * len);
+    let back = (tip.0 - head * ux, tip.1 - head * uy);
+    let half = 0.42 * head;
+    let c = hex(colour);
+    format!(
+        "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{c}\" \
+         stroke-width=\"{width}\"/>\n<polygon class=\"arrow-head\" fill=\"{c}\" \
+         points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\"/>\n",
+        tail.0,
+        tail.1,
+        back.0 + 0.3 * head * ux,
+        back.1 + 0.3 * head * uy,
+        tip.0,
+        tip.1,
+        back.0 - half * uy,
+        back.1 + half * ux,
+        back.0 + half * uy,
+        back.1 - half * ux,
+    )
+}
+
+/// A label centred vertically at `(x, y)` (pixels), with a white halo so it reads over lines
+/// and shading.
+fn text_svg(x: f64, y: f64, px: f64, anchor: &str, colour: RGBColor, s: &str) -> String {
+    format!(
+        "<text x=\"{x:.1}\" y=\"{y:.1}\" dy=\"0.35em\" text-anchor=\"{anchor}\" \
+         font-family=\"sans-serif\" font-size=\"{px}\" fill=\"{}\" stroke=\"white\" \
+         stroke-width=\"3\" stroke-linejoin=\"round\" paint-order=\"stroke\">{}</text>\n",
+        hex(colour),
+        escape(s)
+    )
+}
+
+/// An axis-aligned rectangle in pixels.
+#[derive(Debug, Clone, Copy)]
+struct Rect {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+}
+
+impl Rect {
+    fn around(pts: &[Px]) -> Rect {
+        pts.iter().fold(
+            Rect {
+                x0: f64::INFINITY,
+                y0: f64::INFINITY,
+                x1: f64::NEG_INFINITY,
+                y1: f64::NEG_INFINITY,
+            },
+            |r, p| Rect {
+                x0: r.x0.min(p.0),
+                y0: r.y0.min(p.1),
+                x1: r.x1.max(p.0),
+                y1: r.y1.max(p.1),
+            },
+        )
+    }
+    fn union(&self, o: &Rect) -> Rect {
+        Rect {
+            x0: self.x0.min(o.x0),
+            y0: self.y0.min(o.y0),
+            x1: self.x1.max(o.x1),
+            y1: self.y1.max(o.y1),
+        }
+    }
+    fn grown(&self, by: f64) -> Rect {
+        Rect {
+            x0: self.x0 - by,
+            y0: self.y0 - by,
+            x1: self.x1 + by,
+            y1: self.y1 + by,
+        }
+    }
+    fn shifted(&self, (x, y): Px) -> Rect {
+        Rect {
+            x0: self.x0 + x,
+            y0: self.y0 + y,
+            x1: self.x1 + x,
+            y1: self.y1 + y,
+        }
+    }
+    fn corners(&self) -> Vec<Px> {
+        vec![
+            (self.x0, self.y0),
+            (self.x1, self.y0),
+            (self.x1, self.y1),
+            (self.x0, self.y1),
+        ]
+    }
+    /// Whether the rectangle overlaps the convex polygon `poly` (separating axes).
+    fn overlaps(&self, poly: &[Px]) -> bool {
+        let b = Rect::around(poly);
+        if b.x1 < self.x0 || b.x0 > self.x1 || b.y1 < self.y0 || b.y0 > self.y1 {
+            return false;
+        }
+        let corners = self.corners();
+        let n = poly.len();
+        for k in 0..n {
+            let (a, c) = (poly[k], poly[(k + 1) % n]);
+            let axis = (a.1 - c.1, c.0 - a.0);
+            let proj = |p: &Px| p.0 * axis.0 + p.1 * axis.1;
+            let (lo, hi) = poly
+                .iter()
+                .map(proj)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+            let (rl, rh) = corners
+                .iter()
+                .map(proj)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+            if rh < lo || rl > hi {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// The first place (reading order: rows from the top, each from the left) where `bounds`,
+/// shifted by the returned offset, lies inside `region` and clear of every obstacle; the top
+/// left of `region` when there is none (or `region` is too small).
+fn free_spot(bounds: &Rect, region: &Rect, obstacles: &[Vec<Px>]) -> Px {
+    let step = 6.0;
+    let fallback = (region.x0 - bounds.x0, region.y0 - bounds.y0);
+    let boxes: Vec<Rect> = obstacles.iter().map(|o| Rect::around(o)).collect();
+    let mut y = region.y0 - bounds.y0;
+    while y + bounds.y1 <= region.y1 {
+        let mut x = region.x0 - bounds.x0;
+        while x + bounds.x1 <= region.x1 {
+            let r = bounds.shifted((x, y));
+            let clear = obstacles.iter().zip(&boxes).all(|(o, b)| {
+                b.x1 < r.x0 || b.x0 > r.x1 || b.y1 < r.y0 || b.y0 > r.y1 || !r.overlaps(o)
+            });
+            if clear {
+                return (x, y);
+            }
+            x += step;
+        }
+        y += step;
+    }
+    fallback
+}
+
+/// The seismic load arrow drawn on the structure: `lambda g` across in the direction of the
+/// ground motion, and its vertical component `r lambda g` from the same tail when r != 0.
+struct SeismicGlyph {
+    /// +1 toward +x, -1 toward -x.
+    sign: f64,
+    r: f64,
+    /// Extent of everything drawn, relative to the common tail.
+    bounds: Rect,
+}
+
+/// Length (px) of the horizontal seismic arrow.
+const SEISMIC_ARROW: f64 = 64.0;
+const SEISMIC_FONT: f64 = 15.0;
+
+impl SeismicGlyph {
+    fn new(d: Direction, r: f64) -> SeismicGlyph {
+        let sign = d.sign();
+        let mut g = SeismicGlyph {
+            sign,
+            r,
+            bounds: Rect::around(&[(0.0, 0.0)]),
+        };
+        let mut b = Rect::around(&[(0.0, -8.0), (sign * SEISMIC_ARROW, 8.0)]);
+        let (lx, ly) = g.label_at();
+        let half = 0.5 * wide_text_width("\u{3bb}g", SEISMIC_FONT, true);
+        b = b.union(&Rect::around(&[
+            (lx - half, ly - 9.0),
+            (lx + half, ly + 9.0),
+        ]));
+        if let Some((tip, (vx, vy), text)) = g.vertical() {
+            let w = wide_text_width(&text, LOAD_FONT, false);
+            let x_far = vx - sign * w;
+            b = b.union(&Rect::around(&[
+                (-8.0, 0.0),
+                (8.0, tip.1),
+                (x_far, vy - 9.0),
+                (vx, vy + 9.0),
+            ]));
+        }
+        g.bounds = b.grown(4.0);
+        g
+    }
+
+    /// Centre of the `lambda g` label, relative to the tail.
+    fn label_at(&self) -> Px {
+        (0.5 * self.sign * SEISMIC_ARROW, -13.0)
+    }
+
+    /// The vertical component: its tip, its label's anchor (on the side away from the
+    /// horizontal arrow) and text, relative to the tail. None when r = 0.
+    fn vertical(&self) -> Option<(Px, Px, String)> {
+        if self.r == 0.0 {
+            return None;
+        }
+        // To scale, but long enough to show its head.
+        let len = (self.r.abs() * SEISMIC_ARROW).max(18.0);
+        let tip = (0.0, -self.r.signum() * len);
+        let label = (-self.sign * 7.0, 0.5 * tip.1);
+        Some((tip, label, format!("r\u{b7}\u{3bb}g, r = {}", sig(self.r))))
+    }
+
+    fn svg(&self, origin: Px) -> String {
+        let at = |p: Px| (origin.0 + p.0, origin.1 + p.1);
+        let mut out = String::from("<g class=\"seismic-load\">\n");
+        out.push_str(&arrow_svg(
+            at((0.0, 0.0)),
+            at((self.sign * SEISMIC_ARROW, 0.0)),
+            SEISMIC,
+            2.5,
+            12.0,
+        ));
+        let (lx, ly) = at(self.label_at());
+        out.push_str(&format!(
+            "<text x=\"{lx:.1}\" y=\"{ly:.1}\" dy=\"0.35em\" text-anchor=\"middle\" \
+             font-family=\"sans-serif\" font-size=\"{SEISMIC_FONT}\" font-weight=\"bold\" \
+             fill=\"{}\" stroke=\"white\" stroke-width=\"3\" stroke-linejoin=\"round\" \
+             paint-order=\"stroke\">\u{3bb}g</text>\n",
+            hex(SEISMIC)
+        ));
+        if let Some((tip, label, text)) = self.vertical() {
+            out.push_str(&arrow_svg(at((0.0, 0.0)), at(tip), SEISMIC, 2.0, 10.0));
+            let (x, y) = at(label);
+            let anchor = if self.sign > 0.0 { "end" } else { "start" };
+            out.push_str(&text_svg(x, y, LOAD_FONT, anchor, SEISMIC, &text));
+        }
+        out.push_str("</g>\n");
+        out
+    }
+}
+
+/// A scale bar of a round length (1, 2 or 5 times a power of ten).
+struct ScaleBar {
+    /// Length (m).
+    length: f64,
+    /// Length (px).
+    px: f64,
+}
+
+impl ScaleBar {
+    /// The largest round length up to a quarter of `extent` (m), at `scale` px per m.
+    fn new(extent: f64, scale: f64) -> ScaleBar {
+        let target = 0.25 * extent;
+        let p = 10f64.powf(target.log10().floor());
+        let length = [5.0, 2.0, 1.0]
+            .iter()
+            .map(|m| m * p)
+            .find(|&l| l <= target * (1.0 + 1e-9))
+            .unwrap_or(p);
+        ScaleBar {
+            length,
+            px: length * scale,
+        }
+    }
+
+    /// The bar ending at `right`, centred on `y` (pixels): two halves, dark and light, and
+    /// its length to the left.
+    fn svg(&self, right: f64, y: f64) -> String {
+        let x0 = right - self.px;
+        let h = 6.0;
+        let half = 0.5 * self.px;
+        let dark = hex(TEXT);
+        let mut out = format!(
+            "<rect x=\"{x0:.1}\" y=\"{:.1}\" width=\"{half:.2}\" height=\"{h}\" fill=\"{dark}\"/>\n",
+            y - 0.5 * h
+        );
+        out.push_str(&format!(
+            "<rect class=\"scale-bar\" x=\"{x0:.2}\" y=\"{:.1}\" width=\"{:.2}\" height=\"{h}\" \
+             fill=\"none\" stroke=\"{dark}\" stroke-width=\"1\"/>\n",
+            y - 0.5 * h,
+            self.px
+        ));
+        let label = if self.length >= 0.01 {
+            format!("{} m", sig(self.length))
+        } else {
+            format!("{} mm", sig(1000.0 * self.length))
+        };
+        out.push_str(&text_svg(x0 - 8.0, y, 13.0, "end", TEXT, &label));
+        out
+    }
 }
 
 fn closed<T: Copy>(mut pts: Vec<T>) -> Vec<T> {
@@ -937,7 +1759,10 @@ pub(crate) enum Glyph {
     Marked(RGBColor),
     Hinge,
     Ground,
-    Text(String),
+    /// Shaded, hatched fill region.
+    Fill,
+    /// An arrow of this colour, pointing left when true.
+    Arrow(RGBColor, bool),
 }
 
 pub(crate) const LEGEND_ROW: f64 = 24.0;
@@ -1059,15 +1884,36 @@ pub(crate) fn draw_legend(
                     .map_err(plot_err)?;
                 }
             }
-            Glyph::Text(s) => {
-                let big = TextStyle::from(("sans-serif", font_size(22.0)).into_font())
-                    .color(&TEXT)
-                    .pos(plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Center,
-                    ));
-                root.draw(&Text::new(s.clone(), ((x0 + x1) / 2, yc), big))
+            Glyph::Fill => {
+                root.draw(&Rectangle::new([(x0, yc - 7), (x1, yc + 7)], FILL.filled()))
                     .map_err(plot_err)?;
+                for k in 0..3 {
+                    let x = x0 + 1 + 8 * k;
+                    root.draw(&PathElement::new(
+                        vec![(x, yc + 6), (x + 12, yc - 6)],
+                        FILL_EDGE.stroke_width(1),
+                    ))
+                    .map_err(plot_err)?;
+                }
+                root.draw(&PathElement::new(
+                    vec![(x0, yc - 7), (x1, yc - 7)],
+                    FILL_EDGE.stroke_width(1),
+                ))
+                .map_err(plot_err)?;
+            }
+            Glyph::Arrow(c, left) => {
+                let (from, to) = if *left { (x1, x0) } else { (x0, x1) };
+                let back = if *left { to + 9 } else { to - 9 };
+                root.draw(&PathElement::new(
+                    vec![(from, yc), (back, yc)],
+                    c.stroke_width(2),
+                ))
+                .map_err(plot_err)?;
+                root.draw(&Polygon::new(
+                    vec![(to, yc), (back, yc - 5), (back, yc + 5)],
+                    c.filled(),
+                ))
+                .map_err(plot_err)?;
             }
         }
         let text_style = style.pos(plotters::style::text_anchor::Pos::new(

@@ -3,8 +3,8 @@
 //! `cargo bench --bench kinematic`. Targets: n = 128 under 0.2 s, continuous under 1 ms.
 
 use std::time::Instant;
-use voussoir::assembly::Assembly;
 use voussoir::kinematic::{self, KinematicSettings};
+use voussoir::model;
 use voussoir::scene::Scene;
 
 fn scene(text: &str) -> Scene {
@@ -39,7 +39,7 @@ fn main() {
         ("portal semicircle n=128, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=128\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
     ];
     for (label, text) in cases {
-        let asm = Assembly::from_scene(&scene(text));
+        let asm = model::build(&scene(text)).expect("valid model");
         let par = KinematicSettings::default();
         let seq = KinematicSettings {
             parallel: false,
@@ -50,7 +50,7 @@ fn main() {
         match r {
             Ok(r) => println!(
                 "{label:<40} {:>6} {:>12} {:>12.8} {:>10.2} {:>10.2}",
-                asm.joints.len(),
+                asm.assembly.joints.len(),
                 r.candidates,
                 r.lambda_upper.unwrap_or(f64::NAN),
                 1e3 * tp,

@@ -7,10 +7,10 @@
 use std::time::Instant;
 
 use voussoir::analysis::Options;
-use voussoir::assembly::Assembly;
 use voussoir::convergence::loglog_slope;
 use voussoir::dem::{IntegrationParameters, Simulation};
 use voussoir::kinematic::{self, KinematicSettings};
+use voussoir::model;
 use voussoir::scene::Scene;
 use voussoir::sweep;
 
@@ -48,12 +48,13 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|");
     let mut pts = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
-        let a = Assembly::from_scene(&semicircle(n));
+        let m = model::build(&semicircle(n)).expect("valid model");
+        let a = &m.assembly;
         let ks = KinematicSettings {
             parallel: false,
             ..KinematicSettings::default()
         };
-        let (t, r) = time(if n <= 32 { 9 } else { 3 }, || kinematic::analyse(&a, &ks));
+        let (t, r) = time(if n <= 32 { 9 } else { 3 }, || kinematic::analyse(&m, &ks));
         let r = r.expect("kinematic search");
         println!(
             "| {n} | {} | {} | {:.6} | {:.3} |",
@@ -98,9 +99,10 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|");
     let mut pts = Vec::new();
     for n in [8usize, 16, 32, 64, 128, 256] {
-        let a = Assembly::from_scene(&semicircle(n));
-        let p = IntegrationParameters::for_assembly(&a);
-        let mut sim = Simulation::new(&a, &p).expect("simulation");
+        let m = model::build(&semicircle(n)).expect("valid model");
+        let a = &m.assembly;
+        let p = IntegrationParameters::for_assembly(a);
+        let mut sim = Simulation::new(&m, &p).expect("simulation");
         sim.set_load(1.0, 0.05);
         let steps = (400_000 / n).max(2000);
         let (t, _) = time(3, || {

@@ -10,9 +10,9 @@
 use std::time::Instant;
 
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
-use voussoir::assembly::Assembly;
 use voussoir::convergence::loglog_slope;
 use voussoir::lp::{self, Objective, StaticProblem, StaticSettings};
+use voussoir::model;
 use voussoir::scene::Scene;
 
 fn semicircle(n: usize) -> Scene {
@@ -63,10 +63,11 @@ struct Split {
 /// assembly, AMD ordering, symbolic factorisation), and its iterations.
 fn split(scene: &Scene, s: clarabel::solver::DefaultSettings<f64>) -> Split {
     let t0 = Instant::now();
-    let a = Assembly::from_scene(scene);
+    let m = model::build(scene).expect("valid model");
     let t1 = Instant::now();
     let p = StaticProblem::new(
-        &a,
+        &m.assembly,
+        &m.loads,
         Objective::MaxLambda {
             sign: 1.0,
             cap: None,
@@ -114,8 +115,8 @@ fn main() {
             (0..reps)
                 .map(|_| {
                     let t = Instant::now();
-                    let a = Assembly::from_scene(&scene);
-                    lp::analyse(&a, &StaticSettings::default()).expect("solves");
+                    let m = model::build(&scene).expect("valid model");
+                    lp::analyse(&m, &StaticSettings::default()).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),
@@ -124,12 +125,12 @@ fn main() {
             (0..reps)
                 .map(|_| {
                     let t = Instant::now();
-                    let a = Assembly::from_scene(&scene);
+                    let m = model::build(&scene).expect("valid model");
                     let s = StaticSettings {
                         linear_solver: "faer".into(),
                         ..StaticSettings::default()
                     };
-                    lp::analyse(&a, &s).expect("solves");
+                    lp::analyse(&m, &s).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),

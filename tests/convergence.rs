@@ -200,7 +200,7 @@ fn thousand_voussoirs_acceptance() {
     assert_eq!(a.lower.status, Status::Collapse);
     let l = a.lower.lambda.expect("lambda");
     assert!((l - 0.1443).abs() < 5e-4, "lambda {l}");
-    assert!(a.lower.equilibrium_residual < 1e-9 * a.assembly.total_weight());
+    assert!(a.lower.equilibrium_residual < 1e-9 * a.model.assembly.total_weight());
     let k = a.upper.as_ref().expect("local kinematic search");
     assert_eq!(k.search, voussoir::kinematic::Search::Local);
     assert!(k

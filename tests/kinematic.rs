@@ -3,8 +3,11 @@
 
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
-use voussoir::kinematic::{self, HingeLocation, KinematicError, KinematicSettings};
+use voussoir::kinematic::{
+    self, HingeLocation, KinematicError, KinematicResult, KinematicSettings,
+};
 use voussoir::lp::{self, Direction, StaticSettings, Status};
+use voussoir::model::{self, Model};
 use voussoir::scene::Scene;
 
 fn rect(x0: f64, x1: f64, y0: f64, y1: f64) -> Block {
@@ -35,6 +38,14 @@ fn joint(p1: (f64, f64), p2: (f64, f64), from: Option<usize>, to: Option<usize>)
     }
 }
 
+/// The discrete kinematic analysis of a scene's model.
+fn kinematic_of(
+    scene: &Scene,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, KinematicError> {
+    kinematic::analyse(&model::build(scene)?, settings)
+}
+
 fn semicircle(t: f64, n: usize, shape: &str) -> Scene {
     Scene::from_toml_str(
         &format!("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\nvoussoir_shape = \"{shape}\"\n"),
@@ -49,10 +60,10 @@ fn semicircle(t: f64, n: usize, shape: &str) -> Scene {
 fn single_block_overturns_at_b_over_h() {
     for (b, h) in [(0.5, 2.0), (1.0, 1.0), (0.3, 0.9)] {
         // Ground joint: p1 at the toe (x = b), normal (u_y, -u_x) = (0, 1) into the block.
-        let asm = Assembly {
+        let asm = Model::self_weight(Assembly {
             blocks: vec![rect(0.0, b, 0.0, h)],
             joints: vec![joint((b, 0.0), (0.0, 0.0), None, Some(0))],
-        };
+        });
         let k = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
         assert_eq!(k.status, Status::Collapse);
         let l = k.lambda_upper.expect("lambda");
@@ -90,7 +101,7 @@ fn stepped_column_matches_hand_values() {
             joint((c, i as f64), (-c, i as f64), i.checked_sub(1), Some(i))
         })
         .collect();
-    let asm = Assembly { blocks, joints };
+    let asm = Model::self_weight(Assembly { blocks, joints });
     let k = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
     let l = k.lambda_upper.expect("lambda");
     assert!((l - 0.3).abs() < 1e-12, "{l}");
@@ -104,10 +115,10 @@ fn stepped_column_matches_hand_values() {
     // Remove the top block: joint 1 governs at 0.6 * 0.5 * ... = 0.3 * 0.6 / 0.3 = 0.6 / 1
     // (block of width 0.6, height 1 alone: b/h = 0.6) versus joint 0: 0.5 * 1.6 / (0.5 + 0.9)
     // = 0.5714.
-    let asm2 = Assembly {
-        blocks: asm.blocks[..2].to_vec(),
-        joints: asm.joints[..2].to_vec(),
-    };
+    let asm2 = Model::self_weight(Assembly {
+        blocks: asm.assembly.blocks[..2].to_vec(),
+        joints: asm.assembly.joints[..2].to_vec(),
+    });
     let k2 = kinematic::analyse(&asm2, &KinematicSettings::default()).expect("kinematic");
     let l2 = k2.lambda_upper.expect("lambda");
     assert!((l2 - 0.8 / 1.4).abs() < 1e-12, "{l2}");
@@ -122,7 +133,7 @@ fn stepped_column_matches_hand_values() {
 #[test]
 fn portal_frame_sways_at_b_over_h() {
     let (s, b, h, d) = (1.0, 0.4, 2.0, 0.3);
-    let asm = Assembly {
+    let asm = Model::self_weight(Assembly {
         blocks: vec![
             rect(-s - b, -s, 0.0, h),
             rect(-s - b, s + b, h, h + d),
@@ -134,8 +145,8 @@ fn portal_frame_sways_at_b_over_h() {
             joint((s, h), (s + b, h), Some(1), Some(2)),
             joint((s, 0.0), (s + b, 0.0), Some(2), None),
         ],
-    };
-    assert!(asm.is_chain());
+    });
+    assert!(asm.assembly.is_chain());
     let k = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
     let l = k.lambda_upper.expect("lambda");
     assert!((l - b / h).abs() < 1e-12, "{l}");
@@ -208,11 +219,8 @@ fn discrete_converges_to_continuous() {
         .expect("lambda");
     let mut last = f64::INFINITY;
     for n in [16, 64, 256] {
-        let k = kinematic::lambda_upper_of_scene(
-            &semicircle(t, n, "curved"),
-            &KinematicSettings::default(),
-        )
-        .expect("discrete");
+        let k = kinematic_of(&semicircle(t, n, "curved"), &KinematicSettings::default())
+            .expect("discrete");
         let err = k.lambda_upper.expect("lambda") - lc;
         assert!(
             err >= -1e-12,
@@ -252,8 +260,7 @@ fn continuous_below_discrete_for_every_shape() {
                 let s = scene
                     .with_value("arch.voussoirs", toml::Value::Integer(n))
                     .expect("n");
-                let k =
-                    kinematic::lambda_upper_of_scene(&s, &KinematicSettings::default()).expect("k");
+                let k = kinematic_of(&s, &KinematicSettings::default()).expect("k");
                 let ld = k.lambda_signed.expect("lambda");
                 assert!(
                     ld >= lc - 1e-12,
@@ -269,7 +276,7 @@ fn continuous_below_discrete_for_every_shape() {
 #[test]
 fn direction_and_scale_invariance() {
     let scene = semicircle(0.17, 24, "polygon");
-    let asm = Assembly::from_scene(&scene);
+    let asm = model::build(&scene).expect("valid model");
     let r = kinematic::analyse(&asm, &KinematicSettings::default()).expect("right");
     let l = kinematic::analyse(
         &asm,
@@ -278,7 +285,7 @@ fn direction_and_scale_invariance() {
     .expect("left");
     let (lr, ll) = (r.lambda_upper.expect("r"), l.lambda_upper.expect("l"));
     assert!((lr - ll).abs() < 1e-12 * lr);
-    let n = asm.joints.len() - 1;
+    let n = asm.assembly.joints.len() - 1;
     let flip = |e| {
         if e == JointEnd::P1 {
             JointEnd::P1
@@ -307,7 +314,7 @@ fn direction_and_scale_invariance() {
         "test",
     )
     .expect("scene");
-    let lb = kinematic::lambda_upper_of_scene(&big, &KinematicSettings::default())
+    let lb = kinematic_of(&big, &KinematicSettings::default())
         .expect("big")
         .lambda_upper
         .expect("lambda");
@@ -324,7 +331,11 @@ fn kinematic_minimum_thickness_matches_static() {
     while hi - lo > 1e-9 {
         let mid = 0.5 * (lo + hi);
         let s = base.with_thickness(mid).expect("t");
-        if kinematic::stands(&s, &KinematicSettings::default()).expect("k") {
+        if kinematic_of(&s, &KinematicSettings::default())
+            .expect("k")
+            .status
+            != Status::CannotStand
+        {
             hi = mid;
         } else {
             lo = mid;
@@ -333,7 +344,7 @@ fn kinematic_minimum_thickness_matches_static() {
     let tk = 0.5 * (lo + hi);
     let status = |t: f64| {
         lp::analyse(
-            &Assembly::from_scene(&base.with_thickness(t).expect("t")),
+            &model::build(&base.with_thickness(t).expect("t")).expect("valid model"),
             &StaticSettings::default(),
         )
         .expect("static")
@@ -355,14 +366,14 @@ fn kinematic_minimum_thickness_matches_static() {
 #[test]
 fn errors_are_typed() {
     // Not a chain: a joint between the ground and the ground.
-    let asm = Assembly {
+    let asm = Model::self_weight(Assembly {
         blocks: vec![rect(0.0, 1.0, 0.0, 1.0)],
         joints: vec![
             joint((1.0, 0.0), (0.0, 0.0), None, Some(0)),
             joint((1.0, 1.0), (0.0, 1.0), Some(0), None),
             joint((1.0, 0.0), (1.0, 0.5), Some(0), None),
         ],
-    };
+    });
     assert!(matches!(
         kinematic::analyse(&asm, &KinematicSettings::default()),
         Err(KinematicError::NotAChain)
@@ -372,7 +383,7 @@ fn errors_are_typed() {
         ..KinematicSettings::default()
     };
     assert!(matches!(
-        kinematic::lambda_upper_of_scene(&semicircle(0.2, 16, "polygon"), &settings),
+        kinematic_of(&semicircle(0.2, 16, "polygon"), &settings),
         Err(KinematicError::TooManyJoints {
             joints: 17,
             max: 10
@@ -407,7 +418,7 @@ fn continuous_matches_fine_discrete(texts: &[String]) -> f64 {
         let scene = finest(text, 128);
         let n = scene.arch.voussoirs;
         let c = kinematic::continuous(&scene).expect("continuous");
-        let k = kinematic::lambda_upper_of_scene(&scene, &settings).expect("discrete");
+        let k = kinematic_of(&scene, &settings).expect("discrete");
         assert_eq!(c.status, k.status, "n = {n}:\n{text}");
         let lc = c.lambda_signed.expect("continuous lambda");
         let ld = k.lambda_signed.expect("discrete lambda");

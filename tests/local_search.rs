@@ -6,9 +6,9 @@
 mod common;
 
 use voussoir::analysis::{self, Options};
-use voussoir::assembly::Assembly;
 use voussoir::kinematic::{self, KinematicError, KinematicResult, KinematicSettings, Search};
 use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
+use voussoir::model::Model;
 use voussoir::report::AnalysisReport;
 use voussoir::scene::Scene;
 
@@ -31,7 +31,7 @@ fn portal(n: usize, courses: usize, friction: &str) -> Scene {
     ))
 }
 
-fn statics(asm: &Assembly, dir: Direction) -> StaticResult {
+fn statics(asm: &Model, dir: Direction) -> StaticResult {
     let st = lp::analyse(asm, &StaticSettings::default().direction(dir)).expect("static solve");
     assert_eq!(st.status, Status::Collapse);
     st
@@ -84,21 +84,21 @@ fn local_equals_exhaustive_on_small_chains() {
     let window = 8;
     let mut local_runs = 0;
     for (label, scene, dir) in cases {
-        let asm = Assembly::from_scene(&scene);
+        let asm = common::model_of(&scene);
         let st = statics(&asm, dir);
         let settings = KinematicSettings::default().direction(dir);
         let ex = kinematic::analyse(&asm, &settings).expect("exhaustive");
         let loc = kinematic::analyse_local(&asm, &st, &settings, window).expect("local");
         assert_eq!(ex.search, Search::Exhaustive);
-        assert_eq!(ex.searched_joints, asm.joints.len());
+        assert_eq!(ex.searched_joints, asm.assembly.joints.len());
         if loc.search == Search::Local {
             local_runs += 1;
-            assert!(loc.searched_joints < asm.joints.len(), "{label}");
+            assert!(loc.searched_joints < asm.assembly.joints.len(), "{label}");
             assert!(loc.candidates < ex.candidates, "{label}");
             assert!(loc.note.as_deref().is_some_and(|n| n.contains("local")));
         } else {
             // The window covered every joint: then it is the exhaustive search, said so.
-            assert_eq!(loc.searched_joints, asm.joints.len(), "{label}");
+            assert_eq!(loc.searched_joints, asm.assembly.joints.len(), "{label}");
         }
         assert_eq!(loc.status, Status::Collapse, "{label}");
         let (le, ll) = (
@@ -128,7 +128,7 @@ fn local_equals_exhaustive_on_small_chains() {
 /// the governing mechanism.
 #[test]
 fn any_window_bounds_from_above() {
-    let asm = Assembly::from_scene(&common::semicircle(0.15, 64));
+    let asm = common::model_of(&common::semicircle(0.15, 64));
     let settings = KinematicSettings::default();
     let st = statics(&asm, Direction::Right);
     let le = kinematic::analyse(&asm, &settings)
@@ -139,7 +139,8 @@ fn any_window_bounds_from_above() {
     for shift in [-6i64, -3, 3, 6] {
         let mut moved = st.clone();
         for h in &mut moved.hinges {
-            h.joint = (h.joint as i64 + shift).clamp(0, asm.joints.len() as i64 - 1) as usize;
+            h.joint =
+                (h.joint as i64 + shift).clamp(0, asm.assembly.joints.len() as i64 - 1) as usize;
         }
         for window in [1, 2, 4] {
             match kinematic::analyse_local(&asm, &moved, &settings, window) {
@@ -168,7 +169,7 @@ fn any_window_bounds_from_above() {
 /// and it needs a static collapse to locate the mechanism.
 #[test]
 fn local_search_claims_nothing_without_a_mechanism() {
-    let asm = Assembly::from_scene(&common::semicircle(0.15, 64));
+    let asm = common::model_of(&common::semicircle(0.15, 64));
     let settings = KinematicSettings::default();
     let mut st = statics(&asm, Direction::Right);
     // A single joint cannot carry a one-degree-of-freedom mechanism of a two-support chain.
@@ -187,7 +188,7 @@ fn local_search_claims_nothing_without_a_mechanism() {
         Err(KinematicError::LocalNoCentres)
     ));
     // A thin semicircle cannot stand: no local search.
-    let thin = Assembly::from_scene(&common::semicircle(0.05, 64));
+    let thin = common::model_of(&common::semicircle(0.05, 64));
     let st = lp::analyse(&thin, &StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
     assert!(matches!(
@@ -221,7 +222,7 @@ fn local_bound_meets_static_on_large_chains() {
     ];
     for (label, scene) in cases {
         let a = analysis::analyse(&scene, &Options::default()).expect("analysis");
-        assert!(a.assembly.joints.len() > analysis::KINEMATIC_DEFAULT_MAX_JOINTS);
+        assert!(a.model.assembly.joints.len() > analysis::KINEMATIC_DEFAULT_MAX_JOINTS);
         assert_eq!(a.lower.status, Status::Collapse, "{label}");
         assert_eq!(a.kinematic_search, Some(Search::Local), "{label}");
         let k = a.upper.as_ref().expect("local search result");

@@ -4,7 +4,6 @@
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use voussoir::assembly::Assembly;
 use voussoir::lp::{self, StaticSettings};
 use voussoir::scene::Scene;
 
@@ -109,11 +108,14 @@ proptest! {
             }
             Ok(scene) => {
                 ACCEPTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let a = Assembly::from_scene(&scene);
+                let built = voussoir::model::build(&scene);
+                prop_assert!(built.is_ok(), "no model from a valid scene: {:?}\n{}", built.as_ref().err(), text);
+                let m = built.expect("checked");
+                let a = &m.assembly;
                 prop_assert!(a.validate().is_ok(), "invalid assembly from a valid scene:\n{}", text);
                 // Solve only small models, so 10,000 cases run in seconds.
                 if a.blocks.len() <= 40 {
-                    match lp::analyse(&a, &StaticSettings::default()) {
+                    match lp::analyse(&m, &StaticSettings::default()) {
                         Ok(r) => {
                             if let Some(l) = r.lambda {
                                 prop_assert!(l.is_finite() && l >= 0.0);

@@ -3,12 +3,13 @@
 
 mod common;
 use common::*;
-use voussoir::assembly::{equilibrium_residual, Assembly, JointEnd};
+use voussoir::assembly::{equilibrium_residual, JointEnd};
 use voussoir::lp::{self, Direction, StaticSettings, Status};
+use voussoir::model::Model;
 use voussoir::thickness::{self, ThicknessOutcome};
 
 fn lambda(scene: &voussoir::scene::Scene) -> f64 {
-    let r = lp::analyse(&Assembly::from_scene(scene), &StaticSettings::default()).expect("solves");
+    let r = lp::analyse(&model_of(scene), &StaticSettings::default()).expect("solves");
     assert_eq!(r.status, Status::Collapse);
     r.lambda.expect("collapse has a multiplier")
 }
@@ -58,7 +59,11 @@ fn semicircle_thousand_voussoirs_matches_continuous_values() {
 fn single_block_rocks_at_b_over_h_or_slides_at_mu() {
     let (b, h) = (0.4, 1.3);
     for mu in [f64::INFINITY, 0.5, 1.0] {
-        let r = lp::analyse(&single_block(b, h, mu), &StaticSettings::default()).expect("solves");
+        let r = lp::analyse(
+            &Model::self_weight(single_block(b, h, mu)),
+            &StaticSettings::default(),
+        )
+        .expect("solves");
         let l = r.lambda.expect("collapse");
         assert!(
             (l - b / h).abs() <= 1e-8,
@@ -71,7 +76,11 @@ fn single_block_rocks_at_b_over_h_or_slides_at_mu() {
         assert!(r.sliding.is_empty());
     }
     for mu in [0.1, 0.25] {
-        let r = lp::analyse(&single_block(b, h, mu), &StaticSettings::default()).expect("solves");
+        let r = lp::analyse(
+            &Model::self_weight(single_block(b, h, mu)),
+            &StaticSettings::default(),
+        )
+        .expect("solves");
         let l = r.lambda.expect("collapse");
         assert!((l - mu).abs() <= 1e-8, "mu = {mu}: lambda = {l}");
         assert_eq!(r.sliding, vec![0]);
@@ -91,13 +100,14 @@ fn forces_are_in_equilibrium_and_admissible() {
         scene("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.3\nthickness = 0.12\nvoussoirs = 20\n[material]\nfriction = 0.6\n"),
         scene("[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.6\nthickness = 0.15\nvoussoirs = 25\n[piers]\nheight = 1.5\nwidth = 0.5\ncourses = 3\n"),
     ] {
-        let a = Assembly::from_scene(&s);
-        let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+        let m = model_of(&s);
+        let a = &m.assembly;
+        let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
         let l = r.lambda.expect("collapse");
         let w = a.total_weight();
         let f = r.forces.as_ref().expect("forces");
         // Recomputed independently of the program's matrices.
-        let res = equilibrium_residual(&a, f, l, 1.0);
+        let res = equilibrium_residual(a, &m.loads, f, l, 1.0);
         assert!(res < 1e-8 * w, "residual {res} vs weight {w}");
         assert!((res - r.equilibrium_residual).abs() <= 1e-12 * w);
         for (jt, f) in a.joints.iter().zip(f) {
@@ -134,7 +144,7 @@ fn scale_unit_weight_and_depth_do_not_change_lambda() {
 #[test]
 fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
     let s = scene("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.25\nthickness = 0.14\nvoussoirs = 18\n[piers]\nheight = 0.8\nwidth = 0.35\ncourses = 2\n");
-    let a = Assembly::from_scene(&s);
+    let a = model_of(&s);
     let right = lp::analyse(&a, &StaticSettings::default()).expect("solves");
     let left =
         lp::analyse(&a, &StaticSettings::default().direction(Direction::Left)).expect("solves");
@@ -143,13 +153,13 @@ fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
 
     // An asymmetric assembly: a leaning stack. Its capacity to the left equals that of its
     // mirror image to the right.
-    let asym = voussoir::assembly::Assembly {
+    let asym = Model::self_weight(voussoir::assembly::Assembly {
         blocks: vec![rect(-0.3, 0.0, 0.6, 1.0), rect(-0.1, 1.0, 0.5, 0.8)],
         joints: vec![
             hjoint(0.3, -0.3, 0.0, None, Some(0), f64::INFINITY),
             hjoint(0.3, -0.1, 1.0, Some(0), Some(1), f64::INFINITY),
         ],
-    };
+    });
     let l_left = lp::analyse(&asym, &StaticSettings::default().direction(Direction::Left))
         .expect("solves")
         .lambda
@@ -171,8 +181,9 @@ fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
 
 #[test]
 fn block_renumbering_does_not_change_lambda() {
-    let a = Assembly::from_scene(&semicircle(0.2, 12));
-    let l0 = lp::analyse(&a, &StaticSettings::default())
+    let m = model_of(&semicircle(0.2, 12));
+    let a = &m.assembly;
+    let l0 = lp::analyse(&m, &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
@@ -187,7 +198,7 @@ fn block_renumbering_does_not_change_lambda() {
     }
     b.joints.rotate_left(5);
     assert!(!b.is_chain());
-    let l1 = lp::analyse(&b, &StaticSettings::default())
+    let l1 = lp::analyse(&Model::self_weight(b), &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
@@ -202,15 +213,12 @@ fn lambda_rises_with_thickness_and_statuses_are_honest() {
         assert!(l > last, "t = {t}: {l} <= {last}");
         last = l;
     }
-    let thin = lp::analyse(
-        &Assembly::from_scene(&semicircle(0.1, 48)),
-        &StaticSettings::default(),
-    )
-    .expect("solves");
+    let thin =
+        lp::analyse(&model_of(&semicircle(0.1, 48)), &StaticSettings::default()).expect("solves");
     assert_eq!(thin.status, Status::CannotStand);
     assert!(thin.lambda.is_none());
     let flat = lp::analyse(
-        &Assembly::from_scene(&circular(0.3, 16, 60.0, "polygon")),
+        &model_of(&circular(0.3, 16, 60.0, "polygon")),
         &StaticSettings::default(),
     )
     .expect("solves");
@@ -218,7 +226,7 @@ fn lambda_rises_with_thickness_and_statuses_are_honest() {
     assert!(flat.lambda.is_none());
     // With finite friction the same flat arch slides at its springings.
     let slides = lp::analyse(
-        &Assembly::from_scene(
+        &model_of(
             &circular(0.3, 16, 60.0, "polygon")
                 .with_override("material.friction=0.4")
                 .expect("valid"),
@@ -236,7 +244,7 @@ fn too_little_friction_cannot_stand_and_no_thickness_helps() {
     let s = circular(0.3, 16, 240.0, "polygon")
         .with_override("material.friction=0.05")
         .expect("valid");
-    let r = lp::analyse(&Assembly::from_scene(&s), &StaticSettings::default()).expect("solves");
+    let r = lp::analyse(&model_of(&s), &StaticSettings::default()).expect("solves");
     assert_eq!(r.status, Status::CannotStand);
     let m = thickness::min_thickness(&s, &StaticSettings::default()).expect("runs");
     assert_eq!(m.search.outcome, ThicknessOutcome::NeverStands);
@@ -245,8 +253,9 @@ fn too_little_friction_cannot_stand_and_no_thickness_helps() {
 
 #[test]
 fn mechanism_from_duals_is_a_four_hinge_mechanism() {
-    let a = Assembly::from_scene(&semicircle(0.15, 32));
-    let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+    let m = model_of(&semicircle(0.15, 32));
+    let a = &m.assembly;
+    let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(r.hinges.len(), 4);
     // Blocks between consecutive hinges move as rigid bodies: equal rotation rates.
     let joints: Vec<usize> = r.hinges.iter().map(|h| h.joint).collect();
@@ -283,29 +292,32 @@ fn mechanism_from_duals_is_a_four_hinge_mechanism() {
 #[test]
 fn the_model_holds_only_what_the_scene_requires() {
     // No friction rows without friction limits, two per joint with them.
-    let a = Assembly::from_scene(&semicircle(0.15, 16));
-    let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+    let m = model_of(&semicircle(0.15, 16));
+    let a = &m.assembly;
+    let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(r.model.friction_rows, 0);
     assert_eq!(r.model.variables, 1 + 3 * a.joints.len());
     assert_eq!(r.model.equality_rows, 3 * a.blocks.len());
     assert_eq!(r.model.inequality_rows, 2 * a.joints.len());
-    let f = Assembly::from_scene(
+    let mf = model_of(
         &semicircle(0.15, 16)
             .with_override("material.friction=0.6")
             .expect("valid"),
     );
-    let rf = lp::analyse(&f, &StaticSettings::default()).expect("solves");
+    let f = &mf.assembly;
+    let rf = lp::analyse(&mf, &StaticSettings::default()).expect("solves");
     assert_eq!(rf.model.friction_rows, 2 * f.joints.len());
     // No pier blocks without piers; k courses per pier with them.
     assert!(a
         .blocks
         .iter()
         .all(|b| matches!(b.kind, voussoir::assembly::BlockKind::Voussoir(_))));
-    let p = Assembly::from_scene(
+    let p = model_of(
         &semicircle(0.15, 16)
             .with_overrides(&["piers.height=1", "piers.width=0.3", "piers.courses=3"])
             .expect("valid"),
-    );
+    )
+    .assembly;
     assert_eq!(p.blocks.len(), 16 + 2 * 3);
     assert_eq!(p.joints.len(), 17 + 2 * 3);
     assert!(p.is_chain());
@@ -322,8 +334,9 @@ fn reported_resultants_stay_inside_their_joints() {
             .expect("valid"),
         semicircle(0.3, 2),
     ] {
-        let a = Assembly::from_scene(&s);
-        let r = lp::analyse(&a, &StaticSettings::default()).expect("solves");
+        let m = model_of(&s);
+        let a = &m.assembly;
+        let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
         let forces = r.forces.as_ref().expect("collapse");
         for (j, (jt, f)) in a.joints.iter().zip(forces).enumerate() {
             assert!(f.n >= 0.0, "joint {j}: N = {}", f.n);

@@ -3,6 +3,7 @@
 
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
+use voussoir::model::Model;
 use voussoir::scene::Scene;
 
 pub fn circular(t: f64, n: usize, embrace_deg: f64, vs: &str) -> Scene {
@@ -21,6 +22,11 @@ pub fn semicircle(t: f64, n: usize) -> Scene {
 
 pub fn scene(text: &str) -> Scene {
     Scene::from_toml_str(text, "test").expect("valid test scene")
+}
+
+/// The model (assembly and loads) of a scene.
+pub fn model_of(scene: &Scene) -> Model {
+    voussoir::model::build(scene).expect("valid test model")
 }
 
 /// A rectangle `[x0, x0 + b] x [y0, y0 + h]` as a block of unit weight density.

@@ -3,9 +3,8 @@
 //! Run with `cargo bench --bench dem`.
 
 use std::time::Instant;
-use voussoir::dem::{self, IntegrationParameters};
+use voussoir::dem;
 use voussoir::lp;
-use voussoir::model;
 use voussoir::scene::Scene;
 
 fn main() {
@@ -44,14 +43,14 @@ fn main() {
             eprintln!("{name}: bad scene");
             continue;
         };
-        let m = match model::build(&scene) {
+        let m = match voussoir::scene::build(&scene) {
             Ok(m) => m,
             Err(e) => {
                 eprintln!("{name}: {e}");
                 continue;
             }
         };
-        let Ok(p) = IntegrationParameters::from_scene(&scene, &m.assembly) else {
+        let Ok(p) = voussoir::analysis::dem_parameters(&scene, &m) else {
             eprintln!("{name}: bad [dem]");
             continue;
         };

@@ -4,7 +4,6 @@
 
 use std::time::Instant;
 use voussoir::kinematic::{self, KinematicSettings};
-use voussoir::model;
 use voussoir::scene::Scene;
 
 fn scene(text: &str) -> Scene {
@@ -39,7 +38,7 @@ fn main() {
         ("portal semicircle n=128, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=128\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
     ];
     for (label, text) in cases {
-        let asm = model::build(&scene(text)).expect("valid model");
+        let asm = voussoir::scene::build(&scene(text)).expect("valid model");
         let par = KinematicSettings::default();
         let seq = KinematicSettings {
             parallel: false,
@@ -82,8 +81,14 @@ fn main() {
     ];
     for (label, text) in geoms {
         let s = scene(text);
-        let (t, r) = time(20, || kinematic::continuous(&s));
-        let (t1, _) = one.install(|| time(20, || kinematic::continuous(&s)));
+        let (t, r) = time(20, || {
+            voussoir::analysis::continuous(&s, voussoir::outcome::Direction::Right)
+        });
+        let (t1, _) = one.install(|| {
+            time(20, || {
+                voussoir::analysis::continuous(&s, voussoir::outcome::Direction::Right)
+            })
+        });
         match r {
             Ok(r) => println!(
                 "{label:<40} {:>8} {:>7} {:>6} {:>12.8} {:>10.3} {:>10.3}",
@@ -98,7 +103,7 @@ fn main() {
         }
     }
     let s = scene("[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=16\n");
-    let (t, m) = time(1, || kinematic::continuous_min_thickness(&s));
+    let (t, m) = time(1, || voussoir::analysis::continuous_min_thickness(&s));
     if let Ok(m) = m {
         println!(
             "\ncontinuous minimum thickness, semicircle: t/R = {:.6} ({} analyses, {:.1} ms)",

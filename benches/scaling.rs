@@ -10,7 +10,6 @@ use voussoir::analysis::Options;
 use voussoir::convergence::loglog_slope;
 use voussoir::dem::{IntegrationParameters, Simulation};
 use voussoir::kinematic::{self, KinematicSettings};
-use voussoir::model;
 use voussoir::scene::Scene;
 use voussoir::sweep;
 
@@ -48,7 +47,7 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|");
     let mut pts = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
-        let m = model::build(&semicircle(n)).expect("valid model");
+        let m = voussoir::scene::build(&semicircle(n)).expect("valid model");
         let a = &m.assembly;
         let ks = KinematicSettings {
             parallel: false,
@@ -82,7 +81,7 @@ fn main() {
         ("portal, 4 courses", "[arch]\nshape='circular'\nradius=1.0\nthickness=0.2\nvoussoirs=16\n[piers]\nheight=1.0\nwidth=0.4\ncourses=4\n"),
     ] {
         let s = scene(text);
-        let (t, r) = time(21, || kinematic::continuous(&s));
+        let (t, r) = time(21, || voussoir::analysis::continuous(&s, voussoir::outcome::Direction::Right));
         let r = r.expect("continuous model");
         println!(
             "| {label} | {:.6} | {} | {:.3} |",
@@ -99,7 +98,7 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|");
     let mut pts = Vec::new();
     for n in [8usize, 16, 32, 64, 128, 256] {
-        let m = model::build(&semicircle(n)).expect("valid model");
+        let m = voussoir::scene::build(&semicircle(n)).expect("valid model");
         let a = &m.assembly;
         let p = IntegrationParameters::for_assembly(a);
         let mut sim = Simulation::new(&m, &p).expect("simulation");

@@ -12,7 +12,6 @@ use std::time::Instant;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
 use voussoir::convergence::loglog_slope;
 use voussoir::lp::{self, Objective, StaticProblem, StaticSettings};
-use voussoir::model;
 use voussoir::scene::Scene;
 
 fn semicircle(n: usize) -> Scene {
@@ -63,7 +62,7 @@ struct Split {
 /// assembly, AMD ordering, symbolic factorisation), and its iterations.
 fn split(scene: &Scene, s: clarabel::solver::DefaultSettings<f64>) -> Split {
     let t0 = Instant::now();
-    let m = model::build(scene).expect("valid model");
+    let m = voussoir::scene::build(scene).expect("valid model");
     let t1 = Instant::now();
     let p = StaticProblem::new(
         &m.assembly,
@@ -115,7 +114,7 @@ fn main() {
             (0..reps)
                 .map(|_| {
                     let t = Instant::now();
-                    let m = model::build(&scene).expect("valid model");
+                    let m = voussoir::scene::build(&scene).expect("valid model");
                     lp::analyse(&m, &StaticSettings::default()).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
@@ -125,7 +124,7 @@ fn main() {
             (0..reps)
                 .map(|_| {
                     let t = Instant::now();
-                    let m = model::build(&scene).expect("valid model");
+                    let m = voussoir::scene::build(&scene).expect("valid model");
                     let s = StaticSettings {
                         linear_solver: "faer".into(),
                         ..StaticSettings::default()

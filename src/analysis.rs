@@ -5,9 +5,11 @@
 //! they report the same numbers.
 
 use crate::error::AnalysisError;
-use crate::kinematic::{self, ContinuousResult, KinematicResult, KinematicSettings, Search};
+use crate::kinematic::{
+    self, ContinuousResult, KinematicError, KinematicResult, KinematicSettings, Search,
+};
 use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
-use crate::model::{self, Model};
+use crate::model::Model;
 use crate::scene::Scene;
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
@@ -101,7 +103,7 @@ impl SceneAnalysis {
 
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
-    let model = model::build(scene)?;
+    let model = crate::scene::build(scene)?;
     let assembly = &model.assembly;
     let lower = lp::analyse(&model, &options.static_settings)?;
     let settings = KinematicSettings {
@@ -136,7 +138,7 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
     };
     let continuous = options
         .continuous
-        .then(|| kinematic::continuous_with(scene, options.direction()).map_err(|e| e.to_string()));
+        .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
     Ok(SceneAnalysis {
         model,
         lower,
@@ -144,4 +146,103 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         kinematic_search,
         continuous,
     })
+}
+
+/// The continuous kinematic model of a scene (hinges anywhere on the ring), load toward
+/// `direction`.
+pub fn continuous(scene: &Scene, direction: Direction) -> Result<ContinuousResult, KinematicError> {
+    continuous_of(scene, &crate::scene::build(scene)?, direction)
+}
+
+fn continuous_of(
+    scene: &Scene,
+    model: &Model,
+    direction: Direction,
+) -> Result<ContinuousResult, KinematicError> {
+    kinematic::continuous(
+        model,
+        scene.arch.shape.as_ref(),
+        scene.arch.thickness,
+        direction,
+    )
+}
+
+/// The continuous model's minimum thickness of a scene (all else fixed, lambda = 0).
+pub fn continuous_min_thickness(scene: &Scene) -> Result<kinematic::MinThickness, KinematicError> {
+    kinematic::continuous_min_thickness(scene.arch.thickness, scene.max_thickness(), |t| {
+        continuous(&scene.with_thickness(t)?, Direction::Right)
+    })
+}
+
+/// How the DEM check of a scene runs (the stepping knobs come from the scene's `[dem]` table
+/// and the geometry, see [`crate::dem::IntegrationParameters`]).
+#[derive(Debug, Clone)]
+pub struct DemOptions {
+    /// Relative width of the final bracket `[lambda_stands, lambda_collapses]`. Default 0.01.
+    pub tolerance: f64,
+    /// Record block positions during the runs (for snapshots and drawings), every third of the
+    /// load ramp unless the scene sets `dem.snapshot_interval`. Default false.
+    pub snapshots: bool,
+}
+
+impl Default for DemOptions {
+    fn default() -> Self {
+        DemOptions {
+            tolerance: 0.01,
+            snapshots: false,
+        }
+    }
+}
+
+/// A DEM check with the static bound it started from.
+#[derive(Debug, Clone)]
+pub struct DemAnalysis {
+    pub model: Model,
+    /// The static analysis of the same model (its multiplier is the DEM's first guess).
+    pub lower: StaticResult,
+    pub result: crate::dem::DemResult,
+}
+
+/// Check a scene's collapse multiplier with the DEM, starting from its static bound.
+pub fn dem(
+    scene: &Scene,
+    options: &DemOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<DemAnalysis, AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let lower = lp::analyse(&model, &StaticSettings::default())?;
+    let result = dem_of(scene, &model, lower.lambda, options, progress)?;
+    Ok(DemAnalysis {
+        model,
+        lower,
+        result,
+    })
+}
+
+/// The DEM check of `model` (built from `scene`), starting from the static multiplier
+/// `lambda_lower` when there is one.
+pub fn dem_of(
+    scene: &Scene,
+    model: &Model,
+    lambda_lower: Option<f64>,
+    options: &DemOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<crate::dem::DemResult, AnalysisError> {
+    let mut params = dem_parameters(scene, model)?.initial_guess(lambda_lower.filter(|l| *l > 0.0));
+    if options.snapshots && params.snapshot_interval.is_none() {
+        let every = params.ramp_time / 3.0;
+        params = params.snapshot_interval(Some(every));
+    }
+    crate::dem::collapse_multiplier(model, &params, options.tolerance, progress)
+        .map_err(|e| AnalysisError::Other(e.to_string()))
+}
+
+/// The DEM's stepping knobs for a scene: the defaults of its geometry, then its `[dem]` table.
+pub fn dem_parameters(
+    scene: &Scene,
+    model: &Model,
+) -> Result<crate::dem::IntegrationParameters, crate::error::SceneError> {
+    let mut p = crate::dem::IntegrationParameters::for_model(model);
+    p.apply_table(&scene.dem, &scene.origin)?;
+    Ok(p)
 }

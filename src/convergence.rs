@@ -31,7 +31,7 @@ use crate::analysis::KINEMATIC_DEFAULT_MAX_JOINTS;
 use crate::dem::{self, IntegrationParameters};
 use crate::kinematic::{self, KinematicSettings};
 use crate::lp::{self, Direction, StaticSettings, Status};
-use crate::model::{self, Model};
+use crate::model::Model;
 use crate::scene::Scene;
 use crate::thrustline::chart::{Chart, Series};
 
@@ -312,7 +312,7 @@ pub fn run(
     let (lambda_continuous, continuous_time_s, continuous_note) = if settings.continuous {
         progress("continuous model");
         let clock = Instant::now();
-        match kinematic::continuous_with(scene, settings.direction) {
+        match crate::analysis::continuous(scene, settings.direction) {
             Ok(c) => {
                 let t = clock.elapsed().as_secs_f64();
                 let note = c
@@ -341,7 +341,7 @@ pub fn run(
 
     let mut tolerances = Vec::new();
     if !settings.solver_tolerances.is_empty() {
-        let model = model::build(scene)?;
+        let model = crate::scene::build(scene)?;
         let mut tols = settings.solver_tolerances.clone();
         tols.sort_by(|a, b| b.total_cmp(a));
         for tol in tols {
@@ -387,11 +387,11 @@ pub fn run(
     if settings.dem && !settings.dem_cases.is_empty() {
         let n = settings.dem_voussoirs.min(scene.arch.voussoirs);
         let small = with_voussoirs(scene, n)?;
-        let model = model::build(&small)?;
+        let model = crate::scene::build(&small)?;
         let lambda_static = lp::analyse(&model, &static_settings)
             .ok()
             .and_then(|r| r.lambda);
-        let base = IntegrationParameters::from_scene(&small, &model.assembly)?;
+        let base = crate::analysis::dem_parameters(&small, &model)?;
         for case in &settings.dem_cases {
             progress(&format!(
                 "DEM n = {n}, tolerance {}, time step x{}, stiffness x{}",
@@ -466,7 +466,7 @@ fn refine_row(
         }
     };
     let clock = Instant::now();
-    let model = match model::build(&s) {
+    let model = match crate::scene::build(&s) {
         Ok(m) => m,
         Err(e) => {
             row.error = Some(e.to_string());

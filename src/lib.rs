@@ -8,6 +8,7 @@ pub mod kinematic;
 pub mod lp;
 pub mod model;
 pub mod outcome;
+pub mod overrides;
 pub mod report;
 pub mod scene;
 pub mod study;

@@ -27,7 +27,7 @@
 
 use crate::error::SceneError;
 use crate::lp::StaticSettings;
-use crate::scene::{Scene, Shape};
+use crate::scene::Scene;
 use crate::sweep::{self, SweepRow, Variation};
 use crate::thrustline::chart::{Chart, Series};
 use std::path::Path;
@@ -340,16 +340,13 @@ pub fn semicircle_of_equal_span(scene: &Scene) -> Result<Scene, SceneError> {
 /// The semicircular arch of the same centreline radius (a circular or pointed arch's R),
 /// thickness, voussoirs, voussoir shape, piers and material.
 pub fn semicircle_of_equal_radius(scene: &Scene) -> Result<Scene, SceneError> {
-    let radius = match scene.arch.shape {
-        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
-        Shape::Basket { .. } => {
-            return Err(SceneError::OutOfRange {
-                origin: scene.origin.clone(),
-                key: "arch.shape".into(),
-                value: "\"basket\"".into(),
-                allowed: "a circular or pointed arch for a semicircle of equal radius".into(),
-            })
-        }
+    let Some(radius) = scene.arch.shape.radius() else {
+        return Err(SceneError::OutOfRange {
+            origin: scene.origin.clone(),
+            key: "arch.shape".into(),
+            value: format!("\"{}\"", scene.arch.shape.name()),
+            allowed: "a circular or pointed arch for a semicircle of equal radius".into(),
+        });
     };
     semicircle_of_radius(scene, radius, "semicircle of equal radius")
 }

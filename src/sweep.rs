@@ -9,7 +9,7 @@ use crate::analysis::{self, Options};
 use crate::assembly::{Hinge, JointEnd};
 use crate::error::SceneError;
 use crate::lp::StaticSettings;
-use crate::scene::{parse_assignment, Scene, Shape};
+use crate::scene::{parse_assignment, Scene};
 use rayon::prelude::*;
 use toml::Value;
 
@@ -194,10 +194,8 @@ fn derived_target(
             })
         }
     };
-    let radius = match scene.arch.shape {
-        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => Some(radius),
-        Shape::Basket { .. } => None,
-    };
+    let radius = scene.arch.shape.radius();
+    let has_key = |k: &str| scene.arch.shape.keys().iter().any(|(key, _)| *key == k);
     let need_radius = || SceneError::BadOverride {
         text: format!("{key}={v}"),
         message: format!("`{key}` needs a circular or pointed arch (R is its radius)"),
@@ -209,12 +207,12 @@ fn derived_target(
         "b/R" => ("piers.width", v * radius.ok_or_else(need_radius)?),
         "t/span" => ("arch.thickness", v * span(scene)),
         "e/span" => {
-            let Shape::Pointed { .. } = scene.arch.shape else {
+            if !has_key("eccentricity") {
                 return Err(SceneError::BadOverride {
                     text: format!("{key}={v}"),
                     message: "`e/span` needs a pointed arch".into(),
                 });
-            };
+            }
             let sp = span(scene);
             let e = v * sp;
             return Ok(vec![
@@ -223,7 +221,7 @@ fn derived_target(
             ]);
         }
         _ => {
-            if !matches!(scene.arch.shape, Shape::Basket { .. }) {
+            if !has_key("rise") {
                 return Err(SceneError::BadOverride {
                     text: format!("{key}={v}"),
                     message: "`rise/span` needs a basket arch".into(),
@@ -237,38 +235,24 @@ fn derived_target(
 
 /// Centreline span of the arch.
 pub fn span(scene: &Scene) -> f64 {
-    match scene.arch.shape {
-        Shape::Circular { radius, embrace } => 2.0 * radius * (0.5 * embrace).sin(),
-        Shape::Pointed {
-            radius,
-            eccentricity,
-        } => 2.0 * (radius - eccentricity),
-        Shape::Basket { span, .. } => span,
-    }
+    scene.arch.shape.span()
 }
 
 /// Centreline rise of the arch above the springing line.
 pub fn rise(scene: &Scene) -> f64 {
-    match scene.arch.shape {
-        Shape::Circular { radius, embrace } => radius * (1.0 - (0.5 * embrace).cos()),
-        Shape::Pointed {
-            radius,
-            eccentricity,
-        } => (radius * radius - eccentricity * eccentricity).sqrt(),
-        Shape::Basket { rise, .. } => rise,
-    }
+    scene.arch.shape.rise()
 }
 
 /// The dimensionless ratios of a scene, as `(name, value)`; NaN where not defined.
 pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
-    let radius = match scene.arch.shape {
-        Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => radius,
-        Shape::Basket { .. } => f64::NAN,
-    };
-    let e = match scene.arch.shape {
-        Shape::Pointed { eccentricity, .. } => eccentricity,
-        _ => 0.0,
-    };
+    let radius = scene.arch.shape.radius().unwrap_or(f64::NAN);
+    let e = scene
+        .arch
+        .shape
+        .keys()
+        .iter()
+        .find(|(k, _)| *k == "eccentricity")
+        .map_or(0.0, |(_, v)| *v);
     let (h, b) = scene
         .piers
         .as_ref()
@@ -436,14 +420,15 @@ pub fn case(
                 row.extra.push(("lambda_continuous", c));
             }
             if dem {
-                let params =
-                    crate::dem::IntegrationParameters::from_scene(scene, &a.model.assembly)
-                        .map(|p| p.initial_guess(a.lower.lambda.filter(|l| *l > 0.0)));
-                let d = params.ok().and_then(|p| {
-                    crate::dem::collapse_multiplier(&a.model, &p, 0.01, &mut |_| {})
-                        .ok()
-                        .and_then(|r| r.lambda_dem)
-                });
+                let d = analysis::dem_of(
+                    scene,
+                    &a.model,
+                    a.lower.lambda,
+                    &analysis::DemOptions::default(),
+                    &mut |_| {},
+                )
+                .ok()
+                .and_then(|r| r.lambda_dem);
                 row.extra.push(("lambda_dem", d));
             }
         }

@@ -10,7 +10,7 @@ use crate::assembly::Hinge;
 use crate::error::AnalysisError;
 use crate::kinematic::{self, KinematicSettings};
 use crate::lp::{self, StandResult, StaticSettings, Status};
-use crate::model::{self, Model};
+use crate::model::Model;
 use crate::scene::Scene;
 
 /// Relative tolerance of the bisection on t.
@@ -122,7 +122,7 @@ pub struct MinThickness {
 
 /// Whether the static program finds equilibrium at lambda = 0.
 pub fn stands_static(scene: &Scene, settings: &StaticSettings) -> Result<bool, AnalysisError> {
-    Ok(lp::stands(&model::build(scene)?, settings)?.stands)
+    Ok(lp::stands(&crate::scene::build(scene)?, settings)?.stands)
 }
 
 /// The static minimum thickness of `scene`.
@@ -134,7 +134,7 @@ pub fn min_thickness(
     let mut hinges = Vec::new();
     let mut at_minimum = None;
     if let Some(t) = search.min_thickness {
-        let model = model::build(&scene.with_thickness(t)?)?;
+        let model = crate::scene::build(&scene.with_thickness(t)?)?;
         let r = lp::stands(&model, settings)?;
         hinges = r.hinges.clone();
         at_minimum = Some((model, r));
@@ -159,7 +159,7 @@ pub fn min_thickness_kinematic(
         ..KinematicSettings::default()
     };
     search(scene, DEFAULT_REL_TOL, |s| {
-        let k = kinematic::analyse(&model::build(s)?, &settings)
+        let k = kinematic::analyse(&crate::scene::build(s)?, &settings)
             .map_err(|e| AnalysisError::Other(e.to_string()))?;
         Ok(k.status != Status::CannotStand)
     })
@@ -196,7 +196,7 @@ pub fn analyse(
     continuous: bool,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
     let lower = min_thickness(scene, settings)?;
-    let joints = model::build(scene)?.assembly.joints.len();
+    let joints = crate::scene::build(scene)?.assembly.joints.len();
     let (kinematic, kinematic_note) = if kinematic_max_joints > 0 && joints <= kinematic_max_joints
     {
         let note = scene.material.friction.is_finite().then(|| {
@@ -217,8 +217,8 @@ pub fn analyse(
             )),
         )
     };
-    let continuous =
-        continuous.then(|| kinematic::continuous_min_thickness(scene).map_err(|e| e.to_string()));
+    let continuous = continuous
+        .then(|| crate::analysis::continuous_min_thickness(scene).map_err(|e| e.to_string()));
     Ok(ThicknessAnalysis {
         lower,
         kinematic,

@@ -8,7 +8,6 @@
 use voussoir::assembly::JointEnd;
 use voussoir::kinematic::{self, KinematicSettings};
 use voussoir::lp::{self, Direction, StaticSettings, Status};
-use voussoir::model;
 use voussoir::scene::Scene;
 
 struct Case {
@@ -127,7 +126,7 @@ fn static_and_kinematic_bounds_coincide() {
     let mut compared_mechanisms = 0;
     for case in grid() {
         let scene = Scene::from_toml_str(&case.toml, &case.label).expect("valid scene");
-        let asm = model::build(&scene).expect("valid model");
+        let asm = voussoir::scene::build(&scene).expect("valid model");
         for dir in [Direction::Right, Direction::Left] {
             let st = lp::analyse(&asm, &StaticSettings::default().direction(dir)).expect("static");
             let kin = kinematic::analyse(&asm, &KinematicSettings::default().direction(dir))
@@ -209,7 +208,7 @@ fn finite_friction_static_stays_below_kinematic() {
                 arch(sh, 0.25, 16, "polygon")
             );
             let scene = Scene::from_toml_str(&text, "friction").expect("scene");
-            let asm = model::build(&scene).expect("valid model");
+            let asm = voussoir::scene::build(&scene).expect("valid model");
             let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
             let kin = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
             let (Some(ls), Some(lk)) = (st.lambda, kin.lambda_upper) else {

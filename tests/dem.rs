@@ -6,7 +6,7 @@ use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind}
 use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
 use voussoir::geometry::Vec2;
 use voussoir::lp::{self, Status};
-use voussoir::model::{self, Model};
+use voussoir::model::Model;
 use voussoir::scene::Scene;
 
 /// A rectangular block b x h standing on the ground (one support joint along its base).
@@ -54,7 +54,7 @@ fn arch(n: usize, t: f64, mu: f64) -> Scene {
 }
 
 fn build(s: &Scene) -> Model {
-    model::build(s).expect("model")
+    voussoir::scene::build(s).expect("model")
 }
 
 fn run(model: &Model, params: &IntegrationParameters, tol: f64) -> DemResult {
@@ -129,7 +129,7 @@ fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
     let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse);
     let lower = st.lambda.expect("lambda");
-    let p = IntegrationParameters::from_scene(s, &m.assembly).expect("params");
+    let p = voussoir::analysis::dem_parameters(s, &m).expect("params");
     let r = run(&m, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     let diff = mid / lower - 1.0;
@@ -219,7 +219,7 @@ fn sliding_case_against_the_associative_bound() {
         let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
         let assoc = st.lambda.expect("collapse");
         assert!(!st.sliding.is_empty());
-        let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("params");
+        let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
         let tol = 0.005;
         let r = run(&m, &p, tol);
         let (lo, hi, mid) = check_bracket(&r, tol);
@@ -250,7 +250,7 @@ fn an_arch_that_cannot_stand_says_so() {
     let m = build(&s);
     let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
-    let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("params");
+    let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
     let r = run(&m, &p, 0.01);
     assert!(r.cannot_stand);
     assert!(r.lambda_dem.is_none());
@@ -264,7 +264,7 @@ fn energy_error(time_step_factor: f64, duration: f64) -> (f64, f64, f64) {
     let s = arch(16, 0.25, f64::INFINITY);
     let m = build(&s);
     let a = &m.assembly;
-    let p = IntegrationParameters::from_scene(&s, a)
+    let p = voussoir::analysis::dem_parameters(&s, &m)
         .expect("params")
         .contact_damping(0.0)
         .time_step_factor(time_step_factor);
@@ -316,8 +316,9 @@ fn energy_is_conserved_without_damping() {
 fn dem_table_is_validated_and_applied() {
     let base = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
     let s = scene(&format!("{base}[dem]\nlocal_damping = 0.3\nmax_time = 5\n"));
-    let a = build(&s).assembly;
-    let p = IntegrationParameters::from_scene(&s, &a).expect("valid");
+    let m = build(&s);
+    let a = m.assembly.clone();
+    let p = voussoir::analysis::dem_parameters(&s, &m).expect("valid");
     assert_eq!(p.local_damping, 0.3);
     assert_eq!(p.max_time, 5.0);
     for (text, key) in [
@@ -339,8 +340,9 @@ fn dem_table_is_validated_and_applied() {
     // settings (stiffness x weight / length, times x sqrt(length)).
     let big =
         scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
-    let ab = build(&big).assembly;
-    let pb = IntegrationParameters::from_scene(&big, &ab).expect("valid");
+    let mb = build(&big);
+    let ab = mb.assembly.clone();
+    let pb = voussoir::analysis::dem_parameters(&big, &mb).expect("valid");
     let p0 = IntegrationParameters::for_assembly(&a);
     let w = ab.total_weight() / a.total_weight();
     assert!((pb.normal_stiffness / p0.normal_stiffness - w / 2.0).abs() < 1e-9 * w);
@@ -353,7 +355,7 @@ fn snapshots_are_written_as_csv() {
     let s = arch(16, 0.25, 0.8);
     let m = build(&s);
     let a = &m.assembly;
-    let p = IntegrationParameters::from_scene(&s, a)
+    let p = voussoir::analysis::dem_parameters(&s, &m)
         .expect("params")
         .snapshot_interval(Some(0.05));
     let r = run(&m, &p, 0.02);
@@ -393,7 +395,7 @@ fn snapshots_are_written_as_csv() {
 fn a_time_step_above_the_stability_limit_is_refused() {
     let s = scene("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[dem]\ntime_step = 1e-3\n");
     let m = build(&s);
-    let p = IntegrationParameters::from_scene(&s, &m.assembly).expect("valid table");
+    let p = voussoir::analysis::dem_parameters(&s, &m).expect("valid table");
     let e =
         voussoir::dem::collapse_multiplier(&m, &p, 0.01, &mut |_| {}).expect_err("unstable step");
     assert!(e.to_string().contains("stability limit"), "{e}");
@@ -421,7 +423,7 @@ fn loaded_bracket_contains_static(
         .expect("static")
         .lambda
         .expect("lambda");
-    let p = IntegrationParameters::from_scene(loaded, &m.assembly).expect("params");
+    let p = voussoir::analysis::dem_parameters(loaded, &m).expect("params");
     let r = run(&m, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     println!(

@@ -7,7 +7,7 @@ use voussoir::kinematic::{
     self, HingeLocation, KinematicError, KinematicResult, KinematicSettings,
 };
 use voussoir::lp::{self, Direction, StaticSettings, Status};
-use voussoir::model::{self, Model};
+use voussoir::model::Model;
 use voussoir::scene::Scene;
 
 fn rect(x0: f64, x1: f64, y0: f64, y1: f64) -> Block {
@@ -43,7 +43,7 @@ fn kinematic_of(
     scene: &Scene,
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, KinematicError> {
-    kinematic::analyse(&model::build(scene)?, settings)
+    kinematic::analyse(&voussoir::scene::build(scene)?, settings)
 }
 
 fn semicircle(t: f64, n: usize, shape: &str) -> Scene {
@@ -178,7 +178,11 @@ fn continuous_semicircle_values() {
         (0.25, 0.4058),
         (0.30, 0.5181),
     ] {
-        let r = kinematic::continuous(&semicircle(t, 16, "curved")).expect("continuous");
+        let r = voussoir::analysis::continuous(
+            &semicircle(t, 16, "curved"),
+            voussoir::outcome::Direction::Right,
+        )
+        .expect("continuous");
         assert_eq!(r.status, Status::Collapse);
         let l = r.lambda_continuous.expect("lambda");
         assert!((l - expected).abs() <= 5e-4, "t/R = {t}: {l} vs {expected}");
@@ -190,7 +194,8 @@ fn continuous_semicircle_values() {
 /// haunch hinges at 54.5 deg from the crown (Milankovitch; Heyman; Ochsendorf).
 #[test]
 fn continuous_minimum_thickness_of_semicircle() {
-    let m = kinematic::continuous_min_thickness(&semicircle(0.2, 16, "curved")).expect("min t");
+    let m = voussoir::analysis::continuous_min_thickness(&semicircle(0.2, 16, "curved"))
+        .expect("min t");
     assert!((m.thickness - 0.1075).abs() <= 5e-4, "{}", m.thickness);
     let haunch: Vec<f64> = m
         .result
@@ -213,10 +218,13 @@ fn continuous_minimum_thickness_of_semicircle() {
 #[test]
 fn discrete_converges_to_continuous() {
     let t = 0.2;
-    let lc = kinematic::continuous(&semicircle(t, 16, "curved"))
-        .expect("continuous")
-        .lambda_continuous
-        .expect("lambda");
+    let lc = voussoir::analysis::continuous(
+        &semicircle(t, 16, "curved"),
+        voussoir::outcome::Direction::Right,
+    )
+    .expect("continuous")
+    .lambda_continuous
+    .expect("lambda");
     let mut last = f64::INFINITY;
     for n in [16, 64, 256] {
         let k = kinematic_of(&semicircle(t, n, "curved"), &KinematicSettings::default())
@@ -254,7 +262,8 @@ fn continuous_below_discrete_for_every_shape() {
                 "test",
             )
             .expect("scene");
-            let c = kinematic::continuous(&scene).expect("continuous");
+            let c = voussoir::analysis::continuous(&scene, voussoir::outcome::Direction::Right)
+                .expect("continuous");
             let lc = c.lambda_signed.expect("lambda");
             for n in [8, 16, 32] {
                 let s = scene
@@ -276,7 +285,7 @@ fn continuous_below_discrete_for_every_shape() {
 #[test]
 fn direction_and_scale_invariance() {
     let scene = semicircle(0.17, 24, "polygon");
-    let asm = model::build(&scene).expect("valid model");
+    let asm = voussoir::scene::build(&scene).expect("valid model");
     let r = kinematic::analyse(&asm, &KinematicSettings::default()).expect("right");
     let l = kinematic::analyse(
         &asm,
@@ -344,7 +353,7 @@ fn kinematic_minimum_thickness_matches_static() {
     let tk = 0.5 * (lo + hi);
     let status = |t: f64| {
         lp::analyse(
-            &model::build(&base.with_thickness(t).expect("t")).expect("valid model"),
+            &voussoir::scene::build(&base.with_thickness(t).expect("t")).expect("valid model"),
             &StaticSettings::default(),
         )
         .expect("static")
@@ -354,7 +363,7 @@ fn kinematic_minimum_thickness_matches_static() {
     assert_eq!(status(tk * (1.0 - 1e-5)), Status::CannotStand);
     // Exact annular voussoirs: the discrete arch has fewer mechanisms than the continuous one,
     // so its multiplier is higher and its minimum thickness lower (but close, for n = 20).
-    let tc = kinematic::continuous_min_thickness(&base)
+    let tc = voussoir::analysis::continuous_min_thickness(&base)
         .expect("continuous")
         .thickness;
     assert!(
@@ -417,7 +426,8 @@ fn continuous_matches_fine_discrete(texts: &[String]) -> f64 {
     for text in texts {
         let scene = finest(text, 128);
         let n = scene.arch.voussoirs;
-        let c = kinematic::continuous(&scene).expect("continuous");
+        let c = voussoir::analysis::continuous(&scene, voussoir::outcome::Direction::Right)
+            .expect("continuous");
         let k = kinematic_of(&scene, &settings).expect("discrete");
         assert_eq!(c.status, k.status, "n = {n}:\n{text}");
         let lc = c.lambda_signed.expect("continuous lambda");
@@ -463,7 +473,8 @@ fn continuous_pointed_matches_fine_discrete() {
     assert!(worst > 0.0);
     // The bundled scene itself, as the CLI runs it (32 polygon voussoirs).
     let scene = Scene::from_file(std::path::Path::new("data/pointed.toml")).expect("scene");
-    let c = kinematic::continuous(&scene).expect("continuous");
+    let c = voussoir::analysis::continuous(&scene, voussoir::outcome::Direction::Right)
+        .expect("continuous");
     assert_eq!(c.status, Status::Collapse);
     assert_eq!(c.hinges.len(), 4);
 }
@@ -520,7 +531,7 @@ fn continuous_minimum_thickness_of_pointed_arch() {
     let tmax = scene.max_thickness();
     assert!(scene.with_thickness(tmax * (1.0 - 1e-6)).is_ok());
     assert!(scene.with_thickness(tmax * (1.0 + 1e-6)).is_err());
-    let tc = kinematic::continuous_min_thickness(&scene).expect("continuous");
+    let tc = voussoir::analysis::continuous_min_thickness(&scene).expect("continuous");
     // At the root the multiplier is zero (to round-off; either side of it).
     let l = tc
         .result

@@ -9,7 +9,7 @@ use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
 use voussoir::kinematic::{self, KinematicResult, KinematicSettings};
 use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
-use voussoir::model::{self, LoadCase, Model};
+use voussoir::model::{LoadCase, Model};
 use voussoir::scene::Scene;
 
 // ---------------------------------------------------------------------------------------------
@@ -21,7 +21,8 @@ fn scene(text: &str) -> Scene {
 }
 
 fn build(text: &str) -> Model {
-    model::build(&scene(text)).unwrap_or_else(|e| panic!("scene does not build: {e}\n{text}"))
+    voussoir::scene::build(&scene(text))
+        .unwrap_or_else(|e| panic!("scene does not build: {e}\n{text}"))
 }
 
 fn statics(m: &Model, d: Direction) -> StaticResult {
@@ -766,7 +767,7 @@ fn random_loads() -> impl Strategy<Value = RandomLoads> {
 
 /// The scene text of `base` with the random loads placed on its blocks.
 fn place_loads(base: &str, s: &Scene, loads: &RandomLoads) -> String {
-    let m = model::build(s).expect("base scene builds");
+    let m = voussoir::scene::build(s).expect("base scene builds");
     let a = &m.assembly;
     let total: f64 = a.blocks.iter().map(|b| b.weight).sum();
     let mut text = base.to_string();
@@ -813,7 +814,7 @@ proptest! {
             Ok(s) => s,
             Err(e) => return Err(TestCaseError::fail(format!("loaded scene rejected: {e}\n{text}"))),
         };
-        let m = model::build(&s).expect("builds");
+        let m = voussoir::scene::build(&s).expect("builds");
         let infinite = s.material.friction.is_infinite();
         for d in [Direction::Right, Direction::Left] {
             let st = lp::analyse(&m, &StaticSettings::default().direction(d));
@@ -949,7 +950,7 @@ fn bundled_load_scenes_analyse() {
             .join("data")
             .join(name);
         let s = Scene::from_file(&path).expect("bundled scene is valid");
-        let m = model::build(&s).expect("builds");
+        let m = voussoir::scene::build(&s).expect("builds");
         assert!(
             m.loads.applied().len() > m.assembly.blocks.len(),
             "{name} has loads"

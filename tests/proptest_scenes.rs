@@ -108,7 +108,7 @@ proptest! {
             }
             Ok(scene) => {
                 ACCEPTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let built = voussoir::model::build(&scene);
+                let built = voussoir::scene::build(&scene);
                 prop_assert!(built.is_ok(), "no model from a valid scene: {:?}\n{}", built.as_ref().err(), text);
                 let m = built.expect("checked");
                 let a = &m.assembly;

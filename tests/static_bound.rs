@@ -3,8 +3,9 @@
 
 mod common;
 use common::*;
-use voussoir::assembly::{equilibrium_residual, JointEnd};
+use voussoir::assembly::JointEnd;
 use voussoir::lp::{self, Direction, StaticSettings, Status};
+use voussoir::model::equilibrium_residual;
 use voussoir::model::Model;
 use voussoir::thickness::{self, ThicknessOutcome};
 

@@ -241,7 +241,7 @@ fn pointed_arches_win_at_equal_radius_and_lose_at_equal_span() {
         .and_then(|s| s.with_override("arch.thickness=0.12"))
         .expect("valid");
     let direct = voussoir::lp::analyse(
-        &voussoir::model::build(&same).expect("valid model"),
+        &voussoir::scene::build(&same).expect("valid model"),
         &voussoir::lp::StaticSettings::default(),
     )
     .expect("solves")
@@ -338,7 +338,7 @@ fn portal_trends() {
         s.remove("piers");
         let scene = voussoir::scene::Scene::from_table(s, "arch alone").expect("valid");
         voussoir::lp::analyse(
-            &voussoir::model::build(&scene).expect("valid model"),
+            &voussoir::scene::build(&scene).expect("valid model"),
             &voussoir::lp::StaticSettings::default(),
         )
         .expect("solves")

@@ -6,7 +6,7 @@ use roxmltree::{Document, Node};
 use voussoir::assembly::{Assembly, Hinge};
 use voussoir::geometry::Vec2;
 use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
-use voussoir::model::{self, LoadSource, Model};
+use voussoir::model::{LoadSource, Model};
 use voussoir::scene::Scene;
 use voussoir::thrustline::chart::{self, Chart, Series};
 use voussoir::thrustline::svg::{
@@ -19,14 +19,14 @@ fn scene(text: &str) -> Scene {
 }
 
 fn semicircle(t: f64, n: usize) -> Model {
-    model::build(&scene(&format!(
+    voussoir::scene::build(&scene(&format!(
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\n"
     )))
     .expect("valid model")
 }
 
 fn portal() -> Model {
-    model::build(&scene(
+    voussoir::scene::build(&scene(
         "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n\
          [piers]\nheight = 1.2\nwidth = 0.35\ncourses = 2\n",
     ))
@@ -506,7 +506,7 @@ fn every_kind_of_structure_draws() {
     ];
     let mut slid = 0;
     for (name, text, dir) in cases {
-        let m = model::build(&scene(text)).expect("valid model");
+        let m = voussoir::scene::build(&scene(text)).expect("valid model");
         let a = &m.assembly;
         let r = lp::analyse(&m, &StaticSettings::default().direction(dir)).expect("runs");
         assert_eq!(r.status, Status::Collapse, "{name}");
@@ -617,7 +617,7 @@ fn assert_inside_canvas(doc: &Document) {
 }
 
 fn model_of(text: &str) -> Model {
-    model::build(&scene(text)).expect("valid model")
+    voussoir::scene::build(&scene(text)).expect("valid model")
 }
 
 const SEMI: &str = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 32\n";

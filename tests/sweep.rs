@@ -1,7 +1,6 @@
 //! Sweeps give the same numbers as single analyses, in a deterministic order.
 
 use voussoir::lp::{self, StaticSettings};
-use voussoir::model;
 use voussoir::scene::Scene;
 use voussoir::sweep;
 
@@ -34,8 +33,11 @@ fn sweep_rows_equal_single_analyses() {
             .and_then(|s| s.with_override(&format!("arch.voussoirs={n}")))
             .and_then(|s| s.with_override(&format!("arch.thickness={t}")))
             .expect("valid");
-        let r =
-            lp::analyse(&model::build(&scene).expect("valid model"), &settings).expect("solves");
+        let r = lp::analyse(
+            &voussoir::scene::build(&scene).expect("valid model"),
+            &settings,
+        )
+        .expect("solves");
         assert_eq!(row.status, r.status.as_str());
         match (row.lambda_lower, r.lambda) {
             (Some(a), Some(b)) => assert!((a - b).abs() <= 1e-12 * b.max(1.0), "{a} vs {b}"),

@@ -24,15 +24,16 @@
 
 use crate::assembly::Assembly;
 use crate::error::SceneError;
-use crate::scene::Scene;
+use crate::model::Model;
 use toml::{Table, Value};
 
 /// Overlap, as a fraction of the shortest joint, that the whole weight would cause on a
 /// single contact point with the default normal stiffness.
 pub const STIFFNESS_OVERLAP: f64 = 3e-5;
 
-/// Time-stepping knobs of the DEM (SI units). Build with [`IntegrationParameters::from_scene`]
-/// or [`IntegrationParameters::for_assembly`], then adjust with the setters.
+/// Time-stepping knobs of the DEM (SI units). Build with [`IntegrationParameters::for_model`]
+/// or [`IntegrationParameters::for_assembly`], then adjust with the setters or a `[dem]` table
+/// ([`IntegrationParameters::apply_table`]; the analysis layer does both for a scene).
 #[derive(Debug, Clone, PartialEq)]
 pub struct IntegrationParameters {
     /// Gravitational acceleration g (m/s^2). Default 9.81. The multiplier does not depend on
@@ -112,11 +113,20 @@ pub const DEM_KEYS: &[&str] = &[
 ];
 
 impl IntegrationParameters {
-    /// Defaults derived from the size and weight of `assembly` (see the module docs).
+    /// Defaults derived from the size and weight of `assembly` under its self-weight (see
+    /// the module docs).
     pub fn for_assembly(assembly: &Assembly) -> Self {
+        Self::for_model(&Model::self_weight(assembly.clone()))
+    }
+
+    /// Defaults derived from the size of the model's assembly and the magnitude of its loads
+    /// ([`crate::model::LoadCase::force_scale`], the total weight under self-weight alone), so
+    /// a heavy fill stiffens the contacts in proportion.
+    pub fn for_model(model: &Model) -> Self {
+        let assembly = &model.assembly;
         let gravity = 9.81;
         let size = assembly.size().max(f64::MIN_POSITIVE);
-        let weight = assembly.total_weight().max(f64::MIN_POSITIVE);
+        let weight = model.loads.force_scale().max(f64::MIN_POSITIVE);
         let t = (size / gravity).sqrt();
         // The shortest joint: the lever arm every hinge has to work with.
         let joint = assembly
@@ -146,14 +156,6 @@ impl IntegrationParameters {
             initial_guess: None,
             snapshot_interval: None,
         }
-    }
-
-    /// Defaults for the assembly of `scene`, overridden by the scene's `[dem]` table. Unknown
-    /// keys, values of the wrong type and values out of range are errors naming `dem.<key>`.
-    pub fn from_scene(scene: &Scene, assembly: &Assembly) -> Result<Self, SceneError> {
-        let mut p = Self::for_assembly(assembly);
-        p.apply_table(&scene.dem, &scene.origin)?;
-        Ok(p)
     }
 
     /// Apply the entries of a `[dem]` table (`origin` names it in errors).
@@ -257,7 +259,7 @@ impl IntegrationParameters {
     /// Set a knob from a `KEY=VALUE` text (CLI `--set dem.KEY=VALUE` style, with or without
     /// the `dem.` prefix).
     pub fn with_override(mut self, assignment: &str) -> Result<Self, SceneError> {
-        let (key, value) = crate::scene::parse_assignment(assignment)?;
+        let (key, value) = crate::overrides::parse_assignment(assignment)?;
         let key = key.strip_prefix("dem.").unwrap_or(&key).to_string();
         self.set(&key, &value, "--set")?;
         Ok(self)

@@ -1,8 +1,95 @@
 //! Basket-handle (three-centred) arches: two side arcs of radius r1 subtending the side angle
 //! b each and a crown arc of radius r2 > r1, tangent-continuous.
 
-use super::{radial_joints, Arc, ArchGeometry, Vec2};
+use super::{radial_joints, Arc, ArchGeometry, ArchShape, Lump, RingPiece, Vec2};
 use std::f64::consts::PI;
+
+/// A three-centred basket-handle arch: centreline span, rise, and angle of each side arc.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Basket {
+    pub span: f64,
+    pub rise: f64,
+    pub side_angle: f64,
+}
+
+impl Basket {
+    /// Centreline radii `(r1, r2)` of the side and crown arcs.
+    pub fn radii(&self) -> (f64, f64) {
+        basket_radii(self.span, self.rise, self.side_angle)
+    }
+}
+
+impl ArchShape for Basket {
+    fn name(&self) -> &'static str {
+        "basket"
+    }
+    fn keys(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("span", self.span),
+            ("rise", self.rise),
+            ("side_angle_deg", self.side_angle.to_degrees()),
+        ]
+    }
+    fn describe(&self) -> String {
+        format!(
+            "basket-handle arch, span {} m, rise {} m, side angle {} deg",
+            self.span,
+            self.rise,
+            super::trim(self.side_angle.to_degrees())
+        )
+    }
+    fn title(&self) -> String {
+        "basket-handle".to_string()
+    }
+    fn size(&self) -> f64 {
+        0.5 * self.span
+    }
+    fn size_name(&self) -> &'static str {
+        "(span/2)"
+    }
+    fn span(&self) -> f64 {
+        self.span
+    }
+    fn rise(&self) -> f64 {
+        self.rise
+    }
+    fn crown_extrados(&self, t: f64) -> f64 {
+        let (r1, r2) = self.radii();
+        r2 + 0.5 * t - (r2 - r1) * self.side_angle.sin()
+    }
+    fn max_thickness(&self, _n: usize) -> f64 {
+        2.0 * self.radii().0
+    }
+    fn horizontal_springings(&self) -> bool {
+        true
+    }
+    fn geometry(&self, t: f64, n: usize) -> ArchGeometry {
+        basket(self.span, self.rise, self.side_angle, t, n)
+    }
+    /// Three annuli: the side arcs and the crown arc (the transition sections belong to both).
+    fn ring(&self, _t: f64, _n: usize) -> Result<Vec<RingPiece>, String> {
+        let (r1, r2) = self.radii();
+        let b = self.side_angle;
+        let piece = |centre: Vec2, radius: f64, theta0: f64, sweep: f64| RingPiece::Annulus {
+            centre,
+            radius,
+            theta0,
+            sweep,
+            head: Lump::default(),
+            tail: Lump::default(),
+        };
+        Ok(vec![
+            piece(Vec2::new(-(0.5 * self.span - r1), 0.0), r1, PI, b),
+            piece(
+                Vec2::new(0.0, -(r2 - r1) * b.sin()),
+                r2,
+                PI - b,
+                PI - 2.0 * b,
+            ),
+            piece(Vec2::new(0.5 * self.span - r1, 0.0), r1, b, b),
+        ])
+    }
+}
 
 /// Centreline radii `(r1, r2)` of the side and crown arcs for centreline span `span`, rise
 /// `rise` and side angle `b` (radians), from `(1 - cos b) r1 + cos b r2 = span/2` and

@@ -9,9 +9,83 @@ mod basket;
 mod circular;
 mod pointed;
 
-pub use basket::{basket, basket_radii, side_voussoirs};
-pub use circular::circular;
-pub use pointed::pointed;
+pub use basket::{basket, basket_radii, side_voussoirs, Basket};
+pub use circular::{circular, Circular};
+pub use pointed::{pointed, Pointed};
+
+/// An arch shape: everything the rest of voussoir needs to know about one family of arches.
+/// Each shape is one type in its own file of this module; a new shape is one more file here
+/// and one more arm where the scene is read (`crate::scene`).
+///
+/// Lengths in metres, angles in radians. Joints are numbered from the left springing.
+pub trait ArchShape: std::fmt::Debug + Send + Sync {
+    /// The scene-file word (`shape = "..."`).
+    fn name(&self) -> &'static str;
+    /// The shape's own scene keys under `[arch]` (besides `shape`, `thickness`, `voussoirs`,
+    /// `voussoir_shape`), with their values as the scene gives them (`_deg` keys in degrees).
+    fn keys(&self) -> Vec<(&'static str, f64)>;
+    /// The shape and its dimensions in words, e.g. `circular arch, R = 1 m, embrace 180 deg`.
+    fn describe(&self) -> String;
+    /// A short adjective for titles: `semicircular`, `segmental (120 deg)`, `pointed`, ...
+    fn title(&self) -> String;
+    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches
+    /// (ratios such as t_min / size use it).
+    fn size(&self) -> f64;
+    /// How `size` is written in ratios: `R` or `(span/2)`.
+    fn size_name(&self) -> &'static str;
+    /// Centreline radius, for shapes that have one radius.
+    fn radius(&self) -> Option<f64> {
+        None
+    }
+    /// Centreline span.
+    fn span(&self) -> f64;
+    /// Centreline rise above the springing line.
+    fn rise(&self) -> f64;
+    /// Height of the extrados at the crown for thickness `t`: the ring's highest point.
+    fn crown_extrados(&self, t: f64) -> f64;
+    /// The largest thickness (exclusive) the shape admits with `n` voussoirs.
+    fn max_thickness(&self, n: usize) -> f64;
+    /// Whether both springing joints are horizontal (a portal needs them).
+    fn horizontal_springings(&self) -> bool;
+    /// Joints and arcs of the ring with thickness `t` and `n` voussoirs.
+    fn geometry(&self, t: f64, n: usize) -> ArchGeometry;
+    /// The ring as a continuum (for the continuous kinematic model), from the left springing
+    /// to the right one, with thickness `t` and `n` voussoirs (which number its fixed joints).
+    fn ring(&self, t: f64, n: usize) -> Result<Vec<RingPiece>, String>;
+}
+
+/// A number with at most 9 significant decimals and no trailing zeros (180, 67.5).
+pub fn trim(x: f64) -> String {
+    let s = format!("{x:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
+}
+
+/// A piece of an arch ring seen as a continuum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RingPiece {
+    /// An annular piece about `centre`, centreline radius `radius`, from polar angle `theta0`
+    /// clockwise through `sweep` (left to right), with rigid material attached before its start
+    /// (`head`) and after its end (`tail`).
+    Annulus {
+        centre: Vec2,
+        radius: f64,
+        theta0: f64,
+        sweep: f64,
+        head: Lump,
+        tail: Lump,
+    },
+    /// A joint at a fixed place between two annuli (the vertical crown joint of a pointed
+    /// arch): arch joint `joint` from `p1` (intrados) to `p2` (extrados).
+    Joint { p1: Vec2, p2: Vec2, joint: usize },
+}
+
+/// A rigid piece of material: its area and first moment of area about the origin.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Lump {
+    pub area: f64,
+    pub moment: Vec2,
+}
 
 /// A point or vector in the plane of the arch (metres).
 pub type Vec2 = nalgebra::Vector2<f64>;

@@ -61,11 +61,10 @@ use super::{
     Sums,
 };
 use crate::assembly::{BlockKind, JointEnd, JointKind};
-use crate::geometry::{basket_radii, polar, polygon_area_centroid, Vec2};
-use crate::scene::{Scene, Shape};
+use crate::geometry::{polar, ArchShape, Lump, RingPiece, Vec2};
+use crate::model::Model;
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::f64::consts::PI;
 use std::hash::BuildHasherDefault;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -198,14 +197,30 @@ struct Structure {
 }
 
 impl Structure {
-    fn from_scene(scene: &Scene, direction: Direction) -> Result<Structure, KinematicError> {
-        let model = crate::model::build(scene)?;
+    fn new(
+        model: &Model,
+        shape: &dyn ArchShape,
+        t: f64,
+        direction: Direction,
+    ) -> Result<Structure, KinematicError> {
         let asm = &model.assembly;
         asm.validate()?;
-        let k = scene.piers.as_ref().map_or(0, |p| p.courses);
-        let n = scene.arch.voussoirs;
-        let gamma = scene.material.unit_weight * scene.material.depth;
-        let t = scene.arch.thickness;
+        model.loads.validate(asm)?;
+        let count = |f: fn(&BlockKind) -> bool| asm.blocks.iter().filter(|b| f(&b.kind)).count();
+        let k = count(|b| matches!(b, BlockKind::LeftPier(_)));
+        let n = count(|b| matches!(b, BlockKind::Voussoir(_)));
+        if n == 0
+            || count(|b| matches!(b, BlockKind::RightPier(_))) != k
+            || n + 2 * k != asm.blocks.len()
+            || !asm.is_chain()
+        {
+            return Err(KinematicError::Continuous(
+                "the continuous model needs an arch (with or without two piers) built from a parametric shape".into(),
+            ));
+        }
+        // Every voussoir has the ring's unit weight times depth.
+        let first = &asm.blocks[k];
+        let gamma = first.weight / first.area;
         let sign = direction.sign();
         let seismic = model.loads.seismic_direction(sign);
         // The ring is a continuum here: its own weight is integrated exactly between any two
@@ -216,12 +231,20 @@ impl Structure {
                 && matches!(asm.blocks[l.block].kind, BlockKind::Voussoir(_))
         }) {
             return Err(KinematicError::Continuous(format!(
-                "loads on the arch ring ({:?} on voussoir {}) are not modelled by the continuous model: it carries the ring's self-weight (with any vertical seismic ratio) and loads on the piers",
+                "loads on the arch ring ({} on voussoir {}) are not modelled: the continuous model carries the ring's self-weight (with any vertical seismic ratio) and loads on the piers",
                 l.source,
                 l.block - k
             )));
         }
         let sums_of = |i: usize| Sums::of_block(&model.loads, i, sign);
+        let lump = |l: Lump| {
+            Sums::of_mass(
+                gamma * l.area,
+                gamma * l.moment.x,
+                gamma * l.moment.y,
+                seismic,
+            )
+        };
         let joint = |j: usize| {
             let jt = &asm.joints[j];
             Item::Joint {
@@ -236,95 +259,33 @@ impl Structure {
             items.push(Item::Block(sums_of(c)));
         }
         items.push(joint(k));
-        let ring = |centre: Vec2, r: f64, theta0: f64, len: f64| Annulus {
-            centre,
-            ri: r - 0.5 * t,
-            re: r + 0.5 * t,
-            theta0,
-            dir: -1.0,
-            len,
-            head: Sums::default(),
-            tail: Sums::default(),
-            gamma,
-            seismic,
-        };
-        match scene.arch.shape {
-            Shape::Circular { radius, embrace } => {
-                items.push(Item::Annulus(ring(
-                    Vec2::zeros(),
+        for piece in shape.ring(t, n).map_err(KinematicError::Continuous)? {
+            items.push(match piece {
+                RingPiece::Annulus {
+                    centre,
                     radius,
-                    0.5 * PI + 0.5 * embrace,
-                    embrace,
-                )));
-            }
-            Shape::Pointed {
-                radius,
-                eccentricity: e,
-            } => {
-                let ri = radius - 0.5 * t;
-                let re = radius + 0.5 * t;
-                if e >= ri {
-                    return Err(KinematicError::Continuous(format!(
-                        "pointed arch with eccentricity {e} >= intrados radius {ri}"
-                    )));
-                }
-                let phi_i = (-e / ri).acos();
-                let phi_e = (-e / re).acos();
-                // Left keystone: extrados sector (phi_e..phi_i about (e, 0)) minus the
-                // triangle (centre, intrados apex, extrados apex).
-                let o = Vec2::new(e, 0.0);
-                let apex_i = Vec2::new(0.0, (ri * ri - e * e).sqrt());
-                let apex_e = Vec2::new(0.0, (re * re - e * e).sqrt());
-                let d = phi_i - phi_e;
-                let mid = 0.5 * (phi_i + phi_e);
-                let sw = gamma * 0.5 * re * re * d;
-                let sk = gamma * re * re * re / 3.0 * 2.0 * (0.5 * d).sin();
-                let (ta, tc) = polygon_area_centroid(&[o, apex_i, apex_e]);
-                let tw = gamma * ta;
-                let (kw, kwx, kwy) = (
-                    sw - tw,
-                    o.x * sw + sk * mid.cos() - tw * tc.x,
-                    o.y * sw + sk * mid.sin() - tw * tc.y,
-                );
-                let key_left = Sums::of_mass(kw, kwx, kwy, seismic);
-                let key_right = Sums::of_mass(kw, -kwx, kwy, seismic);
-                let mut left = ring(o, radius, PI, PI - phi_i);
-                left.tail = key_left;
-                let mut right = ring(Vec2::new(-e, 0.0), radius, PI - phi_i, PI - phi_i);
-                right.head = key_right;
-                items.push(Item::Annulus(left));
-                items.push(Item::Joint {
-                    p1: apex_i,
-                    p2: apex_e,
-                    kind: JointKind::Arch(n / 2),
-                });
-                items.push(Item::Annulus(right));
-            }
-            Shape::Basket {
-                span,
-                rise,
-                side_angle: b,
-            } => {
-                let (r1, r2) = basket_radii(span, rise, b);
-                items.push(Item::Annulus(ring(
-                    Vec2::new(-(0.5 * span - r1), 0.0),
-                    r1,
-                    PI,
-                    b,
-                )));
-                items.push(Item::Annulus(ring(
-                    Vec2::new(0.0, -(r2 - r1) * b.sin()),
-                    r2,
-                    PI - b,
-                    PI - 2.0 * b,
-                )));
-                items.push(Item::Annulus(ring(
-                    Vec2::new(0.5 * span - r1, 0.0),
-                    r1,
-                    b,
-                    b,
-                )));
-            }
+                    theta0,
+                    sweep,
+                    head,
+                    tail,
+                } => Item::Annulus(Annulus {
+                    centre,
+                    ri: radius - 0.5 * t,
+                    re: radius + 0.5 * t,
+                    theta0,
+                    dir: -1.0,
+                    len: sweep,
+                    head: lump(head),
+                    tail: lump(tail),
+                    gamma,
+                    seismic,
+                }),
+                RingPiece::Joint { p1, p2, joint } => Item::Joint {
+                    p1,
+                    p2,
+                    kind: JointKind::Arch(joint),
+                },
+            });
         }
         items.push(joint(k + n));
         for c in 0..k {
@@ -565,19 +526,17 @@ fn act_of(a: u8) -> Act {
     }
 }
 
-/// Continuous model with the load toward +x.
-pub fn continuous(scene: &Scene) -> Result<ContinuousResult, KinematicError> {
-    continuous_with(scene, Direction::Right)
-}
-
-/// Continuous model (hinges at any section of the arch; piers as given) for the load in
-/// direction `direction`.
-pub fn continuous_with(
-    scene: &Scene,
+/// Continuous model (hinges at any section of the arch; piers as given) of `model`, an arch of
+/// shape `shape` and thickness `thickness` (with or without piers, as built by
+/// [`crate::model::build`]), for the seismic load in direction `direction`.
+pub fn continuous(
+    model: &Model,
+    shape: &dyn ArchShape,
+    thickness: f64,
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
     let start = Instant::now();
-    let st = Structure::from_scene(scene, direction)?;
+    let st = Structure::new(model, shape, thickness, direction)?;
     let coarse = st.coarse();
     let sections: Vec<(Vec2, Vec2)> = coarse.iter().map(|p| st.section(*p)).collect();
     let segments: Vec<Sums> = coarse.windows(2).map(|w| st.between(w[0], w[1])).collect();
@@ -849,18 +808,22 @@ fn refine(
     (best, pos)
 }
 
-/// The continuous model's minimum thickness: the root of `lambda_signed(t)` (load toward +x),
-/// bracketed from the scene's thickness and found by the Illinois variant of regula falsi.
-pub fn continuous_min_thickness(scene: &Scene) -> Result<MinThickness, KinematicError> {
-    let tmax = scene.max_thickness();
+/// The continuous model's minimum thickness: the root of `lambda_signed(t)`, bracketed from
+/// the thickness `t0` below the largest admissible one `tmax` and found by the Illinois variant
+/// of regula falsi. `at(t)` runs the continuous model at thickness `t` (load toward +x).
+pub fn continuous_min_thickness(
+    t0: f64,
+    tmax: f64,
+    mut at: impl FnMut(f64) -> Result<ContinuousResult, KinematicError>,
+) -> Result<MinThickness, KinematicError> {
     let mut iterations = 0;
     let mut lam = |t: f64| -> Result<(f64, ContinuousResult), KinematicError> {
         iterations += 1;
-        let r = continuous(&scene.with_thickness(t)?)?;
+        let r = at(t)?;
         let l = r.lambda_signed.unwrap_or(f64::INFINITY);
         Ok((l, r))
     };
-    let mut hi = scene.arch.thickness;
+    let mut hi = t0;
     let (mut fhi, _) = lam(hi)?;
     while fhi <= 0.0 {
         hi = 0.5 * (hi + tmax);

@@ -1011,7 +1011,7 @@ mod tests {
             "t",
         )
         .unwrap();
-        let model = crate::model::build(&scene).unwrap();
+        let model = crate::scene::build(&scene).unwrap();
         let chain = Chain::new(&model, 1.0, true);
         let n = chain.joints();
         // Four hinges: quadruple_work against evaluate, where admissible.

@@ -70,8 +70,8 @@ pub mod continuous;
 pub mod discrete;
 
 pub use continuous::{
-    continuous, continuous_min_thickness, continuous_with, ContinuousHinge, ContinuousResult,
-    HingeLocation, MinThickness,
+    continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
+    MinThickness,
 };
 pub use discrete::{analyse, analyse_local};
 

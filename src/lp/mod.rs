@@ -14,9 +14,9 @@ pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
 pub use settings::StaticSettings;
 
-use crate::assembly::{equilibrium_residual, Assembly, Hinge, JointEnd, JointForce};
+use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
-use crate::model::Model;
+use crate::model::{equilibrium_residual, Model};
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 

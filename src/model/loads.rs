@@ -76,6 +76,17 @@ pub enum LoadSource {
     Fill,
 }
 
+impl std::fmt::Display for LoadSource {
+    /// The scene's name of the load: `self-weight`, `loads[k]`, `fill`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LoadSource::SelfWeight => write!(f, "self-weight"),
+            LoadSource::Load(k) => write!(f, "loads[{k}]"),
+            LoadSource::Fill => write!(f, "fill"),
+        }
+    }
+}
+
 /// One load as applied to one block.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AppliedLoad {

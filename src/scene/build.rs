@@ -15,36 +15,17 @@
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap`
 //!   (line) or its own weight (fill) at the same point.
 
-use super::loads::{AppliedLoad, LoadCase, LoadSource};
-use super::Model;
+use super::{LoadSpec, Scene, VoussoirShape};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
-use crate::geometry::{self, circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::scene::{LoadSpec, Scene, Shape, VoussoirShape};
+use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model};
 
 /// Build the assembly and load case of a scene.
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
     let (assembly, arch) = build_assembly(scene);
     let loads = build_loads(scene, &assembly, &arch)?;
     Ok(Model { assembly, loads })
-}
-
-/// The arch geometry of a scene's shape.
-fn arch_geometry(scene: &Scene) -> ArchGeometry {
-    let a = &scene.arch;
-    let t = a.thickness;
-    match a.shape {
-        Shape::Circular { radius, embrace } => geometry::circular(radius, t, embrace, a.voussoirs),
-        Shape::Pointed {
-            radius,
-            eccentricity,
-        } => geometry::pointed(radius, eccentricity, t, a.voussoirs),
-        Shape::Basket {
-            span,
-            rise,
-            side_angle,
-        } => geometry::basket(span, rise, side_angle, t, a.voussoirs),
-    }
 }
 
 /// Where the arch's blocks sit in the assembly, for placing loads.
@@ -61,7 +42,7 @@ struct ArchPlacement {
 /// from left to right, the right pier courses from the top down (a chain).
 fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
     let a = &scene.arch;
-    let g = arch_geometry(scene);
+    let g = a.shape.geometry(a.thickness, a.voussoirs);
     let gamma = scene.material.unit_weight * scene.material.depth;
     let mu = scene.material.friction;
     let curved = a.voussoir_shape == VoussoirShape::Curved;

@@ -5,10 +5,14 @@
 //! A `Scene` keeps the TOML table it was read from, so overrides (from the command line, a
 //! sweep or the minimum-thickness search) go through exactly the same validation.
 
+mod build;
+pub use build::build;
+
 use crate::error::SceneError;
-use crate::geometry::{basket_radii, side_voussoirs};
+use crate::geometry::{basket_radii, side_voussoirs, ArchShape, Basket, Circular, Pointed};
 use std::collections::BTreeSet;
 use std::path::Path;
+use std::sync::Arc;
 use toml::{Table, Value};
 
 /// Largest number of voussoirs (and of pier courses) a scene may ask for: beyond it the
@@ -27,60 +31,6 @@ pub const MAX_LENGTH: f64 = 1e6;
 /// have no meaning for masonry and lose all digits in the joint geometry.
 pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
 
-/// The shape of the arch and its shape-specific dimensions (metres, radians).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Shape {
-    /// Circular arch: centreline radius and full embrace angle (pi = semicircular).
-    Circular { radius: f64, embrace: f64 },
-    /// Pointed arch: centreline radius and eccentricity of the two centres.
-    Pointed { radius: f64, eccentricity: f64 },
-    /// Three-centred basket-handle arch: centreline span, rise, and angle of each side arc.
-    Basket {
-        span: f64,
-        rise: f64,
-        side_angle: f64,
-    },
-}
-
-impl Shape {
-    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches.
-    pub fn size(&self) -> f64 {
-        match self {
-            Shape::Circular { radius, .. } | Shape::Pointed { radius, .. } => *radius,
-            Shape::Basket { span, .. } => 0.5 * span,
-        }
-    }
-
-    /// Height of the extrados at the crown (m) for thickness `t`: the highest point of the
-    /// arch ring.
-    pub fn crown_extrados(&self, t: f64) -> f64 {
-        match *self {
-            Shape::Circular { radius, .. } => radius + 0.5 * t,
-            Shape::Pointed {
-                radius,
-                eccentricity,
-            } => ((radius + 0.5 * t).powi(2) - eccentricity * eccentricity).sqrt(),
-            Shape::Basket {
-                span,
-                rise,
-                side_angle,
-            } => {
-                let (r1, r2) = basket_radii(span, rise, side_angle);
-                r2 + 0.5 * t - (r2 - r1) * side_angle.sin()
-            }
-        }
-    }
-
-    /// The scene-file name of the shape.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Shape::Circular { .. } => "circular",
-            Shape::Pointed { .. } => "pointed",
-            Shape::Basket { .. } => "basket",
-        }
-    }
-}
-
 /// How a voussoir's weight and centroid are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VoussoirShape {
@@ -91,9 +41,10 @@ pub enum VoussoirShape {
 }
 
 /// The arch ring.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct ArchSpec {
-    pub shape: Shape,
+    /// The shape and its own dimensions (one type per shape, in `crate::geometry`).
+    pub shape: Arc<dyn ArchShape>,
     /// Radial thickness t (m).
     pub thickness: f64,
     /// Number of voussoirs n.
@@ -272,36 +223,14 @@ impl Scene {
         self.with_value("arch.thickness", Value::Float(t))
     }
 
-    /// The largest arch thickness the shape admits (exclusive): 2R for circular arches,
-    /// 2 r1 for basket arches; for pointed ones 2(R - e) with two voussoirs, and with more the
-    /// thickness at which the intrados meets the axis exactly at the radial joint next to the
-    /// crown, `2 (R - e / (-cos phi_last))` (a thicker arch with n voussoirs is rejected: that
-    /// voussoir would fold over the crown joint).
+    /// The largest arch thickness the shape admits (exclusive) with the scene's voussoirs.
     pub fn max_thickness(&self) -> f64 {
-        match self.arch.shape {
-            Shape::Circular { radius, .. } => 2.0 * radius,
-            Shape::Pointed {
-                radius,
-                eccentricity: e,
-            } => {
-                let h = (self.arch.voussoirs / 2).max(1) as f64;
-                let phi_end = (-e / radius).acos();
-                let phi_last =
-                    std::f64::consts::PI - (std::f64::consts::PI - phi_end) * (h - 1.0) / h;
-                // phi_last >= phi_end >= pi/2, so -cos(phi_last) is in [0, 1] (1 for n = 2).
-                let c = -phi_last.cos();
-                if c > 0.0 {
-                    2.0 * (radius - e / c)
-                } else {
-                    2.0 * radius
-                }
-            }
-            Shape::Basket {
-                span,
-                rise,
-                side_angle,
-            } => 2.0 * basket_radii(span, rise, side_angle).0,
-        }
+        self.arch.shape.max_thickness(self.arch.voussoirs)
+    }
+
+    /// The assembly and load case of this scene ([`build`]).
+    pub fn model(&self) -> Result<crate::model::Model, SceneError> {
+        build(self)
     }
 
     /// The arch's own size: R for circular and pointed arches, span/2 for basket arches.
@@ -317,29 +246,7 @@ impl Scene {
     }
 }
 
-/// Split `key=value` and read the value as TOML (falling back to a bare string).
-pub fn parse_assignment(text: &str) -> Result<(String, Value), SceneError> {
-    let (key, raw) = text
-        .split_once('=')
-        .ok_or_else(|| SceneError::BadOverride {
-            text: text.to_string(),
-            message: "expected KEY=VALUE, e.g. arch.thickness=0.2".to_string(),
-        })?;
-    let key = key.trim();
-    let raw = raw.trim();
-    if key.is_empty() || raw.is_empty() {
-        return Err(SceneError::BadOverride {
-            text: text.to_string(),
-            message: "expected KEY=VALUE with a non-empty key and value".to_string(),
-        });
-    }
-    let value = format!("v = {raw}")
-        .parse::<Table>()
-        .ok()
-        .and_then(|mut t| t.remove("v"))
-        .unwrap_or_else(|| Value::String(raw.to_string()));
-    Ok((key.to_string(), value))
-}
+pub use crate::overrides::parse_assignment;
 
 fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
     let parts: Vec<&str> = key.split('.').collect();
@@ -625,10 +532,11 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
     };
     // Loads are placed on blocks here too (a point outside every block is an error of the
     // scene, whatever the command).
-    let model = crate::model::build(&scene)?;
+    let model = build(&scene)?;
     if !scene.dem.is_empty() {
         // The [dem] knobs are validated here too, so a typo is caught whatever the command.
-        crate::dem::IntegrationParameters::from_scene(&scene, &model.assembly)?;
+        let mut p = crate::dem::IntegrationParameters::for_model(&model);
+        p.apply_table(&scene.dem, &scene.origin)?;
     }
     Ok(scene)
 }
@@ -680,10 +588,10 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
                     ),
                 ));
             }
-            let shape = Shape::Circular {
+            let shape: Arc<dyn ArchShape> = Arc::new(Circular {
                 radius,
                 embrace: embrace_deg.to_radians(),
-            };
+            });
             (shape, n)
         }
         "pointed" => {
@@ -725,13 +633,11 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
                     ),
                 ));
             }
-            (
-                Shape::Pointed {
-                    radius,
-                    eccentricity: e,
-                },
-                n,
-            )
+            let shape: Arc<dyn ArchShape> = Arc::new(Pointed {
+                radius,
+                eccentricity: e,
+            });
+            (shape, n)
         }
         "basket" => {
             let span = s.length("span", "centreline span L in metres")?;
@@ -778,14 +684,12 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
                     ),
                 ));
             }
-            (
-                Shape::Basket {
-                    span,
-                    rise,
-                    side_angle: b,
-                },
-                n,
-            )
+            let shape: Arc<dyn ArchShape> = Arc::new(Basket {
+                span,
+                rise,
+                side_angle: b,
+            });
+            (shape, n)
         }
         other => {
             return Err(s.out_of_range(
@@ -830,15 +734,20 @@ fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
     let width = s.length("width", "pier width b in metres")?;
     let courses = s.count("courses", Some(1), 1, "")?;
     s.finish("")?;
-    if let Shape::Circular { embrace, .. } = arch.shape {
-        if (embrace - std::f64::consts::PI).abs() > 1e-12 {
-            return Err(SceneError::OutOfRange {
-                origin: s.origin.to_string(),
-                key: "arch.embrace_deg".to_string(),
-                value: ((embrace.to_degrees() * 1e9).round() / 1e9).to_string(),
-                allowed: "piers need horizontal springing joints: a circular arch on piers must have embrace_deg = 180".to_string(),
-            });
-        }
+    if !arch.shape.horizontal_springings() {
+        // Only a circular arch with an embrace other than 180 deg has inclined springings.
+        let (key, value) = arch
+            .shape
+            .keys()
+            .into_iter()
+            .find(|(k, _)| *k == "embrace_deg")
+            .map_or(("shape", f64::NAN), |(k, v)| (k, v));
+        return Err(SceneError::OutOfRange {
+            origin: s.origin.to_string(),
+            key: format!("arch.{key}"),
+            value: ((value * 1e9).round() / 1e9).to_string(),
+            allowed: format!("piers need horizontal springing joints: a {} arch on piers must have embrace_deg = 180", arch.shape.name()),
+        });
     }
     Ok(Piers {
         height,
@@ -987,9 +896,9 @@ mod tests {
         assert_eq!(s.material.depth, 1.0);
         assert!(s.material.friction.is_infinite());
         assert_eq!(s.arch.voussoir_shape, VoussoirShape::Polygon);
-        assert!(
-            matches!(s.arch.shape, Shape::Circular { embrace, .. } if (embrace - std::f64::consts::PI).abs() < 1e-15)
-        );
+        assert_eq!(s.arch.shape.name(), "circular");
+        let (key, deg) = s.arch.shape.keys()[1];
+        assert!(key == "embrace_deg" && (deg - 180.0).abs() < 1e-12);
     }
 
     #[test]

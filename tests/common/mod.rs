@@ -26,7 +26,7 @@ pub fn scene(text: &str) -> Scene {
 
 /// The model (assembly and loads) of a scene.
 pub fn model_of(scene: &Scene) -> Model {
-    voussoir::model::build(scene).expect("valid test model")
+    voussoir::scene::build(scene).expect("valid test model")
 }
 
 /// A rectangle `[x0, x0 + b] x [y0, y0 + h]` as a block of unit weight density.

@@ -1,0 +1,90 @@
+//! `voussoir analyze`: the collapse multiplier of a scene by both bounds.
+
+use super::{json, write_atomically, write_svg, Dir, SceneArgs};
+use voussoir::analysis;
+use voussoir::error::{AnalysisError, Error};
+use voussoir::lp::StaticSettings;
+use voussoir::report;
+use voussoir::thrustline::svg::{Drawing, Mechanism};
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Print one JSON object instead of the summary
+    #[arg(long)]
+    json: bool,
+    /// Write the thrust line (one row per joint) to this CSV file
+    #[arg(long, value_name = "FILE")]
+    thrust_csv: Option<std::path::PathBuf>,
+    /// Draw the blocks, thrust line, hinges and mechanism to this SVG file
+    #[arg(long, value_name = "FILE")]
+    svg: Option<std::path::PathBuf>,
+    /// Direction of the horizontal acceleration
+    #[arg(long, value_enum, default_value = "right")]
+    direction: Dir,
+    /// Conic solver tolerance (gap and feasibility, dimensionless; 1e-14..1e-6). Looser
+    /// tolerances would let lambda exceed the true multiplier
+    #[arg(long, default_value_t = 1e-10)]
+    tolerance: f64,
+    /// Also run the continuous model (hinges anywhere: the limit of infinitely many voussoirs)
+    #[arg(long)]
+    continuous: bool,
+    /// Largest chain (joints) for the exhaustive kinematic search (above it, a local search
+    /// around the static hinges); 0 turns the kinematic analysis off
+    #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+    kinematic_max_joints: usize,
+}
+
+pub fn run(args: Args) -> Result<String, Error> {
+    let scene = args.scene.load()?;
+    let tolerance = args.tolerance;
+    if !(tolerance.is_finite() && (1e-14..=1e-6).contains(&tolerance)) {
+        return Err(Error::Analysis(AnalysisError::Other(format!(
+            "--tolerance {tolerance}: must be from 1e-14 to 1e-6 (looser solutions are not safe: lambda may exceed the collapse multiplier)"
+        ))));
+    }
+    let options = analysis::Options {
+        static_settings: StaticSettings::default()
+            .direction(args.direction.into())
+            .tolerance(tolerance),
+        kinematic_max_joints: args.kinematic_max_joints,
+        continuous: args.continuous,
+    };
+    let a = analysis::analyse(&scene, &options)?;
+    let (assembly, result) = (&a.model.assembly, &a.lower);
+    if let Some(path) = &args.thrust_csv {
+        if result.forces.is_some() {
+            write_atomically(path, |buf| {
+                report::write_thrust_csv(buf, assembly, result).map_err(|e| e.to_string())
+            })?;
+        } else {
+            eprintln!(
+                "note: no thrust line at collapse ({}): {} not written",
+                result.status.as_str(),
+                path.display()
+            );
+        }
+    }
+    if let Some(path) = &args.svg {
+        let drawing = Drawing {
+            title: report::drawing_title(&scene, result.lambda, a.lambda_upper()),
+            forces: result.forces.as_deref(),
+            hinges: &result.hinges,
+            sliding: &result.sliding,
+            mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
+                velocities: &result.mechanism,
+                amplification: None,
+            }),
+            load: Some(options.direction()),
+            loads: Some(&a.model.loads),
+            ..Default::default()
+        };
+        write_svg(path, assembly, &drawing)?;
+    }
+    Ok(if args.json {
+        json(&report::AnalysisReport::new(&scene, &a))
+    } else {
+        report::analysis_summary(&scene, &a)
+    })
+}

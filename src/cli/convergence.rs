@@ -1,0 +1,57 @@
+//! `voussoir convergence`: speed against accuracy for one scene.
+
+use super::{json, progress_bar, write_atomically, write_chart, SceneArgs};
+use voussoir::analysis;
+use voussoir::error::{AnalysisError, Error};
+use voussoir::report;
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Print one JSON object instead of the tables
+    #[arg(long)]
+    json: bool,
+    /// Write the refinement table (one row per voussoir count) to this CSV file
+    #[arg(long, value_name = "FILE")]
+    csv: Option<std::path::PathBuf>,
+    /// Draw log10 of the relative error against log10 n to this SVG file
+    #[arg(long, value_name = "FILE")]
+    svg: Option<std::path::PathBuf>,
+    /// Largest voussoir count of the refinement (counts double from 8)
+    #[arg(long, default_value_t = 1024)]
+    max_voussoirs: usize,
+    /// Largest chain (joints) for the exhaustive kinematic search; 0 turns it off
+    #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+    kinematic_max_joints: usize,
+    /// Skip the DEM study (a few seconds on a 16-voussoir copy of the scene)
+    #[arg(long)]
+    no_dem: bool,
+}
+
+pub fn run(args: Args) -> Result<String, Error> {
+    let scene = args.scene.load()?;
+    let settings = voussoir::convergence::ConvergenceSettings {
+        max_voussoirs: args.max_voussoirs,
+        kinematic_max_joints: args.kinematic_max_joints,
+        dem: !args.no_dem,
+        ..Default::default()
+    };
+    let bar = progress_bar(0, "convergence");
+    let c = voussoir::convergence::run(&scene, &settings, &mut |what| {
+        bar.set_prefix(format!("convergence: {what}"))
+    })
+    .map_err(|e| Error::Analysis(AnalysisError::Other(e.to_string())))?;
+    bar.finish_and_clear();
+    if let Some(path) = &args.svg {
+        let title = format!(
+            "{}: convergence with the number of voussoirs",
+            report::shape_title(&scene)
+        );
+        write_chart(path, &c.chart(&title))?;
+    }
+    if let Some(path) = &args.csv {
+        write_atomically(path, |b| c.write_csv(b).map_err(|e| e.to_string()))?;
+    }
+    Ok(if args.json { json(&c) } else { c.summary() })
+}

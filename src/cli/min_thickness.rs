@@ -1,0 +1,68 @@
+//! `voussoir min-thickness`: the thinnest ring that stands under its permanent loads.
+
+use super::{json, write_svg, SceneArgs};
+use voussoir::analysis;
+use voussoir::error::Error;
+use voussoir::lp::StaticSettings;
+use voussoir::report;
+use voussoir::thickness;
+use voussoir::thrustline::svg::Drawing;
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Print one JSON object instead of the summary
+    #[arg(long)]
+    json: bool,
+    /// Draw the thrust line at the minimum thickness to this SVG file
+    #[arg(long, value_name = "FILE")]
+    svg: Option<std::path::PathBuf>,
+    /// Also find the continuous model's minimum thickness
+    #[arg(long)]
+    continuous: bool,
+    /// Largest chain (joints) for the kinematic bisection; 0 turns it off
+    #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
+    kinematic_max_joints: usize,
+}
+
+pub fn run(args: Args) -> Result<String, Error> {
+    let scene = args.scene.load()?;
+    let model = voussoir::scene::build(&scene)?;
+    let t = thickness::analyse(
+        &scene,
+        &StaticSettings::default(),
+        args.kinematic_max_joints,
+        args.continuous,
+    )?;
+    let m = &t.lower;
+    if let Some(path) = &args.svg {
+        match (&m.at_minimum, m.search.min_thickness) {
+            (Some((at, stand)), Some(t)) => {
+                let drawing = Drawing {
+                    title: format!(
+                        "{} at its minimum thickness t_min = {t:.6} m\nthrust line under the permanent loads (lambda = 0), {} hinges",
+                        report::shape_title(&scene),
+                        stand.hinges.len()
+                    ),
+                    forces: Some(&stand.forces),
+                    hinges: &stand.hinges,
+                    loads: Some(&at.loads),
+                    ..Default::default()
+                };
+                write_svg(path, &at.assembly, &drawing)?;
+            }
+            _ => eprintln!(
+                "note: no minimum thickness ({:?}): {} not written",
+                m.search.outcome,
+                path.display()
+            ),
+        }
+    }
+    let rep = report::MinThicknessReport::new(&scene, &model, &t);
+    Ok(if args.json {
+        json(&rep)
+    } else {
+        report::min_thickness_summary(&scene, &model, m, &rep)
+    })
+}

@@ -1,0 +1,58 @@
+//! `voussoir study`: a parametric study file (data/studies/*.toml) to a CSV and a chart.
+
+use super::{progress_bar, write_atomically, write_chart};
+use voussoir::error::Error;
+use voussoir::sweep;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Study file (TOML: title, output, vary, x, series, y, baseline, continuous, [scene.*])
+    study: std::path::PathBuf,
+    /// Directory for the CSV and SVG
+    #[arg(long, value_name = "DIR", default_value = "docs/figures")]
+    out: std::path::PathBuf,
+    /// Thin every range to 3 values (a quick check of the study)
+    #[arg(long)]
+    reduced: bool,
+}
+
+pub fn run(args: Args) -> Result<String, Error> {
+    let mut st = voussoir::study::Study::from_file(&args.study)?;
+    if args.reduced {
+        st = st.reduced(3);
+    }
+    let out = &args.out;
+    let total: usize = st.variations.iter().map(|v| v.values.len()).product();
+    let bar = progress_bar(total as u64, "study");
+    let (rows, chart) = st.run(&|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let mut buf = Vec::new();
+    sweep::write_csv(&mut buf, &st.variations, &rows).map_err(|e| Error::Output {
+        path: out.clone(),
+        message: e.to_string(),
+    })?;
+    std::fs::create_dir_all(out).map_err(|e| Error::Output {
+        path: out.clone(),
+        message: e.to_string(),
+    })?;
+    let csv_path = out.join(format!("{}.csv", st.output));
+    let svg_path = out.join(format!("{}.svg", st.output));
+    write_atomically(&csv_path, |b| {
+        *b = buf;
+        Ok(())
+    })?;
+    write_chart(&svg_path, &chart)?;
+    let failed = rows.iter().filter(|r| r.status == "error").count();
+    Ok(format!(
+        "{}: {} cases{} -> {} and {}",
+        st.title,
+        rows.len(),
+        if failed > 0 {
+            format!(" ({failed} invalid)")
+        } else {
+            String::new()
+        },
+        csv_path.display(),
+        svg_path.display()
+    ))
+}

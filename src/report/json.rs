@@ -1,0 +1,424 @@
+//! The JSON reports (`analyze --json`, `min-thickness --json`, `dem --json`): a contract for
+//! scripts. Later versions add fields, never rename them.
+
+use crate::analysis::SceneAnalysis;
+use crate::assembly::{Hinge, JointKind};
+use crate::kinematic::ContinuousHinge;
+use crate::lp::{ModelSize, StaticResult};
+use crate::model::Model;
+use crate::outcome::{Direction, Status};
+use crate::scene::{FillSpec, LoadSpec, Scene, VoussoirShape};
+use crate::thickness::{MinThickness, ThicknessAnalysis, ThicknessOutcome};
+use serde::Serialize;
+
+/// One joint in `analyze --json`.
+#[derive(Debug, Serialize)]
+pub struct JointReport {
+    pub index: usize,
+    /// What the joint is: `arch`, `left_pier` or `right_pier` with its number.
+    pub kind: JointKind,
+    pub p1: [f64; 2],
+    pub p2: [f64; 2],
+    /// Normal force (N), null when the structure has no collapse state.
+    #[serde(rename = "N")]
+    pub n: Option<f64>,
+    /// Shear force (N) along p1 -> p2.
+    #[serde(rename = "V")]
+    pub v: Option<f64>,
+    /// Moment about the joint midpoint (N m), positive toward p2.
+    #[serde(rename = "M")]
+    pub m: Option<f64>,
+    /// Eccentricity M/N (m) from the midpoint toward p2.
+    pub e: Option<f64>,
+    /// Thrust-line point `p_mid + e u`.
+    pub thrust: Option<[f64; 2]>,
+}
+
+/// Scene summary echoed in the JSON.
+#[derive(Debug, Serialize)]
+pub struct SceneReport {
+    pub origin: String,
+    pub shape: &'static str,
+    pub thickness: f64,
+    pub voussoirs: usize,
+    pub voussoir_shape: &'static str,
+    pub portal: bool,
+    /// Coulomb coefficient; null means infinite (no sliding).
+    pub friction: Option<f64>,
+    pub total_weight: f64,
+}
+
+/// The loads of a scene as read, and their totals (fields `loads`, `fill`, `vertical_ratio`,
+/// `permanent_weight`, `seismic_weight` of every JSON report).
+#[derive(Debug, Serialize)]
+pub struct LoadsReport {
+    /// The `[[loads]]` entries as read (`type`, and `at`/`force` or `from_x`/`to_x`/
+    /// `intensity`, and `seismic`).
+    pub loads: Vec<LoadSpec>,
+    /// `[fill]` as read, or null.
+    pub fill: Option<FillSpec>,
+    /// `[seismic] vertical_ratio`.
+    pub vertical_ratio: f64,
+    /// Total downward permanent force (N): self-weight, fill, point and line loads.
+    pub permanent_weight: f64,
+    /// Total weight of the seismic masses (N): the horizontal seismic force is lambda times
+    /// this.
+    pub seismic_weight: f64,
+}
+
+impl LoadsReport {
+    pub fn new(scene: &Scene, model: &Model) -> Self {
+        LoadsReport {
+            loads: scene.loads.clone(),
+            fill: scene.fill.clone(),
+            vertical_ratio: scene.seismic.vertical_ratio,
+            permanent_weight: model.loads.permanent_weight(),
+            seismic_weight: model.loads.seismic_weight(),
+        }
+    }
+}
+
+/// `analyze --json`.
+#[derive(Debug, Serialize)]
+pub struct AnalysisReport {
+    pub status: Status,
+    pub lambda_lower: Option<f64>,
+    pub hinges: Vec<Hinge>,
+    pub sliding: Vec<usize>,
+    pub joints: Vec<JointReport>,
+    pub mechanism: Vec<[f64; 3]>,
+    pub equilibrium_residual: f64,
+    pub blocks: usize,
+    pub solve_time_s: f64,
+    pub direction: Direction,
+    pub solver_status: String,
+    pub iterations: u32,
+    pub model: ModelSize,
+    pub scene: SceneReport,
+    /// The loads beyond self-weight and the weights they add up to.
+    #[serde(flatten)]
+    pub loads: LoadsReport,
+    /// Discrete kinematic (upper-bound) multiplier, or null (no collapse, cannot stand, or
+    /// the search was not run: see `kinematic_note`).
+    pub lambda_upper: Option<f64>,
+    /// Status of the kinematic search (same words as `status`), or null when not run.
+    pub kinematic_status: Option<Status>,
+    /// `|lambda_upper - lambda_lower| / max(1, lambda_lower)` when both exist.
+    pub gap: Option<f64>,
+    /// Hinges of the governing kinematic mechanism (same form as `hinges`).
+    pub mechanism_hinges: Vec<Hinge>,
+    /// Joints that open completely in that mechanism.
+    pub open_joints: Vec<usize>,
+    /// Finite friction and a static bound below the rotational upper bound: sliding governs.
+    pub sliding_governs: bool,
+    /// Block velocities of the kinematic mechanism `[vx, vy, omega]`.
+    pub kinematic_mechanism: Vec<[f64; 3]>,
+    /// Why the kinematic search was not run or failed, or what a local search covered.
+    pub kinematic_note: Option<String>,
+    /// `exhaustive` (lambda_upper is the discrete kinematic multiplier), `local` (only the
+    /// mechanisms near the static hinges were searched: lambda_upper is an upper bound, null
+    /// when that search found none), or null when no kinematic search ran.
+    pub kinematic_search: Option<crate::kinematic::Search>,
+    pub kinematic_time_s: Option<f64>,
+    /// Continuous model (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_continuous: Option<Option<f64>>,
+    /// Hinges of the continuous mechanism (only with `--continuous`); angles in degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_hinges: Option<Vec<ContinuousHinge>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_note: Option<String>,
+}
+
+fn xy(p: crate::geometry::Vec2) -> [f64; 2] {
+    [p.x, p.y]
+}
+
+fn finite_or_null(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl SceneReport {
+    pub fn new(scene: &Scene, model: &Model) -> Self {
+        SceneReport {
+            origin: scene.origin.clone(),
+            shape: scene.arch.shape.name(),
+            thickness: scene.arch.thickness,
+            voussoirs: scene.arch.voussoirs,
+            voussoir_shape: match scene.arch.voussoir_shape {
+                VoussoirShape::Polygon => "polygon",
+                VoussoirShape::Curved => "curved",
+            },
+            portal: scene.piers.is_some(),
+            friction: finite_or_null(scene.material.friction),
+            total_weight: model.assembly.total_weight(),
+        }
+    }
+}
+
+impl AnalysisReport {
+    pub fn new(scene: &Scene, a: &SceneAnalysis) -> Self {
+        let mut report = AnalysisReport::new_static(scene, &a.model, &a.lower);
+        match &a.upper {
+            Ok(k) => {
+                report.lambda_upper = k.lambda_upper;
+                report.kinematic_status = Some(k.status);
+                report.kinematic_time_s = Some(k.wall_time_s);
+                report.kinematic_note.clone_from(&k.note);
+                if let Some(m) = &k.mechanism {
+                    report.mechanism_hinges = m.hinges.clone();
+                    report.open_joints = m.open.clone();
+                    report.kinematic_mechanism = m.velocities.clone();
+                }
+            }
+            Err(note) => report.kinematic_note = Some(note.clone()),
+        }
+        report.kinematic_search = a.kinematic_search;
+        report.gap = a.gap();
+        report.sliding_governs = a.sliding_governs();
+        if let Some(c) = &a.continuous {
+            match c {
+                Ok(c) => {
+                    report.lambda_continuous = Some(c.lambda_continuous);
+                    report.continuous_hinges = Some(c.hinges.clone());
+                }
+                Err(note) => {
+                    report.lambda_continuous = Some(None);
+                    report.continuous_note = Some(note.clone());
+                }
+            }
+        }
+        report
+    }
+
+    /// The static part alone.
+    pub fn new_static(scene: &Scene, model: &Model, r: &StaticResult) -> Self {
+        let assembly = &model.assembly;
+        let points = r.thrust_points(assembly);
+        let joints = assembly
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| {
+                let f = r.forces.as_ref().and_then(|f| f.get(i));
+                JointReport {
+                    index: i,
+                    kind: j.kind,
+                    p1: xy(j.p1),
+                    p2: xy(j.p2),
+                    n: f.map(|f| f.n),
+                    v: f.map(|f| f.v),
+                    m: f.map(|f| f.m),
+                    e: r.eccentricity(i),
+                    thrust: points.get(i).copied().flatten().map(xy),
+                }
+            })
+            .collect();
+        AnalysisReport {
+            status: r.status,
+            lambda_lower: r.lambda,
+            hinges: r.hinges.clone(),
+            sliding: r.sliding.clone(),
+            joints,
+            mechanism: r.mechanism.clone(),
+            equilibrium_residual: r.equilibrium_residual,
+            blocks: assembly.blocks.len(),
+            solve_time_s: r.solve_time_s,
+            direction: r.direction,
+            solver_status: r.solver_status.clone(),
+            iterations: r.iterations,
+            model: r.model,
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
+            lambda_upper: None,
+            kinematic_status: None,
+            gap: None,
+            mechanism_hinges: Vec::new(),
+            open_joints: Vec::new(),
+            sliding_governs: false,
+            kinematic_mechanism: Vec::new(),
+            kinematic_note: None,
+            kinematic_search: None,
+            kinematic_time_s: None,
+            lambda_continuous: None,
+            continuous_hinges: None,
+            continuous_note: None,
+        }
+    }
+}
+
+/// `min-thickness --json`.
+#[derive(Debug, Serialize)]
+pub struct MinThicknessReport {
+    /// `found`, `never_stands` or `stands_at_every_thickness`.
+    pub outcome: ThicknessOutcome,
+    pub min_thickness: Option<f64>,
+    /// min_thickness divided by the characteristic size (R for circular and pointed arches,
+    /// span/2 for basket arches).
+    pub min_thickness_ratio: Option<f64>,
+    pub hinges: Vec<Hinge>,
+    pub safety_factor: Option<f64>,
+    pub thickness: f64,
+    pub evaluations: usize,
+    pub scene: SceneReport,
+    #[serde(flatten)]
+    pub loads: LoadsReport,
+    /// Kinematic minimum thickness (where lambda_upper reaches 0), or null when not run.
+    pub min_thickness_kinematic: Option<f64>,
+    /// `|t_static - t_kinematic| / t_static`.
+    pub min_thickness_gap: Option<f64>,
+    pub kinematic_note: Option<String>,
+    /// Continuous-model minimum thickness (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_thickness_continuous: Option<Option<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_hinges: Option<Vec<ContinuousHinge>>,
+    /// Why the continuous model failed (only with `--continuous`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous_note: Option<String>,
+}
+
+impl MinThicknessReport {
+    /// The report of every method in `t`.
+    pub fn new(scene: &Scene, model: &Model, t: &ThicknessAnalysis) -> Self {
+        let mut rep = MinThicknessReport::new_static(scene, model, &t.lower);
+        rep.min_thickness_kinematic = t.kinematic.as_ref().and_then(|k| k.min_thickness);
+        rep.min_thickness_gap = t.gap();
+        rep.kinematic_note = t.kinematic_note.clone();
+        match &t.continuous {
+            Some(Ok(c)) => {
+                rep.min_thickness_continuous = Some(Some(c.thickness));
+                rep.continuous_hinges = Some(c.result.hinges.clone());
+            }
+            Some(Err(e)) => {
+                rep.min_thickness_continuous = Some(None);
+                rep.continuous_note = Some(format!("continuous model: {e}"));
+            }
+            None => {}
+        }
+        rep
+    }
+
+    /// The static part alone.
+    pub fn new_static(scene: &Scene, model: &Model, m: &MinThickness) -> Self {
+        MinThicknessReport {
+            outcome: m.search.outcome,
+            min_thickness: m.search.min_thickness,
+            min_thickness_ratio: m.search.min_thickness.map(|t| t / scene.arch_size()),
+            hinges: m.hinges.clone(),
+            safety_factor: m.safety_factor,
+            thickness: scene.arch.thickness,
+            evaluations: m.search.evaluations,
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
+            min_thickness_kinematic: None,
+            min_thickness_gap: None,
+            kinematic_note: None,
+            min_thickness_continuous: None,
+            continuous_hinges: None,
+            continuous_note: None,
+        }
+    }
+}
+
+/// One DEM run in `dem --json`.
+#[derive(Debug, Serialize)]
+pub struct DemRunReport {
+    /// null for the settling run under gravity alone.
+    pub lambda: Option<f64>,
+    pub outcome: crate::dem::Outcome,
+    /// Simulated time (s) and time steps.
+    pub time: f64,
+    pub steps: u64,
+    pub max_displacement: f64,
+}
+
+/// `dem --json`.
+#[derive(Debug, Serialize)]
+pub struct DemReport {
+    /// `collapse`, `no_collapse` (none up to the DEM's max_lambda) or `cannot_stand`.
+    pub status: &'static str,
+    pub lambda_stands: Option<f64>,
+    pub lambda_collapses: Option<f64>,
+    pub lambda_dem: Option<f64>,
+    /// The static lower bound of the same assembly, for comparison.
+    pub lambda_lower: Option<f64>,
+    /// `(lambda_dem - lambda_lower) / lambda_lower`.
+    pub relative_difference: Option<f64>,
+    /// `(lambda_collapses - lambda_stands) / lambda_dem`.
+    pub bracket_width: Option<f64>,
+    /// Whether `lambda_lower` lies inside `[lambda_stands, lambda_collapses]`: then the DEM
+    /// confirms it to within the bracket, and `relative_difference` (the bracket's midpoint
+    /// against it, zero when the search was centred on it) is known only to half the width.
+    pub static_inside_bracket: Option<bool>,
+    pub steps: u64,
+    pub wall_time_s: f64,
+    /// Joints seen opening at one end, sliding, and opening fully at the onset of collapse.
+    pub hinges: Vec<Hinge>,
+    pub sliding: Vec<usize>,
+    pub open: Vec<usize>,
+    /// The Coulomb coefficient the contacts used; `friction_infinite` says it stands for inf.
+    pub friction: f64,
+    pub friction_infinite: bool,
+    pub time_step: f64,
+    pub undecided_runs: usize,
+    pub runs: Vec<DemRunReport>,
+    pub scene: SceneReport,
+    #[serde(flatten)]
+    pub loads: LoadsReport,
+}
+
+impl DemReport {
+    pub fn new(
+        scene: &Scene,
+        model: &Model,
+        r: &crate::dem::DemResult,
+        lambda_lower: Option<f64>,
+    ) -> Self {
+        let status = if r.cannot_stand {
+            "cannot_stand"
+        } else if r.no_collapse {
+            "no_collapse"
+        } else {
+            "collapse"
+        };
+        DemReport {
+            status,
+            lambda_stands: r.lambda_stands,
+            lambda_collapses: r.lambda_collapses,
+            lambda_dem: r.lambda_dem,
+            lambda_lower,
+            relative_difference: match (r.lambda_dem, lambda_lower) {
+                (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
+                _ => None,
+            },
+            bracket_width: r.bracket_width,
+            static_inside_bracket: match (lambda_lower, r.lambda_stands, r.lambda_collapses) {
+                (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
+                _ => None,
+            },
+            steps: r.steps,
+            wall_time_s: r.wall_time_s,
+            hinges: r.hinges.clone(),
+            sliding: r.sliding.clone(),
+            open: r.open.clone(),
+            friction: r.friction,
+            friction_infinite: r.friction_infinite,
+            time_step: r.time_step,
+            undecided_runs: r.undecided_runs,
+            runs: r
+                .runs
+                .iter()
+                .map(|run| DemRunReport {
+                    lambda: run.lambda,
+                    outcome: run.outcome,
+                    time: run.time,
+                    steps: run.steps,
+                    max_displacement: run.max_displacement,
+                })
+                .collect(),
+            scene: SceneReport::new(scene, model),
+            loads: LoadsReport::new(scene, model),
+        }
+    }
+}

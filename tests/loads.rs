@@ -974,3 +974,60 @@ fn bundled_load_scenes_analyse() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The continuous model under loads: the limit of infinitely many voussoirs.
+
+/// The continuous model integrates fill and line loads along the extrados and places point
+/// loads at their polar angle; the discrete arch with curved voussoirs (the same ring, the same
+/// loads per definition) converges to it from above as the voussoirs multiply, on every shape
+/// (pointed keystones and basket transitions included) and on a portal.
+#[test]
+fn continuous_model_is_the_limit_of_the_discrete_arch_under_loads() {
+    let pointed = "[arch]\nshape = \"pointed\"\nradius = 2.0\neccentricity = 0.5\nthickness = 0.4\nvoussoirs = 16\nvoussoir_shape = \"curved\"\n[fill]\nlevel = 2.6\n[[loads]]\ntype = \"point\"\nat = [0.02, 1.85]\nforce = [0.0, -4000.0]\n[[loads]]\ntype = \"line\"\nfrom_x = -0.3\nto_x = 1.0\nintensity = 3000.0\nseismic = false\n[seismic]\nvertical_ratio = -0.2\n";
+    let basket = "[arch]\nshape = \"basket\"\nspan = 4.0\nrise = 1.4\nthickness = 0.35\nvoussoirs = 15\nvoussoir_shape = \"curved\"\n[piers]\nheight = 1.5\nwidth = 0.9\ncourses = 2\n[fill]\nlevel = 1.9\nunit_weight = 15000.0\nseismic = false\n[[loads]]\ntype = \"point\"\nat = [-0.5, 1.35]\nforce = [500.0, -3000.0]\n[[loads]]\ntype = \"line\"\nfrom_x = -2.5\nto_x = 0.5\nintensity = 2000.0\n";
+    let circle = "[arch]\nshape = \"circular\"\nradius = 2.0\nembrace_deg = 150.0\nthickness = 0.3\nvoussoirs = 16\nvoussoir_shape = \"curved\"\n[fill]\nlevel = 2.5\n[[loads]]\ntype = \"point\"\nat = [-0.7, 1.85]\nforce = [0.0, -2500.0]\n[seismic]\nvertical_ratio = 0.25\n";
+    let cases = [
+        ("pointed", pointed, vec![16, 32, 88]),
+        ("basket portal", basket, vec![15, 60, 240]),
+        ("segmental", circle, vec![16, 64, 256]),
+        ("filled_arch.toml", "", vec![24, 96, 384]),
+    ];
+    for (label, text, counts) in cases {
+        let base = if text.is_empty() {
+            Scene::from_file(std::path::Path::new(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/data/filled_arch.toml"
+            )))
+            .expect("bundled scene")
+        } else {
+            scene(text)
+        };
+        for d in [Direction::Right, Direction::Left] {
+            let c = voussoir::analysis::continuous(&base, d).expect("continuous model runs");
+            assert_eq!(c.status, Status::Collapse, "{label}");
+            let lc = c.lambda_continuous.expect("continuous multiplier");
+            let mut last = f64::INFINITY;
+            for &n in &counts {
+                let s = base
+                    .with_override(&format!("arch.voussoirs={n}"))
+                    .expect("valid count");
+                let m = voussoir::scene::build(&s).expect("builds");
+                let l = statics(&m, d).lambda.expect("collapse");
+                // The discrete arch can only hinge at its joints: never weaker than the
+                // continuum (up to the solvers' accuracy).
+                assert!(l >= lc * (1.0 - 1e-7), "{label} {d:?} n = {n}: {l} < {lc}");
+                let err = rel(l, lc);
+                assert!(
+                    err < last,
+                    "{label} {d:?}: error {err} at n = {n} after {last}"
+                );
+                last = err;
+            }
+            assert!(
+                last < 2e-3,
+                "{label} {d:?}: still {last} from the continuum"
+            );
+        }
+    }
+}

@@ -80,11 +80,14 @@ pub enum RingPiece {
     Joint { p1: Vec2, p2: Vec2, joint: usize },
 }
 
-/// A rigid piece of material: its area and first moment of area about the origin.
+/// A rigid piece of material: its area and first moment of area about the origin, and the
+/// part of the annulus's extrados arc that bounds it (polar angles about the annulus's centre,
+/// in the order the ring runs), which carries its share of loads spread along the extrados.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Lump {
     pub area: f64,
     pub moment: Vec2,
+    pub extrados: Option<(f64, f64)>,
 }
 
 /// A point or vector in the plane of the arch (metres).

@@ -97,10 +97,12 @@ impl ArchShape for Pointed {
         let left_key = Lump {
             area: sector - ta,
             moment: sector_moment - ta * tc,
+            extrados: Some((phi_i, phi_e)),
         };
         let right_key = Lump {
             area: left_key.area,
             moment: mirror(left_key.moment),
+            extrados: Some((PI - phi_e, PI - phi_i)),
         };
         Ok(vec![
             RingPiece::Annulus {

@@ -22,6 +22,14 @@
 //!   as their p1: three hinges there leave the closure matrix of rank 2 (every minor is
 //!   round-off), which [`super::solve_motion`] rejects; before it did, such a noise
 //!   "mechanism" made sound pointed arches "cannot stand".
+//! - Loads ([`crate::model::LoadCase`]): loads spread along the extrados (line loads, fill)
+//!   are integrated exactly between any two sections (a strip `dx` of the extrados at `(x, y)`
+//!   carries `q dx` at `(x, y)`, or the fill column `g (level - y) dx` at its middle), by
+//!   Gauss-Legendre quadrature in the polar angle on the pieces where the integrand is smooth;
+//!   a point load on the ring acts on the side of a section its polar angle lies on (in a
+//!   pointed arch's keystone when it lies there); seismic masses follow their loads. This is
+//!   the limit of the discrete arch with curved voussoirs, whose blocks carry the same loads
+//!   by the same definitions (`tests/loads.rs` checks the convergence).
 //! - Piers are kept as given: a coursed pier has horizontal bed joints, and a crack across a
 //!   course would be a tensile fracture of a stone, which the no-tension model excludes; so a
 //!   pier can only hinge or open at its bed joints (base, course joints), and the
@@ -62,9 +70,10 @@ use super::{
 };
 use crate::assembly::{BlockKind, JointEnd, JointKind};
 use crate::geometry::{polar, ArchShape, Lump, RingPiece, Vec2};
-use crate::model::Model;
+use crate::model::{Model, Spread, SpreadLoad};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::f64::consts::PI;
 use std::hash::BuildHasherDefault;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -182,6 +191,136 @@ enum Item {
     Annulus(Annulus),
 }
 
+/// Resultant of a point load: permanent force `force` at `point`, and a seismic mass of weight
+/// `seismic_weight` there.
+fn point_sums(point: Vec2, force: Vec2, seismic_weight: f64, seismic: Vec2) -> Sums {
+    let mass = Sums::of_mass(
+        seismic_weight,
+        seismic_weight * point.x,
+        seismic_weight * point.y,
+        seismic,
+    );
+    Sums {
+        p: [force.x, force.y, point.x * force.y - point.y * force.x],
+        s: mass.s,
+    }
+}
+
+/// Resultant of the loads spread along the extrados arc (centre `c`, radius `r`) between polar
+/// angles `a` and `b`: for a strip `dx` of the arc at `(x, y)`, a line load `q` puts `q dx` at
+/// `(x, y)`; a fill of density `g` up to `level` puts `g (level - y) dx` at
+/// `(x, (level + y) / 2)`. Each load is a weight (down) and, when seismic, a seismic mass of
+/// the same weight. The arc is cut where x turns back (`sin = 0`) and where a line load starts
+/// or ends, and each piece is integrated by Gauss-Legendre quadrature in the angle, exact to
+/// round-off for these smooth integrands.
+fn spread_sums(c: Vec2, r: f64, a: f64, b: f64, loads: &[SpreadLoad], seismic: Vec2) -> Sums {
+    let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+    if hi <= lo {
+        return Sums::default();
+    }
+    let mut total = Sums::default();
+    for load in loads {
+        let mut cuts = vec![lo, hi];
+        // Angles in (lo, hi) where x turns back: multiples of pi.
+        let mut m = (lo / PI).ceil();
+        while m * PI < hi {
+            cuts.push(m * PI);
+            m += 1.0;
+        }
+        if let Spread::Line { from_x, to_x, .. } = load.kind {
+            for x in [from_x, to_x] {
+                let cosv = (x - c.x) / r;
+                if cosv.abs() < 1.0 {
+                    let base = cosv.acos();
+                    for root in [base, -base] {
+                        // Every angle congruent to the root that falls in (lo, hi).
+                        let mut phi = root + 2.0 * PI * ((lo - root) / (2.0 * PI)).ceil();
+                        while phi < hi {
+                            if phi > lo {
+                                cuts.push(phi);
+                            }
+                            phi += 2.0 * PI;
+                        }
+                    }
+                }
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        let (mut w, mut wx, mut wy) = (0.0, 0.0, 0.0);
+        for pair in cuts.windows(2) {
+            let (p0, p1) = (pair[0], pair[1]);
+            if p1 <= p0 {
+                continue;
+            }
+            let mid = c.x + r * (0.5 * (p0 + p1)).cos();
+            if let Spread::Line { from_x, to_x, .. } = load.kind {
+                if mid < from_x || mid > to_x {
+                    continue;
+                }
+            }
+            let half = 0.5 * (p1 - p0);
+            for (node, weight) in gauss_legendre() {
+                let phi = p0 + half * (1.0 + node);
+                let (sin, cos) = phi.sin_cos();
+                let (x, y) = (c.x + r * cos, c.y + r * sin);
+                // |dx / dphi| = r |sin phi|.
+                let dx = weight * half * r * sin.abs();
+                let (dw, ycen) = match load.kind {
+                    Spread::Line { intensity, .. } => (intensity * dx, y),
+                    Spread::Fill { level, density } => {
+                        (density * (level - y) * dx, 0.5 * (level + y))
+                    }
+                };
+                w += dw;
+                wx += dw * x;
+                wy += dw * ycen;
+            }
+        }
+        let mass = Sums::of_mass(w, wx, wy, seismic);
+        total = total
+            + if load.seismic {
+                mass
+            } else {
+                Sums {
+                    p: mass.p,
+                    s: [0.0; 3],
+                }
+            };
+    }
+    total
+}
+
+/// Nodes and weights of the 16-point Gauss-Legendre rule on [-1, 1] (Newton's method on the
+/// Legendre polynomial, computed once).
+fn gauss_legendre() -> &'static [(f64, f64)] {
+    static RULE: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    RULE.get_or_init(|| {
+        const N: usize = 16;
+        let mut rule = Vec::with_capacity(N);
+        for i in 0..N {
+            let mut x = (PI * (i as f64 + 0.75) / (N as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                // P_N(x) and its derivative by the three-term recurrence.
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=N {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = N as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            rule.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
+        }
+        rule
+    })
+}
+
 /// A position along the chain: an item and, in an annulus, the parameter u.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Pos {
@@ -194,6 +333,12 @@ struct Structure {
     /// Sums of each whole item (with heads and tails).
     full: Vec<Sums>,
     size: f64,
+    /// Loads spread along the extrados (line loads, fill), integrated between any sections.
+    spread: Vec<SpreadLoad>,
+    /// Point loads on the ring, per item: `(u, resultant)`, in no order.
+    points: Vec<Vec<(f64, Sums)>>,
+    /// Seismic force per unit lambda and unit weight (`(d, r)`).
+    seismic: Vec2,
 }
 
 impl Structure {
@@ -223,27 +368,29 @@ impl Structure {
         let gamma = first.weight / first.area;
         let sign = direction.sign();
         let seismic = model.loads.seismic_direction(sign);
-        // The ring is a continuum here: its own weight is integrated exactly between any two
-        // sections, but loads placed on voussoirs (point, line, fill) belong to the discrete
-        // blocks and have no place between arbitrary sections.
-        if let Some(l) = model.loads.applied().iter().find(|l| {
-            l.source != crate::model::LoadSource::SelfWeight
+        // The ring is a continuum: its own weight and the loads spread along its extrados are
+        // integrated exactly between any two sections, and a point load belongs to the side of
+        // a section its polar angle lies on. The piers keep the loads of their blocks.
+        let spread: Vec<SpreadLoad> = model.loads.spread().to_vec();
+        let ring_point = |l: &&crate::model::AppliedLoad| {
+            matches!(l.source, crate::model::LoadSource::Load(_))
+                && !spread.iter().any(|s| s.source == l.source)
                 && matches!(asm.blocks[l.block].kind, BlockKind::Voussoir(_))
-        }) {
-            return Err(KinematicError::Continuous(format!(
-                "loads on the arch ring ({} on voussoir {}) are not modelled: the continuous model carries the ring's self-weight (with any vertical seismic ratio) and loads on the piers",
-                l.source,
-                l.block - k
-            )));
-        }
+        };
+        let ring_points: Vec<&crate::model::AppliedLoad> =
+            model.loads.applied().iter().filter(ring_point).collect();
         let sums_of = |i: usize| Sums::of_block(&model.loads, i, sign);
-        let lump = |l: Lump| {
-            Sums::of_mass(
+        let lump = |centre: Vec2, re: f64, l: Lump| {
+            let mut s = Sums::of_mass(
                 gamma * l.area,
                 gamma * l.moment.x,
                 gamma * l.moment.y,
                 seismic,
-            )
+            );
+            if let Some((a, b)) = l.extrados {
+                s = s + spread_sums(centre, re, a, b, &spread, seismic);
+            }
+            s
         };
         let joint = |j: usize| {
             let jt = &asm.joints[j];
@@ -275,8 +422,8 @@ impl Structure {
                     theta0,
                     dir: -1.0,
                     len: sweep,
-                    head: lump(head),
-                    tail: lump(tail),
+                    head: lump(centre, radius + 0.5 * t, head),
+                    tail: lump(centre, radius + 0.5 * t, tail),
                     gamma,
                     seismic,
                 }),
@@ -292,19 +439,85 @@ impl Structure {
             items.push(Item::Block(sums_of(k + n + c)));
             items.push(joint(k + n + 1 + c));
         }
-        let full = items
-            .iter()
-            .map(|it| match it {
+        // Each point load on the ring goes to the annulus its voussoir lies on, at its polar
+        // angle; past either end of the annulus it is in a keystone lump.
+        let arcs = shape.geometry(t, n).arcs;
+        let tol = 1e-9 * asm.size();
+        let mut points: Vec<Vec<(f64, Sums)>> = vec![Vec::new(); items.len()];
+        for l in &ring_points {
+            let arc = arcs[l.block - k];
+            let found = items.iter_mut().enumerate().find_map(|(i, it)| match it {
+                Item::Annulus(a)
+                    if (a.centre - arc.centre).norm() <= tol
+                        && (0.5 * (a.ri + a.re) - arc.radius).abs() <= tol =>
+                {
+                    Some((i, a))
+                }
+                _ => None,
+            });
+            let Some((i, a)) = found else {
+                return Err(KinematicError::Continuous(format!(
+                    "{} on voussoir {} lies on no arc of the ring",
+                    l.source,
+                    l.block - k
+                )));
+            };
+            let d = l.point - a.centre;
+            let u = (a.theta0 - d.y.atan2(d.x)).rem_euclid(2.0 * PI);
+            let sums = point_sums(l.point, l.force, l.seismic_weight, seismic);
+            if u <= a.len {
+                points[i].push((u, sums));
+            } else if u <= a.len + 0.5 * (2.0 * PI - a.len) {
+                a.tail = a.tail + sums;
+            } else {
+                a.head = a.head + sums;
+            }
+        }
+        let mut st = Structure {
+            items,
+            full: Vec::new(),
+            size: asm.size(),
+            spread,
+            points,
+            seismic,
+        };
+        st.full = (0..st.items.len())
+            .map(|i| match &st.items[i] {
                 Item::Joint { .. } => Sums::default(),
                 Item::Block(s) => *s,
-                Item::Annulus(a) => a.head + a.sums(0.0, a.len) + a.tail,
+                Item::Annulus(a) => a.head + st.ring_sums(i, 0.0, a.len) + a.tail,
             })
             .collect();
-        Ok(Structure {
-            items,
-            full,
-            size: asm.size(),
-        })
+        Ok(st)
+    }
+
+    /// Material and loads of annulus `item` between `u0 <= u1`: its own weight, the loads
+    /// spread along its extrados there, and the point loads whose polar angle lies there (the
+    /// end of the annulus included when `u1` reaches it).
+    fn ring_sums(&self, item: usize, u0: f64, u1: f64) -> Sums {
+        let Item::Annulus(a) = &self.items[item] else {
+            return Sums::default();
+        };
+        if u1 <= u0 {
+            return Sums::default();
+        }
+        let mut s = a.sums(u0, u1);
+        if !self.spread.is_empty() {
+            s = s + spread_sums(
+                a.centre,
+                a.re,
+                a.theta0 + a.dir * u0,
+                a.theta0 + a.dir * u1,
+                &self.spread,
+                self.seismic,
+            );
+        }
+        for &(u, p) in &self.points[item] {
+            if u >= u0 && (u < u1 || (u1 >= a.len && u <= u1)) {
+                s = s + p;
+            }
+        }
+        s
     }
 
     fn section(&self, p: Pos) -> (Vec2, Vec2) {
@@ -318,20 +531,17 @@ impl Structure {
     /// Material between positions p < q.
     fn between(&self, p: Pos, q: Pos) -> Sums {
         if p.item == q.item {
-            return match &self.items[p.item] {
-                Item::Annulus(a) => a.sums(p.u, q.u),
-                _ => Sums::default(),
-            };
+            return self.ring_sums(p.item, p.u, q.u);
         }
         let mut s = match &self.items[p.item] {
-            Item::Annulus(a) => a.sums(p.u, a.len) + a.tail,
+            Item::Annulus(a) => self.ring_sums(p.item, p.u, a.len) + a.tail,
             _ => Sums::default(),
         };
         for f in &self.full[p.item + 1..q.item] {
             s = s + *f;
         }
         if let Item::Annulus(a) = &self.items[q.item] {
-            s = s + a.head + a.sums(0.0, q.u);
+            s = s + a.head + self.ring_sums(q.item, 0.0, q.u);
         }
         s
     }

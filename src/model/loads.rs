@@ -102,6 +102,31 @@ pub struct AppliedLoad {
     pub region: Option<Vec<Vec2>>,
 }
 
+/// A load spread along the extrados of an arch ring, as the scene gave it. The blocks carry
+/// its resultants (in [`LoadCase::applied`]); this whole description is kept for the
+/// continuous model, whose sections can fall anywhere along the ring.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpreadLoad {
+    pub kind: Spread,
+    /// Whether the load is also a seismic mass.
+    pub seismic: bool,
+    pub source: LoadSource,
+}
+
+/// What a spread load is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Spread {
+    /// `intensity` (N per metre of x, downward) over `from_x..to_x`, on the extrados.
+    Line {
+        from_x: f64,
+        to_x: f64,
+        intensity: f64,
+    },
+    /// Material of weight density `density` (N/m^2 in the plane: unit weight times depth)
+    /// from the extrados up to `y = level`.
+    Fill { level: f64, density: f64 },
+}
+
 /// The loads of every block of an assembly, and the direction of the seismic forces.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadCase {
@@ -116,6 +141,8 @@ pub struct LoadCase {
     vertical_ratio: f64,
     /// Every load as applied, self-weights first, in the order they were added.
     applied: Vec<AppliedLoad>,
+    /// Loads spread along the ring's extrados, whole (see [`SpreadLoad`]).
+    spread: Vec<SpreadLoad>,
 }
 
 impl LoadCase {
@@ -158,7 +185,19 @@ impl LoadCase {
             centroids,
             vertical_ratio: 0.0,
             applied,
+            spread: Vec::new(),
         }
+    }
+
+    /// Record a load spread along the ring's extrados (its resultants are added per block
+    /// with [`LoadCase::add`]).
+    pub fn add_spread(&mut self, load: SpreadLoad) {
+        self.spread.push(load);
+    }
+
+    /// The loads spread along the ring's extrados.
+    pub fn spread(&self) -> &[SpreadLoad] {
+        &self.spread
     }
 
     /// Add a permanent force `force` at `point` on `block`; when `seismic_weight > 0`, a
@@ -301,6 +340,25 @@ impl LoadCase {
                         .as_ref()
                         .map(|r| r.iter().rev().map(|p| m(*p)).collect()),
                     ..a.clone()
+                })
+                .collect(),
+            spread: self
+                .spread
+                .iter()
+                .map(|l| SpreadLoad {
+                    kind: match l.kind {
+                        Spread::Line {
+                            from_x,
+                            to_x,
+                            intensity,
+                        } => Spread::Line {
+                            from_x: -to_x,
+                            to_x: -from_x,
+                            intensity,
+                        },
+                        fill => fill,
+                    },
+                    ..*l
                 })
                 .collect(),
         }

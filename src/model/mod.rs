@@ -7,7 +7,7 @@
 
 pub mod loads;
 
-pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Wrench};
+pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
 

@@ -19,7 +19,7 @@ use super::{LoadSpec, Scene, VoussoirShape};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Model};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
 
 /// Build the assembly and load case of a scene.
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
@@ -203,6 +203,15 @@ fn build_loads(
                 intensity,
                 seismic,
             } => {
+                case.add_spread(SpreadLoad {
+                    kind: Spread::Line {
+                        from_x,
+                        to_x,
+                        intensity,
+                    },
+                    seismic,
+                    source: LoadSource::Load(k),
+                });
                 for (block, a, b, on_edge) in loaded_edges(arch) {
                     let lo = from_x.max(a.x.min(b.x));
                     let hi = to_x.min(a.x.max(b.x));
@@ -225,6 +234,14 @@ fn build_loads(
     }
     if let Some(fill) = &scene.fill {
         let gamma = fill.unit_weight * scene.material.depth;
+        case.add_spread(SpreadLoad {
+            kind: Spread::Fill {
+                level: fill.level,
+                density: gamma,
+            },
+            seismic: fill.seismic,
+            source: LoadSource::Fill,
+        });
         let g = &arch.geometry;
         for j in 0..g.voussoirs() {
             let (a, b) = (g.joints[j].1, g.joints[j + 1].1);

@@ -89,8 +89,20 @@ fn analyze_fields() {
             "portal",
             "friction",
             "total_weight",
+            // Issue 11: enough to rebuild the scene.
+            "radius",
+            "embrace_deg",
+            "piers",
+            "unit_weight",
+            "depth",
+            "friction_infinite",
         ],
         "scene",
+    );
+    has_all(
+        &v["scene"]["piers"],
+        &["height", "width", "courses"],
+        "scene.piers",
     );
     has_all(
         &v["continuous_hinges"][0],
@@ -123,6 +135,18 @@ fn min_thickness_fields() {
             "continuous_hinges",
         ],
         "min-thickness",
+    );
+    has_all(
+        &v["scene"],
+        &[
+            "radius",
+            "embrace_deg",
+            "piers",
+            "unit_weight",
+            "depth",
+            "friction_infinite",
+        ],
+        "min-thickness scene",
     );
 }
 
@@ -164,4 +188,152 @@ fn dem_fields() {
         ],
         "dem",
     );
+    has_all(
+        &v["scene"],
+        &[
+            "radius",
+            "embrace_deg",
+            "piers",
+            "unit_weight",
+            "depth",
+            "friction_infinite",
+        ],
+        "dem scene",
+    );
+}
+
+/// A TOML number: always with a decimal point or an exponent (a float), `inf` for infinity.
+fn toml_float(v: &serde_json::Value) -> String {
+    let x = v.as_f64().expect("a number");
+    if x.is_infinite() {
+        "inf".to_string()
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// The scene file the JSON of `analyze --json` describes: its `scene` object and the load
+/// fields beside it.
+fn scene_toml(v: &serde_json::Value) -> String {
+    let sc = &v["scene"];
+    let mut t = String::from("[arch]\n");
+    t += &format!("shape = {}\n", sc["shape"]);
+    let keys: &[&str] = match sc["shape"].as_str().expect("shape") {
+        "circular" => &["radius", "embrace_deg"],
+        "pointed" => &["radius", "eccentricity"],
+        "basket" => &["span", "rise", "side_angle_deg"],
+        other => panic!("unknown shape {other}"),
+    };
+    for k in keys {
+        t += &format!("{k} = {}\n", toml_float(&sc[k]));
+    }
+    t += &format!("thickness = {}\n", toml_float(&sc["thickness"]));
+    t += &format!("voussoirs = {}\n", sc["voussoirs"]);
+    t += &format!("voussoir_shape = {}\n", sc["voussoir_shape"]);
+    assert_eq!(sc["portal"].as_bool(), Some(!sc["piers"].is_null()));
+    if !sc["piers"].is_null() {
+        let p = &sc["piers"];
+        t += &format!(
+            "\n[piers]\nheight = {}\nwidth = {}\ncourses = {}\n",
+            toml_float(&p["height"]),
+            toml_float(&p["width"]),
+            p["courses"]
+        );
+    }
+    // The convention: `friction` is null exactly when `friction_infinite` is true.
+    let infinite = sc["friction_infinite"].as_bool().expect("bool");
+    assert_eq!(sc["friction"].is_null(), infinite);
+    let friction = if infinite {
+        "inf".to_string()
+    } else {
+        toml_float(&sc["friction"])
+    };
+    t += &format!(
+        "\n[material]\nunit_weight = {}\ndepth = {}\nfriction = {friction}\n",
+        toml_float(&sc["unit_weight"]),
+        toml_float(&sc["depth"])
+    );
+    for load in v["loads"].as_array().expect("loads") {
+        t += "\n[[loads]]\n";
+        for (k, x) in load.as_object().expect("a load") {
+            let value = match x {
+                serde_json::Value::Number(_) => toml_float(x),
+                serde_json::Value::Array(a) => format!(
+                    "[{}]",
+                    a.iter().map(toml_float).collect::<Vec<_>>().join(", ")
+                ),
+                other => other.to_string(),
+            };
+            t += &format!("{k} = {value}\n");
+        }
+    }
+    if !v["fill"].is_null() {
+        let f = &v["fill"];
+        t += &format!(
+            "\n[fill]\nlevel = {}\nunit_weight = {}\nseismic = {}\n",
+            toml_float(&f["level"]),
+            toml_float(&f["unit_weight"]),
+            f["seismic"]
+        );
+    }
+    t += &format!(
+        "\n[seismic]\nvertical_ratio = {}\n",
+        toml_float(&v["vertical_ratio"])
+    );
+    t
+}
+
+/// The JSON's scene fields rebuild the scene: the same analysis from the rebuilt file.
+#[test]
+fn the_json_scene_rebuilds_the_scene() {
+    let cases: &[(&str, &[&str])] = &[
+        ("semicircular.toml", &[]),
+        ("semicircular.toml", &["material.friction=0.4"]),
+        ("segmental.toml", &["arch.voussoir_shape=curved"]),
+        ("pointed.toml", &[]),
+        ("basket.toml", &["material.friction=0.6"]),
+        (
+            "portal.toml",
+            &["material.depth=0.7", "material.unit_weight=18000"],
+        ),
+        ("loaded_portal.toml", &[]),
+        ("filled_arch.toml", &[]),
+    ];
+    for (file, sets) in cases {
+        let mut args = vec!["analyze", "--json"];
+        for s in *sets {
+            args.extend(["--set", s]);
+        }
+        let v = json(&args, file);
+        let text = scene_toml(&v);
+        let rebuilt = voussoir::scene::Scene::from_toml_str(&text, "rebuilt")
+            .unwrap_or_else(|e| panic!("{file} {sets:?}: {e}\n{text}"));
+        let a = voussoir::analysis::analyse(&rebuilt, &voussoir::analysis::Options::default())
+            .expect("analysis of the rebuilt scene");
+        assert_eq!(
+            a.lower.status.as_str(),
+            v["status"].as_str().expect("status"),
+            "{file} {sets:?}"
+        );
+        let (l, lj) = (a.lower.lambda, v["lambda_lower"].as_f64());
+        match (l, lj) {
+            (Some(l), Some(lj)) => {
+                assert!(
+                    (l - lj).abs() <= 1e-9 * lj.abs().max(1.0),
+                    "{file} {sets:?}: {l} against {lj}\n{text}"
+                )
+            }
+            (None, None) => {}
+            other => panic!("{file} {sets:?}: {other:?}"),
+        }
+        let w = v["scene"]["total_weight"].as_f64().expect("weight");
+        assert!(
+            (a.model.assembly.total_weight() - w).abs() <= 1e-12 * w,
+            "{file} {sets:?}"
+        );
+        // Angles read in degrees come back as written, not as 119.99999999999999.
+        if let Some(e) = v["scene"]["embrace_deg"].as_f64() {
+            assert_eq!(e, e.round(), "{file}: embrace_deg {e}");
+        }
+    }
 }

@@ -68,7 +68,7 @@ pub fn run(args: Args) -> Result<String, Error> {
     }
     if let Some(path) = &args.svg {
         let drawing = Drawing {
-            title: report::drawing_title(&scene, result.lambda, a.lambda_upper()),
+            title: report::drawing_title(&scene, &a),
             forces: result.forces.as_deref(),
             hinges: &result.hinges,
             sliding: &result.sliding,

@@ -66,14 +66,7 @@ pub fn run(args: Args) -> Result<String, Error> {
             _ => String::new(),
         };
         let drawing = Drawing {
-            title: format!(
-                "{}, t = {} m: DEM\nlambda_dem = {}  (static lambda_lower = {})",
-                report::shape_title(&scene),
-                scene.arch.thickness,
-                rep.lambda_dem.map_or("none".into(), |l| format!("{l:.4}")),
-                rep.lambda_lower
-                    .map_or("none".into(), |l| format!("{l:.4}"))
-            ),
+            title: report::dem_drawing_title(&scene, &rep, d.lower.status),
             moved: (!moves.is_empty()).then_some(svg::Placements {
                 moves: &moves,
                 label,

@@ -53,8 +53,12 @@ pub fn run(args: Args) -> Result<String, Error> {
                 write_svg(path, &at.assembly, &drawing)?;
             }
             _ => eprintln!(
-                "note: no minimum thickness ({:?}): {} not written",
-                m.search.outcome,
+                "note: no minimum thickness ({}): {} not written",
+                match m.search.outcome {
+                    thickness::ThicknessOutcome::NeverStands =>
+                        "no thickness lets the structure stand",
+                    _ => "the structure stands at every thickness",
+                },
                 path.display()
             ),
         }

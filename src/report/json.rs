@@ -10,6 +10,7 @@ use crate::outcome::{Direction, Status};
 use crate::scene::{FillSpec, LoadSpec, Scene, VoussoirShape};
 use crate::thickness::{MinThickness, ThicknessAnalysis, ThicknessOutcome};
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// One joint in `analyze --json`.
 #[derive(Debug, Serialize)]
@@ -43,9 +44,33 @@ pub struct SceneReport {
     pub voussoirs: usize,
     pub voussoir_shape: &'static str,
     pub portal: bool,
-    /// Coulomb coefficient; null means infinite (no sliding).
+    /// Coulomb coefficient; null means infinite (no sliding): JSON has no infinity, so
+    /// `friction_infinite` says it in a field of its own.
     pub friction: Option<f64>,
     pub total_weight: f64,
+    /// The shape's own `[arch]` keys with their scene values, flattened into this object:
+    /// `radius`, `embrace_deg` (circular); `radius`, `eccentricity` (pointed); `span`, `rise`,
+    /// `side_angle_deg` (basket). Angles that went through radians are rounded to 15
+    /// significant digits (`120`, not `119.99999999999999`).
+    #[serde(flatten)]
+    pub shape_keys: BTreeMap<&'static str, f64>,
+    /// `[piers]` (height and width in m, courses), or null for an arch on fixed springings.
+    pub piers: Option<PiersReport>,
+    /// `[material] unit_weight` (N/m^3).
+    pub unit_weight: f64,
+    /// `[material] depth` (m).
+    pub depth: f64,
+    /// Whether the friction coefficient is infinite (joints cannot slide; `friction` is then
+    /// null).
+    pub friction_infinite: bool,
+}
+
+/// `[piers]` echoed in the JSON `scene`.
+#[derive(Debug, Serialize)]
+pub struct PiersReport {
+    pub height: f64,
+    pub width: f64,
+    pub courses: usize,
 }
 
 /// The loads of a scene as read, and their totals (fields `loads`, `fill`, `vertical_ratio`,
@@ -138,6 +163,16 @@ fn finite_or_null(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
+/// `x` rounded to 15 significant digits: what a value read in degrees and kept in radians
+/// was (`119.99999999999999` -> `120`).
+fn round15(x: f64) -> f64 {
+    if x.is_finite() {
+        format!("{x:.14e}").parse().unwrap_or(x)
+    } else {
+        x
+    }
+}
+
 impl SceneReport {
     pub fn new(scene: &Scene, model: &Model) -> Self {
         SceneReport {
@@ -152,6 +187,21 @@ impl SceneReport {
             portal: scene.piers.is_some(),
             friction: finite_or_null(scene.material.friction),
             total_weight: model.assembly.total_weight(),
+            shape_keys: scene
+                .arch
+                .shape
+                .keys()
+                .into_iter()
+                .map(|(k, v)| (k, round15(v)))
+                .collect(),
+            piers: scene.piers.as_ref().map(|p| PiersReport {
+                height: p.height,
+                width: p.width,
+                courses: p.courses,
+            }),
+            unit_weight: scene.material.unit_weight,
+            depth: scene.material.depth,
+            friction_infinite: scene.material.friction.is_infinite(),
         }
     }
 }

@@ -2,7 +2,8 @@
 
 use super::{DemReport, MinThicknessReport};
 use crate::analysis::SceneAnalysis;
-use crate::assembly::{Assembly, Hinge, JointKind};
+use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
+use crate::kinematic::Family;
 use crate::lp::StaticResult;
 use crate::model::Model;
 use crate::outcome::{Direction, Status};
@@ -20,26 +21,106 @@ pub fn joint_label(kind: JointKind) -> String {
     }
 }
 
-fn end_name(assembly: &Assembly, h: &Hinge) -> &'static str {
-    let arch = matches!(assembly.joints[h.joint].kind, JointKind::Arch(_));
-    match (h.end, arch) {
-        (crate::assembly::JointEnd::P1, true) => "intrados",
-        (crate::assembly::JointEnd::P2, true) => "extrados",
-        (crate::assembly::JointEnd::P1, false) => "inner face",
-        (crate::assembly::JointEnd::P2, false) => "outer face",
+/// A scene value for reading: float noise such as `0.49999999999999994` (a value that went
+/// through a ratio or through radians) rounded off to 12 significant digits, then printed in
+/// the shortest form (`0.5`, `1`, `inf`).
+pub fn num(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+    format!("{rounded}")
+}
+
+/// A small dimensionless number (a relative gap or difference, a residual) in scientific
+/// notation with `digits` decimals, and exactly zero as `0` (not `0.0e0`).
+pub fn sci(x: f64, digits: usize) -> String {
+    if x == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{x:.digits$e}")
     }
 }
 
-/// One line per hinge: `joint 5 (arch 5), intrados, at (x, y)`.
+/// `1 run`, `3 runs`: a count with its noun in the singular or the plural.
+pub fn count(n: u64, singular: &str, plural: &str) -> String {
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
+/// The family of a kinematic mechanism in words: `four hinges`, `two hinges and an opening
+/// joint`, `two opening joints`, `one hinge`.
+pub fn family_words(f: Family) -> &'static str {
+    match f {
+        Family::FourHinges => "four hinges",
+        Family::TwoHingesOneOpen => "two hinges and an opening joint",
+        Family::TwoOpen => "two opening joints",
+        Family::OneHinge => "one hinge",
+    }
+}
+
+/// What a mechanism through `joints` moves: `the portal` when one of them is a pier joint,
+/// `the arch` when all are arch joints, `the structure` otherwise.
+pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) -> &'static str {
+    let mut arch_only = true;
+    for j in joints {
+        match assembly.joints.get(j).map(|j| j.kind) {
+            Some(JointKind::Arch(_)) => {}
+            Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) => return "the portal",
+            _ => arch_only = false,
+        }
+    }
+    if arch_only {
+        "the arch"
+    } else {
+        "the structure"
+    }
+}
+
+/// The end of a joint a hinge sits at, in words with its name in the JSON and the CSV:
+/// `intrados (p1)`, `extrados (p2)` on the arch, `inner face (p1)`, `outer face (p2)` on a pier.
+pub fn end_words(kind: JointKind, end: JointEnd) -> &'static str {
+    let pier = matches!(kind, JointKind::LeftPier(_) | JointKind::RightPier(_));
+    match (end, pier) {
+        (JointEnd::P1, false) => "intrados (p1)",
+        (JointEnd::P2, false) => "extrados (p2)",
+        (JointEnd::P1, true) => "inner face (p1)",
+        (JointEnd::P2, true) => "outer face (p2)",
+    }
+}
+
+/// The direction of a joint p1 -> p2 as the continuous model gives its sections: the polar
+/// angle in degrees (-180..180) and the angle from the vertical `|polar - 90|`.
+pub fn joint_angles_deg(assembly: &Assembly, joint: usize) -> Option<(f64, f64)> {
+    let j = assembly.joints.get(joint)?;
+    let d = j.p2 - j.p1;
+    let polar = d.y.atan2(d.x).to_degrees();
+    Some((polar, (polar - 90.0).abs()))
+}
+
+/// One line per hinge: `joint 5 (arch 5), intrados (p1), at (x, y) m, polar 146.250 deg,
+/// 56.250 deg from the vertical` (the direction p1 -> p2 of an arch joint, as the continuous
+/// model gives its sections); pier joints without the angles.
 pub fn hinge_lines(assembly: &Assembly, hinges: &[Hinge]) -> String {
     let mut s = String::new();
     for h in hinges {
+        let Some(joint) = assembly.joints.get(h.joint) else {
+            continue;
+        };
+        let angles = match (joint.kind, joint_angles_deg(assembly, h.joint)) {
+            (JointKind::Arch(_), Some((polar, vertical))) => {
+                format!(", polar {polar:.3} deg, {vertical:.3} deg from the vertical")
+            }
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "    joint {:>4} ({}), {}, at ({:.4}, {:.4}) m",
+            "    joint {:>4} ({}), {}, at ({:.4}, {:.4}) m{angles}",
             h.joint,
-            joint_label(assembly.joints[h.joint].kind),
-            end_name(assembly, h),
+            joint_label(joint.kind),
+            end_words(joint.kind, h.end),
             h.x,
             h.y
         );
@@ -57,29 +138,26 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
         VoussoirShape::Curved => "curved",
     };
     let mut s = format!(
-        "{shape}, t = {} m, {} {vs} voussoirs",
-        a.thickness, a.voussoirs
+        "{shape}, t = {} m, {} {vs} voussoir{}",
+        num(a.thickness),
+        a.voussoirs,
+        if a.voussoirs == 1 { "" } else { "s" }
     );
     if let Some(p) = &scene.piers {
         let _ = write!(
             s,
-            "\n  on piers h = {} m, b = {} m, {} course{}",
-            p.height,
-            p.width,
-            p.courses,
-            if p.courses == 1 { "" } else { "s" }
+            "\n  on piers h = {} m, b = {} m, {}",
+            num(p.height),
+            num(p.width),
+            count(p.courses as u64, "course", "courses")
         );
     }
-    let mu = if scene.material.friction.is_finite() {
-        format!("mu = {}", scene.material.friction)
-    } else {
-        "mu = inf (no sliding)".to_string()
-    };
     let _ = write!(
         s,
-        "\n  {mu}; {} blocks, {} joints, total weight {:.6} kN",
-        assembly.blocks.len(),
-        assembly.joints.len(),
+        "\n  {}; {}, {}, total weight {:.6} kN",
+        mu_words(scene),
+        count(assembly.blocks.len() as u64, "block", "blocks"),
+        count(assembly.joints.len() as u64, "joint", "joints"),
         assembly.total_weight() / 1000.0
     );
     if !model.loads.is_self_weight_only() {
@@ -88,34 +166,43 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
     s
 }
 
+/// `mu = 0.4`, or `mu = inf (no sliding)`.
+fn mu_words(scene: &Scene) -> String {
+    let mu = scene.material.friction;
+    if mu.is_finite() {
+        format!("mu = {}", num(mu))
+    } else {
+        "mu = inf (no sliding)".to_string()
+    }
+}
+
 /// One or two lines on the loads beyond self-weight and their totals.
 pub fn describe_loads(scene: &Scene, model: &Model) -> String {
-    let count = |line: bool| {
+    let of_kind = |line: bool| {
         scene
             .loads
             .iter()
             .filter(|l| matches!(l, LoadSpec::Line { .. }) == line)
-            .count()
+            .count() as u64
     };
-    let plural = |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
     let mut parts = Vec::new();
-    if count(false) > 0 {
-        parts.push(plural(count(false), "point load"));
+    if of_kind(false) > 0 {
+        parts.push(count(of_kind(false), "point load", "point loads"));
     }
-    if count(true) > 0 {
-        parts.push(plural(count(true), "line load"));
+    if of_kind(true) > 0 {
+        parts.push(count(of_kind(true), "line load", "line loads"));
     }
     if let Some(f) = &scene.fill {
         parts.push(format!(
             "fill to y = {} m ({} N/m^3{})",
-            f.level,
-            f.unit_weight,
+            num(f.level),
+            num(f.unit_weight),
             if f.seismic { "" } else { ", not seismic" }
         ));
     }
     let r = scene.seismic.vertical_ratio;
     if r != 0.0 {
-        parts.push(format!("vertical seismic ratio {r}"));
+        parts.push(format!("vertical seismic ratio {}", num(r)));
     }
     format!(
         "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",
@@ -125,8 +212,16 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
     )
 }
 
+/// How far the static bound `lower` sits below the rotational upper bound `upper`, as a
+/// fraction of the upper bound: `(upper - lower) / upper` (the JSON's `gap` is another
+/// measure, `|upper - lower| / max(1, lower)`).
+pub fn sliding_shortfall(lower: f64, upper: f64) -> Option<f64> {
+    (upper > 0.0 && upper.is_finite() && lower.is_finite()).then(|| (upper - lower) / upper)
+}
+
 /// The human summary of `analyze` with every method that ran.
 pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
+    let assembly = &a.model.assembly;
     let mut s = static_summary(scene, &a.model, &a.lower);
     s.push('\n');
     match &a.upper {
@@ -135,22 +230,48 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                 (Status::Collapse, Some(u)) => {
                     let _ = writeln!(
                         s,
-                        "Kinematic (upper bound): lambda = {u:.6} over {} admissible mechanisms ({:.1} ms)",
-                        k.admissible,
+                        "Kinematic (upper bound): lambda = {u:.6} over {} ({:.1} ms)",
+                        count(
+                            k.admissible,
+                            "admissible mechanism",
+                            "admissible mechanisms"
+                        ),
                         k.wall_time_s * 1e3
                     );
+                    if a.sliding_governs() {
+                        let mu = num(scene.material.friction);
+                        let words = if a.lower.status == Status::CannotStand {
+                            format!("with mu = {mu} the structure slides before any of them forms")
+                        } else {
+                            format!(
+                                "with mu = {mu} the structure slides first, at the static bound {:.6}",
+                                a.lower.lambda.unwrap_or(f64::NAN)
+                            )
+                        };
+                        let _ = writeln!(s, "  rotational mechanisms only: {words}");
+                    }
                     if let Some(note) = &k.note {
                         let _ = writeln!(s, "  {note}");
                     }
                     if let Some(m) = &k.mechanism {
-                        let _ = writeln!(s, "  governing mechanism ({:?}):", m.family);
-                        s.push_str(&hinge_lines(&a.model.assembly, &m.hinges));
+                        let joints = m
+                            .hinges
+                            .iter()
+                            .map(|h| h.joint)
+                            .chain(m.open.iter().copied());
+                        let _ = writeln!(
+                            s,
+                            "  governing mechanism of {}: {}",
+                            what_moves(assembly, joints),
+                            family_words(m.family)
+                        );
+                        s.push_str(&hinge_lines(assembly, &m.hinges));
                         for j in &m.open {
-                            let _ = writeln!(
-                                s,
-                                "    joint {j:>4} ({}), opens completely",
-                                joint_label(a.model.assembly.joints[*j].kind)
-                            );
+                            let label = assembly
+                                .joints
+                                .get(*j)
+                                .map_or("joint".to_string(), |joint| joint_label(joint.kind));
+                            let _ = writeln!(s, "    joint {j:>4} ({label}), opens completely");
                         }
                     }
                 }
@@ -158,24 +279,33 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                     let _ = writeln!(s, "Kinematic (upper bound): no admissible mechanism is driven by the load: no collapse");
                 }
                 _ => {
-                    let _ = writeln!(s, "Kinematic (upper bound): a mechanism moves under self-weight alone: cannot stand");
+                    let _ = writeln!(s, "Kinematic (upper bound): a mechanism moves under its permanent loads alone: cannot stand");
                 }
             }
-            if let (Some(gap), Some(l)) = (a.gap(), a.lower.lambda) {
+            if let (Some(gap), Some(l), Some(u)) = (a.gap(), a.lower.lambda, k.lambda_upper) {
                 if a.sliding_governs() {
+                    let below = sliding_shortfall(l, u)
+                        .map_or(String::new(), |d| format!(" ({:.1}% lower)", 100.0 * d));
                     let _ = writeln!(
                         s,
-                        "  sliding governs: the static bound {l:.6} is below the rotational mechanisms ({:.2}% lower)",
-                        100.0 * gap
+                        "  sliding governs: the static bound {l:.6} is below the rotational mechanisms' {u:.6}{below}"
                     );
                 } else {
-                    let _ = writeln!(s, "  bounds agree: relative gap {gap:.1e}");
+                    let _ = writeln!(s, "  bounds agree: relative gap {}", sci(gap, 1));
                 }
             } else if a.sliding_governs() {
-                let _ = writeln!(
-                    s,
-                    "  sliding governs: only sliding mechanisms collapse the structure"
-                );
+                if a.lower.status == Status::CannotStand {
+                    let _ = writeln!(
+                        s,
+                        "  sliding governs: with mu = {} the structure slides under its permanent loads alone, so it cannot stand",
+                        num(scene.material.friction)
+                    );
+                } else {
+                    let _ = writeln!(
+                        s,
+                        "  sliding governs: only sliding mechanisms collapse the structure"
+                    );
+                }
             } else if k.status != a.lower.status {
                 let _ = writeln!(
                     s,
@@ -192,9 +322,11 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
     if let Some(c) = &a.continuous {
         match c {
             Ok(c) => {
-                let l = c
-                    .lambda_continuous
-                    .map_or("none".to_string(), |l| format!("{l:.6}"));
+                let l = match (c.status, c.lambda_continuous) {
+                    (_, Some(l)) => format!("{l:.6}"),
+                    (Status::NoCollapse, None) => "none: no collapse".to_string(),
+                    (_, None) => "none: cannot stand".to_string(),
+                };
                 let _ = writeln!(
                     s,
                     "\nContinuous model (hinges anywhere, infinitely many voussoirs): lambda = {l} ({}, {:.2} ms)",
@@ -202,22 +334,25 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                     c.wall_time_s * 1e3
                 );
                 for h in &c.hinges {
-                    let at = match h.location {
+                    let (at, pier) = match h.location {
                         crate::kinematic::HingeLocation::Arch {
                             from_vertical_deg,
                             polar_deg,
-                        } => {
-                            format!("arch section at {polar_deg:.3} deg (polar), {from_vertical_deg:.3} deg from the vertical")
-                        }
-                        crate::kinematic::HingeLocation::Pier { left, joint } => {
-                            format!("{} pier joint {joint}", if left { "left" } else { "right" })
-                        }
+                        } => (
+                            format!("arch section at {polar_deg:.3} deg (polar), {from_vertical_deg:.3} deg from the vertical"),
+                            false,
+                        ),
+                        crate::kinematic::HingeLocation::Pier { left, joint } => (
+                            format!("{} pier joint {joint}", if left { "left" } else { "right" }),
+                            true,
+                        ),
                     };
-                    let end = match h.end {
-                        Some(crate::assembly::JointEnd::P1) => "p1",
-                        Some(crate::assembly::JointEnd::P2) => "p2",
-                        None => "open",
+                    let kind = if pier {
+                        JointKind::LeftPier(0)
+                    } else {
+                        JointKind::Arch(0)
                     };
+                    let end = h.end.map_or("opens completely", |e| end_words(kind, e));
                     let _ = writeln!(s, "    {at}, {end}, at ({:.4}, {:.4}) m", h.x, h.y);
                 }
             }
@@ -240,9 +375,16 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
     };
     match (r.status, r.lambda) {
         (Status::Collapse, Some(l)) => {
+            let moving = r
+                .hinges
+                .iter()
+                .map(|h| h.joint)
+                .chain(r.sliding.iter().copied())
+                .chain(r.open.iter().copied());
             let _ = writeln!(
                 s,
-                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  the arch becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}"
+                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  {} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}",
+                what_moves(assembly, moving)
             );
             let _ = writeln!(s, "  hinges of the thrust line:");
             s.push_str(&hinge_lines(assembly, &r.hinges));
@@ -252,9 +394,9 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
             }
             let _ = writeln!(
                 s,
-                "  equilibrium residual {:.2e} N ({:.1e} of the weight)",
-                r.equilibrium_residual,
-                r.equilibrium_residual / model.loads.force_scale()
+                "  equilibrium residual {} N ({} of the weight)",
+                sci(r.equilibrium_residual, 2),
+                sci(r.equilibrium_residual / model.loads.force_scale(), 1)
             );
         }
         (Status::NoCollapse, _) => {
@@ -272,11 +414,11 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
     }
     let _ = writeln!(
         s,
-        "  conic program: {} variables, {} constraints; Clarabel {} in {} iterations, {:.2} ms",
-        r.model.variables,
-        r.model.constraints,
+        "  conic program: {}, {}; Clarabel {} in {}, {:.2} ms",
+        count(r.model.variables as u64, "variable", "variables"),
+        count(r.model.constraints as u64, "constraint", "constraints"),
         r.solver_status,
-        r.iterations,
+        count(u64::from(r.iterations), "iteration", "iterations"),
         r.solve_time_s * 1e3
     );
     s
@@ -303,7 +445,7 @@ pub fn min_thickness_summary(
                 let _ = writeln!(
                     s,
                     "  geometric safety factor of t = {} m: {f:.4}{}",
-                    scene.arch.thickness,
+                    num(scene.arch.thickness),
                     if f < 1.0 {
                         "  (below 1: this arch cannot stand)"
                     } else {
@@ -318,7 +460,7 @@ pub fn min_thickness_summary(
             let _ = writeln!(
                 s,
                 "No thickness lets this structure stand (up to the largest the shape admits, {} m).",
-                scene.max_thickness()
+                num(scene.max_thickness())
             );
         }
         _ => {
@@ -328,14 +470,23 @@ pub fn min_thickness_summary(
             );
         }
     }
-    let _ = writeln!(s, "  {} static analyses", m.search.evaluations);
+    let _ = writeln!(
+        s,
+        "  {}",
+        count(
+            m.search.evaluations as u64,
+            "static analysis",
+            "static analyses"
+        )
+    );
     match (rep.min_thickness_kinematic, &rep.kinematic_note) {
         (Some(t), note) => {
             let _ = writeln!(
                 s,
                 "Kinematic minimum thickness (lambda_upper = 0): t_min = {t:.9} m{}",
                 rep.min_thickness_gap.map_or(String::new(), |g| format!(
-                    "  (relative difference {g:.1e})"
+                    "  (relative difference {})",
+                    sci(g, 1)
                 ))
             );
             if let Some(note) = note {
@@ -352,7 +503,8 @@ pub fn min_thickness_summary(
             Some(t) => {
                 let _ = writeln!(
                     s,
-                    "Continuous model minimum thickness: t_min = {t:.6} m (t_min / size = {:.6})",
+                    "Continuous model minimum thickness: t_min = {t:.6} m (t_min / {} = {:.6})",
+                    scene.arch.shape.size_name(),
                     t / scene.arch_size()
                 );
             }
@@ -383,18 +535,55 @@ pub fn shape_title(scene: &Scene) -> String {
     )
 }
 
-/// Title of a structure drawing: shape, thickness, voussoirs and the multipliers.
-pub fn drawing_title(scene: &Scene, lower: Option<f64>, upper: Option<f64>) -> String {
-    let fmt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.4}"));
-    let mut second = format!("lambda_lower = {}", fmt(lower));
-    if upper.is_some() {
-        second.push_str(&format!("   lambda_upper = {}", fmt(upper)));
-    }
+/// Title of a structure drawing: shape, thickness, voussoirs, and the multipliers of every
+/// bound that ran, or in words why there is none (`cannot stand`, `no collapse`).
+pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
+    let lower = match (a.lower.status, a.lower.lambda) {
+        (Status::Collapse, Some(l)) => format!("lambda_lower = {l:.4}"),
+        (Status::NoCollapse, _) => "no collapse: a thrust line fits at any lambda".to_string(),
+        _ => "cannot stand: no thrust line fits".to_string(),
+    };
+    let upper = match &a.upper {
+        Ok(k) => match (k.status, k.lambda_upper) {
+            (Status::Collapse, Some(u)) if a.sliding_governs() => {
+                Some(format!("lambda_upper = {u:.4} (rotation only)"))
+            }
+            (Status::Collapse, Some(u)) => Some(format!("lambda_upper = {u:.4}")),
+            (status, _) if status == a.lower.status => None,
+            (Status::NoCollapse, _) => Some("kinematic: no collapse".to_string()),
+            _ => Some("kinematic: cannot stand".to_string()),
+        },
+        Err(_) => None,
+    };
+    let second = match upper {
+        Some(u) => format!("{lower}   {u}"),
+        None => lower,
+    };
     format!(
         "{}, t = {} m, {} voussoirs\n{second}",
         shape_title(scene),
-        scene.arch.thickness,
+        num(scene.arch.thickness),
         scene.arch.voussoirs
+    )
+}
+
+/// Title of the DEM drawing: shape, thickness, and the DEM and static multipliers, or in
+/// words why there is none (`lower` is the static status of the same model).
+pub fn dem_drawing_title(scene: &Scene, rep: &DemReport, lower: Status) -> String {
+    let dem = match (rep.status, rep.lambda_dem) {
+        ("collapse", Some(l)) => format!("lambda_dem = {l:.4}"),
+        ("no_collapse", _) => "DEM: no collapse up to the largest lambda tried".to_string(),
+        _ => "DEM: cannot stand (no rest under the permanent loads)".to_string(),
+    };
+    let lower = match (lower, rep.lambda_lower) {
+        (Status::Collapse, Some(l)) => format!("static lambda_lower = {l:.4}"),
+        (Status::NoCollapse, _) => "static: no collapse".to_string(),
+        _ => "static: cannot stand".to_string(),
+    };
+    format!(
+        "{}, t = {} m: DEM\n{dem}  ({lower})",
+        shape_title(scene),
+        num(scene.arch.thickness)
     )
 }
 
@@ -404,13 +593,15 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
     let fmt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));
     match rep.status {
         "collapse" => {
+            let bracket = rep
+                .bracket_width
+                .map_or(String::new(), |w| format!(" (bracket {:.2}%)", 100.0 * w));
             let _ = writeln!(
                 s,
-                "DEM: stands at lambda = {}, collapses at lambda = {}  ->  lambda_dem = {} (bracket {:.2}%)",
+                "DEM: stands at lambda = {}, collapses at lambda = {}  ->  lambda_dem = {}{bracket}",
                 fmt(rep.lambda_stands),
                 fmt(rep.lambda_collapses),
                 fmt(rep.lambda_dem),
-                100.0 * rep.bracket_width.unwrap_or(f64::NAN)
             );
             if let (Some(l), Some(d)) = (rep.lambda_lower, rep.relative_difference) {
                 let inside = rep.lambda_stands.is_some_and(|a| a <= l)
@@ -443,18 +634,24 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
         _ => {
             let _ = writeln!(
                 s,
-                "DEM: CANNOT STAND — the blocks do not come to rest under self-weight"
+                "DEM: CANNOT STAND — the blocks do not come to rest under their permanent loads"
             );
         }
     }
+    if scene.arch.voussoir_shape == VoussoirShape::Curved {
+        let _ = writeln!(
+            s,
+            "  curved voussoirs are simulated as polygons (their chord polygons): their weights and centroids differ slightly from the exact annular pieces of the static bound (docs/dem.md)"
+        );
+    }
     if rep.friction_infinite {
-        let _ = writeln!(s, "  mu = inf simulated as mu = {}", rep.friction);
+        let _ = writeln!(s, "  mu = inf simulated as mu = {}", num(rep.friction));
     }
     let _ = writeln!(
         s,
-        "  {} runs, {} time steps of {:.3e} s, {:.2} s wall time",
-        rep.runs.len(),
-        rep.steps,
+        "  {}, {} of {:.3e} s, {:.2} s wall time",
+        count(rep.runs.len() as u64, "run", "runs"),
+        count(rep.steps, "time step", "time steps"),
         rep.time_step,
         rep.wall_time_s
     );

@@ -44,6 +44,18 @@ pub enum SceneError {
     BadOverride { text: String, message: String },
     #[error("--vary {text}: {message}")]
     BadVariation { text: String, message: String },
+    /// A chart axis that cannot be drawn (`--x`, `--series`; a study's `x`, `series`).
+    #[error("{option} {key}: {message}")]
+    BadChart {
+        /// The option, e.g. `--x`.
+        option: String,
+        /// The key given to it.
+        key: String,
+        message: String,
+    },
+    /// Options that do not fit together (e.g. `--x` without `--svg`).
+    #[error("{0}")]
+    Usage(String),
 }
 
 impl SceneError {
@@ -57,6 +69,72 @@ impl SceneError {
             _ => None,
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distance_counts_single_character_edits() {
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("thicknes", "thickness"), 1);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("radius", "radius"), 0);
+    }
+
+    #[test]
+    fn closest_suggests_likely_typos_only() {
+        let keys = ["shape", "thickness", "voussoirs", "radius", "embrace_deg"];
+        assert_eq!(closest("thicknes", &keys), Some("thickness"));
+        assert_eq!(closest("Radius", &keys), Some("radius"));
+        assert_eq!(closest("vousoirs", &keys), Some("voussoirs"));
+        assert_eq!(closest("colour", &keys), None);
+        assert_eq!(
+            closest("depht", &["unit_weight", "depth", "friction"]),
+            Some("depth")
+        );
+        assert_eq!(did_you_mean("x", &keys), "");
+    }
+}
+
+/// Edit distance between two words (Levenshtein: insertions, deletions and substitutions
+/// of one character each cost 1).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != *cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(row[j + 1] + 1);
+        }
+    }
+    row[b.len()]
+}
+
+/// The candidate closest to `word` (case-insensitively), if it is close enough to be a
+/// likely typo: at most a third of the longer word's characters differ (rounded up, so a
+/// swapped pair of letters in a five-letter word still counts).
+/// Ties go to the first candidate.
+pub fn closest<'a>(word: &str, candidates: &[&'a str]) -> Option<&'a str> {
+    let w = word.to_lowercase();
+    candidates
+        .iter()
+        .map(|c| (edit_distance(&w, &c.to_lowercase()), *c))
+        .filter(|(d, c)| {
+            let longest = w.chars().count().max(c.chars().count());
+            *d <= longest.div_ceil(3)
+        })
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// ` (did you mean `KEY`?)` for the closest candidate, or nothing.
+pub fn did_you_mean(word: &str, candidates: &[&str]) -> String {
+    closest(word, candidates).map_or(String::new(), |c| format!(" (did you mean `{c}`?)"))
 }
 
 /// A failure of an analysis that is not a physical answer (those are statuses, not errors).

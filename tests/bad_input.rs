@@ -105,3 +105,81 @@ fn overrides_are_validated_like_files() {
         .expect("a valid pointed arch");
     assert_eq!(pointed.arch.shape.name(), "pointed");
 }
+
+/// A misspelt key is reported as the unknown key it is (not as the required key it was meant
+/// to be), with the closest allowed key, in every section of the scene.
+#[test]
+fn a_typo_names_the_unknown_key_and_suggests_the_closest() {
+    let cases: &[(&str, &str, &str)] = &[
+        // (scene text, unknown key, suggested key)
+        (
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nthicknes = 0.2\nvoussoirs = 8\n",
+            "arch.thicknes",
+            "thickness",
+        ),
+        (
+            "[arch]\nshape = \"circular\"\nradus = 1.0\nthickness = 0.2\nvoussoirs = 8\n",
+            "arch.radus",
+            "radius",
+        ),
+        (
+            "[arch]\nshpe = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 8\n",
+            "arch.shpe",
+            "shape",
+        ),
+        (
+            "[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricty = 0.1\nthickness = 0.1\nvoussoirs = 8\n",
+            "arch.eccentricty",
+            "eccentricity",
+        ),
+        (
+            "[arch]\nshape = \"basket\"\nspan = 2.0\nrise = 0.6\nthickness = 0.1\nvousoirs = 9\n",
+            "arch.vousoirs",
+            "voussoirs",
+        ),
+        (&format!("{GOOD}[piers]\nheigth = 1.0\nwidth = 0.3\n"), "piers.heigth", "height"),
+        (&format!("{GOOD}[material]\nfriction = 0.5\ndepht = 1\n"), "material.depht", "depth"),
+        (&format!("{GOOD}[fill]\nlevle = 1.5\n"), "fill.levle", "level"),
+        (&format!("{GOOD}[seismic]\nvertical_ration = 0.1\n"), "seismic.vertical_ration", "vertical_ratio"),
+        (
+            &format!("{GOOD}[[loads]]\ntype = \"point\"\nat = [0.0, 1.0]\nforse = [0.0, -100.0]\n"),
+            "loads[0].forse",
+            "force",
+        ),
+        (
+            &format!("{GOOD}[[loads]]\ntype = \"line\"\nfrom_x = -0.5\nto_x = 0.5\nintensty = 10.0\n"),
+            "loads[0].intensty",
+            "intensity",
+        ),
+        (&format!("{GOOD}[materal]\ndepth = 1.0\n"), "materal", "material"),
+    ];
+    for (text, key, suggestion) in cases {
+        let e = err(text);
+        let msg = e.to_string();
+        assert!(matches!(e, SceneError::UnknownKey { .. }), "{text}\n{msg}");
+        assert_eq!(e.key(), Some(*key), "scene:\n{text}\nerror: {msg}");
+        assert!(
+            msg.contains(&format!("unknown key `{key}`")),
+            "message should name the unknown key {key}: {msg}"
+        );
+        assert!(
+            msg.contains(&format!("(did you mean `{suggestion}`?)")),
+            "message should suggest {suggestion}: {msg}"
+        );
+        assert!(msg.contains("bad.toml"), "{msg}");
+    }
+    // A key far from every allowed one gets no suggestion, only the list.
+    let msg = err(&format!(
+        "{GOOD}[piers]\nheight = 1.0\nwidth = 0.3\nfoo = 1\n"
+    ))
+    .to_string();
+    assert!(!msg.contains("did you mean"), "{msg}");
+    assert!(msg.contains("allowed: height, width, courses"), "{msg}");
+    // Overrides go through the same check.
+    let s = Scene::from_toml_str(GOOD, "good.toml").expect("valid");
+    let e = s.with_override("arch.thicknes=0.2").expect_err("typo");
+    assert_eq!(e.key(), Some("arch.thicknes"));
+    assert!(e.to_string().contains("did you mean `thickness`"), "{e}");
+    let e = s.with_override("arhc.thickness=0.2").expect_err("typo");
+    assert!(e.to_string().contains("did you mean `arch`"), "{e}");
+}

@@ -8,7 +8,7 @@
 mod build;
 pub use build::build;
 
-use crate::error::SceneError;
+use crate::error::{did_you_mean, SceneError};
 use crate::geometry::{basket_radii, side_voussoirs, ArchShape, Basket, Circular, Pointed};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -257,8 +257,9 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     }
     if !SECTIONS.contains(&parts[0]) {
         return Err(format!(
-            "unknown section `{}` (allowed: {})",
+            "unknown section `{}`{} (allowed: {})",
             parts[0],
+            did_you_mean(parts[0], SECTIONS),
             SECTIONS.join(", ")
         ));
     }
@@ -277,6 +278,54 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
 const SECTIONS: &[&str] = &[
     "arch", "piers", "material", "dem", "fill", "seismic", "loads",
 ];
+
+/// The keys of `[arch]` every shape takes.
+const ARCH_KEYS: &[&str] = &["shape", "thickness", "voussoirs", "voussoir_shape"];
+/// The keys of `[arch]` each shape adds.
+const SHAPE_KEYS: &[(&str, &[&str])] = &[
+    ("circular", &["radius", "embrace_deg"]),
+    ("pointed", &["radius", "eccentricity"]),
+    ("basket", &["span", "rise", "side_angle_deg"]),
+];
+const PIERS_KEYS: &[&str] = &["height", "width", "courses"];
+const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction"];
+const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic"];
+const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
+/// The keys of a `[[loads]]` entry every type takes, and those each type adds.
+const LOAD_KEYS: &[&str] = &["type", "seismic"];
+const LOAD_TYPE_KEYS: &[(&str, &[&str])] = &[
+    ("point", &["at", "force"]),
+    ("line", &["from_x", "to_x", "intensity"]),
+];
+
+/// The keys allowed in a section whose keys depend on a kind (the arch's `shape`, a load's
+/// `type`): the common keys and the kind's own, or every kind's when the kind is not (yet)
+/// known, with the words naming the kind for messages (`for shape = "circular" `).
+fn keys_of_kind(
+    table: &Table,
+    kind_key: &str,
+    common: &[&'static str],
+    kinds: &[(&str, &[&'static str])],
+) -> (Vec<&'static str>, String) {
+    let kind = match table.get(kind_key) {
+        Some(Value::String(k)) => kinds.iter().find(|(name, _)| name == k),
+        _ => None,
+    };
+    let mut keys: Vec<&'static str> = common.to_vec();
+    let own: Vec<&[&'static str]> = match kind {
+        Some((_, own)) => vec![*own],
+        None => kinds.iter().map(|(_, own)| *own).collect(),
+    };
+    for k in own.into_iter().flatten() {
+        if !keys.contains(k) {
+            keys.push(k);
+        }
+    }
+    let context = kind.map_or(String::new(), |(name, _)| {
+        format!("for {kind_key} = \"{name}\" ")
+    });
+    (keys, context)
+}
 
 /// Reads one section, remembering which keys were used so that the rest are reported as
 /// unknown.
@@ -449,7 +498,27 @@ impl<'a> Section<'a> {
         }
     }
 
-    /// Report the first key that was not read.
+    /// Report the first key of the section that is not `allowed`, with the allowed key
+    /// closest to it (a likely typo). Called before any key is read, so a misspelt required
+    /// key is reported as the unknown key it is rather than as the missing one.
+    fn check_known(&self, allowed: &[&str], context: &str) -> Result<(), SceneError> {
+        for key in self.table.keys() {
+            if !allowed.contains(&key.as_str()) {
+                return Err(SceneError::UnknownKey {
+                    origin: self.origin.to_string(),
+                    key: self.key(key),
+                    hint: format!(
+                        "{} {context}(allowed: {})",
+                        did_you_mean(key, allowed),
+                        allowed.join(", ")
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Report the first key that was not read (a safety net behind [`Self::check_known`]).
     fn finish(&self, context: &str) -> Result<(), SceneError> {
         for key in self.table.keys() {
             if !self.used.contains(key.as_str()) {
@@ -488,7 +557,11 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
             return Err(SceneError::UnknownKey {
                 origin: origin.to_string(),
                 key: key.clone(),
-                hint: format!(" (allowed sections: {})", SECTIONS.join(", ")),
+                hint: format!(
+                    "{} (allowed sections: {})",
+                    did_you_mean(key, SECTIONS),
+                    SECTIONS.join(", ")
+                ),
             });
         }
     }
@@ -542,6 +615,8 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
 }
 
 fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
+    let (allowed, context) = keys_of_kind(s.table, "shape", ARCH_KEYS, SHAPE_KEYS);
+    s.check_known(&allowed, &context)?;
     let shape_name = s.string("shape", None)?;
     let thickness = s.length("thickness", "arch thickness t in metres")?;
     let vs = s.string("voussoir_shape", Some("polygon"))?;
@@ -730,6 +805,7 @@ fn max_pointed_voussoirs(phi_end: f64, psi_intrados: f64) -> usize {
 }
 
 fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
+    s.check_known(PIERS_KEYS, "")?;
     let height = s.length("height", "pier height h in metres")?;
     let width = s.length("width", "pier width b in metres")?;
     let courses = s.count("courses", Some(1), 1, "")?;
@@ -780,6 +856,8 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
             });
         };
         let mut s = Section::new(format!("loads[{k}]"), t, origin);
+        let (allowed, context) = keys_of_kind(t, "type", LOAD_KEYS, LOAD_TYPE_KEYS);
+        s.check_known(&allowed, &context)?;
         let kind = s.string("type", None)?;
         let seismic = s.boolean("seismic", true)?;
         let load = match kind.as_str() {
@@ -828,6 +906,7 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
 }
 
 fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
+    s.check_known(FILL_KEYS, "")?;
     let level = s.finite("level", "y of the fill's top surface in metres")?;
     let unit_weight = s.opt_f64("unit_weight")?.unwrap_or(18000.0);
     if !(unit_weight.is_finite() && unit_weight >= 0.0) {
@@ -855,6 +934,7 @@ fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
 }
 
 fn parse_seismic(mut s: Section) -> Result<SeismicSpec, SceneError> {
+    s.check_known(SEISMIC_KEYS, "")?;
     let r = s.opt_f64("vertical_ratio")?.unwrap_or(0.0);
     if !(r.is_finite() && (-1.0..=1.0).contains(&r)) {
         return Err(s.out_of_range("vertical_ratio", r, "must be from -1 to 1"));
@@ -864,6 +944,7 @@ fn parse_seismic(mut s: Section) -> Result<SeismicSpec, SceneError> {
 }
 
 fn parse_material(mut s: Section) -> Result<Material, SceneError> {
+    s.check_known(MATERIAL_KEYS, "")?;
     let unit_weight = s.positive("unit_weight", Some(20000.0), "")?;
     let depth = s.positive("depth", Some(1.0), "")?;
     let friction = s.opt_f64("friction")?.unwrap_or(f64::INFINITY);

@@ -206,4 +206,48 @@ fn main() {
             median(parts.iter().map(|s| s.setup + s.solve).collect()) * 1e3
         );
     }
+
+    reduced_against_full();
+}
+
+/// The chain's reduced program (four unknowns, `lp::analyse_chain`) against the full one.
+fn reduced_against_full() {
+    println!("\nReduced chain program (lambda, H, V, M0) against the full program, semicircle t/R = 0.15 (median, one thread)\n");
+    println!(
+        "| n | lambda full | lambda reduced (exact vertex) | full ms | reduced ms | speed-up |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    let settings = voussoir::lp::StaticSettings::default();
+    for n in [16usize, 64, 256, 1000, 4000, 20000] {
+        let m = voussoir::scene::build(&semicircle(n)).expect("valid model");
+        let reps = if n >= 4000 { 3 } else { 9 };
+        let time = |f: &dyn Fn() -> f64| -> (f64, f64) {
+            let mut ts = Vec::new();
+            let mut l = 0.0;
+            for _ in 0..reps {
+                let t = Instant::now();
+                l = f();
+                ts.push(t.elapsed().as_secs_f64());
+            }
+            (l, median(ts))
+        };
+        let (lf, tf) = time(&|| {
+            voussoir::lp::analyse(&m, &settings)
+                .expect("full")
+                .lambda
+                .unwrap_or(f64::NAN)
+        });
+        let (lr, tr) = time(&|| {
+            voussoir::lp::analyse_chain(&m, &settings)
+                .expect("reduced")
+                .lambda
+                .unwrap_or(f64::NAN)
+        });
+        println!(
+            "| {n} | {lf:.12} | {lr:.12} | {:.3} | {:.3} | {:.0}x |",
+            tf * 1e3,
+            tr * 1e3,
+            tf / tr
+        );
+    }
 }

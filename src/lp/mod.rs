@@ -7,8 +7,11 @@
 //! collapse multiplier; the duals of the equilibrium rows are the virtual velocities of the
 //! blocks, i.e. the collapse mechanism.
 
+mod chain;
 mod problem;
 mod settings;
+
+pub use chain::analyse_chain;
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
@@ -172,6 +175,25 @@ struct RawSolution {
 }
 
 fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, AnalysisError> {
+    solve_conic(
+        &problem.p,
+        &problem.q,
+        &problem.a,
+        &problem.b,
+        &problem.cones,
+        s,
+    )
+}
+
+/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`.
+fn solve_conic(
+    p: &clarabel::algebra::CscMatrix<f64>,
+    q: &[f64],
+    a: &clarabel::algebra::CscMatrix<f64>,
+    b: &[f64],
+    cones: &[clarabel::solver::SupportedConeT<f64>],
+    s: &StaticSettings,
+) -> Result<RawSolution, AnalysisError> {
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
         .tol_gap_abs(s.tol_gap)
@@ -181,15 +203,8 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
         .direct_solve_method(s.linear_solver.clone())
         .build()
         .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-    let mut solver = DefaultSolver::new(
-        &problem.p,
-        &problem.q,
-        &problem.a,
-        &problem.b,
-        &problem.cones,
-        settings,
-    )
-    .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+    let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
+        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
     solver.solve();
     let sol = &solver.solution;
     Ok(RawSolution {

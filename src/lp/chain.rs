@@ -1,0 +1,469 @@
+//! The static program of a chain in its redundants: a chain of blocks between two supports is
+//! statically indeterminate to degree three, so given the force `(H, V)` and moment `M0` the
+//! ground exerts on the first block, and `lambda`, the force through every joint follows from
+//! running sums of the block loads (Heyman, *The Stone Skeleton*, 1995: the thrust line of an
+//! arch is fixed by three quantities; Livesley, 1978, for the LP). The program has four
+//! unknowns `x = [lambda, H, V, M0]` and, per joint, two no-tension rows (the moment of the
+//! transmitted force about each end of the joint has the sign that keeps the resultant on the
+//! joint) and, with finite friction, two Coulomb rows — instead of the full program's three
+//! unknowns per joint and three equilibrium rows per block.
+//!
+//! Joint k carries the force `F_k = F_0 + sum_{i<k} (P_i + lambda S_i)` from block k - 1 to
+//! block k, with moment `M_k = M_0 + sum_{i<k} (m(P_i) + lambda m(S_i))` about a reference
+//! point (the structure's first joint midpoint, so moments stay well conditioned far from the
+//! origin); `P_i`, `S_i` are block i's permanent and seismic (per unit lambda) loads from the
+//! [`LoadCase`]. The moment about a point q is `M_q = M_k - (q - ref) x F_k`; for a resultant
+//! at distance e from the joint midpoint along u, `M_q = (a - e) N` with `q = mid + a u`, so
+//! the no-tension rows are `M_{p2} >= 0` and `-M_{p1} >= 0` (their sum is `N L >= 0`), and
+//! Coulomb's `mu N -+ V >= 0`. The duals of the rows are the joints' relative motions: a
+//! rotation about p2 (or p1) for a no-tension row, a dilatant slip for a friction row; summed
+//! from the ground, they are the blocks' velocities in the collapse mechanism.
+//!
+//! Lengths are divided by the structure's size and forces by the loads' scale, as in the full
+//! program, and Clarabel solves it (a linear program over the nonnegative cone).
+
+use super::{classify_joints, solve_conic, ModelSize, StaticResult, StaticSettings};
+use crate::assembly::{Assembly, JointForce};
+use crate::error::AnalysisError;
+use crate::geometry::{cross, Vec2};
+use crate::model::{equilibrium_residual, LoadCase, Model};
+use crate::outcome::{Status, LAMBDA_CAP};
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{SolverStatus, SupportedConeT};
+use std::time::Instant;
+
+/// The joint force as an affine function of `x = [lambda, H, V, M0]` (SI units):
+/// `F = F0 + base + lambda * per`, moment about the reference point likewise.
+#[derive(Debug, Clone, Copy, Default)]
+struct Affine {
+    base: [f64; 3],
+    per: [f64; 3],
+}
+
+/// The reduced program of a chain, with what is needed to read its solution back.
+struct ChainProgram {
+    a: CscMatrix<f64>,
+    b: Vec<f64>,
+    cones: Vec<SupportedConeT<f64>>,
+    q: Vec<f64>,
+    /// Per joint, the running sums of the loads before it.
+    sums: Vec<Affine>,
+    reference: Vec2,
+    length_scale: f64,
+    force_scale: f64,
+    /// Joints with friction rows, in row order (after the two no-tension rows of every joint).
+    friction_joints: Vec<usize>,
+    rows: usize,
+    /// Every row as `g(x) = coef . x + c >= 0`, for the exact vertex step.
+    dense: Vec<([f64; 4], f64)>,
+}
+
+impl ChainProgram {
+    fn new(assembly: &Assembly, loads: &LoadCase, sign: f64, cap: Option<f64>) -> ChainProgram {
+        let nj = assembly.joints.len();
+        let ls = assembly.size();
+        let fs = loads.force_scale();
+        let reference = assembly.joints[0].midpoint();
+        // Running sums of the block loads (force and moment about the reference).
+        let mut sums = Vec::with_capacity(nj);
+        let mut acc = Affine::default();
+        for k in 0..nj {
+            sums.push(acc);
+            if k < assembly.blocks.len() {
+                let g = loads.reference(k);
+                let p = loads.permanent(k).moved(g, reference);
+                let s = loads.seismic(k, sign).moved(g, reference);
+                for (c, v) in [p.force.x, p.force.y, p.moment].into_iter().enumerate() {
+                    acc.base[c] += v;
+                }
+                for (c, v) in [s.force.x, s.force.y, s.moment].into_iter().enumerate() {
+                    acc.per[c] += v;
+                }
+            }
+        }
+        // Rows `g(x) = coef . x + c >= 0`, stored for Clarabel as `-coef . x + s = c`.
+        let mut rows = Vec::new();
+        let mut cols = Vec::new();
+        let mut vals = Vec::new();
+        let mut b = Vec::new();
+        let mut dense = Vec::new();
+        let mut push_row = |coef: [f64; 4], c: f64, b: &mut Vec<f64>| {
+            let r = b.len();
+            dense.push((coef, c));
+            for (j, v) in coef.into_iter().enumerate() {
+                if v != 0.0 {
+                    rows.push(r);
+                    cols.push(j);
+                    vals.push(-v);
+                }
+            }
+            b.push(c);
+        };
+        // Dimensionless: x = [lambda, H / fs, V / fs, M0 / (fs ls)].
+        let moment_row = |k: usize, q: Vec2, sgn: f64| {
+            let d = (q - reference) / ls;
+            let s = &sums[k];
+            // M_q / (fs ls) = M0' - d.x V' + d.y H' + (base_m - d.x base_y + d.y base_x)/(fs ls)
+            //                 + lambda (per_m - d.x per_y + d.y per_x)/(fs ls).
+            let base = (s.base[2] / ls - d.x * s.base[1] + d.y * s.base[0]) / fs;
+            let per = (s.per[2] / ls - d.x * s.per[1] + d.y * s.per[0]) / fs;
+            ([sgn * per, sgn * d.y, -sgn * d.x, sgn], sgn * base)
+        };
+        for (k, jt) in assembly.joints.iter().enumerate() {
+            let (c2, k2) = moment_row(k, jt.p2, 1.0);
+            push_row(c2, k2, &mut b);
+            let (c1, k1) = moment_row(k, jt.p1, -1.0);
+            push_row(c1, k1, &mut b);
+        }
+        let mut friction_joints = Vec::new();
+        for (k, jt) in assembly.joints.iter().enumerate() {
+            if !jt.friction.is_finite() {
+                continue;
+            }
+            let (n, u, mu) = (jt.normal(), jt.tangent(), jt.friction);
+            let s = &sums[k];
+            for sv in [1.0, -1.0] {
+                // mu N - sv V with N = F.n, V = F.u: the direction d = mu n - sv u.
+                let d = mu * n - sv * u;
+                let base = (d.x * s.base[0] + d.y * s.base[1]) / fs;
+                let per = (d.x * s.per[0] + d.y * s.per[1]) / fs;
+                push_row([per, d.x, d.y, 0.0], base, &mut b);
+            }
+            friction_joints.push(k);
+        }
+        if let Some(cap) = cap {
+            // lambda <= cap.
+            push_row([-1.0, 0.0, 0.0, 0.0], cap, &mut b);
+        }
+        let m = b.len();
+        let a = CscMatrix::new_from_triplets(m, 4, rows, cols, vals);
+        ChainProgram {
+            a,
+            b,
+            cones: vec![SupportedConeT::NonnegativeConeT(m)],
+            q: vec![-1.0, 0.0, 0.0, 0.0],
+            sums,
+            reference,
+            length_scale: ls,
+            force_scale: fs,
+            friction_joints,
+            rows: m,
+            dense,
+        }
+    }
+
+    /// Value of row `i` at `x`, and the sum of the magnitudes of its terms (its scale).
+    fn row_value(&self, i: usize, x: &[f64]) -> (f64, f64) {
+        let (coef, c) = &self.dense[i];
+        let g: f64 = coef.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() + c;
+        let size: f64 = coef.iter().zip(x).map(|(a, b)| (a * b).abs()).sum::<f64>() + c.abs();
+        (g, size)
+    }
+
+    /// The exact vertex of the optimum near the interior-point solution `x`. Rows come in
+    /// families along the chain (the p2 rows, the p1 rows, each friction side); on a long
+    /// chain neighbouring rows are nearly parallel and nearly active together, so the
+    /// candidates are the rows whose slack is a local minimum along their family, with their
+    /// neighbours. Every choice of four candidates whose 4 x 4 system is regular gives a
+    /// vertex; taken in decreasing lambda, the first that satisfies every row to round-off is
+    /// the optimum (no feasible vertex has a larger lambda). None when no candidate vertex is
+    /// feasible (then the interior-point solution stands).
+    fn vertex(&self, x: &[f64]) -> Option<Vec<f64>> {
+        let nj = self.sums.len();
+        let nf = self.friction_joints.len();
+        let slack: Vec<f64> = (0..self.dense.len())
+            .map(|i| {
+                let (g, size) = self.row_value(i, x);
+                g / size.max(1e-300)
+            })
+            .collect();
+        // Families `(first row, length)`, rows two apart: the p2 rows (2k), the p1 rows
+        // (2k + 1) over joints k, and the two sides of the friction rows (2 nj + 2f + side).
+        let families = [(0, nj), (1, nj), (2 * nj, nf), (2 * nj + 1, nf)];
+        let mut minima: Vec<(f64, usize, usize)> = Vec::new();
+        for (family, &(start, len)) in families.iter().enumerate() {
+            let row = |k: usize| start + 2 * k;
+            for k in 0..len {
+                let here = slack[row(k)];
+                let left = if k > 0 {
+                    slack[row(k - 1)]
+                } else {
+                    f64::INFINITY
+                };
+                let right = if k + 1 < len {
+                    slack[row(k + 1)]
+                } else {
+                    f64::INFINITY
+                };
+                if here <= left && here <= right {
+                    minima.push((here, family, k));
+                }
+            }
+        }
+        minima.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // The smallest local minima and their neighbours in the same family.
+        let mut candidates: Vec<usize> = Vec::new();
+        for &(_, family, k) in minima.iter().take(6) {
+            let (start, len) = families[family];
+            for kk in k.saturating_sub(1)..(k + 2).min(len) {
+                let row = start + 2 * kk;
+                if !candidates.contains(&row) {
+                    candidates.push(row);
+                }
+            }
+        }
+        if self.dense.len() > 2 * nj + 2 * nf {
+            // The lambda cap row.
+            candidates.push(self.dense.len() - 1);
+        }
+        let c = candidates.len();
+        let mut vertices: Vec<Vec<f64>> = Vec::new();
+        for i in 0..c {
+            for j in i + 1..c {
+                for k in j + 1..c {
+                    for l in k + 1..c {
+                        let rows = [candidates[i], candidates[j], candidates[k], candidates[l]];
+                        let mut m = nalgebra::Matrix4::<f64>::zeros();
+                        let mut rhs = nalgebra::Vector4::<f64>::zeros();
+                        for (r, &row) in rows.iter().enumerate() {
+                            let (coef, cst) = self.dense[row];
+                            for (col, v) in coef.into_iter().enumerate() {
+                                m[(r, col)] = v;
+                            }
+                            rhs[r] = -cst;
+                        }
+                        let lu = m.lu();
+                        if lu.determinant().abs() < 1e-14 {
+                            continue;
+                        }
+                        if let Some(v) = lu.solve(&rhs) {
+                            if v.iter().all(|x| x.is_finite()) {
+                                vertices.push(v.iter().copied().collect());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        vertices.sort_by(|a, b| b[0].total_cmp(&a[0]));
+        let tol = 1e-12;
+        vertices.into_iter().find(|v| {
+            (v[0] - x[0]).abs() <= 1e-6 * x[0].abs().max(1e-3)
+                && (0..self.dense.len()).all(|i| {
+                    let (g, size) = self.row_value(i, v);
+                    g >= -tol * size.max(1e-300)
+                })
+        })
+    }
+
+    /// Joint forces of the solution `x` (SI units).
+    fn forces(&self, assembly: &Assembly, x: &[f64]) -> Vec<JointForce> {
+        let (fs, ls) = (self.force_scale, self.length_scale);
+        let (lambda, h, v, m0) = (x[0], x[1] * fs, x[2] * fs, x[3] * fs * ls);
+        assembly
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(k, jt)| {
+                let s = &self.sums[k];
+                let f = Vec2::new(
+                    h + s.base[0] + lambda * s.per[0],
+                    v + s.base[1] + lambda * s.per[1],
+                );
+                let mk = m0 + s.base[2] + lambda * s.per[2];
+                // Moment about the midpoint is -e N; the convention's M is e N.
+                let m_mid = mk - cross(jt.midpoint() - self.reference, f);
+                JointForce {
+                    n: f.dot(&jt.normal()),
+                    v: f.dot(&jt.tangent()),
+                    m: -m_mid,
+                }
+            })
+            .collect()
+    }
+
+    /// Block velocities `[vx, vy, omega]` from the duals `z` (see the module docs), scaled so
+    /// the fastest centroid moves at 1 and the seismic forces do positive work.
+    fn mechanism(
+        &self,
+        assembly: &Assembly,
+        loads: &LoadCase,
+        sign: f64,
+        z: &[f64],
+    ) -> Vec<[f64; 3]> {
+        let ls = self.length_scale;
+        let rot = |p: Vec2| [1.0, p.y, -p.x];
+        let mut rel = vec![[0.0; 3]; assembly.joints.len()];
+        for (k, (jt, r)) in assembly.joints.iter().zip(rel.iter_mut()).enumerate() {
+            let (z2, z1) = (z[2 * k], z[2 * k + 1]);
+            let (a2, a1) = (rot(jt.p2), rot(jt.p1));
+            for c in 0..3 {
+                r[c] += (z2 * a2[c] - z1 * a1[c]) / ls;
+            }
+        }
+        let nt = 2 * assembly.joints.len();
+        for (f, &k) in self.friction_joints.iter().enumerate() {
+            let jt = &assembly.joints[k];
+            let (n, u, mu) = (jt.normal(), jt.tangent(), jt.friction);
+            for (i, sv) in [1.0, -1.0].into_iter().enumerate() {
+                let d = mu * n - sv * u;
+                let zf = z[nt + 2 * f + i];
+                rel[k][1] += zf * d.x;
+                rel[k][2] += zf * d.y;
+            }
+        }
+        let mut twist = [0.0; 3];
+        let mut v: Vec<[f64; 3]> = Vec::with_capacity(assembly.blocks.len());
+        for (b, r) in assembly.blocks.iter().zip(&rel) {
+            for (t, rc) in twist.iter_mut().zip(r) {
+                *t += rc;
+            }
+            let g = b.centroid;
+            v.push([
+                twist[1] - twist[0] * g.y,
+                twist[2] + twist[0] * g.x,
+                twist[0],
+            ]);
+        }
+        // Orientation: the seismic forces do positive work.
+        let power: f64 = (0..v.len())
+            .map(|i| {
+                let s = loads.seismic_mass(i);
+                let d = loads.seismic_direction(sign) * s.weight;
+                let r = s.centre - assembly.blocks[i].centroid;
+                let vel = Vec2::new(v[i][0] - v[i][2] * r.y, v[i][1] + v[i][2] * r.x);
+                d.dot(&vel)
+            })
+            .sum();
+        let vmax = v
+            .iter()
+            .fold(0.0_f64, |a, b| a.max((b[0] * b[0] + b[1] * b[1]).sqrt()));
+        if vmax > 0.0 {
+            let scale = if power < 0.0 { -1.0 } else { 1.0 } / vmax;
+            for b in &mut v {
+                for c in b.iter_mut() {
+                    *c *= scale;
+                }
+            }
+        }
+        v
+    }
+}
+
+/// Static analysis of a chain (joint k joins block k - 1, or the ground, to block k, or the
+/// ground) by its reduced program in four unknowns: the same answer as [`super::analyse`]
+/// (the same statuses, multiplier, joint forces, hinges and mechanism), at a fraction of the
+/// cost on long chains. Errors when the model is not such a chain.
+pub fn analyse_chain(
+    model: &Model,
+    settings: &StaticSettings,
+) -> Result<StaticResult, AnalysisError> {
+    let start = Instant::now();
+    let (assembly, loads) = (&model.assembly, &model.loads);
+    assembly.validate()?;
+    loads.validate(assembly)?;
+    if !assembly.is_chain() {
+        return Err(AnalysisError::Other(
+            "the reduced static program needs a chain of blocks between two supports".into(),
+        ));
+    }
+    let sign = settings.direction.sign();
+    let mut program = ChainProgram::new(assembly, loads, sign, None);
+    let mut sol = solve_conic(
+        &CscMatrix::zeros((4, 4)),
+        &program.q,
+        &program.a,
+        &program.b,
+        &program.cones,
+        settings,
+    )?;
+    let mut capped = false;
+    if matches!(
+        sol.status,
+        SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
+    ) {
+        program = ChainProgram::new(assembly, loads, sign, Some(LAMBDA_CAP));
+        sol = solve_conic(
+            &CscMatrix::zeros((4, 4)),
+            &program.q,
+            &program.a,
+            &program.b,
+            &program.cones,
+            settings,
+        )?;
+        capped = true;
+    }
+    let mut result = StaticResult {
+        status: Status::CannotStand,
+        lambda: None,
+        forces: None,
+        hinges: Vec::new(),
+        sliding: Vec::new(),
+        open: Vec::new(),
+        mechanism: Vec::new(),
+        equilibrium_residual: 0.0,
+        direction: settings.direction,
+        solve_time_s: 0.0,
+        iterations: sol.iterations,
+        solver_status: format!("{:?}", sol.status),
+        model: ModelSize {
+            variables: 4,
+            constraints: program.rows,
+            equality_rows: 0,
+            inequality_rows: program.rows,
+            friction_rows: 2 * program.friction_joints.len(),
+        },
+    };
+    match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            if let Some(v) = program.vertex(&sol.x) {
+                sol.x = v;
+                result.solver_status.push_str("; exact vertex");
+            }
+            let lambda = sol.x[0];
+            let forces = program.forces(assembly, &sol.x);
+            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+            if sol.status == SolverStatus::AlmostSolved && residual > 1e-6 * program.force_scale {
+                return Err(AnalysisError::SolverFailed {
+                    status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
+                    iterations: sol.iterations,
+                });
+            }
+            if lambda < 0.0 {
+                result.status = Status::CannotStand;
+            } else if capped && lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
+                result.status = Status::NoCollapse;
+            } else {
+                result.status = Status::Collapse;
+                result.lambda = Some(lambda);
+                result.equilibrium_residual = residual;
+                let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
+                result.hinges = states.hinges;
+                result.sliding = states.sliding;
+                result.open = states.open;
+                result.mechanism = program.mechanism(assembly, loads, sign, &sol.z);
+                result.forces = Some(forces);
+            }
+        }
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            result.status = Status::CannotStand;
+        }
+        other => {
+            // As for the full program: a stalled solve next to the minimum thickness is
+            // settled by the phase-one test.
+            let stand = super::stands(model, settings)?;
+            if stand.stands {
+                return Err(AnalysisError::SolverFailed {
+                    status: format!("{other:?}"),
+                    iterations: sol.iterations,
+                });
+            }
+            result.solver_status = format!(
+                "{other:?}; phase-one least tension {:.3e} N > 0",
+                stand.tension
+            );
+        }
+    }
+    result.solve_time_s = start.elapsed().as_secs_f64();
+    Ok(result)
+}

@@ -1,0 +1,189 @@
+//! The reduced static program of a chain (four unknowns: lambda and the three redundants at
+//! the first support) gives what the full program (three unknowns per joint) gives: the same
+//! status, multiplier, joint forces, hinges and mechanism, on every shape, portals, loads,
+//! both directions and finite friction.
+
+use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
+use voussoir::model::Model;
+use voussoir::scene::Scene;
+
+fn bundled(name: &str) -> Scene {
+    Scene::from_file(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("data")
+            .join(name),
+    )
+    .expect("bundled scene")
+}
+
+fn both(m: &Model, d: Direction) -> (StaticResult, StaticResult) {
+    let s = StaticSettings::default().direction(d);
+    let full = lp::analyse(m, &s).expect("full program solves");
+    let reduced = lp::analyse_chain(m, &s).expect("reduced program solves");
+    (full, reduced)
+}
+
+static VERTICES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+fn compare(label: &str, m: &Model, d: Direction) -> Option<f64> {
+    let (f, r) = both(m, d);
+    assert_eq!(f.status, r.status, "{label} {d:?}: statuses");
+    let (Some(lf), Some(lr)) = (f.lambda, r.lambda) else {
+        assert_eq!(f.lambda, r.lambda, "{label}");
+        return None;
+    };
+    let rel = (lf - lr).abs() / lf.abs().max(1e-300);
+    assert!(
+        rel < 1e-9,
+        "{label} {d:?}: full {lf}, reduced {lr} ({rel:.2e})"
+    );
+    // The residual of the reduced solution, recomputed from the joint forces.
+    let scale = m.loads.force_scale();
+    assert!(
+        r.equilibrium_residual < 1e-8 * scale,
+        "{label}: residual {}",
+        r.equilibrium_residual
+    );
+    let finite = m.assembly.joints.iter().any(|j| j.friction.is_finite());
+    if !finite {
+        // A non-degenerate collapse state is unique: the same hinges and mechanism.
+        assert_eq!(f.hinges, r.hinges, "{label} {d:?}: hinges");
+        for (a, b) in f.mechanism.iter().zip(&r.mechanism) {
+            for c in 0..3 {
+                assert!(
+                    (a[c] - b[c]).abs() < 1e-5,
+                    "{label} {d:?}: mechanism {a:?} vs {b:?}"
+                );
+            }
+        }
+        // The exact vertex step lands on the kinematic multiplier of the same mechanism to
+        // round-off, where the interior-point optimum stops near 1e-10.
+        if r.solver_status.contains("exact vertex") && m.assembly.joints.len() <= 200 {
+            let k = voussoir::kinematic::analyse(
+                m,
+                &voussoir::kinematic::KinematicSettings::default().direction(d),
+            )
+            .expect("kinematic search");
+            let lk = k.lambda_upper.expect("kinematic multiplier");
+            VERTICES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let rel = (lr - lk).abs() / lk;
+            assert!(
+                rel < 1e-12,
+                "{label} {d:?}: vertex {lr}, kinematic {lk} ({rel:.1e})"
+            );
+        }
+        let ff = f.forces.as_ref().expect("forces");
+        let fr = r.forces.as_ref().expect("forces");
+        for (a, b) in ff.iter().zip(fr) {
+            assert!(
+                (a.n - b.n).abs() < 1e-6 * scale,
+                "{label}: N {} vs {}",
+                a.n,
+                b.n
+            );
+        }
+    }
+    Some(lr)
+}
+
+#[test]
+fn reduced_equals_full_on_every_shape_and_load() {
+    let names = [
+        "semicircular.toml",
+        "segmental.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+        "loaded_portal.toml",
+        "filled_arch.toml",
+    ];
+    let mut checked = 0;
+    for name in names {
+        let base = bundled(name);
+        for set in [
+            vec![],
+            vec!["material.friction=0.4"],
+            vec!["arch.voussoir_shape=\"curved\""],
+            vec!["arch.voussoirs=64"],
+        ] {
+            let Ok(s) = base.with_overrides(&set) else {
+                continue;
+            };
+            let m = voussoir::scene::build(&s).expect("builds");
+            for d in [Direction::Right, Direction::Left] {
+                if compare(&format!("{name} {set:?}"), &m, d).is_some() {
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 40, "only {checked} collapse cases compared");
+    let vertices = VERTICES.load(std::sync::atomic::Ordering::Relaxed);
+    assert!(
+        vertices >= 20,
+        "only {vertices} exact vertices checked against the kinematic value"
+    );
+}
+
+#[test]
+fn reduced_reports_cannot_stand_and_no_collapse_like_the_full_program() {
+    let base = bundled("semicircular.toml");
+    // Thinner than the minimum thickness (t/R = 0.1075): cannot stand.
+    let thin = base.with_override("arch.thickness=0.09").expect("valid");
+    let m = voussoir::scene::build(&thin).expect("builds");
+    let (f, r) = both(&m, Direction::Right);
+    assert_eq!(f.status, Status::CannotStand);
+    assert_eq!(r.status, Status::CannotStand);
+    // A thick, flat segmental arch that cannot slide never collapses.
+    let flat = bundled("segmental.toml")
+        .with_overrides(&["arch.embrace_deg=60", "arch.thickness=0.4"])
+        .expect("valid");
+    let m = voussoir::scene::build(&flat).expect("builds");
+    let (f, r) = both(&m, Direction::Right);
+    assert_eq!(f.status, r.status);
+}
+
+#[test]
+fn reduced_program_is_refused_for_an_assembly_that_is_not_a_chain() {
+    let m = voussoir::scene::build(&bundled("semicircular.toml")).expect("builds");
+    let mut a = m.assembly.clone();
+    a.joints.swap(3, 4);
+    let e = lp::analyse_chain(&Model::self_weight(a), &StaticSettings::default());
+    assert!(e.is_err());
+}
+
+/// On long chains the interior-point optimum of the full program stops about 5e-9 below the
+/// collapse multiplier; the reduced program's exact vertex step lands on it: its multiplier is
+/// that of the mechanism its active rows define, which the kinematic search (local, around
+/// the static hinges) finds independently.
+#[test]
+fn exact_vertex_on_long_chains_meets_the_kinematic_bound() {
+    for n in [4000usize, 20000] {
+        let s = bundled("semicircular.toml")
+            .with_override(&format!("arch.voussoirs={n}"))
+            .expect("valid");
+        let m = voussoir::scene::build(&s).expect("builds");
+        let settings = StaticSettings::default();
+        let r = lp::analyse_chain(&m, &settings).expect("reduced");
+        assert!(
+            r.solver_status.contains("exact vertex"),
+            "n = {n}: {}",
+            r.solver_status
+        );
+        let lr = r.lambda.expect("collapse");
+        let k = voussoir::kinematic::analyse_local(
+            &m,
+            &r,
+            &voussoir::kinematic::KinematicSettings::default(),
+            voussoir::kinematic::DEFAULT_LOCAL_WINDOW,
+        )
+        .expect("local kinematic search");
+        let lk = k.lambda_upper.expect("upper bound");
+        let rel = (lr - lk).abs() / lk;
+        assert!(
+            rel < 1e-12,
+            "n = {n}: vertex {lr}, kinematic {lk} ({rel:.1e})"
+        );
+        assert!(r.equilibrium_residual < 1e-8 * m.loads.force_scale());
+    }
+}

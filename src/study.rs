@@ -76,6 +76,8 @@ pub struct Study {
     /// Also run the continuous model (column `lambda_continuous`).
     pub continuous: bool,
     pub scene: Scene,
+    /// The study file, for messages.
+    pub origin: String,
 }
 
 fn err(origin: &str, key: &str, value: String, allowed: &str) -> SceneError {
@@ -224,6 +226,7 @@ impl Study {
             baseline,
             continuous,
             scene,
+            origin,
         })
     }
 
@@ -241,17 +244,26 @@ impl Study {
         self
     }
 
+    /// A chart-axis error of the sweep layer (`--x ...`) as an error of the study file's
+    /// `x` or `series` key.
+    fn chart_error(&self, e: SceneError) -> SceneError {
+        match e {
+            SceneError::BadChart {
+                option,
+                key,
+                message,
+            } => err(
+                &self.origin,
+                option.trim_start_matches('-'),
+                format!("\"{key}\""),
+                &message.replace("--x", "x"),
+            ),
+            other => other,
+        }
+    }
+
     /// Run every case (in parallel) and return the rows and the chart.
     pub fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<(Vec<SweepRow>, Chart), SceneError> {
-        // Validate the chart keys before solving.
-        sweep::chart_of(
-            &self.variations,
-            &[],
-            &self.x,
-            self.series.as_deref(),
-            &self.title,
-            None,
-        )?;
         let settings = StaticSettings::default();
         let options = crate::analysis::Options {
             continuous: self.continuous,
@@ -259,6 +271,9 @@ impl Study {
         };
         sweep::check_variations(&self.scene, &self.variations)?;
         let cases = sweep::cases(&self.scene, &self.variations);
+        // Validate the chart keys before solving.
+        sweep::check_chart(&self.variations, &cases, &self.x, self.series.as_deref())
+            .map_err(|e| self.chart_error(e))?;
         let rows = sweep::run(
             &cases,
             |values, scene| {
@@ -285,7 +300,8 @@ impl Study {
             self.series.as_deref(),
             &self.title,
             self.plot_ratio.then_some("lambda_ratio"),
-        )?;
+        )
+        .map_err(|e| self.chart_error(e))?;
         if let Some(baseline) = self.baseline {
             if self.plot_ratio {
                 chart.y_label = format!("lambda / lambda of the {}", baseline.describe());
@@ -296,6 +312,19 @@ impl Study {
             }
         }
         Ok((rows, chart))
+    }
+}
+
+impl Study {
+    /// Write the rows as the study's CSV: the columns of a sweep's CSV without the wall
+    /// times, so a study regenerated with the same code gives the same bytes (the CSVs
+    /// under `docs/figures` are committed).
+    pub fn write_csv<W: std::io::Write>(
+        &self,
+        out: W,
+        rows: &[SweepRow],
+    ) -> Result<(), csv::Error> {
+        sweep::write_csv_with(out, &self.variations, rows, false)
     }
 }
 

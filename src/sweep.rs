@@ -97,12 +97,33 @@ fn targets(key: &str) -> Vec<&str> {
     }
 }
 
+/// A value as the user typed it (strings without their TOML quotes).
+fn value_text(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
 /// Check the varied keys before anything is solved: no key varied twice (directly or through
-/// a ratio that sets the same scene key), and every key known to the scene format (values out
-/// of range are the cases' own business: they stay in the sweep as rows with status `error`).
+/// a ratio that sets the same scene key), every key known to the scene format, and every
+/// value of a type the key takes (a ratio takes numbers; `arch.thickness=0.1,abc` is refused,
+/// not solved as a row with status `error`). Values out of range are the cases' own business:
+/// they stay in the sweep as rows with status `error`.
 pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), SceneError> {
     let mut set: Vec<(&str, &str)> = Vec::new();
     for v in variations {
+        if v.key.contains('/') && !DERIVED_KEYS.contains(&v.key.as_str()) {
+            return Err(SceneError::BadVariation {
+                text: v.key.clone(),
+                message: format!(
+                    "unknown ratio `{}`{} (ratios: {}; scene keys are SECTION.KEY, e.g. arch.thickness)",
+                    v.key,
+                    crate::error::did_you_mean(&v.key, DERIVED_KEYS),
+                    DERIVED_KEYS.join(", ")
+                ),
+            });
+        }
         for t in targets(&v.key) {
             if let Some((other, _)) = set.iter().find(|(_, s)| *s == t) {
                 return Err(SceneError::BadVariation {
@@ -118,29 +139,54 @@ pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), Sc
         }
     }
     for v in variations {
-        let Some(first) = v.values.first() else {
+        if v.values.is_empty() {
             return Err(SceneError::BadVariation {
                 text: v.key.clone(),
                 message: "no values".into(),
             });
-        };
-        match apply(base, &[(v.key.as_str(), first)]) {
-            Err(e @ (SceneError::UnknownKey { .. } | SceneError::WrongType { .. })) => {
-                return Err(SceneError::BadVariation {
-                    text: format!("{}={first}", v.key),
-                    message: e.to_string(),
-                })
+        }
+        // Each kind of value (number, whole number, string, ...) is tried once on the base
+        // scene: a value of the wrong type is refused whatever the other keys are.
+        let mut tried: Vec<std::mem::Discriminant<Value>> = Vec::new();
+        for value in &v.values {
+            let kind = std::mem::discriminant(value);
+            if tried.contains(&kind) {
+                continue;
             }
-            Err(SceneError::BadOverride { message, .. }) => {
-                return Err(SceneError::BadVariation {
-                    text: format!("{}={first}", v.key),
-                    message,
-                })
-            }
-            _ => {}
+            tried.push(kind);
+            check_value(base, &v.key, value)?;
         }
     }
     Ok(())
+}
+
+/// Refuse a varied value the key cannot take at all (unknown key, wrong type, a ratio that
+/// is not a number); a value out of range is left to its case.
+fn check_value(base: &Scene, key: &str, value: &Value) -> Result<(), SceneError> {
+    let text = format!("{key}={}", value_text(value));
+    if DERIVED_KEYS.contains(&key) && !matches!(value, Value::Float(_) | Value::Integer(_)) {
+        return Err(SceneError::BadVariation {
+            text,
+            message: format!(
+                "`{}` is not a number (the ratio {key} takes numbers)",
+                value_text(value)
+            ),
+        });
+    }
+    match apply(base, &[(key, value)]) {
+        Err(e @ SceneError::UnknownKey { .. }) => Err(SceneError::BadVariation {
+            text,
+            message: e.to_string(),
+        }),
+        Err(SceneError::WrongType { expected, .. }) => Err(SceneError::BadVariation {
+            message: format!("`{key}` takes {expected}, not `{}`", value_text(value)),
+            text,
+        }),
+        Err(SceneError::BadOverride { message, .. }) => {
+            Err(SceneError::BadVariation { text, message })
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Apply `key = value` pairs to a scene: scene keys first (together), then the
@@ -269,6 +315,121 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
     ]
 }
 
+/// How charts name a key: a readable name with its unit (`thickness t (m)`, `embrace
+/// (deg)`); ratios and keys without a name stay as they are.
+pub fn key_label(key: &str) -> String {
+    match key_name(key) {
+        Some((name, "")) => name.to_string(),
+        Some((name, unit)) => format!("{name} ({unit})"),
+        None => key.to_string(),
+    }
+}
+
+/// `key = value` as a chart legend says it (`embrace = 120 deg`).
+fn key_value_label(key: &str, value: &str) -> String {
+    match key_name(key) {
+        Some((name, "")) => format!("{name} = {value}"),
+        Some((name, unit)) => format!("{name} = {value} {unit}"),
+        None => format!("{key} = {value}"),
+    }
+}
+
+/// The readable name and unit of a scene key.
+fn key_name(key: &str) -> Option<(&'static str, &'static str)> {
+    Some(match key {
+        "arch.thickness" => ("thickness t", "m"),
+        "arch.radius" => ("radius R", "m"),
+        "arch.embrace_deg" => ("embrace", "deg"),
+        "arch.voussoirs" => ("voussoirs n", ""),
+        "arch.eccentricity" => ("eccentricity e", "m"),
+        "arch.span" => ("span L", "m"),
+        "arch.rise" => ("rise f", "m"),
+        "arch.side_angle_deg" => ("side angle", "deg"),
+        "arch.shape" => ("shape", ""),
+        "arch.voussoir_shape" => ("voussoir shape", ""),
+        "piers.height" => ("pier height h", "m"),
+        "piers.width" => ("pier width b", "m"),
+        "piers.courses" => ("pier courses k", ""),
+        "material.friction" => ("friction coefficient mu", ""),
+        "material.unit_weight" => ("unit weight", "N/m^3"),
+        "material.depth" => ("depth", "m"),
+        "fill.level" => ("fill level", "m"),
+        "fill.unit_weight" => ("fill unit weight", "N/m^3"),
+        "fill.seismic" => ("seismic fill", ""),
+        "seismic.vertical_ratio" => ("vertical seismic ratio", ""),
+        _ => return None,
+    })
+}
+
+/// Check the chart's axes before anything is solved: `x` is a varied key, or a ratio
+/// ([`DERIVED_KEYS`]) that takes more than one value over the valid cases (a ratio the
+/// varied keys do not change would draw every line as a single dot); `series` is a varied
+/// key other than `x`. Errors name the options `--x` and `--series`.
+pub fn check_chart(
+    variations: &[Variation],
+    cases: &[(Vec<Value>, Result<Scene, SceneError>)],
+    x: &str,
+    series: Option<&str>,
+) -> Result<(), SceneError> {
+    let varied: Vec<&str> = variations.iter().map(|v| v.key.as_str()).collect();
+    let bad = |message: String| SceneError::BadChart {
+        option: "--x".into(),
+        key: x.to_string(),
+        message,
+    };
+    if !varied.contains(&x) {
+        if !DERIVED_KEYS.contains(&x) {
+            let mut candidates = varied.clone();
+            candidates.extend(DERIVED_KEYS);
+            return Err(bad(format!(
+                "neither a varied key ({}) nor a ratio ({}){}",
+                varied.join(", "),
+                DERIVED_KEYS.join(", "),
+                crate::error::did_you_mean(x, &candidates)
+            )));
+        }
+        let mut values: Vec<f64> = cases
+            .iter()
+            .filter_map(|(_, s)| s.as_ref().ok())
+            .filter_map(|s| ratios(s).into_iter().find(|(n, _)| *n == x))
+            .map(|(_, v)| v)
+            .filter(|v| v.is_finite())
+            .collect();
+        values.sort_by(f64::total_cmp);
+        let (Some(lo), Some(hi)) = (values.first(), values.last()) else {
+            return Err(bad(format!(
+                "the ratio is not defined for these cases (varied: {})",
+                varied.join(", ")
+            )));
+        };
+        if hi - lo <= 1e-9 * lo.abs().max(hi.abs()).max(1e-300) {
+            return Err(bad(format!(
+                "the ratio does not vary in this sweep (it is {} in every case); --x takes a varied key ({}) or a ratio that changes with them",
+                lo + 0.0,
+                varied.join(", ")
+            )));
+        }
+    }
+    if let Some(sk) = series {
+        if !varied.contains(&sk) || sk == x {
+            return Err(SceneError::BadChart {
+                option: "--series".into(),
+                key: sk.to_string(),
+                message: format!(
+                    "must be a varied key other than --x ({})",
+                    varied
+                        .iter()
+                        .filter(|k| **k != x)
+                        .copied()
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Every case of the sweep: the varied values of each case and its scene (or the error
 /// that made the case invalid), in order.
 pub fn cases(
@@ -378,7 +539,9 @@ pub fn static_case(
 
 /// One case by every method in `options` (the static bound always; the kinematic bound when
 /// the chain is small enough; the continuous model and the DEM when asked), as a row.
-/// Extra columns: `lambda_continuous` with `options.continuous`, `lambda_dem` with `dem`.
+/// Extra columns: `lambda_continuous` with `options.continuous`, `lambda_dem` and
+/// `dem_time_s` (the DEM's wall time) with `dem`. `solve_time_s` is the time of the static,
+/// kinematic and continuous analyses, without the DEM.
 pub fn case(
     values: &[Value],
     scene: &Result<Scene, SceneError>,
@@ -407,6 +570,7 @@ pub fn case(
     let start = std::time::Instant::now();
     match analysis::analyse(scene, options) {
         Ok(a) => {
+            row.solve_time_s = start.elapsed().as_secs_f64();
             row.status = a.lower.status.as_str().to_string();
             row.lambda_lower = a.lower.lambda;
             row.lambda_upper = a.lambda_upper();
@@ -420,6 +584,7 @@ pub fn case(
                 row.extra.push(("lambda_continuous", c));
             }
             if dem {
+                let dem_start = std::time::Instant::now();
                 let d = analysis::dem_of(
                     scene,
                     &a.model,
@@ -430,11 +595,15 @@ pub fn case(
                 .ok()
                 .and_then(|r| r.lambda_dem);
                 row.extra.push(("lambda_dem", d));
+                row.extra
+                    .push(("dem_time_s", Some(dem_start.elapsed().as_secs_f64())));
             }
         }
-        Err(e) => row.error = Some(e.to_string()),
+        Err(e) => {
+            row.solve_time_s = start.elapsed().as_secs_f64();
+            row.error = Some(e.to_string());
+        }
     }
-    row.solve_time_s = start.elapsed().as_secs_f64();
     row
 }
 
@@ -450,6 +619,19 @@ pub fn write_csv<W: std::io::Write>(
     variations: &[Variation],
     rows: &[SweepRow],
 ) -> Result<(), csv::Error> {
+    write_csv_with(out, variations, rows, true)
+}
+
+/// Like [`write_csv`]; without `timings` the wall-time columns (`solve_time_s` and every
+/// extra column ending in `_time_s`) are left out, so the file is the same on every run
+/// (the committed figures of the studies).
+pub fn write_csv_with<W: std::io::Write>(
+    out: W,
+    variations: &[Variation],
+    rows: &[SweepRow],
+    timings: bool,
+) -> Result<(), csv::Error> {
+    let is_timing = |name: &str| name.ends_with("_time_s");
     let mut w = csv::Writer::from_writer(out);
     // The varied keys, then the results in the order the issue fixed (status ... solve_time_s),
     // then the optional columns, the dimensionless ratios not varied, and the error message.
@@ -467,12 +649,20 @@ pub fn write_csv<W: std::io::Write>(
         "hinges",
         "solve_time_s",
     ] {
-        header.push(h.to_string());
+        if timings || !is_timing(h) {
+            header.push(h.to_string());
+        }
     }
     let extra: Vec<&str> = rows
         .iter()
         .find(|r| !r.extra.is_empty())
-        .map(|r| r.extra.iter().map(|(n, _)| *n).collect())
+        .map(|r| {
+            r.extra
+                .iter()
+                .map(|(n, _)| *n)
+                .filter(|n| timings || !is_timing(n))
+                .collect()
+        })
         .unwrap_or_default();
     header.extend(extra.iter().map(|s| s.to_string()));
     header.extend(ratio_names.iter().map(|s| s.to_string()));
@@ -492,7 +682,9 @@ pub fn write_csv<W: std::io::Write>(
         rec.push(opt(r.lambda_upper));
         rec.push(opt(r.gap()));
         rec.push(hinge_string(&r.hinges));
-        rec.push(r.solve_time_s.to_string());
+        if timings {
+            rec.push(r.solve_time_s.to_string());
+        }
         for name in &extra {
             rec.push(opt(r
                 .extra
@@ -533,21 +725,22 @@ pub fn chart_of(
     y: Option<&str>,
 ) -> Result<crate::thrustline::chart::Chart, SceneError> {
     use crate::thrustline::chart::{Chart, Series};
-    let bad = |message: String| SceneError::BadOverride {
-        text: format!("--x {x}"),
-        message,
-    };
     let x_index = variations.iter().position(|v| v.key == x);
     if x_index.is_none() && !DERIVED_KEYS.contains(&x) {
-        return Err(bad(format!(
-            "`{x}` is neither a varied key nor a ratio ({})",
-            DERIVED_KEYS.join(", ")
-        )));
+        return Err(SceneError::BadChart {
+            option: "--x".into(),
+            key: x.to_string(),
+            message: format!(
+                "neither a varied key nor a ratio ({})",
+                DERIVED_KEYS.join(", ")
+            ),
+        });
     }
     if let Some(sk) = series {
         if !variations.iter().any(|v| v.key == sk) || Some(sk) == Some(x) {
-            return Err(SceneError::BadOverride {
-                text: format!("--series {sk}"),
+            return Err(SceneError::BadChart {
+                option: "--series".into(),
+                key: sk.to_string(),
                 message: "must be a varied key other than --x".into(),
             });
         }
@@ -558,10 +751,7 @@ pub fn chart_of(
     if let Some(sk) = series {
         others.sort_by_key(|&i| variations[i].key != sk);
     }
-    let text = |v: &Value| match v {
-        Value::String(s) => s.clone(),
-        other => other.to_string(),
-    };
+    let text = value_text;
     // (series name, its points), in order of first appearance.
     type Line = (String, Vec<(f64, Option<f64>)>);
     let mut groups: Vec<Line> = Vec::new();
@@ -580,7 +770,7 @@ pub fn chart_of(
         } else {
             others
                 .iter()
-                .map(|&i| format!("{} = {}", variations[i].key, text(&r.values[i])))
+                .map(|&i| key_value_label(&variations[i].key, &text(&r.values[i])))
                 .collect::<Vec<_>>()
                 .join(", ")
         };
@@ -599,7 +789,7 @@ pub fn chart_of(
     }
     Ok(Chart {
         title: title.to_string(),
-        x_label: x.to_string(),
+        x_label: key_label(x),
         y_label: match y {
             Some("lambda_ratio") => "lambda / lambda of the semicircle of equal span".to_string(),
             Some(col) => col.to_string(),
@@ -607,7 +797,7 @@ pub fn chart_of(
         },
         legend_title: match others.len() {
             0 => None,
-            1 => Some(variations[others[0]].key.clone()),
+            1 => Some(key_label(&variations[others[0]].key)),
             _ => Some("series".to_string()),
         },
         series: groups

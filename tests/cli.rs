@@ -296,3 +296,359 @@ fn unknown_dem_keys_are_rejected_by_every_command() {
         .failure();
     assert!(String::from_utf8_lossy(&out.get_output().stderr).contains("dem.bogus"));
 }
+
+#[test]
+fn a_scene_key_typo_names_the_key_and_suggests_the_right_one() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("typo.toml");
+    std::fs::write(
+        &scene,
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthicknes = 0.2\nvoussoirs = 8\n",
+    )
+    .expect("written");
+    let out = voussoir().arg("analyze").arg(&scene).assert().failure();
+    let o = out.get_output();
+    assert!(o.stdout.is_empty());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("unknown key `arch.thicknes` (did you mean `thickness`?)"),
+        "{err}"
+    );
+    assert!(!err.contains("missing required key"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}
+
+/// The stderr of a run that must fail, with nothing on stdout.
+fn failure(args: &[&str], extra: &[&std::path::Path]) -> String {
+    let out = voussoir().args(args).args(extra).assert().failure();
+    let o = out.get_output();
+    assert!(o.stdout.is_empty(), "{args:?}");
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(err.starts_with("error: "), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    err
+}
+
+#[test]
+fn sweep_refuses_values_that_are_not_numbers_before_solving() {
+    let scene = data("semicircular.toml");
+    for (vary, key, value) in [
+        ("t/R=0.1,abc", "t/R", "abc"),
+        ("arch.thickness=0.1,abc", "arch.thickness", "abc"),
+        ("arch.voussoirs=8,8.5", "arch.voussoirs", "8.5"),
+        ("e/R=zero", "e/R", "zero"),
+    ] {
+        let err = failure(&["sweep", "--vary", vary], &[&scene]);
+        assert!(err.contains("--vary"), "{err}");
+        assert!(err.contains(key) && err.contains(value), "{err}");
+        assert!(!err.contains("--set"), "{err}");
+    }
+    // Out-of-range values stay rows with status error; physical statuses stay as they are.
+    let out = voussoir()
+        .args(["sweep", "--vary", "arch.thickness=0.08,0.15,5"])
+        .arg(&scene)
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let statuses: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap_or(""))
+        .collect();
+    assert_eq!(statuses, ["cannot_stand", "collapse", "error"], "{text}");
+}
+
+#[test]
+fn sweep_chart_options_are_checked_before_solving() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = data("semicircular.toml");
+    let svg = dir.path().join("c.svg");
+    // A ratio that does not change in the sweep (e/R of a semicircle is 0 in every case).
+    let err = failure(
+        &["sweep", "--vary", "t/R=0.1,0.2", "--x", "e/R", "--svg"],
+        &[&svg, &scene],
+    );
+    assert!(
+        err.contains("--x e/R") && err.contains("does not vary"),
+        "{err}"
+    );
+    // A ratio of keys that are not varied does not vary either.
+    let err = failure(
+        &[
+            "sweep",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--x",
+            "t/R",
+            "--svg",
+        ],
+        &[&svg, &scene],
+    );
+    assert!(err.contains("--x t/R"), "{err}");
+    assert!(!svg.exists());
+    // --x and --series need --svg.
+    let err = failure(&["sweep", "--vary", "t/R=0.1,0.2", "--x", "t/R"], &[&scene]);
+    assert!(err.contains("--x") && err.contains("--svg"), "{err}");
+    let err = failure(
+        &[
+            "sweep",
+            "--vary",
+            "t/R=0.1,0.2",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--series",
+            "arch.voussoirs",
+        ],
+        &[&scene],
+    );
+    assert!(err.contains("--series") && err.contains("--svg"), "{err}");
+    // With more than one varied key --svg needs --x.
+    let err = failure(
+        &[
+            "sweep",
+            "--vary",
+            "t/R=0.1,0.2",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--svg",
+        ],
+        &[&svg, &scene],
+    );
+    assert!(err.contains("--x"), "{err}");
+    assert!(!svg.exists());
+    // A ratio the varied keys change is a valid axis.
+    voussoir()
+        .args([
+            "sweep",
+            "--vary",
+            "arch.radius=1,1.5",
+            "--x",
+            "t/R",
+            "--svg",
+        ])
+        .arg(&svg)
+        .arg(&scene)
+        .assert()
+        .success();
+    assert!(svg.exists());
+    std::fs::remove_file(&svg).expect("removed");
+    // With one varied key --x defaults to it.
+    voussoir()
+        .args(["sweep", "--vary", "t/R=0.12:0.2:0.04", "--svg"])
+        .arg(&svg)
+        .arg(&scene)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&svg).expect("written");
+    let doc = roxmltree::Document::parse(&text).expect("well-formed SVG");
+    let title = doc
+        .descendants()
+        .find(|n| n.has_tag_name("title"))
+        .and_then(|n| n.text())
+        .unwrap_or("");
+    assert!(title.ends_with("against t/R"), "{title}");
+}
+
+#[test]
+fn chart_errors_speak_of_the_chart_options_not_of_set() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = data("semicircular.toml");
+    let svg = dir.path().join("c.svg");
+    let err = failure(
+        &[
+            "sweep",
+            "--vary",
+            "t/R=0.1,0.2",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--x",
+            "arch.thickness",
+            "--svg",
+        ],
+        &[&svg, &scene],
+    );
+    assert!(err.starts_with("error: --x arch.thickness: "), "{err}");
+    assert!(!err.contains("--set"), "{err}");
+    let err = failure(
+        &[
+            "sweep",
+            "--vary",
+            "t/R=0.1,0.2",
+            "--vary",
+            "arch.voussoirs=8,16",
+            "--x",
+            "t/R",
+            "--series",
+            "arch.radius",
+            "--svg",
+        ],
+        &[&svg, &scene],
+    );
+    assert!(err.starts_with("error: --series arch.radius: "), "{err}");
+    assert!(!err.contains("--set"), "{err}");
+}
+
+#[test]
+fn unwritable_outputs_are_refused_before_solving() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = data("semicircular.toml");
+    let svg = dir.path().join("c.svg");
+    let missing = dir.path().join("no/such/dir/out.csv");
+    // sweep: the chart would be written after solving and before the CSV; it is not.
+    let err = failure(
+        &["sweep", "--vary", "t/R=0.1,0.2", "--svg"],
+        &[&svg, std::path::Path::new("--csv"), &missing, &scene],
+    );
+    assert!(
+        err.contains("cannot write") && err.contains("out.csv"),
+        "{err}"
+    );
+    assert!(!svg.exists());
+    let err = failure(
+        &["sweep", "--vary", "t/R=0.1,0.2", "--svg"],
+        &[dir.path(), &scene],
+    );
+    assert!(
+        err.contains("cannot write") && err.contains("directory"),
+        "{err}"
+    );
+    // convergence: refused at once (the refinement alone takes seconds).
+    let start = std::time::Instant::now();
+    let err = failure(
+        &["convergence", "--no-dem", "--svg"],
+        &[&svg, std::path::Path::new("--csv"), &missing, &scene],
+    );
+    assert!(
+        err.contains("cannot write") && err.contains("out.csv"),
+        "{err}"
+    );
+    assert!(!svg.exists());
+    assert!(start.elapsed().as_secs_f64() < 5.0);
+    // study: an --out that is a file cannot hold the outputs.
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").expect("written");
+    let study =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/studies/circular_embrace.toml");
+    let err = failure(&["study", "--reduced", "--out"], &[&file, &study]);
+    assert!(err.contains("cannot write"), "{err}");
+    // A leftover temporary file does not stop a run, and the check leaves no file behind.
+    let ok = dir.path().join("ok.csv");
+    std::fs::write(dir.path().join("ok.voussoir-tmp"), "old").expect("written");
+    voussoir()
+        .args(["sweep", "--vary", "t/R=0.1,0.2", "--csv"])
+        .arg(&ok)
+        .arg(&scene)
+        .assert()
+        .success();
+    assert!(ok.exists());
+    assert!(!dir.path().join("ok.voussoir-tmp").exists());
+}
+
+#[test]
+fn sweep_help_lists_every_ratio() {
+    let out = voussoir().args(["sweep", "--help"]).assert().success();
+    let help = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    for section in ["--vary", "--x"] {
+        // The help of the option: from its name to the next option.
+        let start = help.find(&format!("  {section} ")).expect("option listed");
+        let rest = &help[start + 2..];
+        let end = rest[2..].find("\n  -").map_or(rest.len(), |e| e + 2);
+        let words: Vec<&str> = rest[..end]
+            .split(|c: char| c.is_whitespace() || ",;:()".contains(c))
+            .collect();
+        for ratio in voussoir::sweep::DERIVED_KEYS {
+            assert!(
+                words.contains(ratio),
+                "{section} help lacks {ratio}:\n{help}"
+            );
+        }
+    }
+}
+
+#[test]
+fn sweep_dem_times_the_dem_in_its_own_column() {
+    let out = voussoir()
+        .args([
+            "sweep",
+            "--dem",
+            "--vary",
+            "t/R=0.15",
+            "--set",
+            "arch.voussoirs=8",
+        ])
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let row: Vec<&str> = lines.next().expect("row").split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("no column {name}: {header:?}"))
+    };
+    // Columns are added, never renamed: dem_time_s right after lambda_dem.
+    assert_eq!(col("dem_time_s"), col("lambda_dem") + 1);
+    assert_eq!(col("solve_time_s"), col("hinges") + 1);
+    let num = |name: &str| -> f64 { row[col(name)].parse().expect("a number") };
+    assert!(num("lambda_dem") > 0.0);
+    // The DEM (thousands of time steps) takes far longer than the static and kinematic
+    // analyses of 8 voussoirs; solve_time_s no longer includes it.
+    assert!(
+        num("solve_time_s") < num("dem_time_s"),
+        "{} vs {}",
+        num("solve_time_s"),
+        num("dem_time_s")
+    );
+}
+
+#[test]
+fn sweep_chart_title_and_legend_read_as_words() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let svg = dir.path().join("e.svg");
+    voussoir()
+        .args([
+            "sweep",
+            "--vary",
+            "arch.embrace_deg=120,150,180",
+            "--vary",
+            "t/R=0.12:0.2:0.04",
+            "--x",
+            "t/R",
+            "--svg",
+        ])
+        .arg(&svg)
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&svg).expect("written");
+    let doc = roxmltree::Document::parse(&text).expect("well-formed SVG");
+    let texts: Vec<String> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text().map(|t| t.trim().to_string()))
+        .collect();
+    assert!(
+        texts.iter().any(|t| t.starts_with("circular arch:")),
+        "{texts:?}"
+    );
+    assert!(!text.contains("semicircular"), "{texts:?}");
+    assert!(texts.iter().any(|t| t == "embrace (deg)"), "{texts:?}");
+    assert!(
+        !texts.iter().any(|t| t.contains("arch.embrace_deg")),
+        "{texts:?}"
+    );
+    // A thickness axis has its unit; the semicircle keeps its own title when its shape does
+    // not change.
+    voussoir()
+        .args(["sweep", "--vary", "arch.thickness=0.12,0.15", "--svg"])
+        .arg(&svg)
+        .arg(data("semicircular.toml"))
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&svg).expect("written");
+    assert!(text.contains("thickness t (m)"), "{text}");
+    assert!(text.contains("semicircular arch:"), "{text}");
+}

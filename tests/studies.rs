@@ -363,3 +363,36 @@ fn portal_trends() {
         }
     }
 }
+
+/// A study's CSV and chart are the same bytes on every run (no wall times), so regenerating
+/// the committed figures leaves them unchanged.
+#[test]
+fn a_study_run_twice_writes_the_same_bytes() {
+    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/studies/portal_courses.toml");
+    let dirs = [
+        tempfile::tempdir().expect("tempdir"),
+        tempfile::tempdir().expect("tempdir"),
+    ];
+    for dir in &dirs {
+        assert_cmd::Command::cargo_bin("voussoir")
+            .expect("binary built")
+            .args(["study", "--reduced", "--out"])
+            .arg(dir.path())
+            .arg(&study)
+            .assert()
+            .success();
+    }
+    for ext in ["csv", "svg"] {
+        let read = |d: &tempfile::TempDir| {
+            std::fs::read(d.path().join(format!("portal_courses.{ext}"))).expect("written")
+        };
+        assert_eq!(read(&dirs[0]), read(&dirs[1]), "portal_courses.{ext}");
+    }
+    let csv =
+        String::from_utf8(std::fs::read(dirs[0].path().join("portal_courses.csv")).expect("csv"))
+            .expect("utf8");
+    let header = csv.lines().next().unwrap_or("");
+    assert!(header.contains(",hinges,"), "{header}");
+    assert!(!header.contains("time_s"), "{header}");
+    assert_eq!(csv.lines().count(), 1 + 9);
+}

@@ -112,3 +112,99 @@ fn clashing_or_unknown_varied_keys_are_refused_before_solving() {
     let vars = vec![sweep::parse_variation("arch.thickness=0.1,5").expect("parses")];
     assert!(sweep::check_variations(&base, &vars).is_ok());
 }
+
+#[test]
+fn values_of_the_wrong_type_are_refused_before_solving() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    for (bad, key, value) in [
+        ("t/R=0.1,abc", "t/R", "abc"),
+        ("e/span=0.1,0.2,x", "e/span", "x"),
+        ("arch.thickness=0.1,0.2,abc", "arch.thickness", "abc"),
+        ("arch.voussoirs=8,8.5", "arch.voussoirs", "8.5"),
+    ] {
+        let vars = vec![sweep::parse_variation(bad).expect("parses")];
+        let e = sweep::check_variations(&base, &vars).expect_err(bad);
+        let msg = e.to_string();
+        assert!(msg.starts_with(&format!("--vary {key}=")), "{msg}");
+        assert!(msg.contains(value), "{msg}");
+    }
+}
+
+#[test]
+fn the_chart_axis_must_vary() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    let vars = vec![
+        sweep::parse_variation("t/R=0.1,0.2").expect("parses"),
+        sweep::parse_variation("arch.voussoirs=8,16").expect("parses"),
+    ];
+    let cases = sweep::cases(&base, &vars);
+    // Varied keys, and ratios the varied keys change.
+    assert!(sweep::check_chart(&vars, &cases, "t/R", Some("arch.voussoirs")).is_ok());
+    assert!(sweep::check_chart(&vars, &cases, "arch.voussoirs", None).is_ok());
+    assert!(sweep::check_chart(&vars, &cases, "t/span", None).is_ok());
+    // e/R is 0 in every case; h/R has no piers; nonsense is nothing.
+    for x in ["e/R", "h/R", "rise/span", "arch.thickness", "nonsense"] {
+        let e = sweep::check_chart(&vars, &cases, x, None).expect_err(x);
+        assert!(e.to_string().starts_with(&format!("--x {x}: ")), "{e}");
+    }
+    let e = sweep::check_chart(&vars, &cases, "t/R", Some("t/R")).expect_err("series = x");
+    assert!(e.to_string().starts_with("--series t/R: "), "{e}");
+}
+
+#[test]
+fn chart_labels_are_words_with_units() {
+    assert_eq!(sweep::key_label("arch.embrace_deg"), "embrace (deg)");
+    assert_eq!(sweep::key_label("arch.thickness"), "thickness t (m)");
+    assert_eq!(sweep::key_label("t/R"), "t/R");
+    assert_eq!(sweep::key_label("dem.something"), "dem.something");
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    let vars = vec![
+        sweep::parse_variation("arch.thickness=0.2,0.3").expect("parses"),
+        sweep::parse_variation("arch.voussoirs=8,16").expect("parses"),
+    ];
+    let cases = sweep::cases(&base, &vars);
+    let settings = StaticSettings::default();
+    let rows = sweep::run(&cases, |v, s| sweep::static_case(v, s, &settings), &|| {});
+    let chart = sweep::chart(&vars, &rows, "arch.thickness", None, "t").expect("chart");
+    assert_eq!(chart.x_label, "thickness t (m)");
+    assert_eq!(chart.legend_title.as_deref(), Some("voussoirs n"));
+}
+
+#[test]
+fn csv_without_timings_leaves_out_the_wall_times_only() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    let vars = vec![sweep::parse_variation("t/R=0.1,0.2").expect("parses")];
+    let cases = sweep::cases(&base, &vars);
+    let settings = StaticSettings::default();
+    let mut rows = sweep::run(&cases, |v, s| sweep::static_case(v, s, &settings), &|| {});
+    for r in &mut rows {
+        r.extra.push(("lambda_dem", Some(0.1)));
+        r.extra.push(("dem_time_s", Some(1.5)));
+    }
+    let mut with = Vec::new();
+    sweep::write_csv(&mut with, &vars, &rows).expect("writes");
+    let mut without = Vec::new();
+    sweep::write_csv_with(&mut without, &vars, &rows, false).expect("writes");
+    let (with, without) = (
+        String::from_utf8(with).expect("utf8"),
+        String::from_utf8(without).expect("utf8"),
+    );
+    for (a, b) in with.lines().zip(without.lines()) {
+        let a: Vec<&str> = a.split(',').collect();
+        let b: Vec<&str> = b.split(',').collect();
+        // The same fields, less solve_time_s (column 6) and dem_time_s (column 8).
+        let kept: Vec<&str> = a
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != 6 && *i != 8)
+            .map(|(_, f)| *f)
+            .collect();
+        assert_eq!(kept, b);
+    }
+    assert!(with
+        .lines()
+        .next()
+        .unwrap_or("")
+        .contains(",solve_time_s,lambda_dem,dem_time_s,"));
+    assert!(!without.contains("_time_s"));
+}

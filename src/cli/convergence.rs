@@ -1,6 +1,6 @@
 //! `voussoir convergence`: speed against accuracy for one scene.
 
-use super::{json, progress_bar, write_atomically, write_chart, SceneArgs};
+use super::{check_output_paths, json, progress_spinner, write_atomically, write_chart, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
@@ -31,15 +31,16 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    check_output_paths([args.csv.as_ref(), args.svg.as_ref()])?;
     let settings = voussoir::convergence::ConvergenceSettings {
         max_voussoirs: args.max_voussoirs,
         kinematic_max_joints: args.kinematic_max_joints,
         dem: !args.no_dem,
         ..Default::default()
     };
-    let bar = progress_bar(0, "convergence");
+    let bar = progress_spinner("convergence");
     let c = voussoir::convergence::run(&scene, &settings, &mut |what| {
-        bar.set_prefix(format!("convergence: {what}"))
+        bar.set_message(what.to_string())
     })
     .map_err(|e| Error::Analysis(AnalysisError::Other(e.to_string())))?;
     bar.finish_and_clear();

@@ -1,7 +1,7 @@
 //! The commands of the `voussoir` binary, one file each: every command parses its arguments,
 //! calls the library's analysis layer ([`voussoir::analysis`]) and returns what to print.
-//! This module holds what they share: reading the scene, writing output files whole or not
-//! at all, and the progress bar.
+//! This module holds what they share: reading the scene, checking output paths before any
+//! work, writing output files whole or not at all, and the progress bar.
 
 pub mod analyze;
 pub mod convergence;
@@ -53,6 +53,66 @@ impl SceneArgs {
     }
 }
 
+/// The temporary sibling a file is written to before it is renamed into place.
+fn temp_sibling(path: &Path) -> PathBuf {
+    path.with_extension("voussoir-tmp")
+}
+
+/// Check that `path` can be written, before any work is done (so an unwritable output is
+/// reported at once, not after minutes of solving): it is not a directory, its directory
+/// exists, and the temporary sibling [`write_atomically`] writes first can be created there
+/// (it is created and removed again). Nothing else is touched.
+pub fn check_output_path(path: &Path) -> Result<(), Error> {
+    let fail = |message: String| Error::Output {
+        path: path.to_path_buf(),
+        message,
+    };
+    if path.as_os_str().is_empty() {
+        return Err(fail("empty file name".into()));
+    }
+    if path.is_dir() {
+        return Err(fail("it is a directory; give a file name".into()));
+    }
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        return Err(fail(format!(
+            "the directory {} does not exist",
+            dir.display()
+        )));
+    }
+    let tmp = temp_sibling(path);
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+    {
+        Ok(file) => {
+            drop(file);
+            std::fs::remove_file(&tmp).map_err(|e| fail(e.to_string()))
+        }
+        // A leftover of an interrupted run: writable is all we need to know.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => std::fs::OpenOptions::new()
+            .write(true)
+            .open(&tmp)
+            .map(drop)
+            .map_err(|e| fail(e.to_string())),
+        Err(e) => Err(fail(e.to_string())),
+    }
+}
+
+/// [`check_output_path`] for each path given.
+pub fn check_output_paths<'a>(
+    paths: impl IntoIterator<Item = Option<&'a PathBuf>>,
+) -> Result<(), Error> {
+    paths
+        .into_iter()
+        .flatten()
+        .try_for_each(|p| check_output_path(p))
+}
+
 /// Write a file whole or not at all: to a temporary sibling, then rename.
 pub fn write_atomically(
     path: &Path,
@@ -63,7 +123,7 @@ pub fn write_atomically(
         path: path.to_path_buf(),
         message,
     })?;
-    let tmp = path.with_extension("voussoir-tmp");
+    let tmp = temp_sibling(path);
     std::fs::write(&tmp, &buf)
         .and_then(|_| std::fs::rename(&tmp, path))
         .map_err(|e| {
@@ -120,4 +180,53 @@ pub fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
     }
     bar.set_prefix(what.to_string());
     bar
+}
+
+/// A spinner on stderr when it is a terminal (hidden otherwise), for work whose number of
+/// steps is not known in advance: `what` as its prefix, the current step as its message.
+pub fn progress_spinner(what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = spinner(what);
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
+}
+
+/// The spinner itself: no length, so no "0/0".
+fn spinner(what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new_spinner();
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{spinner} {prefix} [{elapsed_precise}] {msg}")
+    {
+        bar.set_style(style);
+    }
+    bar.set_prefix(what.to_string());
+    bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_spinner_shows_the_step_and_no_count() {
+        let bar = spinner("convergence");
+        assert_eq!(bar.length(), None);
+        bar.set_message("n = 64");
+        assert_eq!(bar.message(), "n = 64");
+        assert_eq!(bar.prefix(), "convergence");
+    }
+
+    #[test]
+    fn output_paths_are_checked_without_leaving_files() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let ok = dir.path().join("a.csv");
+        assert!(check_output_path(&ok).is_ok());
+        assert!(std::fs::read_dir(dir.path()).expect("dir").next().is_none());
+        assert!(check_output_path(&dir.path().join("missing/a.csv")).is_err());
+        assert!(check_output_path(dir.path()).is_err());
+        assert!(check_output_paths([Some(&ok), None]).is_ok());
+    }
 }

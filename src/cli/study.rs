@@ -1,14 +1,14 @@
 //! `voussoir study`: a parametric study file (data/studies/*.toml) to a CSV and a chart.
 
-use super::{progress_bar, write_atomically, write_chart};
+use super::{check_output_path, progress_bar, write_atomically, write_chart};
 use voussoir::error::Error;
-use voussoir::sweep;
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Study file (TOML: title, output, vary, x, series, y, baseline, continuous, [scene.*])
     study: std::path::PathBuf,
-    /// Directory for the CSV and SVG
+    /// Directory for the CSV and SVG (created if missing). The CSV has no wall-time column,
+    /// so regenerating a committed figure with the same code leaves it unchanged
     #[arg(long, value_name = "DIR", default_value = "docs/figures")]
     out: std::path::PathBuf,
     /// Thin every range to 3 values (a quick check of the study)
@@ -22,21 +22,24 @@ pub fn run(args: Args) -> Result<String, Error> {
         st = st.reduced(3);
     }
     let out = &args.out;
-    let total: usize = st.variations.iter().map(|v| v.values.len()).product();
-    let bar = progress_bar(total as u64, "study");
-    let (rows, chart) = st.run(&|| bar.inc(1))?;
-    bar.finish_and_clear();
-    let mut buf = Vec::new();
-    sweep::write_csv(&mut buf, &st.variations, &rows).map_err(|e| Error::Output {
-        path: out.clone(),
-        message: e.to_string(),
-    })?;
+    // The outputs are checked before anything is solved.
     std::fs::create_dir_all(out).map_err(|e| Error::Output {
         path: out.clone(),
         message: e.to_string(),
     })?;
     let csv_path = out.join(format!("{}.csv", st.output));
     let svg_path = out.join(format!("{}.svg", st.output));
+    check_output_path(&csv_path)?;
+    check_output_path(&svg_path)?;
+    let total: usize = st.variations.iter().map(|v| v.values.len()).product();
+    let bar = progress_bar(total as u64, "study");
+    let (rows, chart) = st.run(&|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let mut buf = Vec::new();
+    st.write_csv(&mut buf, &rows).map_err(|e| Error::Output {
+        path: csv_path.clone(),
+        message: e.to_string(),
+    })?;
     write_atomically(&csv_path, |b| {
         *b = buf;
         Ok(())

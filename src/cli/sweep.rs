@@ -1,41 +1,98 @@
 //! `voussoir sweep`: the cartesian product of varied scene keys, solved in parallel.
 
-use super::{progress_bar, write_atomically, write_chart, SceneArgs};
+use super::{check_output_paths, progress_bar, write_atomically, write_chart, SceneArgs};
 use voussoir::analysis;
-use voussoir::error::Error;
+use voussoir::error::{Error, SceneError};
 use voussoir::report;
+use voussoir::scene::Scene;
 use voussoir::sweep;
-use voussoir::thrustline::chart::Chart;
 
 #[derive(clap::Args)]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
     /// KEY=V1,V2,... or KEY=START:STOP:STEP; KEY is a scene key (arch.thickness) or a
-    /// ratio (t/R, e/R, h/R, b/R, t/span, rise/span). Repeatable.
+    /// ratio: t/R, e/R, h/R, b/R (R the centreline radius), t/span, rise/span, e/span (span
+    /// the centreline span; e/span keeps a pointed arch's span). Repeatable.
     #[arg(long, value_name = "KEY=VALUES", required = true)]
     vary: Vec<String>,
     /// Write the rows to this CSV file (default: standard output)
     #[arg(long, value_name = "FILE")]
     csv: Option<std::path::PathBuf>,
     /// Draw lambda against --x to this SVG file, one line per value of the other keys
-    #[arg(long, value_name = "FILE", requires = "x")]
+    #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
-    /// Abscissa of the chart: a varied key or a ratio (t/R, e/R, h/R, b/R, t/span, rise/span)
+    /// Abscissa of the chart (with --svg): a varied key, or a ratio that changes with the
+    /// varied keys (t/R, e/R, h/R, b/R, t/span, rise/span, e/span); default: the varied key
+    /// when only one is varied
     #[arg(long, value_name = "KEY")]
     x: Option<String>,
-    /// Key whose values name the lines of the chart (listed first in the legend)
+    /// Varied key whose values name the lines of the chart (with --svg; listed first in the
+    /// legend)
     #[arg(long, value_name = "KEY")]
     series: Option<String>,
     /// Add the continuous model's multiplier (column lambda_continuous)
     #[arg(long)]
     continuous: bool,
-    /// Add the DEM multiplier, bracketed to 1% (column lambda_dem; about a second per case)
+    /// Add the DEM multiplier, bracketed to 1% (columns lambda_dem and its wall time
+    /// dem_time_s, not counted in solve_time_s; about a second per case)
     #[arg(long = "dem")]
     run_dem: bool,
     /// Largest chain (joints) for the kinematic search; 0 turns it off
     #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
     kinematic_max_joints: usize,
+}
+
+/// The chart's abscissa: `--x`, or the one varied key; `None` without `--svg` (then `--x`
+/// and `--series` are refused rather than ignored).
+fn chart_x(args: &Args, variations: &[sweep::Variation]) -> Result<Option<String>, SceneError> {
+    if args.svg.is_none() {
+        let given: Vec<&str> = [
+            args.x.as_ref().map(|_| "--x"),
+            args.series.as_ref().map(|_| "--series"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if !given.is_empty() {
+            return Err(SceneError::Usage(format!(
+                "{} only shape{} the chart: add --svg FILE to draw it",
+                given.join(" and "),
+                if given.len() == 1 { "s" } else { "" }
+            )));
+        }
+        return Ok(None);
+    }
+    match (&args.x, variations) {
+        (Some(x), _) => Ok(Some(x.clone())),
+        (None, [only]) => Ok(Some(only.key.clone())),
+        (None, _) => Err(SceneError::Usage(format!(
+            "--svg needs --x KEY when more than one key is varied (one of {})",
+            variations
+                .iter()
+                .map(|v| v.key.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))),
+    }
+}
+
+/// The chart's title: the structure the cases share ("semicircular arch"), or, when the
+/// varied keys change the shape's own words (an embrace, an eccentricity, the shape itself),
+/// the kind of arch they all are ("circular arch"), or just "arch" / "portal".
+fn chart_title(base: &Scene, cases: &[(Vec<toml::Value>, Result<Scene, SceneError>)]) -> String {
+    let scenes: Vec<&Scene> = cases.iter().filter_map(|(_, s)| s.as_ref().ok()).collect();
+    let same = |f: &dyn Fn(&Scene) -> String| scenes.iter().all(|s| f(s) == f(base));
+    let structure = |s: &Scene| if s.piers.is_some() { "portal" } else { "arch" }.to_string();
+    if same(&|s| report::shape_title(s)) {
+        report::shape_title(base)
+    } else if same(&|s| s.arch.shape.name().to_string()) && same(&structure) {
+        format!("{} {}", base.arch.shape.name(), structure(base))
+    } else if same(&structure) {
+        structure(base)
+    } else {
+        "arch and portal".to_string()
+    }
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -45,25 +102,15 @@ pub fn run(args: Args) -> Result<String, Error> {
         .iter()
         .map(|v| sweep::parse_variation(v))
         .collect::<Result<Vec<_>, _>>()?;
-    let chart_for = |rows: &[sweep::SweepRow]| -> Result<Option<Chart>, Error> {
-        match (&args.svg, &args.x) {
-            (Some(_), Some(x)) => Ok(Some(sweep::chart(
-                &variations,
-                rows,
-                x,
-                args.series.as_deref(),
-                &format!(
-                    "{}: collapse multiplier against {x}",
-                    report::shape_title(&scene)
-                ),
-            )?)),
-            _ => Ok(None),
-        }
-    };
-    // Check --x and --series before solving anything.
-    chart_for(&[])?;
+    // Everything is checked before anything is solved: the chart's options, the varied keys
+    // and values, and the output paths.
+    let x = chart_x(&args, &variations)?;
     sweep::check_variations(&scene, &variations)?;
     let cases = sweep::cases(&scene, &variations);
+    if let Some(x) = &x {
+        sweep::check_chart(&variations, &cases, x, args.series.as_deref())?;
+    }
+    check_output_paths([args.csv.as_ref(), args.svg.as_ref()])?;
     let bar = progress_bar(cases.len() as u64, "sweep");
     let options = analysis::Options {
         continuous: args.continuous,
@@ -76,7 +123,13 @@ pub fn run(args: Args) -> Result<String, Error> {
         &|| bar.inc(1),
     );
     bar.finish_and_clear();
-    if let (Some(path), Some(chart)) = (&args.svg, chart_for(&rows)?) {
+    if let (Some(path), Some(x)) = (&args.svg, &x) {
+        let title = format!(
+            "{}: collapse multiplier against {}",
+            chart_title(&scene, &cases),
+            sweep::key_label(x)
+        );
+        let chart = sweep::chart(&variations, &rows, x, args.series.as_deref(), &title)?;
         write_chart(path, &chart)?;
     }
     let mut buf = Vec::new();

@@ -372,3 +372,41 @@ fn min_thickness_note_is_in_words() {
     assert!(!err.contains("NeverStands"), "{err}");
     assert!(!path.exists());
 }
+
+// Items 3 and 6: statuses in words in the summary (the JSON keeps `no_collapse`,
+// `cannot_stand`).
+#[test]
+fn statuses_are_words_in_the_summary() {
+    let text = summary(
+        &[
+            "analyze",
+            "--continuous",
+            "--set",
+            "arch.embrace_deg=60",
+            "--set",
+            "arch.thickness=0.6",
+        ],
+        "semicircular.toml",
+    );
+    assert!(
+        text.contains("infinitely many voussoirs): no collapse ("),
+        "{text}"
+    );
+    assert!(
+        !text.contains("no_collapse") && !text.contains("none"),
+        "{text}"
+    );
+    let text = summary(
+        &["analyze", "--continuous", "--set", "arch.thickness=0.08"],
+        "semicircular.toml",
+    );
+    assert!(
+        text.contains("infinitely many voussoirs): cannot stand ("),
+        "{text}"
+    );
+    assert!(
+        !text.contains("cannot_stand") && !text.contains("none"),
+        "{text}"
+    );
+    assert_eq!(report::status_words(Status::NoCollapse), "no collapse");
+}

@@ -45,6 +45,16 @@ pub fn sci(x: f64, digits: usize) -> String {
     }
 }
 
+/// A status in words: `collapse`, `no collapse`, `cannot stand` (the JSON writes
+/// `no_collapse`, `cannot_stand`).
+pub fn status_words(status: Status) -> &'static str {
+    match status {
+        Status::Collapse => "collapse",
+        Status::NoCollapse => "no collapse",
+        Status::CannotStand => "cannot stand",
+    }
+}
+
 /// `1 run`, `3 runs`: a count with its noun in the singular or the plural.
 pub fn count(n: u64, singular: &str, plural: &str) -> String {
     format!("{n} {}", if n == 1 { singular } else { plural })
@@ -310,8 +320,8 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                 let _ = writeln!(
                     s,
                     "  WARNING: the static status is {} but the kinematic one is {}",
-                    a.lower.status.as_str(),
-                    k.status.as_str()
+                    status_words(a.lower.status),
+                    status_words(k.status)
                 );
             }
         }
@@ -322,15 +332,13 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
     if let Some(c) = &a.continuous {
         match c {
             Ok(c) => {
-                let l = match (c.status, c.lambda_continuous) {
-                    (_, Some(l)) => format!("{l:.6}"),
-                    (Status::NoCollapse, None) => "none: no collapse".to_string(),
-                    (_, None) => "none: cannot stand".to_string(),
+                let l = match c.lambda_continuous {
+                    Some(l) => format!("lambda = {l:.6}"),
+                    None => status_words(c.status).to_string(),
                 };
                 let _ = writeln!(
                     s,
-                    "\nContinuous model (hinges anywhere, infinitely many voussoirs): lambda = {l} ({}, {:.2} ms)",
-                    c.status.as_str(),
+                    "\nContinuous model (hinges anywhere, infinitely many voussoirs): {l} ({:.2} ms)",
                     c.wall_time_s * 1e3
                 );
                 for h in &c.hinges {

@@ -649,7 +649,7 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
     if scene.arch.voussoir_shape == VoussoirShape::Curved {
         let _ = writeln!(
             s,
-            "  curved voussoirs are simulated as polygons (their chord polygons): their weights and centroids differ slightly from the exact annular pieces of the static bound (docs/dem.md)"
+            "  curved voussoirs are simulated as polygons (straight chords): their weights and centroids\n  differ slightly from the exact annular pieces the static bound uses (docs/dem.md)"
         );
     }
     if rep.friction_infinite {

@@ -187,3 +187,60 @@ fn exact_vertex_on_long_chains_meets_the_kinematic_bound() {
         assert!(r.equilibrium_residual < 1e-8 * m.loads.force_scale());
     }
 }
+
+/// The upper bound certified from the static hinges: on every bundled shape and load case
+/// (no sliding) it is the exhaustive search's multiplier and mechanism; on a 20,000-voussoir
+/// arch, far beyond the exhaustive search, it meets the reduced program's exact vertex to
+/// 1e-12, so the collapse multiplier is certified.
+#[test]
+fn certified_upper_bound_from_the_static_hinges() {
+    use voussoir::kinematic::{self, KinematicSettings, Search};
+    let mut certified = 0;
+    for name in [
+        "semicircular.toml",
+        "segmental.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+        "loaded_portal.toml",
+        "filled_arch.toml",
+    ] {
+        let m = voussoir::scene::build(&bundled(name)).expect("builds");
+        for d in [Direction::Right, Direction::Left] {
+            let s = StaticSettings::default().direction(d);
+            let ks = KinematicSettings::default().direction(d);
+            let r = lp::analyse_chain(&m, &s).expect("reduced");
+            let Ok(c) = kinematic::certify(&m, &r, &ks) else {
+                continue;
+            };
+            let ex = kinematic::analyse(&m, &ks).expect("exhaustive");
+            assert_eq!(c.search, Search::Certified);
+            let (lc, le) = (
+                c.lambda_upper.expect("bound"),
+                ex.lambda_upper.expect("bound"),
+            );
+            assert!((lc - le).abs() <= 1e-12 * le, "{name} {d:?}: {lc} vs {le}");
+            let hc = &c.mechanism.as_ref().expect("mechanism").hinges;
+            let he = &ex.mechanism.as_ref().expect("mechanism").hinges;
+            assert_eq!(hc, he, "{name} {d:?}");
+            let ls = r.lambda.expect("collapse");
+            assert!(
+                (lc - ls).abs() <= 1e-12 * ls,
+                "{name} {d:?}: static {ls}, certified {lc}"
+            );
+            certified += 1;
+        }
+    }
+    assert!(certified >= 12, "only {certified} cases certified");
+    let s = bundled("semicircular.toml")
+        .with_override("arch.voussoirs=20000")
+        .expect("valid");
+    let m = voussoir::scene::build(&s).expect("builds");
+    let r = lp::analyse_chain(&m, &StaticSettings::default()).expect("reduced");
+    let c = kinematic::certify(&m, &r, &KinematicSettings::default()).expect("certified");
+    let (lc, ls) = (c.lambda_upper.expect("bound"), r.lambda.expect("collapse"));
+    assert!(
+        (lc - ls).abs() <= 1e-12 * ls,
+        "n = 20000: static {ls}, certified {lc}"
+    );
+}

@@ -399,6 +399,117 @@ pub fn analyse_local(
     ))
 }
 
+/// The upper bound certified by the static solution `around` at collapse (issue: both bounds
+/// at the physical limit): at a non-degenerate optimum the static solution has exactly four
+/// hinges, and by complementary slackness they are the hinges of the governing mechanism. That
+/// mechanism is rebuilt here from the hinge points alone (cofactor kinematics, as in the
+/// exhaustive search), checked for admissibility (every hinge opens), and its multiplier
+/// computed by virtual work from the load case, independently of the static program: any
+/// admissible mechanism bounds the collapse multiplier from above, so when it equals the static
+/// multiplier the collapse multiplier is certified. Cost: linear in the number of blocks.
+///
+/// Errors with [`KinematicError::NotCertified`] when the static solution is degenerate (not
+/// exactly four hinges, or open or sliding joints), when the mechanism is not admissible, or
+/// when the load does no work on it; the caller then falls back to a search.
+pub fn certify(
+    model: &Model,
+    around: &StaticResult,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, KinematicError> {
+    let start = Instant::now();
+    if around.status != Status::Collapse {
+        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
+    }
+    if !chain_kind(model)? {
+        return Err(KinematicError::NotCertified(
+            "a one-support chain has no four-hinge mechanism".into(),
+        ));
+    }
+    if !around.open.is_empty() || !around.sliding.is_empty() {
+        return Err(KinematicError::NotCertified(format!(
+            "the static solution has {} open and {} sliding joints",
+            around.open.len(),
+            around.sliding.len()
+        )));
+    }
+    // On long chains the resultants of a few joints next to each true hinge sit within the
+    // hinge tolerance of the same end: a run of consecutive joints hinged at the same end is one
+    // hinge, at the joint whose resultant is nearest the end.
+    let mut hinges: Vec<(usize, u8)> = around
+        .hinges
+        .iter()
+        .map(|h| (h.joint, if h.end == JointEnd::P1 { 0 } else { 1 }))
+        .collect();
+    hinges.sort_unstable();
+    let margin = |&(j, end): &(usize, u8)| -> f64 {
+        let half = 0.5 * model.assembly.joints[j].length();
+        match around.forces.as_ref().and_then(|f| f.get(j)) {
+            Some(f) if f.n > 0.0 => {
+                let e = f.m / f.n;
+                (half - if end == 0 { -e } else { e }) / half
+            }
+            _ => f64::INFINITY,
+        }
+    };
+    let mut items: Vec<(usize, u8)> = Vec::new();
+    let mut run_start = 0;
+    for i in 1..=hinges.len() {
+        let ends_run = i == hinges.len()
+            || hinges[i].1 != hinges[i - 1].1
+            || hinges[i].0 != hinges[i - 1].0 + 1;
+        if ends_run {
+            let run = &hinges[run_start..i];
+            if let Some(best) = run.iter().min_by(|a, b| margin(a).total_cmp(&margin(b))) {
+                items.push(*best);
+            }
+            run_start = i;
+        }
+    }
+    items.dedup_by_key(|i| i.0);
+    if items.len() != 4 {
+        return Err(KinematicError::NotCertified(format!(
+            "the static solution has {} hinges at {} places (a non-degenerate collapse has four)",
+            around.hinges.len(),
+            items.len()
+        )));
+    }
+    let key = Key::new(&items);
+    let chain = Chain::new(model, settings.direction.sign(), true);
+    let Some((a, g, _)) = chain.evaluate(&key) else {
+        return Err(KinematicError::NotCertified(
+            "the mechanism of the static hinges is not admissible".into(),
+        ));
+    };
+    if a <= 0.0 {
+        return Err(KinematicError::NotCertified(
+            "the seismic load does no work on the mechanism of the static hinges".into(),
+        ));
+    }
+    let mut ext = Extremes::new();
+    ext.push(a, g, || key);
+    let (status, key) = ext.verdict();
+    let lambda = g / a;
+    let note = format!(
+        "certified: the mechanism of the static hinges (joints {}) has lambda = {lambda} by virtual work",
+        items
+            .iter()
+            .map(|(j, _)| j.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(result(
+        &model.assembly,
+        &chain,
+        &ext,
+        status,
+        key,
+        1,
+        settings,
+        (Search::Certified, 4, Some(note)),
+        start,
+    ))
+}
+
 /// The mechanism of `key`, with block velocities normalised (fastest centroid at speed 1).
 fn mechanism_of(assembly: &Assembly, chain: &Chain, key: &Key) -> Option<Mechanism> {
     let (a, g, m) = chain.evaluate(key)?;

@@ -73,7 +73,7 @@ pub use continuous::{
     continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
     MinThickness,
 };
-pub use discrete::{analyse, analyse_local};
+pub use discrete::{analyse, analyse_local, certify};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
@@ -103,6 +103,8 @@ pub enum KinematicError {
         total: usize,
         window: usize,
     },
+    #[error("no certified upper bound from the static solution: {0}")]
+    NotCertified(String),
 }
 
 /// Default half-width (joints) of the window of the local search around each static hinge.
@@ -118,6 +120,10 @@ pub enum Search {
     /// Only the mechanisms near the static hinges: `lambda_upper` is an upper bound of the
     /// collapse multiplier, not necessarily the least one.
     Local,
+    /// The one mechanism whose hinges are those of the static solution at collapse
+    /// ([`certify`]): its multiplier by virtual work bounds the collapse multiplier from
+    /// above, and when it equals the static one the two certify it.
+    Certified,
 }
 
 impl Search {
@@ -125,6 +131,7 @@ impl Search {
         match self {
             Search::Exhaustive => "exhaustive",
             Search::Local => "local",
+            Search::Certified => "certified",
         }
     }
 }

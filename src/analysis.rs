@@ -13,7 +13,8 @@ use crate::model::Model;
 use crate::scene::Scene;
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
-/// grows as joints^4 (about 0.2 s at 129 joints, 3 s at 257).
+/// candidate count grows as joints^4, its measured cost as about joints^3.6
+/// (docs/performance.md: 176 ms at 129 joints on one thread).
 pub const KINEMATIC_DEFAULT_MAX_JOINTS: usize = 200;
 
 /// Half-width (joints) of the window around each static hinge searched by the local kinematic
@@ -112,7 +113,7 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         ..KinematicSettings::default()
     };
     let too_many = format!(
-        "{} joints is more than {} (the exhaustive search's cost grows as joints^4; raise --kinematic-max-joints to run it)",
+        "{} joints is more than {} (the exhaustive search examines a number of candidates growing as joints^4 and costs about joints^3.6; raise --kinematic-max-joints to run it)",
         assembly.joints.len(),
         options.kinematic_max_joints
     );

@@ -38,6 +38,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    super::check_output_paths([args.thrust_csv.as_ref(), args.svg.as_ref()])?;
     let tolerance = args.tolerance;
     if !(tolerance.is_finite() && (1e-14..=1e-6).contains(&tolerance)) {
         return Err(Error::Analysis(AnalysisError::Other(format!(

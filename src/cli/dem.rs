@@ -27,6 +27,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    super::check_output_paths([args.svg.as_ref()])?;
     let options = DemOptions {
         tolerance: args.tolerance,
         snapshots: args.snapshots.is_some() || args.svg.is_some(),

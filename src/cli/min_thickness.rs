@@ -28,6 +28,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    super::check_output_paths([args.svg.as_ref()])?;
     let model = voussoir::scene::build(&scene)?;
     let t = thickness::analyse(
         &scene,

@@ -249,7 +249,11 @@ impl IntegrationParameters {
                 return Err(SceneError::UnknownKey {
                     origin: origin.to_string(),
                     key: full,
-                    hint: format!(" (allowed in [dem]: {})", DEM_KEYS.join(", ")),
+                    hint: format!(
+                        "{} (allowed in [dem]: {})",
+                        crate::error::did_you_mean(key, DEM_KEYS),
+                        DEM_KEYS.join(", ")
+                    ),
                 })
             }
         }

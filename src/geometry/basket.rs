@@ -33,8 +33,8 @@ impl ArchShape for Basket {
     fn describe(&self) -> String {
         format!(
             "basket-handle arch, span {} m, rise {} m, side angle {} deg",
-            self.span,
-            self.rise,
+            super::trim(self.span),
+            super::trim(self.rise),
             super::trim(self.side_angle.to_degrees())
         )
     }

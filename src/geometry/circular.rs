@@ -23,7 +23,7 @@ impl ArchShape for Circular {
     fn describe(&self) -> String {
         format!(
             "circular arch, R = {} m, embrace {} deg",
-            self.radius,
+            super::trim(self.radius),
             super::trim(self.embrace.to_degrees())
         )
     }

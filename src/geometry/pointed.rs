@@ -23,7 +23,8 @@ impl ArchShape for Pointed {
     fn describe(&self) -> String {
         format!(
             "pointed arch, R = {} m, e = {} m",
-            self.radius, self.eccentricity
+            super::trim(self.radius),
+            super::trim(self.eccentricity)
         )
     }
     fn title(&self) -> String {

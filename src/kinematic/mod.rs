@@ -51,7 +51,8 @@
 //! # Local search
 //! Any admissible mechanism bounds the collapse multiplier from above, whether or not it is the
 //! least one, so a search over a subset of the candidates still gives an upper bound. The
-//! exhaustive search costs about joints^4; [`analyse_local`] searches only the mechanisms
+//! exhaustive search examines about joints^4 candidates and costs about joints^3.6;
+//! [`analyse_local`] searches only the mechanisms
 //! whose active joints all lie within a window of +-w joints around the hinges (and open or
 //! sliding joints) of the static solution — which, at collapse, are the hinges of the governing
 //! mechanism (complementary slackness of the static program). It runs the same search on the
@@ -85,7 +86,7 @@ use thiserror::Error;
 pub enum KinematicError {
     #[error("the kinematic search needs a chain of blocks between two supports (or standing on one support): joint k must join block k-1 (ground for k = 0) to block k (ground for the last joint); this assembly is not one")]
     NotAChain,
-    #[error("exhaustive kinematic search over {joints} joints exceeds the limit of {max} joints (its cost grows as joints^4); raise KinematicSettings::max_joints to run it anyway")]
+    #[error("exhaustive kinematic search over {joints} joints exceeds the limit of {max} joints (its candidate count grows as joints^4, its cost as about joints^3.6); raise KinematicSettings::max_joints to run it anyway")]
     TooManyJoints { joints: usize, max: usize },
     #[error("invalid assembly: {0}")]
     Assembly(#[from] crate::error::AnalysisError),

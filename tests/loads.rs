@@ -1031,3 +1031,32 @@ fn continuous_model_is_the_limit_of_the_discrete_arch_under_loads() {
         }
     }
 }
+
+/// Under loads that are not symmetric the multipliers equilibrium allows may all lie above 0:
+/// pushed the right way the arch holds a little earthquake, yet without one it falls. Both
+/// bounds must say it cannot stand, in both directions, exactly when lambda = 0 has no
+/// equilibrium (the phase-one test), and stand again once it is thick enough.
+#[test]
+fn an_arch_that_cannot_carry_its_loads_without_an_earthquake_cannot_stand() {
+    let text = |t: f64| {
+        format!(
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = 16\n[[loads]]\ntype = \"point\"\nat = [0.5, 0.866]\nforce = [0.0, -1000.0]\n"
+        )
+    };
+    for (t, stands) in [(0.12, false), (0.13, true)] {
+        let m = build(&text(t));
+        let st = lp::stands(&m, &StaticSettings::default()).expect("phase one");
+        assert_eq!(st.stands, stands, "t = {t}");
+        for d in [Direction::Right, Direction::Left] {
+            let s = statics(&m, d);
+            let k = kinematics(&m, d);
+            let expected = if stands {
+                Status::Collapse
+            } else {
+                Status::CannotStand
+            };
+            assert_eq!(s.status, expected, "t = {t} {d:?} static");
+            assert_eq!(k.status, expected, "t = {t} {d:?} kinematic");
+        }
+    }
+}

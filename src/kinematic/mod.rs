@@ -510,6 +510,11 @@ pub(crate) fn motion_work(m: &Motion, bodies: &[Sums]) -> (f64, f64) {
     (a, g)
 }
 
+/// The least multiplier a structure needs (`max G/A` over `A < 0`) above which it cannot stand
+/// at lambda = 0: an absolute round-off allowance, as `G` of a mechanism that lifts nothing is
+/// zero only to round-off.
+const NEEDED_TOL: f64 = 1e-12;
+
 /// Running extremes of `G/A` over admissible mechanisms, with the arguments attached.
 #[derive(Debug, Clone)]
 pub(crate) struct Extremes<K> {
@@ -602,11 +607,12 @@ impl<K: Clone + Ord> Extremes<K> {
         }
         match (&self.best, &self.needed) {
             (Some((b, _)), Some((n, nk))) if n > b => (Status::CannotStand, Some(nk.clone())),
+            // Every multiplier that equilibrium allows lies above 0: without the earthquake
+            // the permanent loads already drive this mechanism (possible when they are not
+            // symmetric; under self-weight alone the interval always straddles 0).
+            (_, Some((n, nk))) if *n > NEEDED_TOL => (Status::CannotStand, Some(nk.clone())),
             (Some((b, k)), _) if *b < 0.0 => (Status::CannotStand, Some(k.clone())),
             (Some((_, k)), _) => (Status::Collapse, Some(k.clone())),
-            (None, Some((n, nk))) if *n > crate::outcome::LAMBDA_CAP => {
-                (Status::CannotStand, Some(nk.clone()))
-            }
             (None, _) => (Status::NoCollapse, None),
         }
     }

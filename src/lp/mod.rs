@@ -153,6 +153,29 @@ pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult,
             );
         }
     }
+    if result.status != Status::CannotStand && !loads.is_self_weight_only() {
+        // The multipliers equilibrium allows form an interval; under loads that are not
+        // symmetric it may lie entirely above 0, and then the structure cannot stand without
+        // the earthquake. The phase-one program at lambda = 0 tells.
+        let stand = stands(model, settings)?;
+        if !stand.stands {
+            result = StaticResult {
+                status: Status::CannotStand,
+                lambda: None,
+                forces: None,
+                hinges: Vec::new(),
+                sliding: Vec::new(),
+                open: Vec::new(),
+                mechanism: Vec::new(),
+                equilibrium_residual: 0.0,
+                solver_status: format!(
+                    "{}; at lambda = 0 the phase-one least tension is {:.3e} N > 0",
+                    result.solver_status, stand.tension
+                ),
+                ..result
+            };
+        }
+    }
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(result)
 }

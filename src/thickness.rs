@@ -54,7 +54,12 @@ where
     let mut evaluations = 0;
     let mut test = |t: f64| -> Result<bool, AnalysisError> {
         evaluations += 1;
-        stands(&scene.with_thickness(t)?)
+        let trial = scene.with_thickness(t).map_err(|e| {
+            AnalysisError::Other(format!(
+                "the minimum-thickness search tried t = {t} m, where the scene does not hold: {e}"
+            ))
+        })?;
+        stands(&trial)
     };
     // Geometric grid from just below the admissible maximum down to 1e-6 of it.
     const GRID: usize = 40;

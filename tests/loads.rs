@@ -1060,3 +1060,134 @@ fn an_arch_that_cannot_carry_its_loads_without_an_earthquake_cannot_stand() {
         }
     }
 }
+
+/// The minimum thickness under loads: the search stays below the thickness at which the
+/// crown would rise above the fill, and the static and kinematic searches agree.
+#[test]
+fn minimum_thickness_under_fill_and_asymmetric_loads() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/filled_arch.toml");
+    let s = Scene::from_file(std::path::Path::new(path)).expect("bundled scene");
+    let t_max = s.max_thickness();
+    let fill = s.fill.as_ref().expect("fill").level;
+    assert!(s.arch.shape.crown_extrados(t_max) <= fill * (1.0 + 1e-12));
+    assert!(s.with_thickness(0.999 * t_max).is_ok());
+    let t = voussoir::thickness::analyse(&s, &StaticSettings::default(), 200, false)
+        .expect("thickness search");
+    let ts = t.lower.search.min_thickness.expect("static t_min");
+    let tk = t
+        .kinematic
+        .as_ref()
+        .and_then(|k| k.min_thickness)
+        .expect("kinematic t_min");
+    assert!(ts < s.arch.thickness && rel(ts, tk) < 1e-6, "{ts} vs {tk}");
+    // At the minimum thickness the arch just stands; a little thinner it does not.
+    let stands = |t: f64| {
+        lp::stands(
+            &build_scene(&s.with_thickness(t).expect("valid")),
+            &StaticSettings::default(),
+        )
+        .expect("phase one")
+        .stands
+    };
+    assert!(stands(ts * (1.0 + 1e-6)) && !stands(ts * (1.0 - 1e-4)));
+}
+
+fn build_scene(s: &Scene) -> Model {
+    voussoir::scene::build(s).expect("builds")
+}
+
+/// Below the springing line of a horseshoe the extrados faces down: the fill and line loads
+/// rest on the voussoirs above, once. The fill pieces cover the upward extrados's x-range
+/// without overlap, and their total is the area between the level and the extrados polyline
+/// computed as one polygon.
+#[test]
+fn horseshoe_fill_and_line_loads_are_counted_once() {
+    let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = 240.0\nthickness = 0.2\nvoussoirs = 24\n[fill]\nlevel = 1.3\nunit_weight = 10000.0\n[[loads]]\ntype = \"line\"\nfrom_x = -2.0\nto_x = 2.0\nintensity = 1000.0\nseismic = false\n";
+    let m = build(text);
+    let fills: Vec<&voussoir::model::AppliedLoad> = m
+        .loads
+        .applied()
+        .iter()
+        .filter(|l| l.source == voussoir::model::LoadSource::Fill)
+        .collect();
+    let mut ranges: Vec<(f64, f64)> = fills
+        .iter()
+        .map(|l| {
+            let r = l.region.as_ref().expect("region");
+            let xs = r.iter().map(|p| p.x);
+            (
+                xs.clone().fold(f64::INFINITY, f64::min),
+                xs.fold(f64::NEG_INFINITY, f64::max),
+            )
+        })
+        .collect();
+    ranges.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for w in ranges.windows(2) {
+        assert!(w[1].0 >= w[0].1 - 1e-12, "fill pieces overlap: {w:?}");
+    }
+    // The upward extrados polyline: the voussoirs' extrados corners running left to right.
+    let mut top: Vec<Vec2> = Vec::new();
+    for b in &m.assembly.blocks {
+        let (p, q) = (b.polygon[1], b.polygon[2]);
+        if q.x > p.x {
+            if top.last().map_or(true, |l| (l - p).norm() > 1e-12) {
+                top.push(p);
+            }
+            top.push(q);
+        }
+    }
+    let (x0, x1) = (top[0].x, top[top.len() - 1].x);
+    assert!((x0 - ranges[0].0).abs() < 1e-12 && (x1 - ranges[ranges.len() - 1].1).abs() < 1e-12);
+    let mut poly = top.clone();
+    poly.push(Vec2::new(x1, 1.3));
+    poly.push(Vec2::new(x0, 1.3));
+    let (area, _) = polygon_area_centroid(&poly);
+    let total: f64 = fills.iter().map(|l| -l.force.y).sum();
+    assert!(
+        rel(total, 10000.0 * area) < 1e-12,
+        "{total} vs {}",
+        10000.0 * area
+    );
+    // The line load: 1 kN/m over the upward extrados's width, no more.
+    let line: f64 = m
+        .loads
+        .applied()
+        .iter()
+        .filter(|l| l.source == voussoir::model::LoadSource::Load(0))
+        .map(|l| -l.force.y)
+        .sum();
+    assert!(
+        rel(line, 1000.0 * (x1 - x0)) < 1e-12,
+        "{line} vs {}",
+        1000.0 * (x1 - x0)
+    );
+}
+
+/// A line load that touches no block, and loads too large to add up, are errors naming their
+/// key, not silently dropped or overflowing.
+#[test]
+fn loads_that_miss_or_overflow_are_refused() {
+    let base = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n";
+    for (extra, key) in [
+        (
+            "[[loads]]\ntype = \"line\"\nfrom_x = 5.0\nto_x = 6.0\nintensity = 100.0\n",
+            "loads[0].from_x",
+        ),
+        (
+            "[[loads]]\ntype = \"point\"\nat = [0.0, 1.0]\nforce = [1e308, -1e308]\n",
+            "loads[0].force",
+        ),
+        (
+            "[[loads]]\ntype = \"line\"\nfrom_x = -1.0\nto_x = 1.0\nintensity = 1e300\n",
+            "loads[0].intensity",
+        ),
+        ("[fill]\nlevel = 1e300\n", "fill.level"),
+        (
+            "[fill]\nlevel = 1.5\nunit_weight = 1e300\n",
+            "fill.unit_weight",
+        ),
+    ] {
+        let e = Scene::from_toml_str(&format!("{base}{extra}"), "t.toml").expect_err(extra);
+        assert_eq!(e.key(), Some(key), "{e}");
+    }
+}

@@ -252,6 +252,11 @@ fn spread_sums(c: Vec2, r: f64, a: f64, b: f64, loads: &[SpreadLoad], seismic: V
             if p1 <= p0 {
                 continue;
             }
+            // Only an extrados that faces up carries spread loads: with the ring running left
+            // to right (decreasing angle), x increases where sin > 0.
+            if (0.5 * (p0 + p1)).sin() <= 0.0 {
+                continue;
+            }
             let mid = c.x + r * (0.5 * (p0 + p1)).cos();
             if let Spread::Line { from_x, to_x, .. } = load.kind {
                 if mid < from_x || mid > to_x {

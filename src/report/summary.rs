@@ -416,7 +416,7 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
         _ => {
             let _ = writeln!(
                 s,
-                "Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even without horizontal load\n  (thinner than its minimum thickness, piers too slender, or too little friction)"
+                "Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even without horizontal load\n  (thinner than its minimum thickness, loads too heavy or too one-sided, piers too slender, or too little friction)"
             );
         }
     }

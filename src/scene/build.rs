@@ -7,7 +7,10 @@
 //! - a line load of intensity `q` over `[from_x, to_x]` puts `q * overlap` on every voussoir,
 //!   where `overlap` is the overlap of `[from_x, to_x]` with the x-range of its extrados edge,
 //!   at the point of that edge at the overlap's mid x; on a portal the exposed part of each
-//!   pier top (outside the arch's springing) is loaded the same way;
+//!   pier top (outside the arch's springing) is loaded the same way. Only extrados edges that
+//!   face up (their corners run left to right) carry line loads and fill: below the springing
+//!   line of a horseshoe arch the extrados faces down, and the load above it rests on the
+//!   voussoirs higher up;
 //! - the fill over voussoir i is the region above its extrados edge (the chord for polygon
 //!   voussoirs, the arc for curved ones), below `y = level`, between the verticals through its
 //!   two extrados corners; its weight `unit_weight * depth * area` acts at the region's
@@ -212,6 +215,7 @@ fn build_loads(
                     seismic,
                     source: LoadSource::Load(k),
                 });
+                let mut carried = false;
                 for (block, a, b, on_edge) in loaded_edges(arch) {
                     let lo = from_x.max(a.x.min(b.x));
                     let hi = to_x.min(a.x.max(b.x));
@@ -227,6 +231,15 @@ fn build_loads(
                         seismic_weight: if seismic { w } else { 0.0 },
                         source: LoadSource::Load(k),
                         region: None,
+                    });
+                    carried = true;
+                }
+                if !carried {
+                    return Err(SceneError::OutOfRange {
+                        origin: scene.origin.clone(),
+                        key: format!("loads[{k}].from_x"),
+                        value: format!("{from_x} (to_x = {to_x})"),
+                        allowed: "the loaded length must overlap the extrados of the arch (or an exposed pier top)".into(),
                     });
                 }
             }
@@ -245,6 +258,11 @@ fn build_loads(
         let g = &arch.geometry;
         for j in 0..g.voussoirs() {
             let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+            if b.x <= a.x {
+                // The extrados faces down here (a horseshoe below its springing line): the
+                // fill above it is the fill above the voussoirs higher up, counted there.
+                continue;
+            }
             let Some((area, centroid, region)) =
                 fill_region(a, b, fill.level, arch.curved.then(|| extrados_arc(g, j)))
             else {
@@ -285,6 +303,11 @@ fn loaded_edges(arch: &ArchPlacement) -> Vec<(usize, Vec2, Vec2, Box<dyn Fn(f64)
     }
     for j in 0..g.voussoirs() {
         let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+        if b.x <= a.x {
+            // A downward-facing extrados (a horseshoe below its springing line) carries no
+            // line load: the load rests on the voussoirs above it.
+            continue;
+        }
         let arc = arch.curved.then(|| extrados_arc(g, j));
         edges.push((
             arch.first + j,

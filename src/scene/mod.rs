@@ -23,6 +23,12 @@ pub const MAX_VOUSSOIRS: usize = 20_000;
 /// precision (mu = 1e8 and inf give the same lambda to 1e-9).
 pub const MAX_FRICTION: f64 = 1e8;
 
+/// Largest force component of a point load (N) and intensity of a line load (N/m): far beyond
+/// any structure, small enough that sums of loads stay finite.
+pub const MAX_FORCE: f64 = 1e15;
+/// Largest unit weight of a fill (N/m^3): a hundred times that of lead.
+pub const MAX_UNIT_WEIGHT: f64 = 1e7;
+
 /// Smallest length a scene may give (m): a micrometre.
 pub const MIN_LENGTH: f64 = 1e-6;
 /// Largest length a scene may give (m): a thousand kilometres.
@@ -223,9 +229,28 @@ impl Scene {
         self.with_value("arch.thickness", Value::Float(t))
     }
 
-    /// The largest arch thickness the shape admits (exclusive) with the scene's voussoirs.
+    /// The largest arch thickness the scene admits (exclusive): the shape's limit with the
+    /// scene's voussoirs, and with a fill the thickness at which the crown's extrados reaches
+    /// the fill's level (a thicker ring would stand above its fill).
     pub fn max_thickness(&self) -> f64 {
-        self.arch.shape.max_thickness(self.arch.voussoirs)
+        let shape = &self.arch.shape;
+        let mut t_max = shape.max_thickness(self.arch.voussoirs);
+        if let Some(fill) = &self.fill {
+            if shape.crown_extrados(t_max) > fill.level {
+                // The crown's extrados rises with t: bisect for the thickness that meets the level.
+                let (mut lo, mut hi) = (0.0, t_max);
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if shape.crown_extrados(mid) > fill.level {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                t_max = lo;
+            }
+        }
+        t_max
     }
 
     /// The assembly and load case of this scene ([`build`]).
@@ -863,12 +888,35 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
         let load = match kind.as_str() {
             "point" => {
                 let at = s.pair("at", "point of application [x, y] in metres")?;
+                if at.iter().any(|c| c.abs() > MAX_LENGTH) {
+                    return Err(s.out_of_range(
+                        "at",
+                        format!("[{}, {}]", short(at[0]), short(at[1])),
+                        &format!("coordinates must lie within +-{MAX_LENGTH:e} m"),
+                    ));
+                }
                 let force = s.pair("force", "force [fx, fy] in newtons")?;
+                if force.iter().any(|c| c.abs() > MAX_FORCE) {
+                    return Err(s.out_of_range(
+                        "force",
+                        format!("[{}, {}]", short(force[0]), short(force[1])),
+                        &format!("components must lie within +-{MAX_FORCE:e} N"),
+                    ));
+                }
                 LoadSpec::Point { at, force, seismic }
             }
             "line" => {
                 let from_x = s.finite("from_x", "start x of the loaded length in metres")?;
                 let to_x = s.finite("to_x", "end x of the loaded length in metres")?;
+                for (key, x) in [("from_x", from_x), ("to_x", to_x)] {
+                    if x.abs() > MAX_LENGTH {
+                        return Err(s.out_of_range(
+                            key,
+                            x,
+                            &format!("must lie within +-{MAX_LENGTH:e} m"),
+                        ));
+                    }
+                }
                 if to_x <= from_x {
                     return Err(s.out_of_range(
                         "to_x",
@@ -877,6 +925,13 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
                     ));
                 }
                 let intensity = s.finite("intensity", "load per metre in N/m, downward")?;
+                if intensity > MAX_FORCE {
+                    return Err(s.out_of_range(
+                        "intensity",
+                        intensity,
+                        &format!("must be at most {MAX_FORCE:e} N/m"),
+                    ));
+                }
                 if intensity < 0.0 {
                     return Err(s.out_of_range(
                         "intensity",
@@ -905,15 +960,32 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
     Ok(loads)
 }
 
+/// A number as a user reads it in a message: plain when moderate, in exponent form when huge
+/// or tiny.
+fn short(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e7).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
     s.check_known(FILL_KEYS, "")?;
     let level = s.finite("level", "y of the fill's top surface in metres")?;
+    if level.abs() > MAX_LENGTH {
+        return Err(s.out_of_range(
+            "level",
+            level,
+            &format!("must lie within +-{MAX_LENGTH:e} m"),
+        ));
+    }
     let unit_weight = s.opt_f64("unit_weight")?.unwrap_or(18000.0);
-    if !(unit_weight.is_finite() && unit_weight >= 0.0) {
+    if !(unit_weight.is_finite() && (0.0..=MAX_UNIT_WEIGHT).contains(&unit_weight)) {
         return Err(s.out_of_range(
             "unit_weight",
             unit_weight,
-            "must be a finite number >= 0 (N/m^3)",
+            &format!("must be a number from 0 to {MAX_UNIT_WEIGHT:e} (N/m^3)"),
         ));
     }
     let seismic = s.boolean("seismic", true)?;

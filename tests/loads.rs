@@ -1130,7 +1130,7 @@ fn horseshoe_fill_and_line_loads_are_counted_once() {
     for b in &m.assembly.blocks {
         let (p, q) = (b.polygon[1], b.polygon[2]);
         if q.x > p.x {
-            if top.last().map_or(true, |l| (l - p).norm() > 1e-12) {
+            if top.last().is_none_or(|l| (l - p).norm() > 1e-12) {
                 top.push(p);
             }
             top.push(q);

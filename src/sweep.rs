@@ -585,15 +585,20 @@ pub fn case(
             }
             if dem {
                 let dem_start = std::time::Instant::now();
-                let d = analysis::dem_of(
+                let d = match analysis::dem_of(
                     scene,
                     &a.model,
                     a.lower.lambda,
                     &analysis::DemOptions::default(),
                     &mut |_| {},
-                )
-                .ok()
-                .and_then(|r| r.lambda_dem);
+                ) {
+                    Ok(r) => r.lambda_dem,
+                    Err(e) => {
+                        // The static and kinematic results stand; say why the DEM has none.
+                        row.error = Some(format!("DEM: {e}"));
+                        None
+                    }
+                };
                 row.extra.push(("lambda_dem", d));
                 row.extra
                     .push(("dem_time_s", Some(dem_start.elapsed().as_secs_f64())));

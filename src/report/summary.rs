@@ -389,9 +389,19 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
                 .map(|h| h.joint)
                 .chain(r.sliding.iter().copied())
                 .chain(r.open.iter().copied());
+            let r_v = model.loads.vertical_ratio();
+            let vertical = if r_v != 0.0 {
+                format!(
+                    ", with a vertical one of {:.4} g {}",
+                    (r_v * l).abs(),
+                    if r_v > 0.0 { "upward" } else { "downward" }
+                )
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 s,
-                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  {} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}",
+                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  {} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}{vertical}",
                 what_moves(assembly, moving)
             );
             let _ = writeln!(s, "  hinges of the thrust line:");

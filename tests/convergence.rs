@@ -191,8 +191,9 @@ fn dem_study_row() {
 
 /// Acceptance: a 1000-voussoir semicircle (t/R = 0.15) through the same library path as
 /// `voussoir analyze` with its defaults (static bound; above 200 joints the exhaustive kinematic
-/// search is replaced by the local one around the static hinges): lambda within 5e-4 of
-/// 0.1443, equilibrium to round-off, and the local upper bound meets it.
+/// search is replaced by the mechanism of the static hinges, certified, or else the local
+/// search around them): lambda within 5e-4 of 0.1443, equilibrium to round-off, and both the
+/// certified and the local upper bounds meet it.
 #[test]
 fn thousand_voussoirs_acceptance() {
     let scene = common::semicircle(0.15, 1000);
@@ -201,14 +202,26 @@ fn thousand_voussoirs_acceptance() {
     let l = a.lower.lambda.expect("lambda");
     assert!((l - 0.1443).abs() < 5e-4, "lambda {l}");
     assert!(a.lower.equilibrium_residual < 1e-9 * a.model.assembly.total_weight());
-    let k = a.upper.as_ref().expect("local kinematic search");
-    assert_eq!(k.search, voussoir::kinematic::Search::Local);
-    assert!(k
+    let k = a.upper.as_ref().expect("certified kinematic bound");
+    assert_eq!(k.search, voussoir::kinematic::Search::Certified);
+    assert!(k.note.as_deref().is_some_and(|n| n.contains("certified")));
+    let u = a.lambda_upper().expect("upper bound");
+    assert!((u - l).abs() <= 1e-6, "lower {l}, upper {u}");
+    // The local search around the static hinges, which runs when certification fails.
+    let local = voussoir::kinematic::analyse_local(
+        &a.model,
+        &a.lower,
+        &voussoir::kinematic::KinematicSettings::default(),
+        analysis::KINEMATIC_LOCAL_WINDOW,
+    )
+    .expect("local kinematic search");
+    assert_eq!(local.search, voussoir::kinematic::Search::Local);
+    assert!(local
         .note
         .as_deref()
         .is_some_and(|n| n.contains("of 1001 joints")));
-    let u = a.lambda_upper().expect("upper bound");
-    assert!((u - l).abs() <= 1e-6, "lower {l}, upper {u}");
+    let ul = local.lambda_upper.expect("local upper bound");
+    assert!((ul - l).abs() <= 1e-6, "lower {l}, local upper {ul}");
     assert!(a.continuous.is_none());
     assert_eq!(a.lower.hinges.len(), 4);
 }

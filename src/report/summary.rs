@@ -238,16 +238,24 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
         Ok(k) => {
             match (k.status, k.lambda_upper) {
                 (Status::Collapse, Some(u)) => {
-                    let _ = writeln!(
-                        s,
-                        "Kinematic (upper bound): lambda = {u:.6} over {} ({:.1} ms)",
-                        count(
-                            k.admissible,
-                            "admissible mechanism",
-                            "admissible mechanisms"
-                        ),
-                        k.wall_time_s * 1e3
-                    );
+                    if k.search == crate::kinematic::Search::Certified {
+                        let _ = writeln!(
+                            s,
+                            "Kinematic (upper bound): lambda = {u:.6}, the mechanism of the static hinges by virtual work ({:.2} ms)",
+                            k.wall_time_s * 1e3
+                        );
+                    } else {
+                        let _ = writeln!(
+                            s,
+                            "Kinematic (upper bound): lambda = {u:.6} over {} ({:.1} ms)",
+                            count(
+                                k.admissible,
+                                "admissible mechanism",
+                                "admissible mechanisms"
+                            ),
+                            k.wall_time_s * 1e3
+                        );
+                    }
                     if a.sliding_governs() {
                         let mu = num(scene.material.friction);
                         let words = if a.lower.status == Status::CannotStand {

@@ -232,7 +232,7 @@ fn reduced_against_full() {
             (l, median(ts))
         };
         let (lf, tf) = time(&|| {
-            voussoir::lp::analyse(&m, &settings)
+            voussoir::lp::analyse_full(&m, &settings)
                 .expect("full")
                 .lambda
                 .unwrap_or(f64::NAN)

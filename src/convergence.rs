@@ -347,7 +347,16 @@ pub fn run(
         for tol in tols {
             progress(&format!("tolerance {tol:e}"));
             let clock = Instant::now();
-            let r = lp::analyse(&model, &static_settings.clone().tolerance(tol));
+            // The study is of the interior-point solver's tolerance, so it runs the full
+            // program: the chain program's exact vertex step removes the tolerance's effect on
+            // lambda wherever it finds the vertex.
+            let r = lp::analyse(
+                &model,
+                &static_settings
+                    .clone()
+                    .tolerance(tol)
+                    .program(lp::Program::Full),
+            );
             let time_s = clock.elapsed().as_secs_f64();
             tolerances.push(match r {
                 Ok(r) => ToleranceRow {

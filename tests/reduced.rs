@@ -18,7 +18,7 @@ fn bundled(name: &str) -> Scene {
 
 fn both(m: &Model, d: Direction) -> (StaticResult, StaticResult) {
     let s = StaticSettings::default().direction(d);
-    let full = lp::analyse(m, &s).expect("full program solves");
+    let full = lp::analyse_full(m, &s).expect("full program solves");
     let reduced = lp::analyse_chain(m, &s).expect("reduced program solves");
     (full, reduced)
 }
@@ -243,4 +243,106 @@ fn certified_upper_bound_from_the_static_hinges() {
         (lc - ls).abs() <= 1e-12 * ls,
         "n = 20000: static {ls}, certified {lc}"
     );
+}
+
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, RngSeed, TestRunner};
+
+    /// A random scene: any shape, with or without piers, finite or infinite friction, with or
+    /// without fill, a point load at a voussoir's centroid and a vertical ratio.
+    fn scene_text() -> impl Strategy<Value = (String, usize, f64, bool, f64)> {
+        (
+            0usize..3,
+            0.08f64..0.3,
+            4usize..28,
+            prop::option::of((0.5f64..2.0, 0.2f64..0.6, 1usize..3)),
+            prop::option::of(0.3f64..1.2),
+            (0usize..64, -3000.0f64..3000.0, -8000.0f64..0.0, any::<bool>()),
+            (prop::option::of(0.1f64..0.5), -0.4f64..0.4),
+        )
+            .prop_map(|(shape, t, n, piers, mu, (j, fx, fy, seismic), (fill, r))| {
+                let arch = match shape {
+                    0 => format!("shape = \"circular\"\nradius = 1.0\nthickness = {t}\nvoussoirs = {n}\n"),
+                    1 => format!(
+                        "shape = \"pointed\"\nradius = 1.0\neccentricity = 0.2\nthickness = {t}\nvoussoirs = {}\n",
+                        2 * (n / 2).max(1)
+                    ),
+                    _ => format!(
+                        "shape = \"basket\"\nspan = 2.0\nrise = 0.7\nthickness = {t}\nvoussoirs = {}\n",
+                        n.max(5)
+                    ),
+                };
+                let mut text = format!("[arch]\n{arch}");
+                if let Some((h, b, k)) = piers {
+                    text.push_str(&format!("[piers]\nheight = {h}\nwidth = {b}\ncourses = {k}\n"));
+                }
+                if let Some(mu) = mu {
+                    text.push_str(&format!("[material]\nfriction = {mu}\n"));
+                }
+                if let Some(f) = fill {
+                    text.push_str(&format!("[fill]\nlevel = {}\n", 1.0 + t + f));
+                }
+                text.push_str(&format!("[seismic]\nvertical_ratio = {r}\n"));
+                (text, j, fx, seismic, fy)
+            })
+    }
+
+    /// Reduced = full on random scenes with random loads, finite and infinite friction, both
+    /// directions: the same status, and the same multiplier to the full program's accuracy.
+    #[test]
+    fn reduced_equals_full_on_random_loaded_scenes() {
+        let mut runner = TestRunner::new(Config {
+            cases: 48,
+            rng_seed: RngSeed::Fixed(20261123),
+            failure_persistence: None,
+            ..Config::default()
+        });
+        runner
+            .run(&scene_text(), |(text, j, fx, seismic, fy)| {
+                let Ok(base) = Scene::from_toml_str(&text, "random.toml") else {
+                    return Ok(());
+                };
+                let m0 = voussoir::scene::build(&base).expect("valid scene builds");
+                // A point load at (near) the centroid of a voussoir.
+                let blocks: Vec<_> = m0
+                    .assembly
+                    .blocks
+                    .iter()
+                    .filter(|b| matches!(b.kind, voussoir::assembly::BlockKind::Voussoir(_)))
+                    .collect();
+                let c = blocks[j % blocks.len()].centroid;
+                let text = format!(
+                    "{text}[[loads]]\ntype = \"point\"\nat = [{}, {}]\nforce = [{fx}, {fy}]\nseismic = {seismic}\n",
+                    c.x, c.y
+                );
+                let s = Scene::from_toml_str(&text, "random.toml").expect("loaded scene");
+                let m = voussoir::scene::build(&s).expect("builds");
+                for d in [Direction::Right, Direction::Left] {
+                    let st = StaticSettings::default().direction(d);
+                    let full = lp::analyse_full(&m, &st).expect("full program");
+                    let Ok(red) = lp::analyse_chain(&m, &st) else {
+                        // The chain program may stop short; `lp::analyse` then runs the full
+                        // one, so only its answers are compared.
+                        continue;
+                    };
+                    prop_assert_eq!(full.status, red.status, "{} {:?}", text, d);
+                    if let (Some(a), Some(b)) = (full.lambda, red.lambda) {
+                        COMPARED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let rel = (a - b).abs() / a.abs().max(1e-3);
+                        prop_assert!(rel < 1e-8, "{} {:?}: full {} reduced {} ({:e})", text, d, a, b, rel);
+                    }
+                }
+                Ok(())
+            })
+            .expect("reduced = full");
+        let compared = COMPARED.load(std::sync::atomic::Ordering::Relaxed);
+        assert!(
+            compared >= 40,
+            "only {compared} collapse multipliers compared"
+        );
+    }
+
+    static COMPARED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 }

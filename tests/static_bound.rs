@@ -295,19 +295,28 @@ fn the_model_holds_only_what_the_scene_requires() {
     // No friction rows without friction limits, two per joint with them.
     let m = model_of(&semicircle(0.15, 16));
     let a = &m.assembly;
-    let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+    let r = lp::analyse_full(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(r.model.friction_rows, 0);
     assert_eq!(r.model.variables, 1 + 3 * a.joints.len());
     assert_eq!(r.model.equality_rows, 3 * a.blocks.len());
     assert_eq!(r.model.inequality_rows, 2 * a.joints.len());
+    // The chain's program (the default for chains): four unknowns, two rows per joint.
+    let c = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+    assert_eq!(c.model.variables, 4);
+    assert_eq!(c.model.equality_rows, 0);
+    assert_eq!(c.model.inequality_rows, 2 * a.joints.len());
+    assert_eq!(c.model.friction_rows, 0);
     let mf = model_of(
         &semicircle(0.15, 16)
             .with_override("material.friction=0.6")
             .expect("valid"),
     );
     let f = &mf.assembly;
-    let rf = lp::analyse(&mf, &StaticSettings::default()).expect("solves");
+    let rf = lp::analyse_full(&mf, &StaticSettings::default()).expect("solves");
     assert_eq!(rf.model.friction_rows, 2 * f.joints.len());
+    let cf = lp::analyse(&mf, &StaticSettings::default()).expect("solves");
+    assert_eq!(cf.model.friction_rows, 2 * f.joints.len());
+    assert_eq!(cf.model.inequality_rows, 4 * f.joints.len());
     // No pier blocks without piers; k courses per pier with them.
     assert!(a
         .blocks

@@ -168,7 +168,7 @@ impl ChainProgram {
     /// vertex; taken in decreasing lambda, the first that satisfies every row to round-off is
     /// the optimum (no feasible vertex has a larger lambda). None when no candidate vertex is
     /// feasible (then the interior-point solution stands).
-    fn vertex(&self, x: &[f64]) -> Option<Vec<f64>> {
+    fn vertex(&self, x: &[f64], tolerance: f64) -> Option<Vec<f64>> {
         let nj = self.sums.len();
         let nf = self.friction_joints.len();
         let slack: Vec<f64> = (0..self.dense.len())
@@ -248,7 +248,9 @@ impl ChainProgram {
         vertices.sort_by(|a, b| b[0].total_cmp(&a[0]));
         let tol = 1e-12;
         vertices.into_iter().find(|v| {
-            (v[0] - x[0]).abs() <= 1e-6 * x[0].abs().max(1e-3)
+            // A sanity check only: the vertex lies where the interior-point solution, accurate
+            // to about the solver's tolerance, said it would.
+            (v[0] - x[0]).abs() <= (1e-6_f64).max(100.0 * tolerance) * x[0].abs().max(1e-3)
                 && (0..self.dense.len()).all(|i| {
                     let (g, size) = self.row_value(i, v);
                     g >= -tol * size.max(1e-300)
@@ -273,10 +275,16 @@ impl ChainProgram {
                 let mk = m0 + s.base[2] + lambda * s.per[2];
                 // Moment about the midpoint is -e N; the convention's M is e N.
                 let m_mid = mk - cross(jt.midpoint() - self.reference, f);
+                let (n, m, len) = (f.dot(&jt.normal()), -m_mid, jt.length());
+                // As the full program reports them: the end forces c1, c2 clamped to no
+                // tension, so a joint that opens shows no round-off tension and no resultant
+                // outside it.
+                let c1 = (0.5 * n - m / len).max(0.0);
+                let c2 = (0.5 * n + m / len).max(0.0);
                 JointForce {
-                    n: f.dot(&jt.normal()),
+                    n: c1 + c2,
                     v: f.dot(&jt.tangent()),
-                    m: -m_mid,
+                    m: 0.5 * (c2 - c1) * len,
                 }
             })
             .collect()
@@ -416,7 +424,7 @@ pub fn analyse_chain(
     };
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
-            if let Some(v) = program.vertex(&sol.x) {
+            if let Some(v) = program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas)) {
                 sol.x = v;
                 result.solver_status.push_str("; exact vertex");
             }

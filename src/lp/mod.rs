@@ -15,7 +15,7 @@ pub use chain::analyse_chain;
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
-pub use settings::StaticSettings;
+pub use settings::{Program, StaticSettings};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
@@ -64,6 +64,26 @@ pub struct StaticResult {
 
 /// Run the static analysis of `model` (an assembly and its loads).
 pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult, AnalysisError> {
+    if settings.program == Program::Auto && model.assembly.is_chain() {
+        // The chain's program is exact when its vertex step lands; when it does not (a
+        // degenerate optimum) or the interior-point solve falls short, the full program,
+        // the proven path, decides.
+        match analyse_chain(model, settings) {
+            Ok(r) if r.status != Status::Collapse || r.solver_status.contains("exact vertex") => {
+                return Ok(r)
+            }
+            Ok(_) | Err(AnalysisError::SolverFailed { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    analyse_full(model, settings)
+}
+
+/// The static analysis by the full program (any assembly).
+pub fn analyse_full(
+    model: &Model,
+    settings: &StaticSettings,
+) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
     let (assembly, loads) = (&model.assembly, &model.loads);
     assembly.validate()?;

@@ -23,6 +23,19 @@ pub struct StaticSettings {
     /// semicircles of 16..2000 voussoirs they are within 10% of each other, qdldl ahead
     /// beyond 256 voussoirs.
     pub linear_solver: String,
+    /// Which static program [`crate::lp::analyse`] solves. Default [`Program::Auto`].
+    pub program: Program,
+}
+
+/// The static program to solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Program {
+    /// The reduced program for chains ([`crate::lp::analyse_chain`], four unknowns, with its
+    /// exact vertex step), the full one for any other assembly.
+    #[default]
+    Auto,
+    /// The full program: three unknowns per joint, three equilibrium rows per block.
+    Full,
 }
 
 impl Default for StaticSettings {
@@ -34,6 +47,7 @@ impl Default for StaticSettings {
             max_iter: 200,
             hinge_tolerance: 1e-6,
             linear_solver: "qdldl".to_string(),
+            program: Program::Auto,
         }
     }
 }
@@ -49,6 +63,10 @@ impl StaticSettings {
         self.tol_gap = tol;
         self.tol_feas = tol;
         self.hinge_tolerance = self.hinge_tolerance.max(100.0 * tol);
+        self
+    }
+    pub fn program(mut self, program: Program) -> Self {
+        self.program = program;
         self
     }
     pub fn hinge_tolerance(mut self, tol: f64) -> Self {

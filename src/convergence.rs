@@ -714,7 +714,11 @@ impl Convergence {
                     r.tolerance,
                     r.voussoirs,
                     opt(r.lambda_lower, 9),
-                    r.difference.map_or("-".into(), |d| format!("{d:.1e}")),
+                    r.difference.map_or("-".into(), |d| if d == 0.0 {
+                        "0".into()
+                    } else {
+                        format!("{d:.1e}")
+                    }),
                     r.residual_over_weight
                         .map_or("-".into(), |d| format!("{d:.1e}")),
                     r.iterations,

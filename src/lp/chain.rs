@@ -40,6 +40,14 @@ struct Affine {
     per: [f64; 3],
 }
 
+/// The optimum found by the active-set method: the vertex, the multipliers of its real rows
+/// `(row, multiplier)`, and the number of pivots.
+struct ActiveSet {
+    x: Vec<f64>,
+    duals: Vec<(usize, f64)>,
+    pivots: u32,
+}
+
 /// The reduced program of a chain, with what is needed to read its solution back.
 struct ChainProgram {
     a: CscMatrix<f64>,
@@ -258,6 +266,112 @@ impl ChainProgram {
         })
     }
 
+    /// The optimum by a dual active-set (dual simplex) method on the four unknowns: a basis of
+    /// four tight rows whose multipliers are non-negative (so no mechanism of the basis can
+    /// raise lambda) is kept while the most violated row enters and the row the ratio test
+    /// picks leaves. It starts from an artificial box (`lambda <= LAMBDA_CAP`, the redundants
+    /// bounded far beyond any equilibrium), so the first basis is dual feasible; every
+    /// iteration solves one 4 x 4 system and scans the rows once. At the end the vertex
+    /// satisfies every row (to round-off) and its multipliers are non-negative: by LP duality
+    /// it is the optimum, the vertex of the four active rows. Returns the vertex and the
+    /// multipliers of its real rows, or None (the box binds, the problem is infeasible, or the
+    /// iterations run out): the interior-point solve then decides.
+    fn active_set(&self) -> Option<ActiveSet> {
+        const BOX: f64 = 1e6;
+        const MAX_ITER: usize = 500;
+        let m = self.dense.len();
+        // Rows: the program's, then the box: lambda <= cap, +-H, +-V, +-M0 <= BOX.
+        let row = |i: usize| -> ([f64; 4], f64) {
+            if i < m {
+                return self.dense[i];
+            }
+            let k = i - m;
+            let mut a = [0.0; 4];
+            if k == 0 {
+                a[0] = -1.0;
+                return (a, LAMBDA_CAP);
+            }
+            let (col, s) = (k.div_ceil(2), if k % 2 == 1 { -1.0 } else { 1.0 });
+            a[col] = s;
+            (a, BOX)
+        };
+        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| -> Option<[f64; 4]> {
+            let mut a = nalgebra::Matrix4::<f64>::zeros();
+            for (r, &i) in basis.iter().enumerate() {
+                for (c, v) in row(i).0.into_iter().enumerate() {
+                    if transpose {
+                        a[(c, r)] = v;
+                    } else {
+                        a[(r, c)] = v;
+                    }
+                }
+            }
+            let x = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
+            x.iter()
+                .all(|v| v.is_finite())
+                .then(|| [x[0], x[1], x[2], x[3]])
+        };
+        // lambda <= cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
+        let mut basis = [m, m + 1, m + 3, m + 5];
+        let mut y = [1.0, 0.0, 0.0, 0.0];
+        for pivots in 0..MAX_ITER {
+            let rhs = basis.map(|i| -row(i).1);
+            let x = solve(&basis, false, rhs)?;
+            // The most violated row, relative to the size of its terms.
+            let mut worst: Option<(usize, f64)> = None;
+            for i in 0..m {
+                if basis.contains(&i) {
+                    continue;
+                }
+                let (a, c) = self.dense[i];
+                let g: f64 = a.iter().zip(&x).map(|(p, q)| p * q).sum::<f64>() + c;
+                let size: f64 = a.iter().zip(&x).map(|(p, q)| (p * q).abs()).sum::<f64>() + c.abs();
+                let v = g / size.max(1e-300);
+                if v < -1e-13 && worst.is_none_or(|(_, w)| v < w) {
+                    worst = Some((i, v));
+                }
+            }
+            let Some((r, _)) = worst else {
+                // Primal feasible with non-negative multipliers: optimal. The box must not
+                // bind (but the cap may: then lambda is capped, i.e. no collapse).
+                let binding_box = basis.iter().zip(&y).any(|(&i, &yi)| i > m && yi > 1e-12);
+                if binding_box {
+                    return None;
+                }
+                let duals = basis
+                    .iter()
+                    .zip(&y)
+                    .filter(|(&i, _)| i < m)
+                    .map(|(&i, &yi)| (i, f64::max(yi, 0.0)))
+                    .collect();
+                return Some(ActiveSet {
+                    x: x.to_vec(),
+                    duals,
+                    pivots: pivots as u32,
+                });
+            };
+            // Ratio test: a_r = sum w_i a_i over the basis; y'_i = y_i - t w_i, y'_r = t.
+            let w = solve(&basis, true, row(r).0)?;
+            let mut leave: Option<(usize, f64)> = None;
+            for k in 0..4 {
+                if w[k] > 1e-14 {
+                    let t = y[k] / w[k];
+                    if leave.is_none_or(|(_, best)| t < best) {
+                        leave = Some((k, t));
+                    }
+                }
+            }
+            // No row can leave: the program is infeasible (let the interior point say so).
+            let (l, t) = leave?;
+            for k in 0..4 {
+                y[k] -= t * w[k];
+            }
+            y[l] = t;
+            basis[l] = r;
+        }
+        None
+    }
+
     /// Joint forces of the solution `x` (SI units).
     fn forces(&self, assembly: &Assembly, x: &[f64]) -> Vec<JointForce> {
         let (fs, ls) = (self.force_scale, self.length_scale);
@@ -358,6 +472,64 @@ impl ChainProgram {
     }
 }
 
+/// The result of the active-set method, when it finds the optimum with the structure standing
+/// (see [`ChainProgram::active_set`]); None sends the analysis to the interior point.
+fn active_set_result(
+    model: &Model,
+    program: &ChainProgram,
+    settings: &StaticSettings,
+    start: Instant,
+) -> Option<StaticResult> {
+    let (assembly, loads) = (&model.assembly, &model.loads);
+    let sign = settings.direction.sign();
+    let ActiveSet { x, duals, pivots } = program.active_set()?;
+    let lambda = x[0];
+    if !(lambda.is_finite() && lambda >= 0.0) {
+        return None;
+    }
+    let mut z = vec![0.0; program.dense.len()];
+    for (i, y) in duals {
+        z[i] = y;
+    }
+    let forces = program.forces(assembly, &x);
+    let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+    let mut result = StaticResult {
+        status: Status::Collapse,
+        lambda: Some(lambda),
+        forces: None,
+        hinges: Vec::new(),
+        sliding: Vec::new(),
+        open: Vec::new(),
+        mechanism: Vec::new(),
+        equilibrium_residual: residual,
+        direction: settings.direction,
+        solve_time_s: 0.0,
+        iterations: pivots,
+        solver_status: "active set; exact vertex".to_string(),
+        model: ModelSize {
+            variables: 4,
+            constraints: program.rows,
+            equality_rows: 0,
+            inequality_rows: program.rows,
+            friction_rows: 2 * program.friction_joints.len(),
+        },
+    };
+    if lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
+        result.status = Status::NoCollapse;
+        result.lambda = None;
+        result.equilibrium_residual = 0.0;
+    } else {
+        let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
+        result.hinges = states.hinges;
+        result.sliding = states.sliding;
+        result.open = states.open;
+        result.mechanism = program.mechanism(assembly, loads, sign, &z);
+        result.forces = Some(forces);
+    }
+    result.solve_time_s = start.elapsed().as_secs_f64();
+    Some(result)
+}
+
 /// Static analysis of a chain (joint k joins block k - 1, or the ground, to block k, or the
 /// ground) by its reduced program in four unknowns: the same answer as [`super::analyse`]
 /// (the same statuses, multiplier, joint forces, hinges and mechanism), at a fraction of the
@@ -377,6 +549,11 @@ pub fn analyse_chain(
     }
     let sign = settings.direction.sign();
     let mut program = ChainProgram::new(assembly, loads, sign, None);
+    if settings.active_set {
+        if let Some(r) = active_set_result(model, &program, settings, start) {
+            return super::stands_at_zero(model, settings, r);
+        }
+    }
     let mut sol = solve_conic(
         &CscMatrix::zeros((4, 4)),
         &program.q,
@@ -472,29 +649,7 @@ pub fn analyse_chain(
             );
         }
     }
-    if result.status != Status::CannotStand && !loads.is_self_weight_only() {
-        // The multipliers equilibrium allows form an interval; under loads that are not
-        // symmetric it may lie entirely above 0, and then the structure cannot stand without
-        // the earthquake. The phase-one program at lambda = 0 tells.
-        let stand = super::stands(model, settings)?;
-        if !stand.stands {
-            result = StaticResult {
-                status: Status::CannotStand,
-                lambda: None,
-                forces: None,
-                hinges: Vec::new(),
-                sliding: Vec::new(),
-                open: Vec::new(),
-                mechanism: Vec::new(),
-                equilibrium_residual: 0.0,
-                solver_status: format!(
-                    "{}; at lambda = 0 the phase-one least tension is {:.3e} N > 0",
-                    result.solver_status, stand.tension
-                ),
-                ..result
-            };
-        }
-    }
+    result = super::stands_at_zero(model, settings, result)?;
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(result)
 }

@@ -56,6 +56,8 @@ pub struct StaticResult {
     pub direction: Direction,
     /// Wall time of building and solving the program (s).
     pub solve_time_s: f64,
+    /// Interior-point iterations, or the active-set method's pivots (`solver_status` says
+    /// which ran).
     pub iterations: u32,
     /// Clarabel's status word, for the record.
     pub solver_status: String,
@@ -173,31 +175,42 @@ pub fn analyse_full(
             );
         }
     }
-    if result.status != Status::CannotStand && !loads.is_self_weight_only() {
-        // The multipliers equilibrium allows form an interval; under loads that are not
-        // symmetric it may lie entirely above 0, and then the structure cannot stand without
-        // the earthquake. The phase-one program at lambda = 0 tells.
-        let stand = stands(model, settings)?;
-        if !stand.stands {
-            result = StaticResult {
-                status: Status::CannotStand,
-                lambda: None,
-                forces: None,
-                hinges: Vec::new(),
-                sliding: Vec::new(),
-                open: Vec::new(),
-                mechanism: Vec::new(),
-                equilibrium_residual: 0.0,
-                solver_status: format!(
-                    "{}; at lambda = 0 the phase-one least tension is {:.3e} N > 0",
-                    result.solver_status, stand.tension
-                ),
-                ..result
-            };
-        }
-    }
+    result = stands_at_zero(model, settings, result)?;
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(result)
+}
+
+/// Under loads that are not symmetric the multipliers equilibrium allows form an interval that
+/// may lie entirely above 0; then the structure cannot stand without the earthquake. The
+/// phase-one program at lambda = 0 tells, for loaded models (under self-weight alone the
+/// interval straddles 0).
+fn stands_at_zero(
+    model: &Model,
+    settings: &StaticSettings,
+    result: StaticResult,
+) -> Result<StaticResult, AnalysisError> {
+    if result.status == Status::CannotStand || model.loads.is_self_weight_only() {
+        return Ok(result);
+    }
+    let stand = stands(model, settings)?;
+    if stand.stands {
+        return Ok(result);
+    }
+    Ok(StaticResult {
+        status: Status::CannotStand,
+        lambda: None,
+        forces: None,
+        hinges: Vec::new(),
+        sliding: Vec::new(),
+        open: Vec::new(),
+        mechanism: Vec::new(),
+        equilibrium_residual: 0.0,
+        solver_status: format!(
+            "{}; at lambda = 0 the phase-one least tension is {:.3e} N > 0",
+            result.solver_status, stand.tension
+        ),
+        ..result
+    })
 }
 
 fn problem_size(p: &StaticProblem) -> ModelSize {

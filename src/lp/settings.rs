@@ -25,6 +25,10 @@ pub struct StaticSettings {
     pub linear_solver: String,
     /// Which static program [`crate::lp::analyse`] solves. Default [`Program::Auto`].
     pub program: Program,
+    /// Solve the chain program by its active-set method first (exact, and 20 to 80 times
+    /// faster than the interior point); the interior point runs when it does not finish.
+    /// Default true; false runs the interior point alone (for cross-checks).
+    pub active_set: bool,
 }
 
 /// The static program to solve.
@@ -48,6 +52,7 @@ impl Default for StaticSettings {
             hinge_tolerance: 1e-6,
             linear_solver: "qdldl".to_string(),
             program: Program::Auto,
+            active_set: true,
         }
     }
 }
@@ -63,6 +68,10 @@ impl StaticSettings {
         self.tol_gap = tol;
         self.tol_feas = tol;
         self.hinge_tolerance = self.hinge_tolerance.max(100.0 * tol);
+        self
+    }
+    pub fn active_set(mut self, on: bool) -> Self {
+        self.active_set = on;
         self
     }
     pub fn program(mut self, program: Program) -> Self {

@@ -30,10 +30,25 @@ pub const CERTIFY_TOL: f64 = 1e-6;
 #[derive(Debug, Clone)]
 pub struct Options {
     pub static_settings: StaticSettings,
-    /// Largest chain (joints) searched kinematically; 0 turns the search off.
+    /// Largest chain (joints) searched exhaustively; 0 turns the kinematic analysis off.
     pub kinematic_max_joints: usize,
+    /// How the upper bound is found. Default [`KinematicMode::Certified`].
+    pub kinematic: KinematicMode,
     /// Run the continuous model.
     pub continuous: bool,
+}
+
+/// How the kinematic upper bound is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum KinematicMode {
+    /// The mechanism of the static hinges, valued by virtual work ([`kinematic::certify`]),
+    /// when the static solution is a collapse it certifies; otherwise the exhaustive search up
+    /// to `kinematic_max_joints` joints, the local search above.
+    #[default]
+    Certified,
+    /// The exhaustive search up to `kinematic_max_joints` joints (an independent check of the
+    /// static bound), the certified bound or the local search above.
+    Exhaustive,
 }
 
 impl Default for Options {
@@ -41,6 +56,7 @@ impl Default for Options {
         Options {
             static_settings: StaticSettings::default(),
             kinematic_max_joints: KINEMATIC_DEFAULT_MAX_JOINTS,
+            kinematic: KinematicMode::Certified,
             continuous: false,
         }
     }
@@ -122,45 +138,58 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         assembly.joints.len(),
         options.kinematic_max_joints
     );
+    let meets = |k: &KinematicResult| match (k.lambda_upper, lower.lambda) {
+        (Some(u), Some(l)) => (u - l).abs() <= CERTIFY_TOL * l.abs().max(1.0),
+        _ => false,
+    };
+    let small = assembly.joints.len() <= options.kinematic_max_joints;
+    // The certified bound: the mechanism of the static hinges (linear cost), tried first
+    // unless the exhaustive search is asked for and the chain is small enough for it.
+    let mut not_certified = None;
+    let certified = if options.kinematic_max_joints > 0
+        && lower.status == Status::Collapse
+        && !(options.kinematic == KinematicMode::Exhaustive && small)
+    {
+        match kinematic::certify(&model, &lower, &settings) {
+            Ok(k) if meets(&k) => Some(k),
+            Ok(k) => {
+                not_certified = Some(format!(
+                    "the mechanism of the static hinges gives {:?}, not the static value",
+                    k.lambda_upper
+                ));
+                None
+            }
+            Err(e) => {
+                not_certified = Some(e.to_string());
+                None
+            }
+        }
+    } else {
+        None
+    };
     let (upper, kinematic_search) = if options.kinematic_max_joints == 0 {
         (Err("kinematic search turned off".to_string()), None)
-    } else if assembly.joints.len() <= options.kinematic_max_joints {
+    } else if let Some(k) = certified {
+        (Ok(k), Some(Search::Certified))
+    } else if small {
         let k = kinematic::analyse(&model, &settings).map_err(|e| e.to_string());
         (k, Some(Search::Exhaustive))
     } else if lower.status == Status::Collapse {
-        // Too large for the exhaustive search: any admissible mechanism still bounds lambda_c
-        // from above, and the static hinges say where the governing one is. First the one
-        // mechanism of the static hinges (linear cost): when its multiplier meets the static
-        // one, the collapse multiplier is certified. Otherwise (a degenerate or sliding
-        // solution) a local search around the static hinges.
-        let certified = kinematic::certify(&model, &lower, &settings);
-        let meets = |k: &KinematicResult| match (k.lambda_upper, lower.lambda) {
-            (Some(u), Some(l)) => (u - l).abs() <= CERTIFY_TOL * l.abs().max(1.0),
-            _ => false,
-        };
-        match certified {
-            Ok(k) if meets(&k) => (Ok(k), Some(Search::Certified)),
-            other => {
-                let why = match other {
-                    Ok(k) => format!(
-                        "the mechanism of the static hinges gives {:?}, not the static value",
-                        k.lambda_upper
-                    ),
-                    Err(e) => e.to_string(),
-                };
-                let k = kinematic::analyse_local(&model, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
-                    .map(|mut k| {
-                        k.note = Some(format!(
-                            "{} (not certified: {why})",
-                            k.note.unwrap_or_default()
-                        ));
-                        k
-                    })
-                    .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
-                let search = k.as_ref().map_or(Search::Local, |k| k.search);
-                (k, Some(search))
-            }
-        }
+        // Too large for the exhaustive search, and not certified (a degenerate or sliding
+        // static solution): any admissible mechanism still bounds lambda_c from above, and
+        // the static hinges say where the governing one is.
+        let why = not_certified.unwrap_or_default();
+        let k = kinematic::analyse_local(&model, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
+            .map(|mut k| {
+                k.note = Some(format!(
+                    "{} (not certified: {why})",
+                    k.note.unwrap_or_default()
+                ));
+                k
+            })
+            .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
+        let search = k.as_ref().map_or(Search::Local, |k| k.search);
+        (k, Some(search))
     } else {
         (
             Err(format!(

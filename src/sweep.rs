@@ -532,7 +532,7 @@ pub fn static_case(
     let options = Options {
         static_settings: settings.clone(),
         kinematic_max_joints: 0,
-        continuous: false,
+        ..Options::default()
     };
     case(values, scene, &options, false)
 }

@@ -291,11 +291,26 @@ fn no_local_search_when_static_is_not_collapse() {
         .as_ref()
         .is_err_and(|e| e.contains("skipped") && e.contains("not collapse")));
     assert!(a.lambda_upper().is_none());
-    // Small chains keep the exhaustive search.
-    let a = analysis::analyse(&common::semicircle(0.15, 32), &Options::default()).expect("a");
+    // Small chains: the certified bound by default, the exhaustive search on request, and the
+    // two meet.
+    let small = common::semicircle(0.15, 32);
+    let c = analysis::analyse(&small, &Options::default()).expect("a");
+    assert_eq!(c.kinematic_search, Some(Search::Certified));
+    let json = serde_json::to_value(AnalysisReport::new(&small, &c)).expect("json");
+    assert_eq!(json["kinematic_search"], "certified");
+    let exhaustive = Options {
+        kinematic: analysis::KinematicMode::Exhaustive,
+        ..Options::default()
+    };
+    let a = analysis::analyse(&small, &exhaustive).expect("a");
     assert_eq!(a.kinematic_search, Some(Search::Exhaustive));
-    let json =
-        serde_json::to_value(AnalysisReport::new(&common::semicircle(0.15, 32), &a)).expect("json");
+    let json = serde_json::to_value(AnalysisReport::new(&small, &a)).expect("json");
     assert_eq!(json["kinematic_search"], "exhaustive");
     assert!(json["kinematic_note"].is_null());
+    let (uc, ue) = (c.lambda_upper().expect("c"), a.lambda_upper().expect("e"));
+    assert!((uc - ue).abs() <= 1e-12 * ue, "certified {uc}, exhaustive {ue}");
+    assert_eq!(
+        c.upper.as_ref().expect("c").mechanism.as_ref().expect("m").hinges,
+        a.upper.as_ref().expect("e").mechanism.as_ref().expect("m").hinges
+    );
 }

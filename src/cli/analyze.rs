@@ -34,6 +34,10 @@ pub struct Args {
     /// around the static hinges); 0 turns the kinematic analysis off
     #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
     kinematic_max_joints: usize,
+    /// The upper bound: the mechanism of the static hinges (certified, falling back to a
+    /// search when it does not meet the static bound) or the exhaustive search
+    #[arg(long, value_enum, default_value = "certified")]
+    kinematic: super::Kinematic,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -50,6 +54,7 @@ pub fn run(args: Args) -> Result<String, Error> {
             .direction(args.direction.into())
             .tolerance(tolerance),
         kinematic_max_joints: args.kinematic_max_joints,
+        kinematic: args.kinematic.into(),
         continuous: args.continuous,
     };
     let a = analysis::analyse(&scene, &options)?;

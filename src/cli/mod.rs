@@ -32,6 +32,24 @@ impl From<Dir> for voussoir::outcome::Direction {
     }
 }
 
+/// How the kinematic upper bound is found, as the command line names it.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum Kinematic {
+    /// The mechanism of the static hinges by virtual work (falls back to a search)
+    Certified,
+    /// The exhaustive search over every mechanism, up to --kinematic-max-joints
+    Exhaustive,
+}
+
+impl From<Kinematic> for voussoir::analysis::KinematicMode {
+    fn from(k: Kinematic) -> Self {
+        match k {
+            Kinematic::Certified => voussoir::analysis::KinematicMode::Certified,
+            Kinematic::Exhaustive => voussoir::analysis::KinematicMode::Exhaustive,
+        }
+    }
+}
+
 /// The scene file and its overrides, common to every command that reads one scene.
 #[derive(clap::Args)]
 pub struct SceneArgs {

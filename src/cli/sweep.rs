@@ -41,6 +41,9 @@ pub struct Args {
     /// Largest chain (joints) for the kinematic search; 0 turns it off
     #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
     kinematic_max_joints: usize,
+    /// The upper bound: the mechanism of the static hinges (certified) or the exhaustive search
+    #[arg(long, value_enum, default_value = "certified")]
+    kinematic: super::Kinematic,
 }
 
 /// The chart's abscissa: `--x`, or the one varied key; `None` without `--svg` (then `--x`
@@ -115,6 +118,7 @@ pub fn run(args: Args) -> Result<String, Error> {
     let options = analysis::Options {
         continuous: args.continuous,
         kinematic_max_joints: args.kinematic_max_joints,
+        kinematic: args.kinematic.into(),
         ..analysis::Options::default()
     };
     let rows = sweep::run(

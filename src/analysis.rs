@@ -167,8 +167,20 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
     } else {
         None
     };
+    let finite = assembly.joints.iter().any(|j| j.friction.is_finite());
     let (upper, kinematic_search) = if options.kinematic_max_joints == 0 {
         (Err("kinematic search turned off".to_string()), None)
+    } else if options.kinematic == KinematicMode::Certified
+        && lower.status == Status::CannotStand
+        && !finite
+    {
+        // Without sliding, the static program's infeasibility at lambda = 0 is itself the
+        // proof (Farkas: some mechanism moves under the permanent loads alone); the
+        // exhaustive search would only name that mechanism.
+        (
+            Err("no kinematic search: the static program proves that the structure cannot stand (--kinematic exhaustive names the mechanism)".to_string()),
+            None,
+        )
     } else if let Some(k) = certified {
         (Ok(k), Some(Search::Certified))
     } else if small {

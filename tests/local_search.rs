@@ -283,7 +283,11 @@ fn sliding_governs_with_a_local_bound() {
 #[test]
 fn no_local_search_when_static_is_not_collapse() {
     let scene = common::semicircle(0.05, 400);
-    let a = analysis::analyse(&scene, &Options::default()).expect("analysis");
+    let exhaustive = Options {
+        kinematic: analysis::KinematicMode::Exhaustive,
+        ..Options::default()
+    };
+    let a = analysis::analyse(&scene, &exhaustive).expect("analysis");
     assert_eq!(a.lower.status, Status::CannotStand);
     assert_eq!(a.kinematic_search, None);
     assert!(a
@@ -291,6 +295,12 @@ fn no_local_search_when_static_is_not_collapse() {
         .as_ref()
         .is_err_and(|e| e.contains("skipped") && e.contains("not collapse")));
     assert!(a.lambda_upper().is_none());
+    // By default (certified), a structure that cannot stand without sliding needs no search:
+    // the static program's infeasibility proves it, and the note says so.
+    let a = analysis::analyse(&scene, &Options::default()).expect("analysis");
+    assert_eq!(a.lower.status, Status::CannotStand);
+    assert_eq!(a.kinematic_search, None);
+    assert!(a.upper.as_ref().is_err_and(|e| e.contains("proves")));
     // Small chains: the certified bound by default, the exhaustive search on request, and the
     // two meet.
     let small = common::semicircle(0.15, 32);

@@ -438,13 +438,28 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
             );
         }
     }
+    let program = if r.model.variables == 4 && r.model.equality_rows == 0 {
+        "chain program (lambda and the three redundants)"
+    } else {
+        "conic program"
+    };
+    let solver = if r.solver_status.starts_with("active set") {
+        format!(
+            "active set, exact vertex, in {}",
+            count(u64::from(r.iterations), "pivot", "pivots")
+        )
+    } else {
+        format!(
+            "Clarabel {} in {}",
+            r.solver_status,
+            count(u64::from(r.iterations), "iteration", "iterations")
+        )
+    };
     let _ = writeln!(
         s,
-        "  conic program: {}, {}; Clarabel {} in {}, {:.2} ms",
+        "  {program}: {}, {}; {solver}, {:.2} ms",
         count(r.model.variables as u64, "variable", "variables"),
         count(r.model.constraints as u64, "constraint", "constraints"),
-        r.solver_status,
-        count(u64::from(r.iterations), "iteration", "iterations"),
         r.solve_time_s * 1e3
     );
     s

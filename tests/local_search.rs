@@ -318,9 +318,24 @@ fn no_local_search_when_static_is_not_collapse() {
     assert_eq!(json["kinematic_search"], "exhaustive");
     assert!(json["kinematic_note"].is_null());
     let (uc, ue) = (c.lambda_upper().expect("c"), a.lambda_upper().expect("e"));
-    assert!((uc - ue).abs() <= 1e-12 * ue, "certified {uc}, exhaustive {ue}");
+    assert!(
+        (uc - ue).abs() <= 1e-12 * ue,
+        "certified {uc}, exhaustive {ue}"
+    );
     assert_eq!(
-        c.upper.as_ref().expect("c").mechanism.as_ref().expect("m").hinges,
-        a.upper.as_ref().expect("e").mechanism.as_ref().expect("m").hinges
+        c.upper
+            .as_ref()
+            .expect("c")
+            .mechanism
+            .as_ref()
+            .expect("m")
+            .hinges,
+        a.upper
+            .as_ref()
+            .expect("e")
+            .mechanism
+            .as_ref()
+            .expect("m")
+            .hinges
     );
 }

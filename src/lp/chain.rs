@@ -22,7 +22,7 @@
 //! Lengths are divided by the structure's size and forces by the loads' scale, as in the full
 //! program, and Clarabel solves it (a linear program over the nonnegative cone).
 
-use super::{classify_joints, solve_conic, ModelSize, StaticResult, StaticSettings};
+use super::{check_almost_solved, solve_conic, ModelSize, StaticResult, StaticSettings};
 use crate::assembly::{Assembly, JointForce};
 use crate::error::AnalysisError;
 use crate::geometry::{cross, Vec2};
@@ -372,6 +372,17 @@ impl ChainProgram {
         None
     }
 
+    /// The program's size, for the report.
+    fn size(&self) -> ModelSize {
+        ModelSize {
+            variables: 4,
+            constraints: self.rows,
+            equality_rows: 0,
+            inequality_rows: self.rows,
+            friction_rows: 2 * self.friction_joints.len(),
+        }
+    }
+
     /// Joint forces of the solution `x` (SI units).
     fn forces(&self, assembly: &Assembly, x: &[f64]) -> Vec<JointForce> {
         let (fs, ls) = (self.force_scale, self.length_scale);
@@ -493,39 +504,15 @@ fn active_set_result(
     }
     let forces = program.forces(assembly, &x);
     let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-    let mut result = StaticResult {
-        status: Status::Collapse,
-        lambda: Some(lambda),
-        forces: None,
-        hinges: Vec::new(),
-        sliding: Vec::new(),
-        open: Vec::new(),
-        mechanism: Vec::new(),
-        equilibrium_residual: residual,
-        direction: settings.direction,
-        solve_time_s: 0.0,
-        iterations: pivots,
-        solver_status: "active set; exact vertex".to_string(),
-        model: ModelSize {
-            variables: 4,
-            constraints: program.rows,
-            equality_rows: 0,
-            inequality_rows: program.rows,
-            friction_rows: 2 * program.friction_joints.len(),
-        },
-    };
-    if lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
-        result.status = Status::NoCollapse;
-        result.lambda = None;
-        result.equilibrium_residual = 0.0;
-    } else {
-        let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
-        result.hinges = states.hinges;
-        result.sliding = states.sliding;
-        result.open = states.open;
-        result.mechanism = program.mechanism(assembly, loads, sign, &z);
-        result.forces = Some(forces);
-    }
+    let mut result = StaticResult::unsolved(
+        settings,
+        pivots,
+        "active set; exact vertex".to_string(),
+        program.size(),
+    )
+    .read_solution(assembly, settings, lambda, forces, residual, true, || {
+        program.mechanism(assembly, loads, sign, &z)
+    });
     result.solve_time_s = start.elapsed().as_secs_f64();
     Some(result)
 }
@@ -578,27 +565,9 @@ pub fn analyse_chain(
         )?;
         capped = true;
     }
-    let mut result = StaticResult {
-        status: Status::CannotStand,
-        lambda: None,
-        forces: None,
-        hinges: Vec::new(),
-        sliding: Vec::new(),
-        open: Vec::new(),
-        mechanism: Vec::new(),
-        equilibrium_residual: 0.0,
-        direction: settings.direction,
-        solve_time_s: 0.0,
-        iterations: sol.iterations,
-        solver_status: format!("{:?}", sol.status),
-        model: ModelSize {
-            variables: 4,
-            constraints: program.rows,
-            equality_rows: 0,
-            inequality_rows: program.rows,
-            friction_rows: 2 * program.friction_joints.len(),
-        },
-    };
+    let size = program.size();
+    let mut result =
+        StaticResult::unsolved(settings, sol.iterations, format!("{:?}", sol.status), size);
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             if let Some(v) = program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas)) {
@@ -608,46 +577,16 @@ pub fn analyse_chain(
             let lambda = sol.x[0];
             let forces = program.forces(assembly, &sol.x);
             let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            if sol.status == SolverStatus::AlmostSolved && residual > 1e-6 * program.force_scale {
-                return Err(AnalysisError::SolverFailed {
-                    status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
-                    iterations: sol.iterations,
+            check_almost_solved(sol.status, residual, program.force_scale, sol.iterations)?;
+            result =
+                result.read_solution(assembly, settings, lambda, forces, residual, capped, || {
+                    program.mechanism(assembly, loads, sign, &sol.z)
                 });
-            }
-            if lambda < 0.0 {
-                result.status = Status::CannotStand;
-            } else if capped && lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
-                result.status = Status::NoCollapse;
-            } else {
-                result.status = Status::Collapse;
-                result.lambda = Some(lambda);
-                result.equilibrium_residual = residual;
-                let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
-                result.hinges = states.hinges;
-                result.sliding = states.sliding;
-                result.open = states.open;
-                result.mechanism = program.mechanism(assembly, loads, sign, &sol.z);
-                result.forces = Some(forces);
-            }
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;
         }
-        other => {
-            // As for the full program: a stalled solve next to the minimum thickness is
-            // settled by the phase-one test.
-            let stand = super::stands(model, settings)?;
-            if stand.stands {
-                return Err(AnalysisError::SolverFailed {
-                    status: format!("{other:?}"),
-                    iterations: sol.iterations,
-                });
-            }
-            result.solver_status = format!(
-                "{other:?}; phase-one least tension {:.3e} N > 0",
-                stand.tension
-            );
-        }
+        other => result = result.settle_stalled(model, settings, other)?,
     }
     result = super::stands_at_zero(model, settings, result)?;
     result.solve_time_s = start.elapsed().as_secs_f64();

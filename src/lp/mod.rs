@@ -112,68 +112,28 @@ pub fn analyse_full(
         size = problem_size(&capped);
         lambda_capped = true;
     }
-    let mut result = StaticResult {
-        status: Status::CannotStand,
-        lambda: None,
-        forces: None,
-        hinges: Vec::new(),
-        sliding: Vec::new(),
-        open: Vec::new(),
-        mechanism: Vec::new(),
-        equilibrium_residual: 0.0,
-        direction: settings.direction,
-        solve_time_s: 0.0,
-        iterations: sol.iterations,
-        solver_status: format!("{:?}", sol.status),
-        model: size,
-    };
+    let mut result =
+        StaticResult::unsolved(settings, sol.iterations, format!("{:?}", sol.status), size);
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let lambda = sol.x[0];
             let forces = read_forces(assembly, &problem, &sol.x);
             let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            if sol.status == SolverStatus::AlmostSolved && residual > 1e-6 * problem.force_scale {
-                return Err(AnalysisError::SolverFailed {
-                    status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
-                    iterations: sol.iterations,
-                });
-            }
-            if lambda < 0.0 {
-                result.status = Status::CannotStand;
-            } else if lambda_capped && lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
-                result.status = Status::NoCollapse;
-            } else {
-                result.status = Status::Collapse;
-                result.lambda = Some(lambda);
-                result.equilibrium_residual = residual;
-                let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
-                result.hinges = states.hinges;
-                result.sliding = states.sliding;
-                result.open = states.open;
-                result.mechanism = read_mechanism(assembly, &problem, &sol.z);
-                result.forces = Some(forces);
-            }
+            check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
+            result = result.read_solution(
+                assembly,
+                settings,
+                lambda,
+                forces,
+                residual,
+                lambda_capped,
+                || read_mechanism(assembly, &problem, &sol.z),
+            );
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;
         }
-        other => {
-            // Just below the minimum thickness the lambda program is nearly infeasible and
-            // the interior-point method may stall. The phase-one program settles it: a
-            // positive least tension certifies that nothing stands at lambda = 0.
-            let stand = stands(model, settings)?;
-            if stand.stands {
-                return Err(AnalysisError::SolverFailed {
-                    status: format!("{other:?}"),
-                    iterations: sol.iterations,
-                });
-            }
-            result.status = Status::CannotStand;
-            result.solver_status = format!(
-                "{other:?}; phase-one least tension {:.3e} N > 0",
-                stand.tension
-            );
-        }
+        other => result = result.settle_stalled(model, settings, other)?,
     }
     result = stands_at_zero(model, settings, result)?;
     result.solve_time_s = start.elapsed().as_secs_f64();
@@ -211,6 +171,105 @@ fn stands_at_zero(
         ),
         ..result
     })
+}
+
+impl StaticResult {
+    /// A result with no solution read yet: status cannot stand, no multiplier.
+    fn unsolved(
+        settings: &StaticSettings,
+        iterations: u32,
+        solver_status: String,
+        model: ModelSize,
+    ) -> Self {
+        StaticResult {
+            status: Status::CannotStand,
+            lambda: None,
+            forces: None,
+            hinges: Vec::new(),
+            sliding: Vec::new(),
+            open: Vec::new(),
+            mechanism: Vec::new(),
+            equilibrium_residual: 0.0,
+            direction: settings.direction,
+            solve_time_s: 0.0,
+            iterations,
+            solver_status,
+            model,
+        }
+    }
+
+    /// Read a solution with multiplier `lambda` and joint forces `forces` (equilibrium
+    /// residual `residual`): a negative multiplier cannot stand, one at the cap (when the
+    /// program was capped) does not collapse, and at collapse the joints' states, the
+    /// mechanism (`mechanism`, read only then) and the forces are kept.
+    #[allow(clippy::too_many_arguments)]
+    fn read_solution(
+        mut self,
+        assembly: &Assembly,
+        settings: &StaticSettings,
+        lambda: f64,
+        forces: Vec<JointForce>,
+        residual: f64,
+        capped: bool,
+        mechanism: impl FnOnce() -> Vec<[f64; 3]>,
+    ) -> Self {
+        if lambda < 0.0 {
+            self.status = Status::CannotStand;
+        } else if capped && lambda >= LAMBDA_CAP * (1.0 - 1e-6) {
+            self.status = Status::NoCollapse;
+        } else {
+            self.status = Status::Collapse;
+            self.lambda = Some(lambda);
+            self.equilibrium_residual = residual;
+            let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
+            self.hinges = states.hinges;
+            self.sliding = states.sliding;
+            self.open = states.open;
+            self.mechanism = mechanism();
+            self.forces = Some(forces);
+        }
+        self
+    }
+
+    /// The interior point stopped short (`status`): next to the minimum thickness the program
+    /// is nearly infeasible and may stall; the phase-one program settles it, a positive least
+    /// tension certifying that nothing stands at lambda = 0. Otherwise the failure is an error.
+    fn settle_stalled(
+        mut self,
+        model: &Model,
+        settings: &StaticSettings,
+        status: SolverStatus,
+    ) -> Result<Self, AnalysisError> {
+        let stand = stands(model, settings)?;
+        if stand.stands {
+            return Err(AnalysisError::SolverFailed {
+                status: format!("{status:?}"),
+                iterations: self.iterations,
+            });
+        }
+        self.status = Status::CannotStand;
+        self.solver_status = format!(
+            "{status:?}; phase-one least tension {:.3e} N > 0",
+            stand.tension
+        );
+        Ok(self)
+    }
+}
+
+/// An AlmostSolved solution is read only when its equilibrium residual is small.
+fn check_almost_solved(
+    status: SolverStatus,
+    residual: f64,
+    force_scale: f64,
+    iterations: u32,
+) -> Result<(), AnalysisError> {
+    if status == SolverStatus::AlmostSolved && residual > 1e-6 * force_scale {
+        return Err(AnalysisError::SolverFailed {
+            status: format!("AlmostSolved with equilibrium residual {residual:.3e} N"),
+            iterations,
+        });
+    }
+    Ok(())
 }
 
 fn problem_size(p: &StaticProblem) -> ModelSize {

@@ -5,8 +5,8 @@
 //! 1. **Refinement**: the arch is cut into n = 8, 16, 32, ... voussoirs (doubling, up to
 //!    [`ConvergenceSettings::max_voussoirs`]); for each n the static lower bound (the conic
 //!    program of [`crate::lp`]) and, where the chain is small enough, the discrete kinematic
-//!    upper bound are computed and compared with the continuous model ([`crate::kinematic::
-//!    continuous_with`], hinges anywhere: the limit n -> infinity). A discrete arch can only
+//!    upper bound are computed and compared with the continuous model ([`crate::analysis::
+//!    continuous`], hinges anywhere: the limit n -> infinity). A discrete arch can only
 //!    hinge at its joints, so it is stronger than the continuum and its multiplier falls
 //!    toward the continuous one as n grows. Where the optimal hinge sections are interior
 //!    points of a smooth function of the section angle, the gap is quadratic in the joint

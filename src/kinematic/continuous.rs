@@ -743,7 +743,7 @@ fn act_of(a: u8) -> Act {
 
 /// Continuous model (hinges at any section of the arch; piers as given) of `model`, an arch of
 /// shape `shape` and thickness `thickness` (with or without piers, as built by
-/// [`crate::model::build`]), for the seismic load in direction `direction`.
+/// [`crate::scene::build`]), for the seismic load in direction `direction`.
 pub fn continuous(
     model: &Model,
     shape: &dyn ArchShape,

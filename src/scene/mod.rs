@@ -81,7 +81,7 @@ pub struct Material {
 }
 
 /// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
-/// [`crate::model::build`]).
+/// [`crate::scene::build`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum LoadSpec {

@@ -276,11 +276,14 @@ impl ChainProgram {
     /// it is the optimum, the vertex of the four active rows. Returns the vertex and the
     /// multipliers of its real rows, or None (the box binds, the problem is infeasible, or the
     /// iterations run out): the interior-point solve then decides.
-    fn active_set(&self) -> Option<ActiveSet> {
+    ///
+    /// `objective` = +1 maximises lambda; -1 minimises it (the least multiplier equilibrium
+    /// allows, whose sign says whether the structure stands at lambda = 0).
+    fn active_set(&self, objective: f64) -> Option<ActiveSet> {
         const BOX: f64 = 1e6;
         const MAX_ITER: usize = 500;
         let m = self.dense.len();
-        // Rows: the program's, then the box: lambda <= cap, +-H, +-V, +-M0 <= BOX.
+        // Rows: the program's, then the box: objective * lambda <= cap, +-H, +-V, +-M0 <= BOX.
         let row = |i: usize| -> ([f64; 4], f64) {
             if i < m {
                 return self.dense[i];
@@ -288,7 +291,7 @@ impl ChainProgram {
             let k = i - m;
             let mut a = [0.0; 4];
             if k == 0 {
-                a[0] = -1.0;
+                a[0] = -objective;
                 return (a, LAMBDA_CAP);
             }
             let (col, s) = (k.div_ceil(2), if k % 2 == 1 { -1.0 } else { 1.0 });
@@ -311,7 +314,7 @@ impl ChainProgram {
                 .all(|v| v.is_finite())
                 .then(|| [x[0], x[1], x[2], x[3]])
         };
-        // lambda <= cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
+        // The cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
         let mut basis = [m, m + 1, m + 3, m + 5];
         let mut y = [1.0, 0.0, 0.0, 0.0];
         for pivots in 0..MAX_ITER {
@@ -483,6 +486,19 @@ impl ChainProgram {
     }
 }
 
+/// The least multiplier equilibrium allows on a chain (seismic forces toward `sign`), by the
+/// active-set method; None when the method does not finish (or the model is not a chain).
+/// The multipliers equilibrium allows form an interval, so the structure stands at lambda = 0
+/// exactly when this is at most 0 (and the largest at least 0).
+pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
+    if !model.assembly.is_chain() {
+        return None;
+    }
+    let program = ChainProgram::new(&model.assembly, &model.loads, sign, None);
+    let lambda = program.active_set(-1.0)?.x[0];
+    lambda.is_finite().then_some(lambda)
+}
+
 /// The result of the active-set method, when it finds the optimum with the structure standing
 /// (see [`ChainProgram::active_set`]); None sends the analysis to the interior point.
 fn active_set_result(
@@ -493,7 +509,7 @@ fn active_set_result(
 ) -> Option<StaticResult> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     let sign = settings.direction.sign();
-    let ActiveSet { x, duals, pivots } = program.active_set()?;
+    let ActiveSet { x, duals, pivots } = program.active_set(1.0)?;
     let lambda = x[0];
     if !(lambda.is_finite() && lambda >= 0.0) {
         return None;

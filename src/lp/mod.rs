@@ -152,24 +152,30 @@ fn stands_at_zero(
     if result.status == Status::CannotStand || model.loads.is_self_weight_only() {
         return Ok(result);
     }
-    let stand = stands(model, settings)?;
-    if stand.stands {
-        return Ok(result);
-    }
+    // On a chain the least multiplier tells at the cost of one more active-set solve; the
+    // phase-one program (a conic solve of the full program) otherwise.
+    let why = match (settings.active_set)
+        .then(|| chain::least_lambda(model, settings.direction.sign()))
+        .flatten()
+    {
+        Some(least) if least <= 0.0 => return Ok(result),
+        Some(least) => format!("the least multiplier equilibrium allows is {least:.6} > 0"),
+        None => {
+            let stand = stands(model, settings)?;
+            if stand.stands {
+                return Ok(result);
+            }
+            format!("the phase-one least tension is {:.3e} N > 0", stand.tension)
+        }
+    };
     Ok(StaticResult {
-        status: Status::CannotStand,
-        lambda: None,
-        forces: None,
-        hinges: Vec::new(),
-        sliding: Vec::new(),
-        open: Vec::new(),
-        mechanism: Vec::new(),
-        equilibrium_residual: 0.0,
-        solver_status: format!(
-            "{}; at lambda = 0 the phase-one least tension is {:.3e} N > 0",
-            result.solver_status, stand.tension
-        ),
-        ..result
+        solve_time_s: result.solve_time_s,
+        ..StaticResult::unsolved(
+            settings,
+            result.iterations,
+            format!("{}; at lambda = 0 {why}", result.solver_status),
+            result.model,
+        )
     })
 }
 

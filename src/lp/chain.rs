@@ -505,7 +505,6 @@ fn active_set_result(
     model: &Model,
     program: &ChainProgram,
     settings: &StaticSettings,
-    start: Instant,
 ) -> Option<StaticResult> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     let sign = settings.direction.sign();
@@ -520,7 +519,7 @@ fn active_set_result(
     }
     let forces = program.forces(assembly, &x);
     let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-    let mut result = StaticResult::unsolved(
+    let result = StaticResult::unsolved(
         settings,
         pivots,
         "active set; exact vertex".to_string(),
@@ -529,7 +528,6 @@ fn active_set_result(
     .read_solution(assembly, settings, lambda, forces, residual, true, || {
         program.mechanism(assembly, loads, sign, &z)
     });
-    result.solve_time_s = start.elapsed().as_secs_f64();
     Some(result)
 }
 
@@ -553,8 +551,11 @@ pub fn analyse_chain(
     let sign = settings.direction.sign();
     let mut program = ChainProgram::new(assembly, loads, sign, None);
     if settings.active_set {
-        if let Some(r) = active_set_result(model, &program, settings, start) {
-            return super::stands_at_zero(model, settings, r);
+        if let Some(r) = active_set_result(model, &program, settings) {
+            let mut r = super::stands_at_zero(model, settings, r)?;
+            // The wall time covers the stand test at lambda = 0 too.
+            r.solve_time_s = start.elapsed().as_secs_f64();
+            return Ok(r);
         }
     }
     let mut sol = solve_conic(

@@ -142,8 +142,7 @@ impl DemResult {
 /// The model must be valid: a valid assembly, and a load case that matches it with finite
 /// loads on existing blocks.
 fn check_model(model: &Model) -> Result<(), DemError> {
-    model.assembly.validate()?;
-    model.loads.validate(&model.assembly)?;
+    model.validate()?;
     let nb = model.assembly.blocks.len();
     for (k, l) in model.loads.applied().iter().enumerate() {
         let finite = [l.point.x, l.point.y, l.force.x, l.force.y, l.seismic_weight]

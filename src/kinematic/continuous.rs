@@ -354,8 +354,7 @@ impl Structure {
         direction: Direction,
     ) -> Result<Structure, KinematicError> {
         let asm = &model.assembly;
-        asm.validate()?;
-        model.loads.validate(asm)?;
+        model.validate()?;
         let count = |f: fn(&BlockKind) -> bool| asm.blocks.iter().filter(|b| f(&b.kind)).count();
         let k = count(|b| matches!(b, BlockKind::LeftPier(_)));
         let n = count(|b| matches!(b, BlockKind::Voussoir(_)));

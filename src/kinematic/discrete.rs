@@ -260,8 +260,7 @@ pub fn analyse(
 /// Whether the model is a two-support chain (true) or a one-support column (false).
 fn chain_kind(model: &Model) -> Result<bool, KinematicError> {
     let assembly = &model.assembly;
-    assembly.validate()?;
-    model.loads.validate(assembly)?;
+    model.validate()?;
     if assembly.is_chain() {
         Ok(true)
     } else if is_column(assembly) {

@@ -541,8 +541,7 @@ pub fn analyse_chain(
 ) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
     let (assembly, loads) = (&model.assembly, &model.loads);
-    assembly.validate()?;
-    loads.validate(assembly)?;
+    model.validate()?;
     if !assembly.is_chain() {
         return Err(AnalysisError::Other(
             "the reduced static program needs a chain of blocks between two supports".into(),

@@ -88,8 +88,7 @@ pub fn analyse_full(
 ) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
     let (assembly, loads) = (&model.assembly, &model.loads);
-    assembly.validate()?;
-    loads.validate(assembly)?;
+    model.validate()?;
     let sign = settings.direction.sign();
     let problem = StaticProblem::new(assembly, loads, Objective::MaxLambda { sign, cap: None });
     let mut sol = run(&problem, settings)?;
@@ -450,8 +449,7 @@ pub struct StandResult {
 /// program.
 pub fn stands(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
     let (assembly, loads) = (&model.assembly, &model.loads);
-    assembly.validate()?;
-    loads.validate(assembly)?;
+    model.validate()?;
     let problem = StaticProblem::new(assembly, loads, Objective::MinTension);
     let sol = run(&problem, settings)?;
     if !matches!(

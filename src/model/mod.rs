@@ -25,6 +25,12 @@ impl Model {
         Model { assembly, loads }
     }
 
+    /// Check the assembly ([`Assembly::validate`]) and its load case against it.
+    pub fn validate(&self) -> Result<(), crate::error::AnalysisError> {
+        self.assembly.validate()?;
+        self.loads.validate(&self.assembly)
+    }
+
     /// The same model mirrored about x = 0.
     pub fn mirrored(&self) -> Model {
         Model {

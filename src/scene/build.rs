@@ -216,9 +216,10 @@ fn build_loads(
                     source: LoadSource::Load(k),
                 });
                 let mut carried = false;
-                for (block, a, b, on_edge) in loaded_edges(arch) {
-                    let lo = from_x.max(a.x.min(b.x));
-                    let hi = to_x.min(a.x.max(b.x));
+                for LoadedEdge { block, a, b, arc } in loaded_edges(arch) {
+                    // The edges run left to right (a.x < b.x).
+                    let lo = from_x.max(a.x);
+                    let hi = to_x.min(b.x);
                     if hi <= lo {
                         continue;
                     }
@@ -226,7 +227,7 @@ fn build_loads(
                     let w = intensity * (hi - lo);
                     case.add(AppliedLoad {
                         block,
-                        point: on_edge(x),
+                        point: edge_point(a, b, arc, x),
                         force: Vec2::new(0.0, -w),
                         seismic_weight: if seismic { w } else { 0.0 },
                         source: LoadSource::Load(k),
@@ -288,35 +289,36 @@ fn extrados_arc(g: &ArchGeometry, j: usize) -> (Vec2, f64) {
     (arc.centre, arc.radius + 0.5 * g.thickness)
 }
 
-/// The edges that carry line loads: `(block, end a, end b, point of the edge at x)`.
-#[allow(clippy::type_complexity)]
-fn loaded_edges(arch: &ArchPlacement) -> Vec<(usize, Vec2, Vec2, Box<dyn Fn(f64) -> Vec2 + '_>)> {
+/// An edge that carries line loads: its block, its ends from left to right, and the arc it
+/// lies on (curved voussoirs) or None (a chord or a pier top).
+struct LoadedEdge {
+    block: usize,
+    a: Vec2,
+    b: Vec2,
+    arc: Option<(Vec2, f64)>,
+}
+
+/// The edges that carry line loads: the exposed pier tops and every upward-facing extrados.
+fn loaded_edges(arch: &ArchPlacement) -> Vec<LoadedEdge> {
     let g = &arch.geometry;
-    let mut edges: Vec<(usize, Vec2, Vec2, Box<dyn Fn(f64) -> Vec2 + '_>)> = Vec::new();
-    for &(block, x0, x1) in &arch.pier_tops {
-        edges.push((
-            block,
-            Vec2::new(x0, 0.0),
-            Vec2::new(x1, 0.0),
-            Box::new(|x| Vec2::new(x, 0.0)),
-        ));
-    }
-    for j in 0..g.voussoirs() {
+    let piers = arch.pier_tops.iter().map(|&(block, x0, x1)| LoadedEdge {
+        block,
+        a: Vec2::new(x0, 0.0),
+        b: Vec2::new(x1, 0.0),
+        arc: None,
+    });
+    let voussoirs = (0..g.voussoirs()).filter_map(|j| {
         let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
-        if b.x <= a.x {
-            // A downward-facing extrados (a horseshoe below its springing line) carries no
-            // line load: the load rests on the voussoirs above it.
-            continue;
-        }
-        let arc = arch.curved.then(|| extrados_arc(g, j));
-        edges.push((
-            arch.first + j,
+        // A downward-facing extrados (a horseshoe below its springing line) carries no line
+        // load: the load rests on the voussoirs above it.
+        (b.x > a.x).then(|| LoadedEdge {
+            block: arch.first + j,
             a,
             b,
-            Box::new(move |x| edge_point(a, b, arc, x)),
-        ));
-    }
-    edges
+            arc: arch.curved.then(|| extrados_arc(g, j)),
+        })
+    });
+    piers.chain(voussoirs).collect()
 }
 
 /// The point of the extrados edge from `a` to `b` (a chord, or the arc `(centre, radius)`

@@ -9,6 +9,25 @@ fn json(args: &[&str], scene: &str) -> serde_json::Value {
     serde_json::from_slice(&out.get_output().stdout).expect("one JSON object")
 }
 
+/// Issue 11: the `scene` fields that, with the load fields, rebuild the scene.
+const SCENE_REBUILD_FIELDS: &[&str] = &[
+    "radius",
+    "embrace_deg",
+    "piers",
+    "unit_weight",
+    "depth",
+    "friction_infinite",
+];
+
+/// Issue 9: the loads as read and their totals, in every report.
+const LOAD_FIELDS: &[&str] = &[
+    "loads",
+    "fill",
+    "vertical_ratio",
+    "permanent_weight",
+    "seismic_weight",
+];
+
 fn has_all(v: &serde_json::Value, keys: &[&str], what: &str) {
     for k in keys {
         assert!(
@@ -89,16 +108,11 @@ fn analyze_fields() {
             "portal",
             "friction",
             "total_weight",
-            // Issue 11: enough to rebuild the scene.
-            "radius",
-            "embrace_deg",
-            "piers",
-            "unit_weight",
-            "depth",
-            "friction_infinite",
         ],
         "scene",
     );
+    has_all(&v["scene"], SCENE_REBUILD_FIELDS, "scene");
+    has_all(&v, LOAD_FIELDS, "analyze");
     has_all(
         &v["scene"]["piers"],
         &["height", "width", "courses"],
@@ -136,18 +150,8 @@ fn min_thickness_fields() {
         ],
         "min-thickness",
     );
-    has_all(
-        &v["scene"],
-        &[
-            "radius",
-            "embrace_deg",
-            "piers",
-            "unit_weight",
-            "depth",
-            "friction_infinite",
-        ],
-        "min-thickness scene",
-    );
+    has_all(&v["scene"], SCENE_REBUILD_FIELDS, "min-thickness scene");
+    has_all(&v, LOAD_FIELDS, "min-thickness");
 }
 
 #[test]
@@ -188,18 +192,8 @@ fn dem_fields() {
         ],
         "dem",
     );
-    has_all(
-        &v["scene"],
-        &[
-            "radius",
-            "embrace_deg",
-            "piers",
-            "unit_weight",
-            "depth",
-            "friction_infinite",
-        ],
-        "dem scene",
-    );
+    has_all(&v["scene"], SCENE_REBUILD_FIELDS, "dem scene");
+    has_all(&v, LOAD_FIELDS, "dem");
 }
 
 /// A TOML number: always with a decimal point or an exponent (a float), `inf` for infinity.
@@ -336,4 +330,38 @@ fn the_json_scene_rebuilds_the_scene() {
             assert_eq!(e, e.round(), "{file}: embrace_deg {e}");
         }
     }
+}
+
+/// Issue 9: the load fields say what was read and what it weighs. Without loads the permanent
+/// and seismic weights are the self-weight; with the bundled loaded portal they add the point
+/// load (10 kN, seismic) and the line load (6 kN/m over x = -1..1, not seismic) to it.
+#[test]
+fn load_fields_carry_the_loads_as_read() {
+    let plain = json(&["analyze", "--json"], "semicircular.toml");
+    let w = plain["scene"]["total_weight"]
+        .as_f64()
+        .expect("total weight");
+    assert_eq!(plain["loads"], serde_json::json!([]));
+    assert!(plain["fill"].is_null());
+    assert_eq!(plain["vertical_ratio"].as_f64(), Some(0.0));
+    for key in ["permanent_weight", "seismic_weight"] {
+        let x = plain[key].as_f64().expect(key);
+        assert!((x - w).abs() <= 1e-9 * w, "{key} {x} vs self-weight {w}");
+    }
+    let loaded = json(&["analyze", "--json"], "loaded_portal.toml");
+    let w = loaded["scene"]["total_weight"]
+        .as_f64()
+        .expect("total weight");
+    let loads = loaded["loads"].as_array().expect("loads");
+    assert_eq!(loads.len(), 2);
+    assert_eq!(loads[0]["type"], "point");
+    assert_eq!(loads[1]["type"], "line");
+    let line = 6000.0 * 2.0;
+    let p = loaded["permanent_weight"].as_f64().expect("permanent");
+    let s = loaded["seismic_weight"].as_f64().expect("seismic");
+    assert!(
+        (p - (w + 10000.0 + line)).abs() <= 1e-6 * p,
+        "permanent {p}"
+    );
+    assert!((s - (w + 10000.0)).abs() <= 1e-6 * s, "seismic {s}");
 }

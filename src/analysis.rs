@@ -126,90 +126,8 @@ impl SceneAnalysis {
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
     let model = crate::scene::build(scene)?;
-    let assembly = &model.assembly;
     let lower = lp::analyse(&model, &options.static_settings)?;
-    let settings = KinematicSettings {
-        direction: options.direction(),
-        max_joints: options.kinematic_max_joints,
-        ..KinematicSettings::default()
-    };
-    let too_many = format!(
-        "{} joints is more than {} (the exhaustive search examines a number of candidates growing as joints^4 and costs about joints^3.6; raise --kinematic-max-joints to run it)",
-        assembly.joints.len(),
-        options.kinematic_max_joints
-    );
-    let meets = |k: &KinematicResult| match (k.lambda_upper, lower.lambda) {
-        (Some(u), Some(l)) => (u - l).abs() <= CERTIFY_TOL * l.abs().max(1.0),
-        _ => false,
-    };
-    let small = assembly.joints.len() <= options.kinematic_max_joints;
-    // The certified bound: the mechanism of the static hinges (linear cost), tried first
-    // unless the exhaustive search is asked for and the chain is small enough for it.
-    let mut not_certified = None;
-    let certified = if options.kinematic_max_joints > 0
-        && lower.status == Status::Collapse
-        && !(options.kinematic == KinematicMode::Exhaustive && small)
-    {
-        match kinematic::certify(&model, &lower, &settings) {
-            Ok(k) if meets(&k) => Some(k),
-            Ok(k) => {
-                not_certified = Some(format!(
-                    "the mechanism of the static hinges gives {:?}, not the static value",
-                    k.lambda_upper
-                ));
-                None
-            }
-            Err(e) => {
-                not_certified = Some(e.to_string());
-                None
-            }
-        }
-    } else {
-        None
-    };
-    let finite = assembly.joints.iter().any(|j| j.friction.is_finite());
-    let (upper, kinematic_search) = if options.kinematic_max_joints == 0 {
-        (Err("kinematic search turned off".to_string()), None)
-    } else if options.kinematic == KinematicMode::Certified
-        && lower.status == Status::CannotStand
-        && !finite
-    {
-        // Without sliding, the static program's infeasibility at lambda = 0 is itself the
-        // proof (Farkas: some mechanism moves under the permanent loads alone); the
-        // exhaustive search would only name that mechanism.
-        (
-            Err("no kinematic search: the static program proves that the structure cannot stand (--kinematic exhaustive names the mechanism)".to_string()),
-            None,
-        )
-    } else if let Some(k) = certified {
-        (Ok(k), Some(Search::Certified))
-    } else if small {
-        let k = kinematic::analyse(&model, &settings).map_err(|e| e.to_string());
-        (k, Some(Search::Exhaustive))
-    } else if lower.status == Status::Collapse {
-        // Too large for the exhaustive search, and not certified (a degenerate or sliding
-        // static solution): any admissible mechanism still bounds lambda_c from above, and
-        // the static hinges say where the governing one is.
-        let why = not_certified.unwrap_or_default();
-        let k = kinematic::analyse_local(&model, &lower, &settings, KINEMATIC_LOCAL_WINDOW)
-            .map(|mut k| {
-                k.note = Some(format!(
-                    "{} (not certified: {why})",
-                    k.note.unwrap_or_default()
-                ));
-                k
-            })
-            .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
-        let search = k.as_ref().map_or(Search::Local, |k| k.search);
-        (k, Some(search))
-    } else {
-        (
-            Err(format!(
-                "kinematic search skipped: {too_many}; no local search, as the static status is not collapse"
-            )),
-            None,
-        )
-    };
+    let (upper, kinematic_search) = upper_bound(&model, &lower, options);
     let continuous = options
         .continuous
         .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
@@ -220,6 +138,91 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         kinematic_search,
         continuous,
     })
+}
+
+/// The kinematic upper bound of `model` given its static solution `lower`, per `options`
+/// (see [`KinematicMode`]), or why there is none; and which search gave it.
+fn upper_bound(
+    model: &Model,
+    lower: &StaticResult,
+    options: &Options,
+) -> (Result<KinematicResult, String>, Option<Search>) {
+    let joints = model.assembly.joints.len();
+    if options.kinematic_max_joints == 0 {
+        return (Err("kinematic search turned off".to_string()), None);
+    }
+    let settings = KinematicSettings {
+        direction: options.direction(),
+        max_joints: options.kinematic_max_joints,
+        ..KinematicSettings::default()
+    };
+    let small = joints <= options.kinematic_max_joints;
+    let finite = model.assembly.joints.iter().any(|j| j.friction.is_finite());
+    let certified = options.kinematic == KinematicMode::Certified;
+    if certified && lower.status == Status::CannotStand && !finite {
+        // Without sliding, the static program's infeasibility at lambda = 0 is itself the
+        // proof (Farkas: some mechanism moves under the permanent loads alone); the
+        // exhaustive search would only name that mechanism.
+        return (
+            Err("no kinematic search: the static program proves that the structure cannot stand (--kinematic exhaustive names the mechanism)".to_string()),
+            None,
+        );
+    }
+    // The certified bound: the mechanism of the static hinges (linear cost), tried first
+    // unless the exhaustive search is asked for and the chain is small enough for it.
+    let mut not_certified = String::new();
+    if lower.status == Status::Collapse && (certified || !small) {
+        match certify_static(model, lower, &settings) {
+            Ok(k) => return (Ok(k), Some(Search::Certified)),
+            Err(why) => not_certified = why,
+        }
+    }
+    if small {
+        let k = kinematic::analyse(model, &settings).map_err(|e| e.to_string());
+        return (k, Some(Search::Exhaustive));
+    }
+    let too_many = format!(
+        "{joints} joints is more than {} (the exhaustive search examines a number of candidates growing as joints^4 and costs about joints^3.6; raise --kinematic-max-joints to run it)",
+        options.kinematic_max_joints
+    );
+    if lower.status != Status::Collapse {
+        return (
+            Err(format!(
+                "kinematic search skipped: {too_many}; no local search, as the static status is not collapse"
+            )),
+            None,
+        );
+    }
+    // Too large for the exhaustive search, and not certified (a degenerate or sliding static
+    // solution): any admissible mechanism still bounds lambda_c from above, and the static
+    // hinges say where the governing one is.
+    let k = kinematic::analyse_local(model, lower, &settings, KINEMATIC_LOCAL_WINDOW)
+        .map(|mut k| {
+            k.note = Some(format!(
+                "{} (not certified: {not_certified})",
+                k.note.unwrap_or_default()
+            ));
+            k
+        })
+        .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
+    let search = k.as_ref().map_or(Search::Local, |k| k.search);
+    (k, Some(search))
+}
+
+/// The mechanism of the static hinges ([`kinematic::certify`]) when its multiplier meets the
+/// static one within [`CERTIFY_TOL`]; otherwise why not.
+fn certify_static(
+    model: &Model,
+    lower: &StaticResult,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, String> {
+    let k = kinematic::certify(model, lower, settings).map_err(|e| e.to_string())?;
+    match (k.lambda_upper, lower.lambda) {
+        (Some(u), Some(l)) if (u - l).abs() <= CERTIFY_TOL * l.abs().max(1.0) => Ok(k),
+        (u, _) => Err(format!(
+            "the mechanism of the static hinges gives {u:?}, not the static value"
+        )),
+    }
 }
 
 /// The continuous kinematic model of a scene (hinges anywhere on the ring), load toward

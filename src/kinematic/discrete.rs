@@ -489,7 +489,7 @@ pub fn certify(
     let (status, key) = ext.verdict();
     let lambda = g / a;
     let note = format!(
-        "certified: the mechanism of the static hinges (joints {}) has lambda = {lambda} by virtual work",
+        "certified: the mechanism of the static hinges (joints {}) has lambda = {lambda:.10} by virtual work",
         items
             .iter()
             .map(|(j, _)| j.to_string())

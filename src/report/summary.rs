@@ -444,8 +444,15 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
         "conic program"
     };
     let solver = if r.solver_status.starts_with("active set") {
+        // The stand test at lambda = 0, when it decided the status, says why.
+        let at_zero = r
+            .solver_status
+            .find("; at lambda = 0")
+            .map_or(String::new(), |i| {
+                format!(" ({})", &r.solver_status[i + 2..])
+            });
         format!(
-            "active set, exact vertex, in {}",
+            "active set, exact vertex, in {}{at_zero}",
             count(u64::from(r.iterations), "pivot", "pivots")
         )
     } else {

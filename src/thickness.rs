@@ -127,7 +127,7 @@ pub struct MinThickness {
 
 /// Whether the static program finds equilibrium at lambda = 0.
 pub fn stands_static(scene: &Scene, settings: &StaticSettings) -> Result<bool, AnalysisError> {
-    Ok(lp::stands(&crate::scene::build(scene)?, settings)?.stands)
+    lp::stands_at_rest(&crate::scene::build(scene)?, settings)
 }
 
 /// The static minimum thickness of `scene`.
@@ -175,8 +175,11 @@ pub fn min_thickness_kinematic(
 pub struct ThicknessAnalysis {
     /// The static search (always run).
     pub lower: MinThickness,
-    /// The kinematic search (exhaustive, so only up to a chain size).
+    /// The kinematic minimum thickness: certified from the static one, or by the exhaustive
+    /// search (then only up to a chain size).
     pub kinematic: Option<ThicknessSearch>,
+    /// Which kinematic search gave `kinematic` (None when it did not run).
+    pub kinematic_search: Option<kinematic::Search>,
     /// Why the kinematic value is missing, or what it means here.
     pub kinematic_note: Option<String>,
     /// The continuous model's minimum thickness, when asked (or why it failed).
@@ -192,42 +195,157 @@ impl ThicknessAnalysis {
     }
 }
 
-/// The static minimum thickness, the kinematic one when the chain has at most
-/// `kinematic_max_joints` joints (0: never), and the continuous one when `continuous`.
+/// Relative agreement the certified kinematic thickness must reach with the static one: a few
+/// times the bisection's tolerance.
+pub const CERTIFY_REL_TOL: f64 = 10.0 * DEFAULT_REL_TOL;
+
+/// The kinematic minimum thickness certified by the static one (the thickness analogue of
+/// [`kinematic::certify`]). At the standing end `hi` of the static bracket the largest
+/// multiplier in one direction is (almost) zero; the static solution there names the four
+/// hinges of the governing mechanism. That mechanism is valued by virtual work on the models at
+/// other thicknesses (same joints): `G(t)`, the work done against the permanent loads, changes
+/// sign at its own minimum thickness, below which the mechanism proves that the structure
+/// cannot stand (upper-bound theorem). The root is found by bisection in a bracket around the
+/// static value, independently of the static program, and certifies the static value when the
+/// two agree to [`CERTIFY_REL_TOL`]. Errors say why it does not certify; the caller then runs
+/// the exhaustive search.
+pub fn certify_min_thickness(
+    scene: &Scene,
+    lower: &MinThickness,
+    settings: &StaticSettings,
+) -> Result<ThicknessSearch, String> {
+    let hi = lower
+        .search
+        .min_thickness
+        .ok_or("no static minimum thickness to certify")?;
+    let build = |t: f64| -> Result<Model, String> {
+        let s = scene.with_thickness(t).map_err(|e| e.to_string())?;
+        crate::scene::build(&s).map_err(|e| e.to_string())
+    };
+    let model = build(hi)?;
+    // The direction whose largest multiplier is (nearly) zero at hi is the one that binds.
+    let mut governing: Option<lp::StaticResult> = None;
+    for d in [
+        crate::outcome::Direction::Right,
+        crate::outcome::Direction::Left,
+    ] {
+        let r = lp::analyse(&model, &settings.clone().direction(d)).map_err(|e| e.to_string())?;
+        if r.status == Status::Collapse
+            && governing.as_ref().is_none_or(|g| {
+                r.lambda.unwrap_or(f64::INFINITY) < g.lambda.unwrap_or(f64::INFINITY)
+            })
+        {
+            governing = Some(r);
+        }
+    }
+    let around = governing.ok_or("no direction collapses at the static minimum thickness")?;
+    let direction = around.direction;
+    let ks = KinematicSettings::default().direction(direction);
+    let certified = kinematic::certify(&model, &around, &ks).map_err(|e| e.to_string())?;
+    let mechanism = certified
+        .mechanism
+        .ok_or("the certified mechanism is missing")?;
+    let hinges: Vec<(usize, crate::assembly::JointEnd)> =
+        mechanism.hinges.iter().map(|h| (h.joint, h.end)).collect();
+    let mut evaluations = 0;
+    let mut work = |t: f64| -> Result<f64, String> {
+        evaluations += 1;
+        let m = build(t)?;
+        kinematic::mechanism_work(&m, &hinges, direction)
+            .map_err(|e| e.to_string())?
+            .map(|(_, g)| g)
+            .ok_or_else(|| {
+                format!("the mechanism of the static hinges is not admissible at t = {t} m")
+            })
+    };
+    // A bracket around the static value (not centred on it, so the bisection never tries the
+    // static value itself), inside the admissible range.
+    let (mut lo, mut up) = (
+        hi * (1.0 - 1e-4),
+        (hi * (1.0 + 3e-4)).min(scene.max_thickness() * (1.0 - 1e-9)),
+    );
+    let (g_lo, g_up) = (work(lo)?, work(up)?);
+    if !(g_lo < 0.0 && g_up > 0.0) {
+        return Err(format!(
+            "the work of the permanent loads on the mechanism of the static hinges does not change sign near the static minimum thickness (G = {g_lo:.3e} at {lo} m, {g_up:.3e} at {up} m)"
+        ));
+    }
+    // To near round-off, so the reported gap is the static search's own error.
+    while up - lo > 1e-13 * up {
+        let mid = 0.5 * (lo + up);
+        if work(mid)? < 0.0 {
+            lo = mid;
+        } else {
+            up = mid;
+        }
+    }
+    if (up - hi).abs() > CERTIFY_REL_TOL * hi {
+        return Err(format!(
+            "the mechanism of the static hinges reaches zero at t = {up:.9} m, not at the static {hi:.9} m"
+        ));
+    }
+    Ok(ThicknessSearch {
+        outcome: ThicknessOutcome::Found,
+        min_thickness: Some(up),
+        bracket: Some((lo, up)),
+        evaluations,
+    })
+}
+
+/// The static minimum thickness, and the kinematic one and the continuous one as `options`
+/// ask: the kinematic one certified from the static hinges by default
+/// ([`certify_min_thickness`]), by the exhaustive search when asked or when that does not
+/// certify (chains of at most `kinematic_max_joints` joints; 0: never).
 pub fn analyse(
     scene: &Scene,
-    settings: &StaticSettings,
-    kinematic_max_joints: usize,
-    continuous: bool,
+    options: &crate::analysis::Options,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
+    let settings = &options.static_settings;
+    let max_joints = options.kinematic_max_joints;
     let lower = min_thickness(scene, settings)?;
     let joints = crate::scene::build(scene)?.assembly.joints.len();
-    let (kinematic, kinematic_note) = if kinematic_max_joints > 0 && joints <= kinematic_max_joints
+    let mut kinematic = None;
+    let mut kinematic_search = None;
+    let mut notes = Vec::new();
+    if options.kinematic == crate::analysis::KinematicMode::Certified
+        && lower.search.min_thickness.is_some()
     {
-        let note = scene.material.friction.is_finite().then(|| {
-            format!(
-                "the kinematic search knows rotational mechanisms only: with mu = {} sliding may govern, and then its minimum thickness is the one without sliding",
-                scene.material.friction
-            )
-        });
-        (
-            Some(min_thickness_kinematic(scene, kinematic_max_joints)?),
-            note,
-        )
-    } else {
-        (
-            None,
-            Some(format!(
-                "kinematic search skipped: {joints} joints is more than {kinematic_max_joints}"
-            )),
-        )
-    };
-    let continuous = continuous
+        match certify_min_thickness(scene, &lower, settings) {
+            Ok(k) => {
+                notes.push(format!(
+                    "certified: the mechanism of the static hinges at t_min, valued by virtual work, reaches zero within {:.0e} of it",
+                    CERTIFY_REL_TOL
+                ));
+                kinematic = Some(k);
+                kinematic_search = Some(kinematic::Search::Certified);
+            }
+            Err(why) => notes.push(format!("not certified ({why})")),
+        }
+    }
+    if kinematic.is_none() {
+        if max_joints > 0 && joints <= max_joints {
+            kinematic = Some(min_thickness_kinematic(scene, max_joints)?);
+            kinematic_search = Some(kinematic::Search::Exhaustive);
+        } else {
+            notes.push(format!(
+                "kinematic search skipped: {joints} joints is more than {max_joints}"
+            ));
+        }
+    }
+    if kinematic.is_some() && scene.material.friction.is_finite() {
+        notes.push(format!(
+            "the kinematic search knows rotational mechanisms only: with mu = {} sliding may govern, and then its minimum thickness is the one without sliding",
+            scene.material.friction
+        ));
+    }
+    let continuous = options
+        .continuous
         .then(|| crate::analysis::continuous_min_thickness(scene).map_err(|e| e.to_string()));
     Ok(ThicknessAnalysis {
         lower,
         kinematic,
-        kinematic_note,
+        kinematic_search,
+        kinematic_note: (!notes.is_empty()).then(|| notes.join("; ")),
         continuous,
     })
 }

@@ -1071,8 +1071,11 @@ fn minimum_thickness_under_fill_and_asymmetric_loads() {
     let fill = s.fill.as_ref().expect("fill").level;
     assert!(s.arch.shape.crown_extrados(t_max) <= fill * (1.0 + 1e-12));
     assert!(s.with_thickness(0.999 * t_max).is_ok());
-    let t = voussoir::thickness::analyse(&s, &StaticSettings::default(), 200, false)
-        .expect("thickness search");
+    let options = voussoir::analysis::Options {
+        kinematic: voussoir::analysis::KinematicMode::Exhaustive,
+        ..Default::default()
+    };
+    let t = voussoir::thickness::analyse(&s, &options).expect("thickness search");
     let ts = t.lower.search.min_thickness.expect("static t_min");
     let tk = t
         .kinematic

@@ -21,21 +21,27 @@ pub struct Args {
     /// Also find the continuous model's minimum thickness
     #[arg(long)]
     continuous: bool,
-    /// Largest chain (joints) for the kinematic bisection; 0 turns it off
+    /// Largest chain (joints) for the exhaustive kinematic bisection; 0 turns it off
     #[arg(long, default_value_t = analysis::KINEMATIC_DEFAULT_MAX_JOINTS)]
     kinematic_max_joints: usize,
+    /// The kinematic minimum thickness: the mechanism of the static hinges at t_min valued by
+    /// virtual work (certified, falling back to the exhaustive bisection when it does not meet
+    /// the static value) or the exhaustive bisection
+    #[arg(long, value_enum, default_value = "certified")]
+    kinematic: super::Kinematic,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
     super::check_output_paths([args.svg.as_ref()])?;
     let model = voussoir::scene::build(&scene)?;
-    let t = thickness::analyse(
-        &scene,
-        &StaticSettings::default(),
-        args.kinematic_max_joints,
-        args.continuous,
-    )?;
+    let options = analysis::Options {
+        static_settings: StaticSettings::default(),
+        kinematic_max_joints: args.kinematic_max_joints,
+        kinematic: args.kinematic.into(),
+        continuous: args.continuous,
+    };
+    let t = thickness::analyse(&scene, &options)?;
     let m = &t.lower;
     if let Some(path) = &args.svg {
         match (&m.at_minimum, m.search.min_thickness) {

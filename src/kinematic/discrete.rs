@@ -399,16 +399,19 @@ pub fn analyse_local(
 }
 
 /// The upper bound certified by the static solution `around` at collapse (issue: both bounds
-/// at the physical limit): at a non-degenerate optimum the static solution has exactly four
-/// hinges, and by complementary slackness they are the hinges of the governing mechanism. That
-/// mechanism is rebuilt here from the hinge points alone (cofactor kinematics, as in the
-/// exhaustive search), checked for admissibility (every hinge opens), and its multiplier
+/// at the physical limit): at a non-degenerate optimum the static solution has four tight
+/// no-tension rows: four hinges, or two hinges and a joint that carries nothing (it opens), or
+/// two such joints; by complementary slackness they are the active joints of the governing
+/// mechanism. When the resultants touch a fifth joint end within the hinge tolerance, the
+/// four hinges are read from the mechanism of the program's duals instead. That mechanism is
+/// rebuilt here from the joint points alone (cofactor kinematics, as in the exhaustive
+/// search), checked for admissibility (every hinge opens), and its multiplier
 /// computed by virtual work from the load case, independently of the static program: any
 /// admissible mechanism bounds the collapse multiplier from above, so when it equals the static
 /// multiplier the collapse multiplier is certified. Cost: linear in the number of blocks.
 ///
 /// Errors with [`KinematicError::NotCertified`] when the static solution is degenerate (not
-/// exactly four hinges, or open or sliding joints), when the mechanism is not admissible, or
+/// one of those patterns, or sliding joints), when the mechanism is not admissible, or
 /// when the load does no work on it; the caller then falls back to a search.
 pub fn certify(
     model: &Model,
@@ -424,13 +427,80 @@ pub fn certify(
             "a one-support chain has no four-hinge mechanism".into(),
         ));
     }
-    if !around.open.is_empty() || !around.sliding.is_empty() {
+    if !around.sliding.is_empty() || around.open.len() > 2 {
         return Err(KinematicError::NotCertified(format!(
             "the static solution has {} open and {} sliding joints",
             around.open.len(),
             around.sliding.len()
         )));
     }
+    // A joint that carries nothing opens completely: with one open joint the mechanism has two
+    // hinges (two bodies), with two open joints none (one body lifts off). Either way the
+    // vertex has four tight rows (an open joint's two no-tension rows, two per hinge).
+    let wanted = 4 - 2 * around.open.len();
+    let mut items = match hinges_from_forces(model, around, wanted) {
+        Ok(items) => items,
+        // A thrust line that touches a fifth joint within the hinge tolerance (a symmetric
+        // arch near its minimum thickness) is degenerate only in appearance when the static
+        // program's duals name four hinges: read them from its mechanism.
+        Err(e) if wanted == 4 => hinges_from_velocities(model, &around.mechanism).ok_or(e)?,
+        Err(e) => return Err(e),
+    };
+    items.extend(around.open.iter().map(|&j| (j, OPEN)));
+    items.sort_unstable();
+    if items.windows(2).any(|w| w[0].0 == w[1].0) {
+        return Err(KinematicError::NotCertified(
+            "the static solution has a hinge at an open joint".into(),
+        ));
+    }
+    let key = Key::new(&items);
+    let chain = Chain::new(model, settings.direction.sign(), true);
+    let Some((a, g, _)) = chain.evaluate(&key) else {
+        return Err(KinematicError::NotCertified(
+            "the mechanism of the static hinges is not admissible".into(),
+        ));
+    };
+    if a <= 0.0 {
+        return Err(KinematicError::NotCertified(
+            "the seismic load does no work on the mechanism of the static hinges".into(),
+        ));
+    }
+    let mut ext = Extremes::new();
+    ext.push(a, g, || key);
+    let (status, key) = ext.verdict();
+    let lambda = g / a;
+    let note = format!(
+        "certified: the mechanism of the static hinges (joints {}) has lambda = {lambda:.10} by virtual work",
+        items
+            .iter()
+            .map(|&(j, act)| if act == OPEN {
+                format!("{j} open")
+            } else {
+                j.to_string()
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(result(
+        &model.assembly,
+        &chain,
+        &ext,
+        status,
+        key,
+        1,
+        settings,
+        (Search::Certified, 4, Some(note)),
+        start,
+    ))
+}
+
+/// The `wanted` hinges of a static solution at collapse, read from where its resultants touch
+/// the joint ends, as `(joint, end)` in chain order (end 0 = p1, 1 = p2).
+fn hinges_from_forces(
+    model: &Model,
+    around: &StaticResult,
+    wanted: usize,
+) -> Result<Vec<(usize, u8)>, KinematicError> {
     // On long chains the resultants of a few joints next to each true hinge sit within the
     // hinge tolerance of the same end: a run of consecutive joints hinged at the same end is one
     // hinge, at the joint whose resultant is nearest the end.
@@ -465,48 +535,86 @@ pub fn certify(
         }
     }
     items.dedup_by_key(|i| i.0);
-    if items.len() != 4 {
+    if items.len() != wanted {
         return Err(KinematicError::NotCertified(format!(
-            "the static solution has {} hinges at {} places (a non-degenerate collapse has four)",
+            "the static solution has {} hinges at {} places and {} open joints (a non-degenerate collapse has {wanted} hinges with that many open joints)",
             around.hinges.len(),
-            items.len()
+            items.len(),
+            around.open.len()
         )));
     }
-    let key = Key::new(&items);
-    let chain = Chain::new(model, settings.direction.sign(), true);
-    let Some((a, g, _)) = chain.evaluate(&key) else {
-        return Err(KinematicError::NotCertified(
-            "the mechanism of the static hinges is not admissible".into(),
-        ));
+    Ok(items)
+}
+
+/// The hinges of the mechanism the static program's duals describe (block velocities
+/// `[vx, vy, omega]`, blocks in chain order, the ground still at both ends): a joint where the
+/// two sides move apart is a hinge at the end where their relative velocity vanishes. None
+/// unless that gives exactly four pure hinges.
+fn hinges_from_velocities(model: &Model, velocities: &[[f64; 3]]) -> Option<Vec<(usize, u8)>> {
+    let a = &model.assembly;
+    if velocities.len() != a.blocks.len() || a.joints.len() != a.blocks.len() + 1 {
+        return None;
+    }
+    // Velocities are scaled so the fastest centroid moves at 1: a relative speed below this
+    // is round-off (the interior point's duals) or nothing.
+    const STILL: f64 = 1e-7;
+    let at = |b: Option<usize>, q: Vec2| -> Vec2 {
+        match b {
+            Some(b) => {
+                let [vx, vy, w] = velocities[b];
+                let r = q - a.blocks[b].centroid;
+                Vec2::new(vx - w * r.y, vy + w * r.x)
+            }
+            None => Vec2::zeros(),
+        }
     };
-    if a <= 0.0 {
+    let mut items = Vec::new();
+    for (k, j) in a.joints.iter().enumerate() {
+        let before = k.checked_sub(1);
+        let after = (k < a.blocks.len()).then_some(k);
+        let rel = |q: Vec2| (at(after, q) - at(before, q)).norm();
+        let (r1, r2) = (rel(j.p1), rel(j.p2));
+        match (r1.max(r2) > STILL, r1 <= STILL, r2 <= STILL) {
+            (false, _, _) => {}
+            (true, true, false) => items.push((k, 0)),
+            (true, false, true) => items.push((k, 1)),
+            // Open, sliding or ambiguous: not a four-hinge mechanism.
+            _ => return None,
+        }
+    }
+    (items.len() == 4).then_some(items)
+}
+
+/// Virtual work of the four-hinge mechanism of a two-support chain with hinges `hinges`
+/// (joint, end), in chain order: `(A, G)` with `A` the work of the seismic loads toward
+/// `direction` per unit multiplier and `G` the work done against the permanent loads (so its
+/// multiplier is `G / A`, and `G < 0` means the permanent loads alone drive it: the structure
+/// cannot stand). None when the mechanism is not admissible (a hinge would close). Cost:
+/// linear in the number of blocks (the prefix sums).
+pub fn mechanism_work(
+    model: &Model,
+    hinges: &[(usize, JointEnd)],
+    direction: crate::outcome::Direction,
+) -> Result<Option<(f64, f64)>, KinematicError> {
+    if !chain_kind(model)? {
         return Err(KinematicError::NotCertified(
-            "the seismic load does no work on the mechanism of the static hinges".into(),
+            "a one-support chain has no four-hinge mechanism".into(),
         ));
     }
-    let mut ext = Extremes::new();
-    ext.push(a, g, || key);
-    let (status, key) = ext.verdict();
-    let lambda = g / a;
-    let note = format!(
-        "certified: the mechanism of the static hinges (joints {}) has lambda = {lambda:.10} by virtual work",
-        items
-            .iter()
-            .map(|(j, _)| j.to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
-    Ok(result(
-        &model.assembly,
-        &chain,
-        &ext,
-        status,
-        key,
-        1,
-        settings,
-        (Search::Certified, 4, Some(note)),
-        start,
-    ))
+    let nj = model.assembly.joints.len();
+    let mut items: Vec<(usize, u8)> = hinges
+        .iter()
+        .map(|&(j, e)| (j, if e == JointEnd::P1 { 0 } else { 1 }))
+        .collect();
+    items.sort_unstable();
+    items.dedup_by_key(|i| i.0);
+    if items.len() != 4 || items.iter().any(|&(j, _)| j >= nj) {
+        return Err(KinematicError::NotCertified(format!(
+            "a four-hinge mechanism needs four distinct joints below {nj}, got {hinges:?}"
+        )));
+    }
+    let chain = Chain::new(model, direction.sign(), true);
+    Ok(chain.evaluate(&Key::new(&items)).map(|(a, g, _)| (a, g)))
 }
 
 /// The mechanism of `key`, with block velocities normalised (fastest centroid at speed 1).

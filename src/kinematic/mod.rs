@@ -74,7 +74,7 @@ pub use continuous::{
     continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
     MinThickness,
 };
-pub use discrete::{analyse, analyse_local, certify};
+pub use discrete::{analyse, analyse_local, certify, mechanism_work};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;

@@ -48,12 +48,36 @@ struct ActiveSet {
     pivots: u32,
 }
 
-/// The reduced program of a chain, with what is needed to read its solution back.
-struct ChainProgram {
+/// The chain program as Clarabel takes it.
+struct ConicForm {
     a: CscMatrix<f64>,
     b: Vec<f64>,
     cones: Vec<SupportedConeT<f64>>,
     q: Vec<f64>,
+}
+
+/// How the active-set method ended.
+enum Outcome {
+    /// The optimum, at a vertex of four tight rows.
+    Optimal(ActiveSet),
+    /// No point satisfies the rows (with the cap): a violated row is a combination of tight
+    /// rows with non-positive weights (Farkas' lemma), none of them the artificial box.
+    Infeasible { pivots: u32 },
+    /// The box binds, a basis is singular or the iterations ran out: the interior point decides.
+    Failed,
+}
+
+impl Outcome {
+    fn optimal(self) -> Option<ActiveSet> {
+        match self {
+            Outcome::Optimal(a) => Some(a),
+            _ => None,
+        }
+    }
+}
+
+/// The reduced program of a chain, with what is needed to read its solution back.
+struct ChainProgram {
     /// Per joint, the running sums of the loads before it.
     sums: Vec<Affine>,
     reference: Vec2,
@@ -89,23 +113,11 @@ impl ChainProgram {
                 }
             }
         }
-        // Rows `g(x) = coef . x + c >= 0`, stored for Clarabel as `-coef . x + s = c`.
-        let mut rows = Vec::new();
-        let mut cols = Vec::new();
-        let mut vals = Vec::new();
-        let mut b = Vec::new();
-        let mut dense = Vec::new();
-        let mut push_row = |coef: [f64; 4], c: f64, b: &mut Vec<f64>| {
-            let r = b.len();
+        // Rows `g(x) = coef . x + c >= 0` (Clarabel's sparse form is built from them only
+        // when the interior point runs: the active-set method reads them directly).
+        let mut dense = Vec::with_capacity(2 * nj);
+        let push_row = |coef: [f64; 4], c: f64, dense: &mut Vec<([f64; 4], f64)>| {
             dense.push((coef, c));
-            for (j, v) in coef.into_iter().enumerate() {
-                if v != 0.0 {
-                    rows.push(r);
-                    cols.push(j);
-                    vals.push(-v);
-                }
-            }
-            b.push(c);
         };
         // Dimensionless: x = [lambda, H / fs, V / fs, M0 / (fs ls)].
         let moment_row = |k: usize, q: Vec2, sgn: f64| {
@@ -119,9 +131,9 @@ impl ChainProgram {
         };
         for (k, jt) in assembly.joints.iter().enumerate() {
             let (c2, k2) = moment_row(k, jt.p2, 1.0);
-            push_row(c2, k2, &mut b);
+            push_row(c2, k2, &mut dense);
             let (c1, k1) = moment_row(k, jt.p1, -1.0);
-            push_row(c1, k1, &mut b);
+            push_row(c1, k1, &mut dense);
         }
         let mut friction_joints = Vec::new();
         for (k, jt) in assembly.joints.iter().enumerate() {
@@ -135,21 +147,16 @@ impl ChainProgram {
                 let d = mu * n - sv * u;
                 let base = (d.x * s.base[0] + d.y * s.base[1]) / fs;
                 let per = (d.x * s.per[0] + d.y * s.per[1]) / fs;
-                push_row([per, d.x, d.y, 0.0], base, &mut b);
+                push_row([per, d.x, d.y, 0.0], base, &mut dense);
             }
             friction_joints.push(k);
         }
         if let Some(cap) = cap {
             // lambda <= cap.
-            push_row([-1.0, 0.0, 0.0, 0.0], cap, &mut b);
+            push_row([-1.0, 0.0, 0.0, 0.0], cap, &mut dense);
         }
-        let m = b.len();
-        let a = CscMatrix::new_from_triplets(m, 4, rows, cols, vals);
+        let m = dense.len();
         ChainProgram {
-            a,
-            b,
-            cones: vec![SupportedConeT::NonnegativeConeT(m)],
-            q: vec![-1.0, 0.0, 0.0, 0.0],
             sums,
             reference,
             length_scale: ls,
@@ -157,6 +164,32 @@ impl ChainProgram {
             friction_joints,
             rows: m,
             dense,
+        }
+    }
+
+    /// Clarabel's form of the program: minimise `-lambda` subject to `A x + s = b`, `s >= 0`,
+    /// with each row `g(x) = coef . x + c >= 0` stored as `-coef . x + s = c`. Built column by
+    /// column (four columns), so no sort.
+    fn conic(&self) -> ConicForm {
+        let m = self.dense.len();
+        let mut colptr = Vec::with_capacity(5);
+        let mut rowval = Vec::with_capacity(4 * m);
+        let mut nzval = Vec::with_capacity(4 * m);
+        colptr.push(0);
+        for col in 0..4 {
+            for (r, (coef, _)) in self.dense.iter().enumerate() {
+                if coef[col] != 0.0 {
+                    rowval.push(r);
+                    nzval.push(-coef[col]);
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        ConicForm {
+            a: CscMatrix::new(m, 4, colptr, rowval, nzval),
+            b: self.dense.iter().map(|&(_, c)| c).collect(),
+            cones: vec![SupportedConeT::NonnegativeConeT(m)],
+            q: vec![-1.0, 0.0, 0.0, 0.0],
         }
     }
 
@@ -274,12 +307,15 @@ impl ChainProgram {
     /// iteration solves one 4 x 4 system and scans the rows once. At the end the vertex
     /// satisfies every row (to round-off) and its multipliers are non-negative: by LP duality
     /// it is the optimum, the vertex of the four active rows. Returns the vertex and the
-    /// multipliers of its real rows, or None (the box binds, the problem is infeasible, or the
-    /// iterations run out): the interior-point solve then decides.
+    /// multipliers of its real rows ([`Outcome::Optimal`]), a proof that no point satisfies the
+    /// rows ([`Outcome::Infeasible`]), or [`Outcome::Failed`] (the box binds, a basis is
+    /// singular, or the iterations run out): the interior-point solve then decides.
     ///
     /// `objective` = +1 maximises lambda; -1 minimises it (the least multiplier equilibrium
-    /// allows, whose sign says whether the structure stands at lambda = 0).
-    fn active_set(&self, objective: f64) -> Option<ActiveSet> {
+    /// allows, whose sign says whether the structure stands at lambda = 0). `cap` bounds
+    /// `objective * lambda` from above (`LAMBDA_CAP` for an analysis; 0 for the stand test,
+    /// which then asks whether lambda = 0 is reachable from below).
+    fn active_set(&self, objective: f64, cap: f64) -> Outcome {
         const BOX: f64 = 1e6;
         const MAX_ITER: usize = 500;
         let m = self.dense.len();
@@ -292,7 +328,7 @@ impl ChainProgram {
             let mut a = [0.0; 4];
             if k == 0 {
                 a[0] = -objective;
-                return (a, LAMBDA_CAP);
+                return (a, cap);
             }
             let (col, s) = (k.div_ceil(2), if k % 2 == 1 { -1.0 } else { 1.0 });
             a[col] = s;
@@ -319,7 +355,9 @@ impl ChainProgram {
         let mut y = [1.0, 0.0, 0.0, 0.0];
         for pivots in 0..MAX_ITER {
             let rhs = basis.map(|i| -row(i).1);
-            let x = solve(&basis, false, rhs)?;
+            let Some(x) = solve(&basis, false, rhs) else {
+                return Outcome::Failed;
+            };
             // The most violated row, relative to the size of its terms.
             let mut worst: Option<(usize, f64)> = None;
             for i in 0..m {
@@ -339,7 +377,7 @@ impl ChainProgram {
                 // bind (but the cap may: then lambda is capped, i.e. no collapse).
                 let binding_box = basis.iter().zip(&y).any(|(&i, &yi)| i > m && yi > 1e-12);
                 if binding_box {
-                    return None;
+                    return Outcome::Failed;
                 }
                 let duals = basis
                     .iter()
@@ -347,14 +385,16 @@ impl ChainProgram {
                     .filter(|(&i, _)| i < m)
                     .map(|(&i, &yi)| (i, f64::max(yi, 0.0)))
                     .collect();
-                return Some(ActiveSet {
+                return Outcome::Optimal(ActiveSet {
                     x: x.to_vec(),
                     duals,
                     pivots: pivots as u32,
                 });
             };
             // Ratio test: a_r = sum w_i a_i over the basis; y'_i = y_i - t w_i, y'_r = t.
-            let w = solve(&basis, true, row(r).0)?;
+            let Some(w) = solve(&basis, true, row(r).0) else {
+                return Outcome::Failed;
+            };
             let mut leave: Option<(usize, f64)> = None;
             for k in 0..4 {
                 if w[k] > 1e-14 {
@@ -364,15 +404,27 @@ impl ChainProgram {
                     }
                 }
             }
-            // No row can leave: the program is infeasible (let the interior point say so).
-            let (l, t) = leave?;
+            // No row can leave (every w_i <= 0): row r is violated at x, and since a_r =
+            // sum w_i a_i and the basis rows are tight at x, any x' has g_r(x') = g_r(x) +
+            // sum w_i g_i(x'), below g_r(x) < 0 wherever the basis rows hold: no point satisfies
+            // every row (Farkas). The proof leans on the artificial box if a box row has w < 0.
+            let Some((l, t)) = leave else {
+                let leans_on_box = basis.iter().zip(&w).any(|(&i, &wi)| i > m && wi < -1e-14);
+                return if leans_on_box {
+                    Outcome::Failed
+                } else {
+                    Outcome::Infeasible {
+                        pivots: pivots as u32,
+                    }
+                };
+            };
             for k in 0..4 {
                 y[k] -= t * w[k];
             }
             y[l] = t;
             basis[l] = r;
         }
-        None
+        Outcome::Failed
     }
 
     /// The program's size, for the report.
@@ -495,12 +547,34 @@ pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
         return None;
     }
     let program = ChainProgram::new(&model.assembly, &model.loads, sign, None);
-    let lambda = program.active_set(-1.0)?.x[0];
+    let lambda = program.active_set(-1.0, LAMBDA_CAP).optimal()?.x[0];
     lambda.is_finite().then_some(lambda)
 }
 
-/// The result of the active-set method, when it finds the optimum with the structure standing
-/// (see [`ChainProgram::active_set`]); None sends the analysis to the interior point.
+/// Whether the chain stands under its permanent loads (lambda = 0), by one active-set solve:
+/// the largest multiplier with `lambda <= 0` is 0 exactly when lambda = 0 is in the interval of
+/// multipliers equilibrium allows. None when the model is not a chain or the method does not
+/// decide (the interior point then does).
+pub(super) fn stands_at_rest(model: &Model) -> Option<bool> {
+    if !model.assembly.is_chain() {
+        return None;
+    }
+    let program = ChainProgram::new(&model.assembly, &model.loads, 1.0, None);
+    match program.active_set(1.0, 0.0) {
+        // The cap row makes lambda exactly 0 at the vertex when it binds; otherwise lambda is
+        // the largest multiplier, below 0.
+        Outcome::Optimal(a) => Some(a.x[0] >= -STAND_TOL),
+        Outcome::Infeasible { .. } => Some(false),
+        Outcome::Failed => None,
+    }
+}
+
+/// Round-off allowance on lambda when the stand test's vertex sits on its cap `lambda <= 0`.
+const STAND_TOL: f64 = 1e-12;
+
+/// The result of the active-set method (see [`ChainProgram::active_set`]) when it decides: the
+/// optimum (a negative one cannot stand), or a proof that no multiplier up to the cap has
+/// equilibrium (cannot stand); None sends the analysis to the interior point.
 fn active_set_result(
     model: &Model,
     program: &ChainProgram,
@@ -508,9 +582,20 @@ fn active_set_result(
 ) -> Option<StaticResult> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     let sign = settings.direction.sign();
-    let ActiveSet { x, duals, pivots } = program.active_set(1.0)?;
+    let ActiveSet { x, duals, pivots } = match program.active_set(1.0, LAMBDA_CAP) {
+        Outcome::Optimal(a) => a,
+        Outcome::Infeasible { pivots } => {
+            return Some(StaticResult::unsolved(
+                settings,
+                pivots,
+                "active set: infeasible (no multiplier has equilibrium)".to_string(),
+                program.size(),
+            ))
+        }
+        Outcome::Failed => return None,
+    };
     let lambda = x[0];
-    if !(lambda.is_finite() && lambda >= 0.0) {
+    if !lambda.is_finite() {
         return None;
     }
     let mut z = vec![0.0; program.dense.len()];
@@ -557,12 +642,13 @@ pub fn analyse_chain(
             return Ok(r);
         }
     }
+    let conic = program.conic();
     let mut sol = solve_conic(
         &CscMatrix::zeros((4, 4)),
-        &program.q,
-        &program.a,
-        &program.b,
-        &program.cones,
+        &conic.q,
+        &conic.a,
+        &conic.b,
+        &conic.cones,
         settings,
     )?;
     let mut capped = false;
@@ -571,12 +657,13 @@ pub fn analyse_chain(
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         program = ChainProgram::new(assembly, loads, sign, Some(LAMBDA_CAP));
+        let conic = program.conic();
         sol = solve_conic(
             &CscMatrix::zeros((4, 4)),
-            &program.q,
-            &program.a,
-            &program.b,
-            &program.cones,
+            &conic.q,
+            &conic.a,
+            &conic.b,
+            &conic.cones,
             settings,
         )?;
         capped = true;

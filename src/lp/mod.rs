@@ -448,6 +448,26 @@ pub struct StandResult {
 /// Whether `model` can stand under its permanent loads (lambda = 0), by the phase-one
 /// program.
 pub fn stands(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
+    stands_full(model, settings)
+}
+
+/// Whether `model` stands under its permanent loads (lambda = 0), and nothing else: on a chain
+/// (with [`Program::Auto`] and the active set on) one active-set solve of the chain program in
+/// its redundants, a few microseconds per hundred joints; the phase-one program of [`stands`]
+/// otherwise, and whenever the active set does not decide. The minimum-thickness search calls
+/// this at every trial thickness.
+pub fn stands_at_rest(model: &Model, settings: &StaticSettings) -> Result<bool, AnalysisError> {
+    if settings.program == Program::Auto && settings.active_set {
+        model.validate()?;
+        if let Some(stands) = chain::stands_at_rest(model) {
+            return Ok(stands);
+        }
+    }
+    Ok(stands_full(model, settings)?.stands)
+}
+
+/// The phase-one program on the full program (any assembly).
+fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     model.validate()?;
     let problem = StaticProblem::new(assembly, loads, Objective::MinTension);

@@ -317,6 +317,10 @@ pub struct MinThicknessReport {
     pub min_thickness_kinematic: Option<f64>,
     /// `|t_static - t_kinematic| / t_static`.
     pub min_thickness_gap: Option<f64>,
+    /// How the kinematic minimum thickness was found: `certified` (the mechanism of the static
+    /// hinges by virtual work) or `exhaustive` (bisection on the exhaustive search); null when
+    /// not run.
+    pub kinematic_search: Option<&'static str>,
     pub kinematic_note: Option<String>,
     /// Continuous-model minimum thickness (only with `--continuous`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -334,6 +338,7 @@ impl MinThicknessReport {
         let mut rep = MinThicknessReport::new_static(scene, model, &t.lower);
         rep.min_thickness_kinematic = t.kinematic.as_ref().and_then(|k| k.min_thickness);
         rep.min_thickness_gap = t.gap();
+        rep.kinematic_search = t.kinematic_search.map(|k| k.as_str());
         rep.kinematic_note = t.kinematic_note.clone();
         match &t.continuous {
             Some(Ok(c)) => {
@@ -363,6 +368,7 @@ impl MinThicknessReport {
             loads: LoadsReport::new(scene, model),
             min_thickness_kinematic: None,
             min_thickness_gap: None,
+            kinematic_search: None,
             kinematic_note: None,
             min_thickness_continuous: None,
             continuous_hinges: None,

@@ -1,7 +1,8 @@
-//! The static (lower-bound, conic program) and kinematic (upper-bound, exhaustive hinge
-//! mechanism search) collapse multipliers must coincide for non-sliding joints (mu = inf):
-//! limit analysis of no-tension rigid blocks has both theorems, and the two programs are
-//! dual to each other. A grid over every shape, both voussoir shapes, portals and numbers of
+//! The static (lower-bound: the chain's reduced program and the full program) and kinematic
+//! (upper-bound: the exhaustive hinge mechanism search, and the mechanism certified from the
+//! static hinges) collapse multipliers must coincide for non-sliding joints (mu = inf): limit
+//! analysis of no-tension rigid blocks has both theorems, and the programs are dual to each
+//! other. A grid over every shape, both voussoir shapes, portals and numbers of
 //! voussoirs checks the multipliers, the statuses and, where the mechanism is unique, the
 //! hinges and the block velocities.
 
@@ -119,16 +120,30 @@ fn grid() -> Vec<Case> {
     cases
 }
 
+/// Relative difference, scaled by max(1, |a|).
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / a.abs().max(1.0)
+}
+
+/// On every case and both directions: the chain's reduced program, the full program and the
+/// exhaustive search give the same status and multiplier (1e-9); where the mechanism is unique
+/// (hinges + 2 open = 4 in both the static solution and the exhaustive search) the
+/// certificate from the static hinges succeeds, meets the multiplier to 1e-9, and names the
+/// exhaustive search's hinges, open joints and block velocities.
 #[test]
 fn static_and_kinematic_bounds_coincide() {
+    const TOL: f64 = 1e-9;
     let mut failures = Vec::new();
     let mut counts = [0usize; 3];
     let mut compared_mechanisms = 0;
+    let mut worst = [0.0_f64; 2];
     for case in grid() {
         let scene = Scene::from_toml_str(&case.toml, &case.label).expect("valid scene");
         let asm = voussoir::scene::build(&scene).expect("valid model");
         for dir in [Direction::Right, Direction::Left] {
-            let st = lp::analyse(&asm, &StaticSettings::default().direction(dir)).expect("static");
+            let settings = StaticSettings::default().direction(dir);
+            let st = lp::analyse_chain(&asm, &settings).expect("reduced program");
+            let full = lp::analyse_full(&asm, &settings).expect("full program");
             let kin = kinematic::analyse(&asm, &KinematicSettings::default().direction(dir))
                 .expect("kinematic");
             let label = format!("{} {:?}", case.label, dir);
@@ -137,50 +152,74 @@ fn static_and_kinematic_bounds_coincide() {
                 Status::NoCollapse => 1,
                 Status::CannotStand => 2,
             }] += 1;
-            if st.status != kin.status {
+            if st.status != kin.status || st.status != full.status {
                 failures.push(format!(
-                    "{label}: status static {:?} {:?}, kinematic {:?} {:?} (signed {:?}, needed {:?})",
-                    st.status, st.lambda, kin.status, kin.lambda_upper, kin.lambda_signed, kin.lambda_needed
+                    "{label}: status reduced {:?} {:?}, full {:?} {:?}, kinematic {:?} {:?} (signed {:?}, needed {:?})",
+                    st.status, st.lambda, full.status, full.lambda, kin.status, kin.lambda_upper, kin.lambda_signed, kin.lambda_needed
                 ));
                 continue;
             }
-            if let (Some(ls), Some(lk)) = (st.lambda, kin.lambda_upper) {
-                if (ls - lk).abs() > 1e-6 * ls.abs().max(1.0) {
-                    failures.push(format!("{label}: static {ls} kinematic {lk}"));
+            let (Some(ls), Some(lf), Some(lk)) = (st.lambda, full.lambda, kin.lambda_upper) else {
+                continue;
+            };
+            worst[0] = worst[0].max(rel(ls, lf));
+            worst[1] = worst[1].max(rel(ls, lk));
+            if rel(ls, lf) > TOL || rel(ls, lk) > TOL {
+                failures.push(format!("{label}: reduced {ls} full {lf} kinematic {lk}"));
+                continue;
+            }
+            // Unique mechanism: the static solution shows exactly hinges + 2 open = 4 and
+            // the kinematic one has no idle hinge.
+            let m = kin.mechanism.as_ref().expect("mechanism");
+            if st.hinges.len() + 2 * st.open.len() == 4 && m.hinges.len() + 2 * m.open.len() == 4 {
+                compared_mechanisms += 1;
+                let hs: Vec<(usize, JointEnd)> =
+                    st.hinges.iter().map(|h| (h.joint, h.end)).collect();
+                let hk: Vec<(usize, JointEnd)> =
+                    m.hinges.iter().map(|h| (h.joint, h.end)).collect();
+                if hs != hk || st.open != m.open {
+                    failures.push(format!(
+                        "{label}: hinges static {hs:?} open {:?}, kinematic {hk:?} open {:?}",
+                        st.open, m.open
+                    ));
                     continue;
                 }
-                // Unique mechanism: the static solution shows exactly hinges + 2 open = 4 and
-                // the kinematic one has no idle hinge.
-                let m = kin.mechanism.as_ref().expect("mechanism");
-                if st.hinges.len() + 2 * st.open.len() == 4
-                    && m.hinges.len() + 2 * m.open.len() == 4
-                {
-                    compared_mechanisms += 1;
-                    let hs: Vec<(usize, JointEnd)> =
-                        st.hinges.iter().map(|h| (h.joint, h.end)).collect();
-                    let hk: Vec<(usize, JointEnd)> =
-                        m.hinges.iter().map(|h| (h.joint, h.end)).collect();
-                    if hs != hk || st.open != m.open {
-                        failures.push(format!(
-                            "{label}: hinges static {hs:?} open {:?}, kinematic {hk:?} open {:?}",
-                            st.open, m.open
-                        ));
-                        continue;
+                let dv = st
+                    .mechanism
+                    .iter()
+                    .zip(&m.velocities)
+                    .flat_map(|(a, b)| (0..2).map(move |i| (a[i] - b[i]).abs()))
+                    .fold(0.0_f64, f64::max);
+                if dv > 1e-4 {
+                    failures.push(format!("{label}: block velocities differ by {dv:.2e}"));
+                }
+                let ks = KinematicSettings::default().direction(dir);
+                match kinematic::certify(&asm, &st, &ks) {
+                    Ok(c) => {
+                        let lc = c.lambda_upper.unwrap_or(f64::NAN);
+                        let cm = c.mechanism.as_ref().expect("certified mechanism");
+                        let hc: Vec<(usize, JointEnd)> =
+                            cm.hinges.iter().map(|h| (h.joint, h.end)).collect();
+                        if !(rel(ls, lc) <= TOL) || hc != hk || cm.open != m.open {
+                            failures.push(format!(
+                                "{label}: certified {lc} hinges {hc:?} open {:?}; exhaustive {lk} hinges {hk:?} open {:?}",
+                                cm.open, m.open
+                            ));
+                        }
                     }
-                    let dv = st
-                        .mechanism
-                        .iter()
-                        .zip(&m.velocities)
-                        .flat_map(|(a, b)| (0..2).map(move |i| (a[i] - b[i]).abs()))
-                        .fold(0.0_f64, f64::max);
-                    if dv > 1e-4 {
-                        failures.push(format!("{label}: block velocities differ by {dv:.2e}"));
-                    }
+                    Err(e) => failures.push(format!("{label}: not certified: {e}")),
                 }
             }
         }
     }
-    eprintln!("statuses (collapse, no_collapse, cannot_stand): {counts:?}; mechanisms compared: {compared_mechanisms}");
+    eprintln!(
+        "statuses (collapse, no_collapse, cannot_stand): {counts:?}; mechanisms compared and certified: {compared_mechanisms}; largest differences reduced-full {:.1e}, reduced-kinematic {:.1e}",
+        worst[0], worst[1]
+    );
+    assert!(
+        compared_mechanisms > 100,
+        "only {compared_mechanisms} unique mechanisms"
+    );
     assert!(
         failures.is_empty(),
         "{} disagreements:\n{}",

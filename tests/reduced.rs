@@ -264,6 +264,76 @@ fn certified_upper_bound_from_the_static_hinges() {
     );
 }
 
+/// The kinematic minimum thickness certified from the static hinges equals the exhaustive
+/// bisection's on every bundled scene, and both bracket the static value; the semicircle of
+/// many voussoirs approaches Milankovitch's t/R = 0.1075 from below by both.
+#[test]
+fn certified_minimum_thickness_matches_the_exhaustive_bisection() {
+    use voussoir::analysis::{KinematicMode, Options};
+    use voussoir::kinematic::Search;
+    let rel = |a: f64, b: f64| (a - b).abs() / a;
+    let with = |mode| Options {
+        kinematic: mode,
+        ..Options::default()
+    };
+    for name in [
+        "semicircular.toml",
+        "segmental.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+        "loaded_portal.toml",
+        "filled_arch.toml",
+    ] {
+        let s = bundled(name);
+        let c =
+            voussoir::thickness::analyse(&s, &with(KinematicMode::Certified)).expect("certified");
+        let e =
+            voussoir::thickness::analyse(&s, &with(KinematicMode::Exhaustive)).expect("exhaustive");
+        assert_eq!(
+            c.kinematic_search,
+            Some(Search::Certified),
+            "{name}: {:?}",
+            c.kinematic_note
+        );
+        assert_eq!(e.kinematic_search, Some(Search::Exhaustive), "{name}");
+        let ts = c.lower.search.min_thickness.expect("static t_min");
+        let tc = c
+            .kinematic
+            .as_ref()
+            .and_then(|k| k.min_thickness)
+            .expect("certified t_min");
+        let te = e
+            .kinematic
+            .as_ref()
+            .and_then(|k| k.min_thickness)
+            .expect("exhaustive t_min");
+        // The static search's bracket is 1e-9 wide; the certified root is found to 1e-13.
+        assert!(
+            rel(ts, tc) <= 2e-9 && rel(ts, te) <= 2e-9,
+            "{name}: static {ts}, certified {tc}, exhaustive {te}"
+        );
+        let (lo, hi) = c.lower.search.bracket.expect("bracket");
+        assert!(
+            lo <= tc * (1.0 + 1e-12) && tc <= hi * (1.0 + 1e-12),
+            "{name}: {tc} outside [{lo}, {hi}]"
+        );
+    }
+    let s = bundled("semicircular.toml")
+        .with_override("arch.voussoirs=400")
+        .expect("valid");
+    let c = voussoir::thickness::analyse(&s, &Options::default()).expect("certified");
+    assert_eq!(c.kinematic_search, Some(Search::Certified));
+    let r = s.arch_size();
+    let tc = c
+        .kinematic
+        .as_ref()
+        .and_then(|k| k.min_thickness)
+        .expect("t_min")
+        / r;
+    assert!((0.1072..0.1075).contains(&tc), "n = 400: t/R = {tc}");
+}
+
 mod random {
     use super::*;
     use proptest::prelude::*;

@@ -144,6 +144,7 @@ fn min_thickness_fields() {
             "scene",
             "min_thickness_kinematic",
             "min_thickness_gap",
+            "kinematic_search",
             "kinematic_note",
             "min_thickness_continuous",
             "continuous_hinges",

@@ -16,7 +16,7 @@ pub fn capacity_chart(capacity: &Capacity, title: &str) -> Chart {
         .collect();
     Chart {
         title: format!(
-            "{title}\ncapacity curve: alpha0 = {:.4}, d_k0 = {:.1} mm (block {})",
+            "{title}: capacity curve, alpha0 = {:.4}, d_k0 = {:.1} mm (control: block {})",
             capacity.alpha0,
             1e3 * capacity.d_k0,
             capacity.control_block
@@ -62,7 +62,7 @@ pub fn adrs_chart(capacity: &Capacity, verdict: &Verdict, title: &str) -> Chart 
     let secant_end = (a_top / slope).min(d_max);
     Chart {
         title: format!(
-            "{title}\nADRS: du* = {:.1} mm vs SDe(Ts) = {:.1} mm (Ts = {:.3} s); a0* = {:.3} vs ag S/q = {:.3} m/s^2",
+            "{title}: du* = {:.1} mm vs demand {:.1} mm (Ts = {:.3} s); a0* = {:.3} vs {:.3} m/s^2",
             1e3 * verdict.du_star,
             1e3 * verdict.nonlinear.demand,
             verdict.ts,

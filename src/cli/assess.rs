@@ -67,7 +67,11 @@ pub fn run(args: Args) -> Result<String, Error> {
         control_block: args.control_block,
     };
     let a = analysis::assess(&scene, &options, &assess)?;
-    let title = scene.origin.clone();
+    // The file name: the origin also lists the overrides, too long for a chart title.
+    let title = args.scene.scene.file_name().map_or_else(
+        || scene.origin.clone(),
+        |n| n.to_string_lossy().into_owned(),
+    );
     if let Some(path) = &args.svg {
         write_chart(
             path,

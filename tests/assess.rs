@@ -246,6 +246,54 @@ fn arch_curve_starts_at_the_static_multiplier_and_falls_to_zero() {
     close(capm.mass.e_star, cap.mass.e_star, 1e-9, "mirrored e*");
 }
 
+#[test]
+fn loads_move_with_their_blocks_along_the_curve() {
+    // The loaded portal (point and line loads, some seismic): alpha at a configuration is the
+    // rate of work of the permanent loads over that of the seismic forces, from the moved
+    // loads' positions alone: alpha = d(-sum F . p) / d(sum W_s p_x).
+    let scene = Scene::from_file(&data("loaded_portal.toml")).expect("scene");
+    let a = analysis::analyse(&scene, &Options::default()).expect("analysis");
+    let mech = a
+        .upper
+        .as_ref()
+        .expect("upper")
+        .mechanism
+        .clone()
+        .expect("mechanism");
+    let cap = assess::capacity(
+        &a.model,
+        &mech,
+        Direction::Right,
+        &CapacitySettings::default(),
+    )
+    .expect("capacity");
+    close(
+        cap.alpha0,
+        a.lower.lambda.expect("lambda"),
+        1e-9,
+        "alpha0 = lambda",
+    );
+    let works = |u: f64| {
+        let (c, _) = cap.at(&a.model, u).expect("configuration");
+        let moved = cap.linkage.moved_model(&a.model, &c);
+        moved.loads.applied().iter().fold((0.0, 0.0), |(g, s), l| {
+            (g - l.force.dot(&l.point), s + l.seismic_weight * l.point.x)
+        })
+    };
+    for share in [0.2, 0.6] {
+        let u = share * cap.rotation0;
+        let h = 1e-5 * cap.rotation0;
+        let ((g1, s1), (g0, s0)) = (works(u + h), works(u - h));
+        let (_, alpha) = cap.at(&a.model, u).expect("point");
+        close(
+            alpha,
+            (g1 - g0) / (s1 - s0),
+            1e-7,
+            "alpha from the moved loads",
+        );
+    }
+}
+
 /// Control displacement of the DEM blocks after `duration` s at multiplier `lambda`, from the
 /// configuration of the capacity curve at rotation `u`, minus the one it started from.
 fn dem_drift(model: &Model, cap: &Capacity, u: f64, lambda: f64) -> (f64, f64) {

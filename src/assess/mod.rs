@@ -134,7 +134,7 @@ impl Linkage {
                 let sense = omega(j).signum();
                 Linkage {
                     kind: Kind::Rocking { pivot: point(0) },
-                    bodies: vec![j..nb],
+                    bodies: std::iter::once(j..nb).collect(),
                     sense,
                     signs: [sense, 0.0, 0.0, 0.0],
                 }
@@ -201,7 +201,7 @@ impl Linkage {
                 let (r2, r3) = ((c - b).norm(), (c - d).norm());
                 let dv = d - b1;
                 let l = dv.norm();
-                if !(l > 0.0) || l > r2 + r3 || l < (r2 - r3).abs() {
+                if l.is_nan() || l <= 0.0 || l > r2 + r3 || l < (r2 - r3).abs() {
                     return None;
                 }
                 let along = (r2 * r2 - r3 * r3 + l * l) / (2.0 * l);
@@ -529,7 +529,7 @@ pub fn capacity(
             spdx2 += w * dx * dx;
         }
     }
-    if !(spdx2 > 0.0) {
+    if spdx2.is_nan() || spdx2 <= 0.0 {
         return Err(AssessError::NoSeismicWork);
     }
     let m_star = spdx * spdx / (G * spdx2);

@@ -407,6 +407,33 @@ fn spectrum_at_the_corner_periods_is_the_code_formula() {
         1e-12,
         "SDe(TC)",
     );
+    // A mechanism at height Z of a building H with period T1 (Circolare 2009 C8A.4.9-10,
+    // gamma = 1.5): the larger of the ground and the amplified demands.
+    let (z, hb, t1, q) = (6.0, 10.0, 0.5, 2.0);
+    let high = site(&format!(
+        "ag = {ag}\nsoil = \"C\"\ntopography = \"T2\"\nF0 = {f0}\nTc_star = {tc_star}\nZ = {z}\nH = {hb}\nT1 = {t1}\n"
+    ))
+    .expect("site at height");
+    let psi_gamma = z / hb * 1.5;
+    close(
+        assess::linear_demand(&high),
+        (a * s_amp / q).max(sp.se(t1) * psi_gamma / q),
+        1e-12,
+        "linear demand at height",
+    );
+    let ts = 0.3;
+    let r = ts / t1;
+    close(
+        assess::nonlinear_demand(&high, ts),
+        sp.sde(ts)
+            .max(sp.sde(t1) * psi_gamma * r * r / ((1.0 - r).powi(2) + 0.02 * r).sqrt()),
+        1e-12,
+        "nonlinear demand at height",
+    );
+    assert!(
+        assess::linear_demand(&high) > a * s_amp / q,
+        "amplified at 0.6 H"
+    );
     // The clamps of SS: soil B at a strong site stays at 1.0, soil D at a weak one at 1.8.
     assert_eq!(Soil::B.ss(0.6, 2.5), 1.0);
     assert_eq!(Soil::D.ss(0.05, 2.4), 1.8);

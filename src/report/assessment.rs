@@ -258,9 +258,17 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
         "  spectrum: S = SS ST = {:.3} x {:.2}, TB = {:.3} s, TC = {:.3} s, TD = {:.3} s",
         sp.ss, sp.st, sp.tb, sp.tc, sp.td
     );
+    let (lin, nonlin) = if s.elevated() {
+        (
+            "a0* >= max(ag S/q, Se(T1) psi gamma/q)",
+            "du* >= max(SDe(Ts), amplified at Z)",
+        )
+    } else {
+        ("a0* >= ag S/q", "du* >= SDe(Ts)")
+    };
     let _ = writeln!(
         t,
-        "Linear check (a0* >= ag S/q): {:.4} vs {:.4} m/s^2, ratio {:.3}: {}; largest passing ag = {}",
+        "Linear check ({lin}): {:.4} vs {:.4} m/s^2, ratio {:.3}: {}; largest passing ag = {}",
         v.linear.capacity,
         v.linear.demand,
         v.linear.ratio,
@@ -269,7 +277,7 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
     );
     let _ = writeln!(
         t,
-        "Nonlinear check (du* >= SDe(Ts)): {:.2} vs {:.2} mm, ratio {:.3}: {}; largest passing ag = {}",
+        "Nonlinear check ({nonlin}): {:.2} vs {:.2} mm, ratio {:.3}: {}; largest passing ag = {}",
         1e3 * v.nonlinear.capacity,
         1e3 * v.nonlinear.demand,
         v.nonlinear.ratio,

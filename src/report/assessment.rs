@@ -286,6 +286,10 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
     );
     let _ = writeln!(
         t,
+        "(The capacity curve keeps the hinges at their joints, as the code method does; past about a third of d_k0 a real arch may move a hinge: docs/assessment.md)"
+    );
+    let _ = writeln!(
+        t,
         "Verdict: {}",
         if v.passes() {
             "the mechanism passes both checks"

@@ -323,3 +323,78 @@ pub fn dem_parameters(
     p.apply_table(&scene.dem, &scene.origin)?;
     Ok(p)
 }
+
+/// How `assess` builds the capacity curve.
+#[derive(Debug, Clone)]
+pub struct AssessOptions {
+    /// Points of the capacity curve (>= 3). Default 200.
+    pub points: usize,
+    /// Control block; default the block whose centroid moves most horizontally.
+    pub control_block: Option<usize>,
+}
+
+impl Default for AssessOptions {
+    fn default() -> Self {
+        AssessOptions {
+            points: 200,
+            control_block: None,
+        }
+    }
+}
+
+/// The seismic assessment of a scene: its analysis, the capacity of its governing mechanism
+/// and the verdict at its `[site]`.
+#[derive(Debug, Clone)]
+pub struct SiteAssessment {
+    pub analysis: SceneAnalysis,
+    pub site: crate::spectrum::Site,
+    pub capacity: crate::assess::Capacity,
+    pub verdict: crate::assess::Verdict,
+}
+
+/// Assess a scene at its `[site]` (NTC 2018 / Circolare 2019 C8.7.1: linear and nonlinear
+/// kinematic analysis of the governing mechanism, see [`crate::assess`]).
+pub fn assess(
+    scene: &Scene,
+    options: &Options,
+    assess: &AssessOptions,
+) -> Result<SiteAssessment, AnalysisError> {
+    let site = scene.site.clone().ok_or_else(|| {
+        AnalysisError::Other(format!(
+            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3",
+            scene.origin
+        ))
+    })?;
+    let analysis = analyse(scene, options)?;
+    let mechanism = match &analysis.upper {
+        Ok(k) if k.status == Status::Collapse => k.mechanism.clone().ok_or_else(|| {
+            AnalysisError::Other("the kinematic analysis names no mechanism".into())
+        })?,
+        Ok(k) => {
+            return Err(AnalysisError::Other(format!(
+                "no mechanism to assess: the kinematic status is {}",
+                k.status.as_str()
+            )))
+        }
+        Err(why) => {
+            return Err(AnalysisError::Other(format!(
+                "no mechanism to assess: {why}"
+            )))
+        }
+    };
+    let settings = crate::assess::CapacitySettings {
+        points: assess.points,
+        control_block: assess.control_block,
+        fc: site.fc,
+    };
+    let capacity =
+        crate::assess::capacity(&analysis.model, &mechanism, options.direction(), &settings)
+            .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    let verdict = crate::assess::verdict(&analysis.model, &capacity, &site);
+    Ok(SiteAssessment {
+        analysis,
+        site,
+        capacity,
+        verdict,
+    })
+}

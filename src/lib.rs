@@ -1,5 +1,6 @@
 pub mod analysis;
 pub mod assembly;
+pub mod assess;
 pub mod convergence;
 pub mod dem;
 pub mod error;
@@ -11,6 +12,7 @@ pub mod outcome;
 pub mod overrides;
 pub mod report;
 pub mod scene;
+pub mod spectrum;
 pub mod study;
 pub mod sweep;
 pub mod thickness;

@@ -34,6 +34,9 @@ enum Command {
     /// Speed against accuracy: refine the voussoir count, vary Clarabel's tolerance and the
     /// DEM's time step, stiffness and bracket tolerance; errors against the continuous model
     Convergence(cli::convergence::Args),
+    /// Seismic verdict of the governing mechanism at a site (NTC 2018 / Circolare 2019
+    /// C8.7.1: participating mass, capacity curve, linear and nonlinear kinematic checks)
+    Assess(cli::assess::Args),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Command::Study(a) => cli::study::run(a),
         Command::MinThickness(a) => cli::min_thickness::run(a),
         Command::Convergence(a) => cli::convergence::run(a),
+        Command::Assess(a) => cli::assess::run(a),
     };
     match result {
         Ok(out) => {

@@ -4,6 +4,7 @@
 //! work, writing output files whole or not at all, and the progress bar.
 
 pub mod analyze;
+pub mod assess;
 pub mod convergence;
 pub mod dem;
 pub mod min_thickness;

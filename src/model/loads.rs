@@ -364,6 +364,69 @@ impl LoadCase {
         }
     }
 
+    /// The same loads carried by blocks moved rigidly: block `i` turned by `moves[i].1` (rad,
+    /// counter-clockwise) about its centroid and its centroid moved by `moves[i].0` (the
+    /// convention of a drawing's placements). Every applied load keeps its magnitude and
+    /// direction (weights stay vertical) and moves with its point of application; the
+    /// resultants are rebuilt from the applied loads. The spread loads are kept as given (they
+    /// describe the ring before the motion). For the finite kinematics of a mechanism
+    /// (`crate::assess`) and a DEM started from a displaced configuration.
+    ///
+    /// # Panics
+    /// When `moves` has fewer entries than there are blocks (a programming error).
+    pub fn moved(&self, moves: &[(Vec2, f64)]) -> LoadCase {
+        let place = |block: usize, p: Vec2| {
+            let (d, rot) = moves[block];
+            let (sn, cs) = rot.sin_cos();
+            let c = self.centroids[block];
+            let r = p - c;
+            c + d + Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y)
+        };
+        let centroids: Vec<Vec2> = (0..self.len())
+            .map(|i| place(i, self.centroids[i]))
+            .collect();
+        let applied: Vec<AppliedLoad> = self
+            .applied
+            .iter()
+            .map(|a| AppliedLoad {
+                point: place(a.block, a.point),
+                region: a
+                    .region
+                    .as_ref()
+                    .map(|r| r.iter().map(|p| place(a.block, *p)).collect()),
+                ..a.clone()
+            })
+            .collect();
+        let mut permanent = vec![Wrench::default(); self.len()];
+        let mut seismic: Vec<SeismicMass> = centroids
+            .iter()
+            .map(|c| SeismicMass {
+                weight: 0.0,
+                centre: *c,
+            })
+            .collect();
+        let mut moment = vec![Vec2::zeros(); self.len()];
+        for a in &applied {
+            let i = a.block;
+            permanent[i] = permanent[i] + Wrench::of_force(a.force, a.point, centroids[i]);
+            seismic[i].weight += a.seismic_weight;
+            moment[i] += a.seismic_weight * a.point;
+        }
+        for (s, m) in seismic.iter_mut().zip(&moment) {
+            if s.weight > 0.0 {
+                s.centre = m / s.weight;
+            }
+        }
+        LoadCase {
+            permanent,
+            seismic,
+            centroids,
+            vertical_ratio: self.vertical_ratio,
+            applied,
+            spread: self.spread.clone(),
+        }
+    }
+
     /// Check the load case against its assembly: one entry per block, finite values,
     /// non-negative seismic weights.
     pub fn validate(&self, assembly: &Assembly) -> Result<(), crate::error::AnalysisError> {

@@ -1,6 +1,7 @@
 //! What the CLI prints, one file per format: the JSON contract ([`json`]), the thrust-line
 //! CSV ([`csv`]) and the human summaries and titles ([`summary`]).
 
+pub mod assessment;
 pub mod csv;
 pub mod json;
 pub mod summary;

@@ -144,6 +144,8 @@ pub struct Scene {
     /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem`; empty when
     /// the scene has none.
     pub dem: Table,
+    /// `[site]`, when given: the seismic site for `voussoir assess` ([`crate::spectrum`]).
+    pub site: Option<crate::spectrum::Site>,
     /// Where the scene came from (file path or "<string>"), for messages.
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
@@ -301,7 +303,7 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
 }
 
 const SECTIONS: &[&str] = &[
-    "arch", "piers", "material", "dem", "fill", "seismic", "loads",
+    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -617,6 +619,9 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         section(&table, "seismic", origin)?.unwrap_or(&empty),
         origin,
     ))?;
+    let site = section(&table, "site", origin)?
+        .map(|t| crate::spectrum::Site::from_table(t, origin))
+        .transpose()?;
     let scene = Scene {
         arch,
         piers,
@@ -625,6 +630,7 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         fill,
         seismic,
         dem,
+        site,
         origin: origin.to_string(),
         table,
     };

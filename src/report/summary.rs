@@ -154,13 +154,7 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
         if a.voussoirs == 1 { "" } else { "s" }
     );
     if let Some(p) = &scene.piers {
-        let _ = write!(
-            s,
-            "\n  on piers h = {} m, b = {} m, {}",
-            num(p.height),
-            num(p.width),
-            count(p.courses as u64, "course", "courses")
-        );
+        let _ = write!(s, "\n  {}", p.describe());
     }
     let _ = write!(
         s,

@@ -476,3 +476,37 @@ fn a_portal_that_leans_cannot_stand_in_either_direction() {
             .stands
     );
 }
+
+#[test]
+fn dem_agrees_with_the_static_bound_on_the_new_geometries() {
+    // The DEM simulates the block polygons as built: vertical joints, horizontal beds,
+    // stepped and battered piers. Its bracket (1 % wide) must hold the static multiplier
+    // within the DEM's documented offset (2 %, docs/dem.md).
+    let cases = [
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 16\njoints = \"vertical\"\n".to_string(),
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 16\njoints = \"horizontal_bed\"\nhorizontal_bed_deg = 30\n".to_string(),
+        portal(0.2, 12, &format!("[piers]\nheight = 1.2\n{STEPPED}")),
+        portal(0.2, 12, &format!("[piers]\nheight = 1.2\n{BATTERED}[piers.right]\nheight = 0.9\n")),
+    ];
+    for text in &cases {
+        let s = scene(text);
+        let m = model_of(&s);
+        let lower = lp::analyse(&m, &StaticSettings::default())
+            .expect("static")
+            .lambda
+            .expect("collapse");
+        let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
+        let r = voussoir::dem::collapse_multiplier(&m, &p, 0.01, &mut |_| {}).expect("DEM");
+        assert_eq!(r.undecided_runs, 0, "{text}");
+        let (lo, hi) = (
+            r.lambda_stands.expect("stands"),
+            r.lambda_collapses.expect("collapses"),
+        );
+        let mid = 0.5 * (lo + hi);
+        println!("{text}\n  static {lower:.5} DEM [{lo:.5}, {hi:.5}]");
+        assert!(
+            (mid / lower - 1.0).abs() < 0.02,
+            "{text}: DEM {mid} static {lower}"
+        );
+    }
+}

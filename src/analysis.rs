@@ -240,7 +240,7 @@ fn continuous_of(
         // Its sections are radial cuts of the ring: with other joints the discrete arch is
         // not a subdivision of that continuum, so the model does not bound it.
         return Err(KinematicError::Continuous(format!(
-            "the continuous model cuts the ring along radial sections; it does not apply to arch.joints = \"{}\" (the discrete searches and the static program do)",
+            "it cuts the ring along radial sections, so it does not apply to arch.joints = \"{}\" (the static program, the discrete searches and the DEM do)",
             scene.arch.joints.name()
         )));
     }

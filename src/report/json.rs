@@ -403,7 +403,12 @@ impl MinThicknessReport {
             }
             Some(Err(e)) => {
                 rep.min_thickness_continuous = Some(None);
-                rep.continuous_note = Some(format!("continuous model: {e}"));
+                // The model's own errors already say where they come from.
+                rep.continuous_note = Some(if e.starts_with("continuous model: ") {
+                    e.clone()
+                } else {
+                    format!("continuous model: {e}")
+                });
             }
             None => {}
         }

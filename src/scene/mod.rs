@@ -8,7 +8,7 @@
 mod build;
 mod piers;
 pub use build::build;
-pub use piers::{piers_table, Pier, PierProfile, Piers};
+pub use piers::{Pier, PierProfile, Piers};
 
 use crate::error::{did_you_mean, SceneError};
 use crate::geometry::{

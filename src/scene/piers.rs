@@ -23,7 +23,7 @@
 use super::{Section, MAX_VOUSSOIRS};
 use crate::error::SceneError;
 use crate::geometry::Vec2;
-use toml::{Table, Value};
+use toml::Value;
 
 /// The profile of a pier: how wide each course is.
 #[derive(Debug, Clone, PartialEq)]
@@ -524,39 +524,4 @@ impl Section<'_> {
             allowed: allowed.to_string(),
         }
     }
-}
-
-/// Write `piers` as the TOML of a `[piers]` table with `[piers.left]` / `[piers.right]`
-/// (used to mirror a scene).
-pub fn piers_table(piers: &Piers) -> Table {
-    let side = |p: &Pier| {
-        let mut t = Table::new();
-        t.insert("height".into(), Value::Float(p.height));
-        t.insert("shape".into(), Value::String(p.shape_name().into()));
-        match &p.profile {
-            PierProfile::Rectangular { width } => {
-                t.insert("width".into(), Value::Float(*width));
-                t.insert("courses".into(), Value::Integer(p.courses as i64));
-            }
-            PierProfile::Stepped { widths } => {
-                t.insert(
-                    "widths".into(),
-                    Value::Array(widths.iter().map(|w| Value::Float(*w)).collect()),
-                );
-            }
-            PierProfile::Battered {
-                bottom_width,
-                top_width,
-            } => {
-                t.insert("bottom_width".into(), Value::Float(*bottom_width));
-                t.insert("top_width".into(), Value::Float(*top_width));
-                t.insert("courses".into(), Value::Integer(p.courses as i64));
-            }
-        }
-        Value::Table(t)
-    };
-    let mut t = Table::new();
-    t.insert("left".into(), side(&piers.left));
-    t.insert("right".into(), side(&piers.right));
-    t
 }

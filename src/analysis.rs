@@ -236,6 +236,14 @@ fn continuous_of(
     model: &Model,
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
+    if !scene.arch.joints.is_radial() {
+        // Its sections are radial cuts of the ring: with other joints the discrete arch is
+        // not a subdivision of that continuum, so the model does not bound it.
+        return Err(KinematicError::Continuous(format!(
+            "it cuts the ring along radial sections, so it does not apply to arch.joints = \"{}\" (the static program, the discrete searches and the DEM do)",
+            scene.arch.joints.name()
+        )));
+    }
     kinematic::continuous(
         model,
         scene.arch.shape.as_ref(),

@@ -216,27 +216,7 @@ impl Assembly {
     }
 }
 
-/// Whether a polygon is convex (every turn the same way; straight angles allowed).
-pub fn is_convex(polygon: &[Vec2]) -> bool {
-    let m = polygon.len();
-    if m < 3 {
-        return false;
-    }
-    let (mut pos, mut neg) = (false, false);
-    for k in 0..m {
-        let a = polygon[k];
-        let b = polygon[(k + 1) % m];
-        let c = polygon[(k + 2) % m];
-        let turn = geometry::cross(b - a, c - b);
-        let scale = (b - a).norm() * (c - b).norm();
-        if turn > 1e-12 * scale {
-            pos = true;
-        } else if turn < -1e-12 * scale {
-            neg = true;
-        }
-    }
-    !(pos && neg)
-}
+pub use crate::geometry::is_convex;
 
 /// Which end of a joint a hinge sits at.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

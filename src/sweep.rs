@@ -299,10 +299,9 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         .iter()
         .find(|(k, _)| *k == "eccentricity")
         .map_or(0.0, |(_, v)| *v);
-    let (h, b) = scene
-        .piers
-        .as_ref()
-        .map_or((f64::NAN, f64::NAN), |p| (p.height, p.width));
+    let (h, b) = scene.piers.as_ref().map_or((f64::NAN, f64::NAN), |p| {
+        (p.left.height, p.left.base_width())
+    });
     let t = scene.arch.thickness;
     vec![
         ("t/R", t / radius),

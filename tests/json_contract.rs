@@ -17,6 +17,8 @@ const SCENE_REBUILD_FIELDS: &[&str] = &[
     "unit_weight",
     "depth",
     "friction_infinite",
+    "joints",
+    "horizontal_bed_deg",
 ];
 
 /// Issue 9: the loads as read and their totals, in every report.
@@ -115,8 +117,13 @@ fn analyze_fields() {
     has_all(&v, LOAD_FIELDS, "analyze");
     has_all(
         &v["scene"]["piers"],
-        &["height", "width", "courses"],
+        &["height", "width", "courses", "left", "right"],
         "scene.piers",
+    );
+    has_all(
+        &v["scene"]["piers"]["left"],
+        &["shape", "height", "courses", "width"],
+        "scene.piers.left",
     );
     has_all(
         &v["continuous_hinges"][0],
@@ -226,14 +233,34 @@ fn scene_toml(v: &serde_json::Value) -> String {
     t += &format!("voussoirs = {}\n", sc["voussoirs"]);
     t += &format!("voussoir_shape = {}\n", sc["voussoir_shape"]);
     assert_eq!(sc["portal"].as_bool(), Some(!sc["piers"].is_null()));
+    // Issue 12: the stereotomy, echoed with its angle.
+    t += &format!("joints = {}\n", sc["joints"]);
+    if !sc["horizontal_bed_deg"].is_null() {
+        t += &format!(
+            "horizontal_bed_deg = {}\n",
+            toml_float(&sc["horizontal_bed_deg"])
+        );
+    }
     if !sc["piers"].is_null() {
         let p = &sc["piers"];
-        t += &format!(
-            "\n[piers]\nheight = {}\nwidth = {}\ncourses = {}\n",
-            toml_float(&p["height"]),
-            toml_float(&p["width"]),
-            p["courses"]
-        );
+        // height/width/courses are the left pier's; `left` and `right` give each pier.
+        assert_eq!(p["height"], p["left"]["height"]);
+        assert_eq!(p["courses"], p["left"]["courses"]);
+        for side in ["left", "right"] {
+            t += &format!("\n[piers.{side}]\n");
+            for (k, x) in p[side].as_object().expect("a pier") {
+                let value = match x {
+                    serde_json::Value::Number(_) if k == "courses" => x.to_string(),
+                    serde_json::Value::Number(_) => toml_float(x),
+                    serde_json::Value::Array(a) => format!(
+                        "[{}]",
+                        a.iter().map(toml_float).collect::<Vec<_>>().join(", ")
+                    ),
+                    other => other.to_string(),
+                };
+                t += &format!("{k} = {value}\n");
+            }
+        }
     }
     // The convention: `friction` is null exactly when `friction_infinite` is true.
     let infinite = sc["friction_infinite"].as_bool().expect("bool");
@@ -293,6 +320,17 @@ fn the_json_scene_rebuilds_the_scene() {
         ),
         ("loaded_portal.toml", &[]),
         ("filled_arch.toml", &[]),
+        ("stepped_portal.toml", &[]),
+        ("battered_portal.toml", &["piers.right.height=1.1"]),
+        (
+            "portal.toml",
+            &["piers.left.width=0.5", "piers.right.courses=2"],
+        ),
+        (
+            "portal.toml",
+            &["arch.joints=horizontal_bed", "arch.horizontal_bed_deg=30"],
+        ),
+        ("semicircular.toml", &["arch.joints=vertical"]),
     ];
     for (file, sets) in cases {
         let mut args = vec!["analyze", "--json"];

@@ -8,10 +8,12 @@
 mod basket;
 mod circular;
 mod pointed;
+mod stereotomy;
 
 pub use basket::{basket, basket_radii, side_voussoirs, Basket};
 pub use circular::{circular, Circular};
 pub use pointed::{pointed, Pointed};
+pub use stereotomy::{recut, Stereotomy};
 
 /// An arch shape: everything the rest of voussoir needs to know about one family of arches.
 /// Each shape is one type in its own file of this module; a new shape is one more file here
@@ -120,6 +122,28 @@ pub fn polar(theta: f64) -> Vec2 {
     } else {
         Vec2::new(theta.cos(), theta.sin())
     }
+}
+
+/// Whether a polygon is convex (every turn the same way; straight angles allowed).
+pub fn is_convex(polygon: &[Vec2]) -> bool {
+    let m = polygon.len();
+    if m < 3 {
+        return false;
+    }
+    let (mut pos, mut neg) = (false, false);
+    for k in 0..m {
+        let a = polygon[k];
+        let b = polygon[(k + 1) % m];
+        let c = polygon[(k + 2) % m];
+        let turn = cross(b - a, c - b);
+        let scale = (b - a).norm() * (c - b).norm();
+        if turn > 1e-12 * scale {
+            pos = true;
+        } else if turn < -1e-12 * scale {
+            neg = true;
+        }
+    }
+    !(pos && neg)
 }
 
 /// Area (always positive) and centroid of a simple polygon given in either orientation.

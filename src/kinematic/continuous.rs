@@ -357,12 +357,9 @@ impl Structure {
         model.validate()?;
         let count = |f: fn(&BlockKind) -> bool| asm.blocks.iter().filter(|b| f(&b.kind)).count();
         let k = count(|b| matches!(b, BlockKind::LeftPier(_)));
+        let kr = count(|b| matches!(b, BlockKind::RightPier(_)));
         let n = count(|b| matches!(b, BlockKind::Voussoir(_)));
-        if n == 0
-            || count(|b| matches!(b, BlockKind::RightPier(_))) != k
-            || n + 2 * k != asm.blocks.len()
-            || !asm.is_chain()
-        {
+        if n == 0 || n + k + kr != asm.blocks.len() || !asm.is_chain() {
             return Err(KinematicError::Continuous(
                 "the continuous model needs an arch (with or without two piers) built from a parametric shape".into(),
             ));
@@ -439,7 +436,7 @@ impl Structure {
             });
         }
         items.push(joint(k + n));
-        for c in 0..k {
+        for c in 0..kr {
             items.push(Item::Block(sums_of(k + n + c)));
             items.push(joint(k + n + 1 + c));
         }

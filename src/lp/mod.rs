@@ -139,16 +139,40 @@ pub fn analyse_full(
     Ok(result)
 }
 
-/// Under loads that are not symmetric the multipliers equilibrium allows form an interval that
-/// may lie entirely above 0; then the structure cannot stand without the earthquake. The
-/// phase-one program at lambda = 0 tells, for loaded models (under self-weight alone the
-/// interval straddles 0).
+/// Whether the assembly is its own mirror image about x = 0 (blocks, weights, joints and
+/// friction), to round-off relative to its size.
+fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
+    let image = assembly.mirrored();
+    let tol = 1e-9 * assembly.size();
+    let same = |a: crate::geometry::Vec2, b: crate::geometry::Vec2| (a - b).norm() <= tol;
+    image.blocks.len() == assembly.blocks.len()
+        && image.joints.len() == assembly.joints.len()
+        && image.blocks.iter().zip(&assembly.blocks).all(|(p, q)| {
+            same(p.centroid, q.centroid) && (p.weight - q.weight).abs() <= 1e-9 * q.weight
+        })
+        && image.joints.iter().zip(&assembly.joints).all(|(p, q)| {
+            same(p.p1, q.p1)
+                && same(p.p2, q.p2)
+                && p.from == q.from
+                && p.to == q.to
+                && (p.friction == q.friction
+                    || (p.friction - q.friction).abs() <= 1e-12 * q.friction)
+        })
+}
+
+/// Under loads or a structure that are not symmetric the multipliers equilibrium allows form
+/// an interval that may lie entirely above 0; then the structure cannot stand without the
+/// earthquake. The least multiplier (chains) or the phase-one program at lambda = 0 tells.
+/// A mirror-symmetric structure under self-weight alone needs no test: the mirror image of
+/// an equilibrium at lambda is one at -lambda, so the interval straddles 0.
 fn stands_at_zero(
     model: &Model,
     settings: &StaticSettings,
     result: StaticResult,
 ) -> Result<StaticResult, AnalysisError> {
-    if result.status == Status::CannotStand || model.loads.is_self_weight_only() {
+    if result.status == Status::CannotStand
+        || (model.loads.is_self_weight_only() && mirror_symmetric(&model.assembly))
+    {
         return Ok(result);
     }
     // On a chain the least multiplier tells at the cost of one more active-set solve; the

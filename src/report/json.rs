@@ -3,11 +3,12 @@
 
 use crate::analysis::SceneAnalysis;
 use crate::assembly::{Hinge, JointKind};
+use crate::geometry::Stereotomy;
 use crate::kinematic::ContinuousHinge;
 use crate::lp::{ModelSize, StaticResult};
 use crate::model::Model;
 use crate::outcome::{Direction, Status};
-use crate::scene::{FillSpec, LoadSpec, Scene, VoussoirShape};
+use crate::scene::{FillSpec, LoadSpec, Pier, PierProfile, Scene, VoussoirShape};
 use crate::thickness::{MinThickness, ThicknessAnalysis, ThicknessOutcome};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -56,6 +57,10 @@ pub struct SceneReport {
     pub shape_keys: BTreeMap<&'static str, f64>,
     /// `[piers]` (height and width in m, courses), or null for an arch on fixed springings.
     pub piers: Option<PiersReport>,
+    /// `[arch] joints`: the stereotomy (`radial`, `vertical`, `horizontal_bed`).
+    pub joints: &'static str,
+    /// `[arch] horizontal_bed_deg` (degrees), or null unless `joints` is `horizontal_bed`.
+    pub horizontal_bed_deg: Option<f64>,
     /// `[material] unit_weight` (N/m^3).
     pub unit_weight: f64,
     /// `[material] depth` (m).
@@ -65,12 +70,61 @@ pub struct SceneReport {
     pub friction_infinite: bool,
 }
 
-/// `[piers]` echoed in the JSON `scene`.
+/// `[piers]` echoed in the JSON `scene`: `height`, `width` and `courses` are the left pier's
+/// (its base width), the whole portal's when the piers are equal and rectangular; `left` and
+/// `right` give each pier with its scene keys.
 #[derive(Debug, Serialize)]
 pub struct PiersReport {
     pub height: f64,
     pub width: f64,
     pub courses: usize,
+    pub left: PierReport,
+    pub right: PierReport,
+}
+
+/// One pier with its scene keys (`[piers.left]`, `[piers.right]`); the keys its profile does
+/// not take are left out.
+#[derive(Debug, Serialize)]
+pub struct PierReport {
+    /// `rectangular`, `stepped` or `battered`.
+    pub shape: &'static str,
+    pub height: f64,
+    pub courses: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Course widths, base to top (stepped).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub widths: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bottom_width: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub top_width: Option<f64>,
+}
+
+impl PierReport {
+    fn new(p: &Pier) -> Self {
+        let mut r = PierReport {
+            shape: p.shape_name(),
+            height: p.height,
+            courses: p.courses,
+            width: None,
+            widths: None,
+            bottom_width: None,
+            top_width: None,
+        };
+        match &p.profile {
+            PierProfile::Rectangular { width } => r.width = Some(*width),
+            PierProfile::Stepped { widths } => r.widths = Some(widths.clone()),
+            PierProfile::Battered {
+                bottom_width,
+                top_width,
+            } => {
+                r.bottom_width = Some(*bottom_width);
+                r.top_width = Some(*top_width);
+            }
+        }
+        r
+    }
 }
 
 /// The loads of a scene as read, and their totals (fields `loads`, `fill`, `vertical_ratio`,
@@ -195,10 +249,17 @@ impl SceneReport {
                 .map(|(k, v)| (k, round15(v)))
                 .collect(),
             piers: scene.piers.as_ref().map(|p| PiersReport {
-                height: p.height,
-                width: p.width,
-                courses: p.courses,
+                height: p.left.height,
+                width: p.left.base_width(),
+                courses: p.left.courses,
+                left: PierReport::new(&p.left),
+                right: PierReport::new(&p.right),
             }),
+            joints: scene.arch.joints.name(),
+            horizontal_bed_deg: match scene.arch.joints {
+                Stereotomy::HorizontalBed { angle } => Some(round15(angle.to_degrees())),
+                _ => None,
+            },
             unit_weight: scene.material.unit_weight,
             depth: scene.material.depth,
             friction_infinite: scene.material.friction.is_infinite(),
@@ -347,7 +408,12 @@ impl MinThicknessReport {
             }
             Some(Err(e)) => {
                 rep.min_thickness_continuous = Some(None);
-                rep.continuous_note = Some(format!("continuous model: {e}"));
+                // The model's own errors already say where they come from.
+                rep.continuous_note = Some(if e.starts_with("continuous model: ") {
+                    e.clone()
+                } else {
+                    format!("continuous model: {e}")
+                });
             }
             None => {}
         }

@@ -3,6 +3,7 @@
 use super::{DemReport, MinThicknessReport};
 use crate::analysis::SceneAnalysis;
 use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
+use crate::geometry::Stereotomy;
 use crate::kinematic::Family;
 use crate::lp::StaticResult;
 use crate::model::Model;
@@ -153,14 +154,19 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
         a.voussoirs,
         if a.voussoirs == 1 { "" } else { "s" }
     );
+    match a.joints {
+        Stereotomy::Radial => {}
+        Stereotomy::Vertical => s.push_str(", vertical joints"),
+        Stereotomy::HorizontalBed { angle } => {
+            let _ = write!(
+                s,
+                ", horizontal beds up to {} deg, radial joints above",
+                num(angle.to_degrees())
+            );
+        }
+    }
     if let Some(p) = &scene.piers {
-        let _ = write!(
-            s,
-            "\n  on piers h = {} m, b = {} m, {}",
-            num(p.height),
-            num(p.width),
-            count(p.courses as u64, "course", "courses")
-        );
+        let _ = write!(s, "\n  {}", p.describe());
     }
     let _ = write!(
         s,

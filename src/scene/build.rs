@@ -18,7 +18,7 @@
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap`
 //!   (line) or its own weight (fill) at the same point.
 
-use super::{LoadSpec, Scene, VoussoirShape};
+use super::{piers, LoadSpec, Scene, VoussoirShape};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
@@ -26,7 +26,7 @@ use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad}
 
 /// Build the assembly and load case of a scene.
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
-    let (assembly, arch) = build_assembly(scene);
+    let (assembly, arch) = build_assembly(scene)?;
     let loads = build_loads(scene, &assembly, &arch)?;
     Ok(Model { assembly, loads })
 }
@@ -43,9 +43,14 @@ struct ArchPlacement {
 
 /// The blocks and joints of a scene: the left pier courses from the base up, the voussoirs
 /// from left to right, the right pier courses from the top down (a chain).
-fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
+fn build_assembly(scene: &Scene) -> Result<(Assembly, ArchPlacement), SceneError> {
     let a = &scene.arch;
-    let g = a.shape.geometry(a.thickness, a.voussoirs);
+    let g = a.geometry().map_err(|why| SceneError::OutOfRange {
+        origin: scene.origin.clone(),
+        key: "arch.joints".into(),
+        value: format!("\"{}\"", a.joints.name()),
+        allowed: why,
+    })?;
     let gamma = scene.material.unit_weight * scene.material.depth;
     let mu = scene.material.friction;
     let curved = a.voussoir_shape == VoussoirShape::Curved;
@@ -53,7 +58,10 @@ fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
 
     let mut blocks = Vec::new();
     let mut joints = Vec::new();
-    let k = scene.piers.as_ref().map_or(0, |p| p.courses);
+    let (kl, kr) = scene
+        .piers
+        .as_ref()
+        .map_or((0, 0), |p| (p.left.courses, p.right.courses));
     let chain_joint = |p1, p2, idx: usize, last: usize, kind| Joint {
         p1,
         p2,
@@ -62,35 +70,27 @@ fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
         friction: mu,
         kind,
     };
-    let total_blocks = n + 2 * k;
+    let total_blocks = n + kl + kr;
     let mut pier_tops = Vec::new();
 
     // Left pier, base to top.
-    let xi = g.joints[0].0.x;
-    let xe = g.joints[0].1.x;
+    let (xi, xe) = (g.joints[0].0.x, g.joints[0].1.x);
+    let (xi_r, xe_r) = (g.joints[n].0.x, g.joints[n].1.x);
     if let Some(p) = &scene.piers {
-        let (h, b) = (p.height, p.width);
-        for c in 0..k {
-            let y0 = -h + h * c as f64 / k as f64;
-            let y1 = -h + h * (c + 1) as f64 / k as f64;
-            let poly = vec![
-                Vec2::new(xi - b, y0),
-                Vec2::new(xi, y0),
-                Vec2::new(xi, y1),
-                Vec2::new(xi - b, y1),
-            ];
-            blocks.push(rect_block(poly, gamma, BlockKind::LeftPier(c)));
+        for (c, course) in piers::courses(&p.left, xi, -1.0).into_iter().enumerate() {
+            blocks.push(rect_block(course.polygon, gamma, BlockKind::LeftPier(c)));
             let idx = joints.len();
             joints.push(chain_joint(
-                Vec2::new(xi, y0),
-                Vec2::new(xi - b, y0),
+                course.bed.0,
+                course.bed.1,
                 idx,
                 total_blocks,
                 JointKind::LeftPier(c),
             ));
         }
+        let b = p.left.top_width();
         if xe > xi - b {
-            pier_tops.push((k - 1, xi - b, xe));
+            pier_tops.push((kl - 1, xi - b, xe));
         }
     }
     let first = blocks.len();
@@ -100,11 +100,11 @@ fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
         if let Some(p) = &scene.piers {
             // The arch rests on the pier top only where the springing joint lies on it.
             if j == 0 {
-                p2 = Vec2::new(xe.max(xi - p.width), 0.0);
+                p2 = Vec2::new(xe.max(xi - p.left.top_width()), 0.0);
                 p1 = Vec2::new(xi, 0.0);
             } else if j == n {
-                p1 = Vec2::new(-xi, 0.0);
-                p2 = Vec2::new(-(xe.max(xi - p.width)), 0.0);
+                p1 = Vec2::new(xi_r, 0.0);
+                p2 = Vec2::new(xe_r.min(xi_r + p.right.top_width()), 0.0);
             }
         }
         let idx = joints.len();
@@ -120,26 +120,19 @@ fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
             });
         }
     }
-    // Right pier, top to base: the mirror image of the left one.
+    // Right pier, top to base.
     if let Some(p) = &scene.piers {
-        let (h, b) = (p.height, p.width);
-        if xe > xi - b {
-            pier_tops.push((blocks.len(), -xe, -(xi - b)));
+        let b = p.right.top_width();
+        if xe_r < xi_r + b {
+            pier_tops.push((blocks.len(), xe_r, xi_r + b));
         }
-        for c in (0..k).rev() {
-            let y0 = -h + h * c as f64 / k as f64;
-            let y1 = -h + h * (c + 1) as f64 / k as f64;
-            let poly = vec![
-                Vec2::new(-xi, y0),
-                Vec2::new(-xi + b, y0),
-                Vec2::new(-xi + b, y1),
-                Vec2::new(-xi, y1),
-            ];
-            blocks.push(rect_block(poly, gamma, BlockKind::RightPier(c)));
+        let courses = piers::courses(&p.right, xi_r, 1.0);
+        for (c, course) in courses.into_iter().enumerate().rev() {
+            blocks.push(rect_block(course.polygon, gamma, BlockKind::RightPier(c)));
             let idx = joints.len();
             joints.push(chain_joint(
-                Vec2::new(-xi, y0),
-                Vec2::new(-xi + b, y0),
+                course.bed.0,
+                course.bed.1,
                 idx,
                 total_blocks,
                 JointKind::RightPier(c),
@@ -152,7 +145,7 @@ fn build_assembly(scene: &Scene) -> (Assembly, ArchPlacement) {
         curved,
         pier_tops,
     };
-    (Assembly { blocks, joints }, placement)
+    Ok((Assembly { blocks, joints }, placement))
 }
 
 fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {

@@ -6,10 +6,14 @@
 //! sweep or the minimum-thickness search) go through exactly the same validation.
 
 mod build;
+mod piers;
 pub use build::build;
+pub use piers::{Pier, PierProfile, Piers};
 
 use crate::error::{did_you_mean, SceneError};
-use crate::geometry::{basket_radii, side_voussoirs, ArchShape, Basket, Circular, Pointed};
+use crate::geometry::{
+    basket_radii, side_voussoirs, ArchGeometry, ArchShape, Basket, Circular, Pointed, Stereotomy,
+};
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Arc;
@@ -56,17 +60,20 @@ pub struct ArchSpec {
     /// Number of voussoirs n.
     pub voussoirs: usize,
     pub voussoir_shape: VoussoirShape,
+    /// How the ring is cut into voussoirs (`joints`; radial by default).
+    pub joints: Stereotomy,
 }
 
-/// Two rectangular piers under the springings (a portal).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Piers {
-    /// Height h (m), from the pier base to the springing line.
-    pub height: f64,
-    /// Width b (m).
-    pub width: f64,
-    /// Number of equal courses k.
-    pub courses: usize,
+impl ArchSpec {
+    /// The joints and arcs of the ring, cut with the scene's stereotomy.
+    pub fn geometry(&self) -> Result<ArchGeometry, String> {
+        let g = self.shape.geometry(self.thickness, self.voussoirs);
+        crate::geometry::recut(
+            &g,
+            self.joints,
+            self.voussoir_shape == VoussoirShape::Curved,
+        )
+    }
 }
 
 /// Material and out-of-plane depth.
@@ -269,7 +276,7 @@ impl Scene {
     /// and the conic program dimensionless.
     pub fn size(&self) -> f64 {
         self.arch_size()
-            .max(self.piers.as_ref().map_or(0.0, |p| p.height))
+            .max(self.piers.as_ref().map_or(0.0, |p| p.max_height()))
     }
 }
 
@@ -277,9 +284,12 @@ pub use crate::overrides::parse_assignment;
 
 fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
     let parts: Vec<&str> = key.split('.').collect();
-    if parts.len() != 2 || parts.iter().any(|p| p.is_empty()) {
+    // One pier of a portal is set with three parts: `piers.left.height`.
+    let pier_side =
+        parts.len() == 3 && parts[0] == "piers" && ["left", "right"].contains(&parts[1]);
+    if !(parts.len() == 2 || pier_side) || parts.iter().any(|p| p.is_empty()) {
         return Err(format!(
-            "key `{key}` must be SECTION.KEY, e.g. arch.thickness or piers.height"
+            "key `{key}` must be SECTION.KEY, e.g. arch.thickness or piers.height (or piers.left.KEY, piers.right.KEY)"
         ));
     }
     if !SECTIONS.contains(&parts[0]) {
@@ -293,13 +303,21 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     let section = table
         .entry(parts[0].to_string())
         .or_insert_with(|| Value::Table(Table::new()));
-    match section {
-        Value::Table(t) => {
-            t.insert(parts[1].to_string(), value);
-            Ok(())
-        }
-        _ => Err(format!("`{}` is not a table in the scene", parts[0])),
+    let Value::Table(t) = section else {
+        return Err(format!("`{}` is not a table in the scene", parts[0]));
+    };
+    if pier_side {
+        let side = t
+            .entry(parts[1].to_string())
+            .or_insert_with(|| Value::Table(Table::new()));
+        let Value::Table(st) = side else {
+            return Err(format!("`piers.{}` is not a table in the scene", parts[1]));
+        };
+        st.insert(parts[2].to_string(), value);
+    } else {
+        t.insert(parts[1].to_string(), value);
     }
+    Ok(())
 }
 
 const SECTIONS: &[&str] = &[
@@ -307,14 +325,20 @@ const SECTIONS: &[&str] = &[
 ];
 
 /// The keys of `[arch]` every shape takes.
-const ARCH_KEYS: &[&str] = &["shape", "thickness", "voussoirs", "voussoir_shape"];
+const ARCH_KEYS: &[&str] = &[
+    "shape",
+    "thickness",
+    "voussoirs",
+    "voussoir_shape",
+    "joints",
+    "horizontal_bed_deg",
+];
 /// The keys of `[arch]` each shape adds.
 const SHAPE_KEYS: &[(&str, &[&str])] = &[
     ("circular", &["radius", "embrace_deg"]),
     ("pointed", &["radius", "eccentricity"]),
     ("basket", &["span", "rise", "side_angle_deg"]),
 ];
-const PIERS_KEYS: &[&str] = &["height", "width", "courses"];
 const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction"];
 const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic"];
 const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
@@ -813,13 +837,62 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
             &format!("must be at least {MIN_RELATIVE_THICKNESS:e} of the arch's size ({size} m)"),
         ));
     }
+    let joints = parse_joints(&mut s)?;
     s.finish(&format!("for shape = \"{shape_name}\" "))?;
-    Ok(ArchSpec {
+    let arch = ArchSpec {
         shape,
         thickness,
         voussoirs,
         voussoir_shape,
-    })
+        joints,
+    };
+    if let Err(why) = arch.geometry() {
+        return Err(s.out_of_range(
+            "joints",
+            format!("\"{}\"", joints.name()),
+            &format!("cannot cut this {} arch: {why}", arch.shape.title()),
+        ));
+    }
+    Ok(arch)
+}
+
+/// `joints` (the stereotomy) and `horizontal_bed_deg` (its angle, for horizontal beds only).
+fn parse_joints(s: &mut Section) -> Result<Stereotomy, SceneError> {
+    let word = s.string("joints", Some("radial"))?;
+    let angle = s.opt_f64("horizontal_bed_deg")?;
+    match (word.as_str(), angle) {
+        ("radial", None) => Ok(Stereotomy::Radial),
+        ("vertical", None) => Ok(Stereotomy::Vertical),
+        ("horizontal_bed", Some(deg)) => {
+            if !(deg.is_finite() && deg > 0.0 && deg < 90.0) {
+                return Err(s.out_of_range(
+                    "horizontal_bed_deg",
+                    deg,
+                    "must be > 0 and < 90 (degrees from the horizontal up to which joints are horizontal beds)",
+                ));
+            }
+            Ok(Stereotomy::HorizontalBed {
+                angle: deg.to_radians(),
+            })
+        }
+        ("horizontal_bed", None) => Err(s.missing(
+            "horizontal_bed_deg",
+            "with joints = \"horizontal_bed\", the angle in degrees from the horizontal up to which the radial joints become horizontal beds",
+        )),
+        ("radial" | "vertical", Some(deg)) => Err(s.out_of_range(
+            "horizontal_bed_deg",
+            deg,
+            &format!("applies only to joints = \"horizontal_bed\" (here joints = \"{word}\")"),
+        )),
+        (other, _) => Err(s.out_of_range(
+            "joints",
+            format!("\"{other}\""),
+            &format!(
+                "must be \"radial\", \"vertical\" or \"horizontal_bed\"{}",
+                did_you_mean(other, &["radial", "vertical", "horizontal_bed"])
+            ),
+        )),
+    }
 }
 
 /// The largest even n whose joint next to the crown stays left of the axis on the intrados.
@@ -835,12 +908,9 @@ fn max_pointed_voussoirs(phi_end: f64, psi_intrados: f64) -> usize {
     2 * h
 }
 
-fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
-    s.check_known(PIERS_KEYS, "")?;
-    let height = s.length("height", "pier height h in metres")?;
-    let width = s.length("width", "pier width b in metres")?;
-    let courses = s.count("courses", Some(1), 1, "")?;
-    s.finish("")?;
+fn parse_piers(s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
+    let origin = s.origin;
+    let piers = piers::parse_piers(s)?;
     if !arch.shape.horizontal_springings() {
         // Only a circular arch with an embrace other than 180 deg has inclined springings.
         let (key, value) = arch
@@ -850,17 +920,13 @@ fn parse_piers(mut s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
             .find(|(k, _)| *k == "embrace_deg")
             .map_or(("shape", f64::NAN), |(k, v)| (k, v));
         return Err(SceneError::OutOfRange {
-            origin: s.origin.to_string(),
+            origin: origin.to_string(),
             key: format!("arch.{key}"),
             value: ((value * 1e9).round() / 1e9).to_string(),
             allowed: format!("piers need horizontal springing joints: a {} arch on piers must have embrace_deg = 180", arch.shape.name()),
         });
     }
-    Ok(Piers {
-        height,
-        width,
-        courses,
-    })
+    Ok(piers)
 }
 
 fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError> {

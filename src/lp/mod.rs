@@ -140,24 +140,30 @@ pub fn analyse_full(
 }
 
 /// Whether the assembly is its own mirror image about x = 0 (blocks, weights, joints and
-/// friction), to round-off relative to its size.
+/// friction), to round-off relative to its size: block i against the mirror of block
+/// n - 1 - i and joint k against the mirror of joint m - 1 - k, as [`Assembly::mirrored`]
+/// numbers them, without building the image (this runs on every self-weight analysis).
+///
+/// [`Assembly::mirrored`]: crate::assembly::Assembly::mirrored
 fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
-    let image = assembly.mirrored();
+    use crate::geometry::mirror;
+    let (nb, nj) = (assembly.blocks.len(), assembly.joints.len());
     let tol = 1e-9 * assembly.size();
     let same = |a: crate::geometry::Vec2, b: crate::geometry::Vec2| (a - b).norm() <= tol;
-    image.blocks.len() == assembly.blocks.len()
-        && image.joints.len() == assembly.joints.len()
-        && image.blocks.iter().zip(&assembly.blocks).all(|(p, q)| {
-            same(p.centroid, q.centroid) && (p.weight - q.weight).abs() <= 1e-9 * q.weight
-        })
-        && image.joints.iter().zip(&assembly.joints).all(|(p, q)| {
-            same(p.p1, q.p1)
-                && same(p.p2, q.p2)
-                && p.from == q.from
-                && p.to == q.to
-                && (p.friction == q.friction
-                    || (p.friction - q.friction).abs() <= 1e-12 * q.friction)
-        })
+    let flip = |b: Option<usize>| b.map(|i| nb - 1 - i);
+    let blocks = &assembly.blocks;
+    let joints = &assembly.joints;
+    (0..nb).all(|i| {
+        let (p, q) = (&blocks[nb - 1 - i], &blocks[i]);
+        same(mirror(p.centroid), q.centroid) && (p.weight - q.weight).abs() <= 1e-9 * q.weight
+    }) && (0..nj).all(|k| {
+        let (p, q) = (&joints[nj - 1 - k], &joints[k]);
+        same(mirror(p.p1), q.p1)
+            && same(mirror(p.p2), q.p2)
+            && flip(p.to) == q.from
+            && flip(p.from) == q.to
+            && (p.friction == q.friction || (p.friction - q.friction).abs() <= 1e-12 * q.friction)
+    })
 }
 
 /// Under loads or a structure that are not symmetric the multipliers equilibrium allows form

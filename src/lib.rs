@@ -1,5 +1,6 @@
 pub mod analysis;
 pub mod assembly;
+pub mod blocks;
 pub mod convergence;
 pub mod dem;
 pub mod error;

@@ -305,7 +305,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     let thrust = drawing.forces.map(|f| super::thrust_points(assembly, f));
     // A thrust line runs along a chain; in any other assembly (a wall of several courses) the
     // resultants of the joints are drawn as points, not joined.
-    let chain = assembly.is_chain() || {
+    let joined = assembly.is_chain() || {
         let nb = assembly.blocks.len();
         assembly.joints.len() == nb
             && assembly
@@ -315,7 +315,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
                 .all(|(k, j)| j.from == k.checked_sub(1) && j.to == Some(k))
     };
     if thrust.is_some() {
-        if chain {
+        if joined {
             legend.push((Glyph::Line(THRUST, 3, false), "thrust line".into()));
         } else {
             legend.push((
@@ -508,7 +508,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
                     .map(|p| p.filter(|q| q.x.is_finite() && q.y.is_finite())),
             ) {
                 let pts: Vec<_> = run.iter().map(|p| frame.px(*p)).collect();
-                if !chain {
+                if !joined {
                     for p in pts {
                         root.draw(&Circle::new(p, 3, THRUST.filled()))
                             .map_err(plot_err)?;

@@ -1,7 +1,7 @@
 //! The user's own blocks: polygons read from a file (JSON, CSV, DXF) or given inline, checked,
 //! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]).
 //!
-//! A scene's `[blocks]` table (read in `crate::scene`) names the source; this module knows the
+//! A scene's `[blocks]` table (read by the scene module) names the source; this module knows the
 //! formats and the geometry, nothing of scenes:
 //! - JSON: `{"polygons": [[[x, y], [x, y], ...], ...]}`;
 //! - CSV: rows `block,x,y` (an optional header row), the vertices of a block on consecutive

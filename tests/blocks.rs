@@ -868,3 +868,61 @@ fn example_block_files_are_current_and_analyse() {
     let (a, b) = (ls.lambda.expect("lambda"), lp_.lambda.expect("lambda"));
     assert!(close(a, b, 1e-9), "DXF arch {a} vs parametric {b}");
 }
+
+#[test]
+fn the_cli_counts_the_joints_and_refuses_what_needs_an_arch() {
+    let scene = data("blocks_stepped_buttresses.toml");
+    let out = common::voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(
+        text.contains("17 joints found between blocks and 2 supports"),
+        "{text}"
+    );
+    assert!(text.contains("(blocks 3|4), end p1"), "{text}");
+    let out = common::voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .arg("--json")
+        .assert()
+        .success();
+    let v: serde_json::Value =
+        serde_json::from_slice(&out.get_output().stdout).expect("JSON report");
+    assert_eq!(v["scene"]["shape"], "blocks");
+    assert_eq!(v["scene"]["blocks"]["joints"], 17);
+    assert_eq!(v["scene"]["blocks"]["chain"], true);
+    assert_eq!(v["joints"][4]["kind"]["between"], serde_json::json!([3, 4]));
+    let out = common::voussoir()
+        .arg("min-thickness")
+        .arg(&scene)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        err.contains("the minimum-thickness search needs a parametric structure"),
+        "{err}"
+    );
+    // A wall: no chain, said plainly; the DEM runs.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("wall.toml");
+    std::fs::write(
+        &path,
+        "[blocks]\npolygons = [[[0,0],[1,0],[1,0.5],[0,0.5]], [[1,0],[2,0],[2,0.5],[1,0.5]], \
+         [[0.5,0.5],[1.5,0.5],[1.5,1],[0.5,1]]]\n",
+    )
+    .expect("scene");
+    let out = common::voussoir()
+        .arg("analyze")
+        .arg(&path)
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    assert!(
+        text.contains("not a chain: block 0 has 3 joints (with 1, 2, ground)")
+            && text.contains("only the static bound and the DEM apply"),
+        "{text}"
+    );
+}

@@ -492,15 +492,21 @@ fn arrange(blocks: Vec<Block>, found: &[Found], friction: f64) -> (Assembly, Top
         let (i, inc) = incident
             .iter()
             .enumerate()
-            .max_by_key(|(_, inc)| inc.len())
+            // The first of the blocks with the most joints.
+            .max_by(|a, b| a.1.len().cmp(&b.1.len()).then(b.0.cmp(&a.0)))
             .unwrap_or((0, &incident[0]));
-        let others: Vec<String> = inc
+        // The neighbours in index order, the ground last.
+        let mut neighbours: Vec<Option<usize>> = inc
             .iter()
             .map(|&k| match (found[k].a == i, found[k].b) {
-                (true, Some(b)) => b.to_string(),
-                (true, None) => "ground".to_string(),
-                (false, _) => found[k].a.to_string(),
+                (true, b) => b,
+                (false, _) => Some(found[k].a),
             })
+            .collect();
+        neighbours.sort_by_key(|b| (b.is_none(), *b));
+        let others: Vec<String> = neighbours
+            .iter()
+            .map(|b| b.map_or("ground".to_string(), |b| b.to_string()))
             .collect();
         Topology::Other(format!(
             "block {i} has {} joints (with {})",

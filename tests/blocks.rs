@@ -371,15 +371,17 @@ fn dxf_of(polylines: &[(&[[f64; 2]], bool, &str)]) -> Vec<u8> {
     let mut d = dxf::Drawing::new();
     d.header.version = dxf::enums::AcadVersion::R2000;
     for (pts, closed, layer) in polylines {
-        let mut p = dxf::entities::LwPolyline::default();
-        p.vertices = pts
-            .iter()
-            .map(|q| dxf::LwPolylineVertex {
-                x: q[0],
-                y: q[1],
-                ..Default::default()
-            })
-            .collect();
+        let mut p = dxf::entities::LwPolyline {
+            vertices: pts
+                .iter()
+                .map(|q| dxf::LwPolylineVertex {
+                    x: q[0],
+                    y: q[1],
+                    ..Default::default()
+                })
+                .collect(),
+            ..Default::default()
+        };
         p.set_is_closed(*closed);
         let mut e = dxf::entities::Entity::new(dxf::entities::EntityType::LwPolyline(p));
         e.common.layer = layer.to_string();
@@ -413,7 +415,9 @@ fn bad_block_files_get_clear_errors() {
         true,
         "WALLS",
     )]);
-    let cases: Vec<(&str, String, Vec<(&str, Vec<u8>)>, &[&str])> = vec![
+    // (what, scene, files, words the error must contain)
+    type Case<'a> = (&'a str, String, Vec<(&'a str, Vec<u8>)>, &'a [&'a str]);
+    let cases: Vec<Case> = vec![
         (
             "overlap",
             scene("b.json"),

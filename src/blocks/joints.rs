@@ -5,9 +5,9 @@
 //! one point (the set where they touch is convex). They share a *joint* where an edge of one
 //! and an edge of the other lie on the same line, facing each other, and overlap: the joint
 //! is the overlap segment. A block edge lying on the ground line `y = ground_y` with the block
-//! above it is a support. Everything is compared within a tolerance `tol = relative_tolerance
-//! * size` (the structure's largest extent), so a scene and the same scene in millimetres find
-//! the same joints.
+//! above it is a support. Everything is compared within a tolerance
+//! `tol = relative_tolerance * size` (the structure's largest extent), so a scene and the same
+//! scene in millimetres find the same joints.
 //!
 //! Broad phase: sweep and prune — the blocks' bounding boxes (grown by `tol`) sorted along the
 //! structure's longer axis; only pairs whose boxes overlap on both axes are examined (about

@@ -239,8 +239,13 @@ pub fn not_a_chain(assembly: &crate::assembly::Assembly) -> Option<String> {
         crate::assembly::BlockKind::User(s) => format!("block {s}"),
         _ => format!("block {i}"),
     };
-    Some(match count.iter().enumerate().max_by_key(|(_, c)| **c) {
-        Some((i, &c)) if c > 2 => format!("{} touches {c} neighbours or supports", name(i)),
+    // The first of the blocks with the most joints.
+    let most = count
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(&a.0)));
+    Some(match most {
+        Some((i, &c)) if c > 2 => format!("{} has {c} joints", name(i)),
         _ => format!("{supports} joints rest on the ground"),
     })
 }

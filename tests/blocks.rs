@@ -935,3 +935,49 @@ fn the_cli_counts_the_joints_and_refuses_what_needs_an_arch() {
         "{text}"
     );
 }
+
+mod random {
+    use proptest::prelude::*;
+
+    /// A coordinate: mostly on a coarse grid (so blocks touch, share edges and overlap), now
+    /// and then anything, including NaN, infinities and huge values.
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            8 => (0i32..6).prop_map(|k| f64::from(k) * 0.5),
+            1 => any::<f64>(),
+            1 => prop::sample::select(vec![f64::NAN, f64::INFINITY, -1e300, 1e-300, 0.25]),
+        ]
+    }
+
+    /// An outline: any vertices, or a rectangle on the grid (which makes stacks, walls,
+    /// overlaps and corner contacts common).
+    fn outline() -> impl Strategy<Value = Vec<[f64; 2]>> {
+        prop_oneof![
+            prop::collection::vec((coordinate(), coordinate()).prop_map(|(x, y)| [x, y]), 0..7),
+            (0i32..4, 0i32..4, 1i32..3, 1i32..3).prop_map(|(x, y, w, h)| {
+                let (x0, y0, x1, y1) = (x as f64, y as f64, (x + w) as f64, (y + h) as f64);
+                vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+            }),
+        ]
+    }
+
+    fn polygons() -> impl Strategy<Value = Vec<Vec<[f64; 2]>>> {
+        prop::collection::vec(outline(), 0..7)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 2_000, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// Any polygons are read and joined, or refused with an error: never a panic, and a
+        /// structure found is a valid assembly.
+        #[test]
+        fn random_blocks_never_panic(raw in polygons(), ground in prop::option::of(coordinate())) {
+            let Ok(polys) = voussoir::blocks::from_vertices(raw, voussoir::blocks::Units::Metres) else {
+                return Ok(());
+            };
+            if let Ok(d) = voussoir::blocks::detect(&polys, ground.filter(|g| g.is_finite()), 1e-6, 1.0, f64::INFINITY) {
+                prop_assert!(d.assembly.validate().is_ok(), "{:?}", d.assembly.validate());
+            }
+        }
+    }
+}

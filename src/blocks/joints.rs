@@ -517,6 +517,12 @@ fn arrange(blocks: Vec<Block>, found: &[Found], friction: f64) -> (Assembly, Top
         Topology::Chain
     } else if supports.len() == 1 && found.len() == n {
         Topology::Column
+    } else if found.len() - supports.len() + 1 < n {
+        // Fewer joints between blocks than a connected path needs: separate groups.
+        Topology::Other(format!(
+            "the blocks stand in {} separate groups",
+            n - (found.len() - supports.len())
+        ))
     } else {
         Topology::Other(format!("{} blocks rest on the ground", supports.len()))
     };

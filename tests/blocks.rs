@@ -981,3 +981,64 @@ mod random {
         }
     }
 }
+
+#[test]
+fn dxf_polylines_of_both_kinds_on_a_layer_are_blocks() {
+    // An old-style POLYLINE (a block 0.4 x 1.0 on the ground, in millimetres) and an
+    // LWPOLYLINE on another layer: with `layer`, only the POLYLINE is read.
+    let mut d = dxf::Drawing::new();
+    d.header.version = dxf::enums::AcadVersion::R2000;
+    let mut p = dxf::entities::Polyline::default();
+    p.set_is_closed(true);
+    for (x, y) in [(0.0, 0.0), (400.0, 0.0), (400.0, 1000.0), (0.0, 1000.0)] {
+        p.add_vertex(
+            &mut d,
+            dxf::entities::Vertex::new(dxf::Point::new(x, y, 0.0)),
+        );
+    }
+    let mut e = dxf::entities::Entity::new(dxf::entities::EntityType::Polyline(p));
+    e.common.layer = "Stones".into();
+    d.add_entity(e);
+    // A triangle leaning on it, on layer Notes: it would make the block no column.
+    let mut lw = dxf::entities::LwPolyline {
+        vertices: [[0.0, 1000.0], [400.0, 1000.0], [0.0, 2000.0]]
+            .iter()
+            .map(|q| dxf::LwPolylineVertex {
+                x: q[0],
+                y: q[1],
+                ..Default::default()
+            })
+            .collect(),
+        ..Default::default()
+    };
+    lw.set_is_closed(true);
+    let mut e = dxf::entities::Entity::new(dxf::entities::EntityType::LwPolyline(lw));
+    e.common.layer = "Notes".into();
+    d.add_entity(e);
+    let mut bytes = Vec::new();
+    d.save(&mut bytes).expect("DXF");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let all = scene_in(
+        dir.path(),
+        "[blocks]\nfile = \"b.dxf\"\nunits = \"mm\"\n",
+        &[("b.dxf", bytes.as_slice())],
+    )
+    .expect("scene");
+    assert_eq!(all.blocks.as_ref().expect("blocks").polygons.len(), 2);
+    let s = scene_in(
+        dir.path(),
+        "[blocks]\nfile = \"b.dxf\"\nunits = \"mm\"\nlayer = \"stones\"\n",
+        &[("b.dxf", bytes.as_slice())],
+    )
+    .expect("scene");
+    let a = analysis::analyse(&s, &options(Direction::Right)).expect("analysis");
+    assert!((a.lower.lambda.expect("lambda") - 0.4).abs() < 1e-9);
+    // The layer is matched without regard to case; a JSON file has no layers.
+    let e = scene_in(
+        dir.path(),
+        "[blocks]\nfile = \"b.json\"\nlayer = \"stones\"\n",
+        &[("b.json", b"{\"polygons\": [[[0,0],[1,0],[0,1]]]}")],
+    )
+    .expect_err("layer on JSON");
+    assert!(e.contains("only a .dxf block file has layers"), "{e}");
+}

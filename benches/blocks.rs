@@ -71,7 +71,9 @@ fn main() {
     for (label, raw) in cases {
         let (tc, polys) = time(2, || blocks::from_vertices(raw.clone(), Units::Metres));
         let polys: Polygons = polys.expect("clean polygons");
-        let (td, d) = time(2, || blocks::detect(&polys, Some(0.0), 1e-6, 20000.0, f64::INFINITY));
+        let (td, d) = time(2, || {
+            blocks::detect(&polys, Some(0.0), 1e-6, 20000.0, f64::INFINITY)
+        });
         let d = d.expect("joints found");
         println!(
             "{label:<44} {:>7} {:>7} {:>10.1} {:>10.1}",
@@ -92,14 +94,23 @@ fn main() {
     let polys: Vec<String> = polygons_of(&parametric)
         .iter()
         .map(|p| {
-            let v: Vec<String> = p.iter().map(|q| format!("[{:e}, {:e}]", q[0], q[1])).collect();
+            let v: Vec<String> = p
+                .iter()
+                .map(|q| format!("[{:e}, {:e}]", q[0], q[1]))
+                .collect();
             format!("[{}]", v.join(", "))
         })
         .collect();
-    let user_text = format!("[blocks]\nground_y = 0.0\npolygons = [{}]\n", polys.join(", "));
+    let user_text = format!(
+        "[blocks]\nground_y = 0.0\npolygons = [{}]\n",
+        polys.join(", ")
+    );
     let options = Options::default();
     let mut rows = Vec::new();
-    for (label, text) in [("parametric semicircle n = 200", text.to_string()), ("the same as user blocks", user_text)] {
+    for (label, text) in [
+        ("parametric semicircle n = 200", text.to_string()),
+        ("the same as user blocks", user_text),
+    ] {
         let (tr, s) = time(3, || scene(&text));
         let (ta, a) = time(5, || analysis::analyse(&s, &options));
         let a = a.expect("analysis");

@@ -151,6 +151,16 @@ fn upper_bound(
     if options.kinematic_max_joints == 0 {
         return (Err("kinematic search turned off".to_string()), None);
     }
+    if let Some(why) = not_a_chain(&model.assembly) {
+        // The discrete search enumerates the mechanisms of a chain; an assembly whose blocks
+        // touch several neighbours has no such enumeration here.
+        return (
+            Err(format!(
+                "none: the blocks are not a chain between two supports ({why}), so only the static bound and the DEM apply; the collapse mechanism (drawn with --svg) is read from the static program's duals"
+            )),
+            None,
+        );
+    }
     let settings = KinematicSettings {
         direction: options.direction(),
         max_joints: options.kinematic_max_joints,
@@ -209,6 +219,37 @@ fn upper_bound(
     (k, Some(search))
 }
 
+/// Why an assembly is neither a chain between two supports nor a column on one, in words
+/// (None when it is one of them).
+pub fn not_a_chain(assembly: &crate::assembly::Assembly) -> Option<String> {
+    if assembly.is_chain() || kinematic::discrete::is_column(assembly) {
+        return None;
+    }
+    let mut count = vec![0usize; assembly.blocks.len()];
+    let mut supports = 0;
+    for j in &assembly.joints {
+        for b in [j.from, j.to].into_iter().flatten() {
+            if let Some(c) = count.get_mut(b) {
+                *c += 1;
+            }
+        }
+        supports += usize::from(j.is_support());
+    }
+    let name = |i: usize| match assembly.blocks[i].kind {
+        crate::assembly::BlockKind::User(s) => format!("block {s}"),
+        _ => format!("block {i}"),
+    };
+    // The first of the blocks with the most joints.
+    let most = count
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(&a.0)));
+    Some(match most {
+        Some((i, &c)) if c > 2 => format!("{} has {c} joints", name(i)),
+        _ => format!("{supports} joints rest on the ground"),
+    })
+}
+
 /// The mechanism of the static hinges ([`kinematic::certify`]) when its multiplier meets the
 /// static one within [`CERTIFY_TOL`]; otherwise why not.
 fn certify_static(
@@ -236,25 +277,22 @@ fn continuous_of(
     model: &Model,
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
-    if !scene.arch.joints.is_radial() {
+    let arch = scene.parametric("the continuous model")?;
+    if !arch.joints.is_radial() {
         // Its sections are radial cuts of the ring: with other joints the discrete arch is
         // not a subdivision of that continuum, so the model does not bound it.
         return Err(KinematicError::Continuous(format!(
             "it cuts the ring along radial sections, so it does not apply to arch.joints = \"{}\" (the static program, the discrete searches and the DEM do)",
-            scene.arch.joints.name()
+            arch.joints.name()
         )));
     }
-    kinematic::continuous(
-        model,
-        scene.arch.shape.as_ref(),
-        scene.arch.thickness,
-        direction,
-    )
+    kinematic::continuous(model, arch.shape.as_ref(), arch.thickness, direction)
 }
 
 /// The continuous model's minimum thickness of a scene (all else fixed, lambda = 0).
 pub fn continuous_min_thickness(scene: &Scene) -> Result<kinematic::MinThickness, KinematicError> {
-    kinematic::continuous_min_thickness(scene.arch.thickness, scene.max_thickness(), |t| {
+    let thickness = scene.parametric("the continuous model")?.thickness;
+    kinematic::continuous_min_thickness(thickness, scene.max_thickness(), |t| {
         continuous(&scene.with_thickness(t)?, Direction::Right)
     })
 }

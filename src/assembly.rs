@@ -23,6 +23,8 @@ pub enum BlockKind {
     RightPier(usize),
     /// Any other block (assemblies built by hand).
     Other,
+    /// A block of the user's own (`[blocks]`), by its index in the source (from 0).
+    User(usize),
 }
 
 /// A rigid block.
@@ -50,6 +52,9 @@ pub enum JointKind {
     /// Right pier joint, numbered from the base.
     RightPier(usize),
     Other,
+    /// A joint found between the user's blocks (`[blocks]`), named by their indices in the
+    /// source, the lower first; `None` is the ground.
+    Between(usize, Option<usize>),
 }
 
 /// A plane joint between two blocks, or a block and the ground (`None`).

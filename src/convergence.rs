@@ -307,6 +307,7 @@ pub fn run(
     progress: &mut dyn FnMut(&str),
 ) -> Result<Convergence, ConvergenceError> {
     settings.check()?;
+    scene.parametric("the convergence study")?;
     let static_settings = StaticSettings::default().direction(settings.direction);
 
     let (lambda_continuous, continuous_time_s, continuous_note) = if settings.continuous {
@@ -361,7 +362,7 @@ pub fn run(
             tolerances.push(match r {
                 Ok(r) => ToleranceRow {
                     tolerance: tol,
-                    voussoirs: scene.arch.voussoirs,
+                    voussoirs: scene.parametric("the convergence study")?.voussoirs,
                     status: status_word(r.status),
                     lambda_lower: r.lambda,
                     difference: None,
@@ -374,7 +375,7 @@ pub fn run(
                 },
                 Err(e) => ToleranceRow {
                     tolerance: tol,
-                    voussoirs: scene.arch.voussoirs,
+                    voussoirs: scene.parametric("the convergence study")?.voussoirs,
                     status: "error".into(),
                     lambda_lower: None,
                     difference: None,
@@ -394,7 +395,9 @@ pub fn run(
 
     let mut dem_rows = Vec::new();
     if settings.dem && !settings.dem_cases.is_empty() {
-        let n = settings.dem_voussoirs.min(scene.arch.voussoirs);
+        let n = settings
+            .dem_voussoirs
+            .min(scene.parametric("the convergence study")?.voussoirs);
         let small = with_voussoirs(scene, n)?;
         let model = crate::scene::build(&small)?;
         let lambda_static = lp::analyse(&model, &static_settings)

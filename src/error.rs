@@ -53,6 +53,14 @@ pub enum SceneError {
         key: String,
         message: String,
     },
+    /// A block source (`[blocks]`) that cannot be read or does not make a structure; the
+    /// message names the file, the blocks and the coordinates.
+    #[error("{origin}: `{key}`: {message}")]
+    BadBlocks {
+        origin: String,
+        key: String,
+        message: String,
+    },
     /// Options that do not fit together (e.g. `--x` without `--svg`).
     #[error("{0}")]
     Usage(String),
@@ -65,7 +73,8 @@ impl SceneError {
             SceneError::UnknownKey { key, .. }
             | SceneError::MissingKey { key, .. }
             | SceneError::WrongType { key, .. }
-            | SceneError::OutOfRange { key, .. } => Some(key),
+            | SceneError::OutOfRange { key, .. }
+            | SceneError::BadBlocks { key, .. } => Some(key),
             _ => None,
         }
     }

@@ -1,6 +1,7 @@
 pub mod analysis;
 pub mod assembly;
 pub mod assess;
+pub mod blocks;
 pub mod convergence;
 pub mod dem;
 pub mod error;

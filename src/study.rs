@@ -369,11 +369,12 @@ pub fn semicircle_of_equal_span(scene: &Scene) -> Result<Scene, SceneError> {
 /// The semicircular arch of the same centreline radius (a circular or pointed arch's R),
 /// thickness, voussoirs, voussoir shape, piers and material.
 pub fn semicircle_of_equal_radius(scene: &Scene) -> Result<Scene, SceneError> {
-    let Some(radius) = scene.arch.shape.radius() else {
+    let arch = scene.parametric("a semicircle of equal radius")?;
+    let Some(radius) = arch.shape.radius() else {
         return Err(SceneError::OutOfRange {
             origin: scene.origin.clone(),
             key: "arch.shape".into(),
-            value: format!("\"{}\"", scene.arch.shape.name()),
+            value: format!("\"{}\"", arch.shape.name()),
             allowed: "a circular or pointed arch for a semicircle of equal radius".into(),
         });
     };
@@ -385,8 +386,9 @@ fn semicircle_of_radius(scene: &Scene, radius: f64, what: &str) -> Result<Scene,
     let mut arch = Table::new();
     arch.insert("shape".into(), Value::String("circular".into()));
     arch.insert("radius".into(), Value::Float(radius));
-    arch.insert("thickness".into(), Value::Float(scene.arch.thickness));
-    let n = scene.arch.voussoirs;
+    let base = scene.parametric(what)?;
+    arch.insert("thickness".into(), Value::Float(base.thickness));
+    let n = base.voussoirs;
     arch.insert("voussoirs".into(), Value::Integer(n as i64));
     if let Some(v) = scene
         .table()

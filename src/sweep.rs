@@ -240,8 +240,9 @@ fn derived_target(
             })
         }
     };
-    let radius = scene.arch.shape.radius();
-    let has_key = |k: &str| scene.arch.shape.keys().iter().any(|(key, _)| *key == k);
+    let shape = &scene.parametric("a ratio")?.shape;
+    let radius = shape.radius();
+    let has_key = |k: &str| shape.keys().iter().any(|(key, _)| *key == k);
     let need_radius = || SceneError::BadOverride {
         text: format!("{key}={v}"),
         message: format!("`{key}` needs a circular or pointed arch (R is its radius)"),
@@ -281,19 +282,25 @@ fn derived_target(
 
 /// Centreline span of the arch.
 pub fn span(scene: &Scene) -> f64 {
-    scene.arch.shape.span()
+    scene.arch.as_ref().map_or(f64::NAN, |a| a.shape.span())
 }
 
 /// Centreline rise of the arch above the springing line.
 pub fn rise(scene: &Scene) -> f64 {
-    scene.arch.shape.rise()
+    scene.arch.as_ref().map_or(f64::NAN, |a| a.shape.rise())
 }
 
 /// The dimensionless ratios of a scene, as `(name, value)`; NaN where not defined.
 pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
-    let radius = scene.arch.shape.radius().unwrap_or(f64::NAN);
-    let e = scene
-        .arch
+    let Some(arch) = &scene.arch else {
+        // The user's blocks have none of these ratios.
+        return ["t/R", "t/span", "e/R", "rise/span", "h/R", "b/R", "e/span"]
+            .into_iter()
+            .map(|k| (k, f64::NAN))
+            .collect();
+    };
+    let radius = arch.shape.radius().unwrap_or(f64::NAN);
+    let e = arch
         .shape
         .keys()
         .iter()
@@ -302,7 +309,7 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
     let (h, b) = scene.piers.as_ref().map_or((f64::NAN, f64::NAN), |p| {
         (p.left.height, p.left.base_width())
     });
-    let t = scene.arch.thickness;
+    let t = arch.thickness;
     vec![
         ("t/R", t / radius),
         ("t/span", t / span(scene)),

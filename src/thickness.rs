@@ -50,6 +50,7 @@ pub fn search<F>(
 where
     F: FnMut(&Scene) -> Result<bool, AnalysisError>,
 {
+    scene.parametric("the minimum-thickness search")?;
     let t_max = scene.max_thickness();
     let mut evaluations = 0;
     let mut test = |t: f64| -> Result<bool, AnalysisError> {
@@ -144,7 +145,8 @@ pub fn min_thickness(
         hinges = r.hinges.clone();
         at_minimum = Some((model, r));
     }
-    let safety_factor = search.min_thickness.map(|t| scene.arch.thickness / t);
+    let thickness = scene.parametric("the minimum-thickness search")?.thickness;
+    let safety_factor = search.min_thickness.map(|t| thickness / t);
     Ok(MinThickness {
         search,
         hinges,

@@ -103,7 +103,7 @@ fn overrides_are_validated_like_files() {
     let pointed = s
         .with_overrides(&["arch.shape=pointed", "arch.eccentricity=0.2"])
         .expect("a valid pointed arch");
-    assert_eq!(pointed.arch.shape.name(), "pointed");
+    assert_eq!(pointed.arch.as_ref().expect("arch").shape.name(), "pointed");
 }
 
 /// A misspelt key is reported as the unknown key it is (not as the required key it was meant

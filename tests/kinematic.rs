@@ -425,7 +425,7 @@ fn continuous_matches_fine_discrete(texts: &[String]) -> f64 {
     let mut worst = 0.0_f64;
     for text in texts {
         let scene = finest(text, 128);
-        let n = scene.arch.voussoirs;
+        let n = scene.arch.as_ref().expect("arch").voussoirs;
         let c = voussoir::analysis::continuous(&scene, voussoir::outcome::Direction::Right)
             .expect("continuous");
         let k = kinematic_of(&scene, &settings).expect("discrete");

@@ -442,7 +442,7 @@ fn fill_of_zero_weight_changes_nothing() {
         if portal {
             base += PIERS;
         }
-        let crown = scene(&base).arch.shape.crown_extrados(0.3);
+        let crown = scene(&base).arch.expect("arch").shape.crown_extrados(0.3);
         let m0 = build(&base);
         let m1 = build(&(base.clone() + &fill(crown + 0.5, 0.0, true)));
         let (s0, s1) = (lambda_static(&m0), lambda_static(&m1));
@@ -502,7 +502,7 @@ fn heavy_fill_keeps_the_thrust_inside_and_the_bounds_equal() {
                 if portal {
                     base += PIERS;
                 }
-                let crown = scene(&base).arch.shape.crown_extrados(t);
+                let crown = scene(&base).arch.expect("arch").shape.crown_extrados(t);
                 let haunch = voussoir_centroid(&base, 2.0 / 3.0);
                 let mut unfilled = None;
                 for extra in [0.0, 0.4, 1.2] {
@@ -587,7 +587,7 @@ fn vertical_ratio_on_arches_bounds_agree_and_mirror() {
             if portal {
                 base += PIERS;
             }
-            let crown = scene(&base).arch.shape.crown_extrados(0.3);
+            let crown = scene(&base).arch.expect("arch").shape.crown_extrados(0.3);
             let haunch = voussoir_centroid(&base, 2.0 / 3.0);
             // Asymmetric loads, so that left and right differ.
             let loads = point_load(haunch, Vec2::new(0.0, -6000.0), true)
@@ -788,7 +788,12 @@ fn place_loads(base: &str, s: &Scene, loads: &RandomLoads) -> String {
         text += &point_load(at, Vec2::new(fx * total, -fy * total), seismic);
     }
     if let Some((extra, gamma, seismic)) = loads.fill {
-        let crown = s.arch.shape.crown_extrados(s.arch.thickness);
+        let crown = s
+            .arch
+            .as_ref()
+            .expect("arch")
+            .shape
+            .crown_extrados(s.arch.as_ref().expect("arch").thickness);
         text += &fill(crown + extra, gamma, seismic);
     }
     text + &vertical_ratio(loads.vertical_ratio)
@@ -1069,7 +1074,7 @@ fn minimum_thickness_under_fill_and_asymmetric_loads() {
     let s = Scene::from_file(std::path::Path::new(path)).expect("bundled scene");
     let t_max = s.max_thickness();
     let fill = s.fill.as_ref().expect("fill").level;
-    assert!(s.arch.shape.crown_extrados(t_max) <= fill * (1.0 + 1e-12));
+    assert!(s.arch.as_ref().expect("arch").shape.crown_extrados(t_max) <= fill * (1.0 + 1e-12));
     assert!(s.with_thickness(0.999 * t_max).is_ok());
     let options = voussoir::analysis::Options {
         kinematic: voussoir::analysis::KinematicMode::Exhaustive,
@@ -1082,7 +1087,10 @@ fn minimum_thickness_under_fill_and_asymmetric_loads() {
         .as_ref()
         .and_then(|k| k.min_thickness)
         .expect("kinematic t_min");
-    assert!(ts < s.arch.thickness && rel(ts, tk) < 1e-6, "{ts} vs {tk}");
+    assert!(
+        ts < s.arch.as_ref().expect("arch").thickness && rel(ts, tk) < 1e-6,
+        "{ts} vs {tk}"
+    );
     // At the minimum thickness the arch just stands; a little thinner it does not.
     let stands = |t: f64| {
         lp::stands(

@@ -87,10 +87,16 @@ fn chart_title(base: &Scene, cases: &[(Vec<toml::Value>, Result<Scene, SceneErro
     let scenes: Vec<&Scene> = cases.iter().filter_map(|(_, s)| s.as_ref().ok()).collect();
     let same = |f: &dyn Fn(&Scene) -> String| scenes.iter().all(|s| f(s) == f(base));
     let structure = |s: &Scene| if s.piers.is_some() { "portal" } else { "arch" }.to_string();
+    let shape_name = |s: &Scene| {
+        s.arch
+            .as_ref()
+            .map_or("blocks", |a| a.shape.name())
+            .to_string()
+    };
     if same(&|s| report::shape_title(s)) {
         report::shape_title(base)
-    } else if same(&|s| s.arch.shape.name().to_string()) && same(&structure) {
-        format!("{} {}", base.arch.shape.name(), structure(base))
+    } else if same(&shape_name) && same(&structure) {
+        format!("{} {}", shape_name(base), structure(base))
     } else if same(&structure) {
         structure(base)
     } else {

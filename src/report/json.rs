@@ -57,10 +57,16 @@ pub struct SceneReport {
     pub shape_keys: BTreeMap<&'static str, f64>,
     /// `[piers]` (height and width in m, courses), or null for an arch on fixed springings.
     pub piers: Option<PiersReport>,
-    /// `[arch] joints`: the stereotomy (`radial`, `vertical`, `horizontal_bed`).
+    /// `[arch] joints`: the stereotomy (`radial`, `vertical`, `horizontal_bed`); `user` for a
+    /// scene of the user's own blocks.
     pub joints: &'static str,
     /// `[arch] horizontal_bed_deg` (degrees), or null unless `joints` is `horizontal_bed`.
     pub horizontal_bed_deg: Option<f64>,
+    /// `[blocks]` and the joints found, for a scene of the user's own blocks (absent
+    /// otherwise). Such a scene reports `shape` = "blocks", `voussoir_shape` = "user",
+    /// `thickness` null and `voussoirs` 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blocks: Option<BlocksReport>,
     /// `[material] unit_weight` (N/m^3).
     pub unit_weight: f64,
     /// `[material] depth` (m).
@@ -68,6 +74,54 @@ pub struct SceneReport {
     /// Whether the friction coefficient is infinite (joints cannot slide; `friction` is then
     /// null).
     pub friction_infinite: bool,
+}
+
+/// `[blocks]` echoed in the JSON `scene`, with what was found: present only for scenes of the
+/// user's own blocks.
+#[derive(Debug, Serialize)]
+pub struct BlocksReport {
+    /// The block file as written in the scene, or null for inline polygons.
+    pub file: Option<String>,
+    /// `"m"` or `"mm"`.
+    pub units: &'static str,
+    /// Number of blocks.
+    pub blocks: usize,
+    /// Joints found between blocks.
+    pub joints: usize,
+    /// Joints found on the ground.
+    pub supports: usize,
+    /// y of the ground line (m).
+    pub ground_y: f64,
+    /// The joint tolerance (m).
+    pub tolerance: f64,
+    /// Whether the blocks form a chain (between two supports, or on one): the kinematic
+    /// search runs only then.
+    pub chain: bool,
+    /// Why not, when not.
+    pub not_a_chain: Option<String>,
+}
+
+impl BlocksReport {
+    pub fn new(b: &crate::scene::BlocksSpec) -> Self {
+        let d = &b.detected;
+        BlocksReport {
+            file: match &b.source {
+                crate::scene::BlockSource::File { written, .. } => Some(written.clone()),
+                crate::scene::BlockSource::Inline => None,
+            },
+            units: b.units.name(),
+            blocks: d.assembly.blocks.len(),
+            joints: d.assembly.joints.len() - d.supports,
+            supports: d.supports,
+            ground_y: d.ground_y,
+            tolerance: d.tolerance,
+            chain: !matches!(d.topology, crate::blocks::Topology::Other(_)),
+            not_a_chain: match &d.topology {
+                crate::blocks::Topology::Other(why) => Some(why.clone()),
+                _ => None,
+            },
+        }
+    }
 }
 
 /// `[piers]` echoed in the JSON `scene`: `height`, `width` and `courses` are the left pier's
@@ -229,25 +283,27 @@ fn round15(x: f64) -> f64 {
 
 impl SceneReport {
     pub fn new(scene: &Scene, model: &Model) -> Self {
+        let arch = scene.arch.as_ref();
         SceneReport {
             origin: scene.origin.clone(),
-            shape: scene.arch.shape.name(),
-            thickness: scene.arch.thickness,
-            voussoirs: scene.arch.voussoirs,
-            voussoir_shape: match scene.arch.voussoir_shape {
-                VoussoirShape::Polygon => "polygon",
-                VoussoirShape::Curved => "curved",
+            shape: arch.map_or("blocks", |a| a.shape.name()),
+            thickness: arch.map_or(f64::NAN, |a| a.thickness),
+            voussoirs: arch.map_or(0, |a| a.voussoirs),
+            voussoir_shape: match arch.map(|a| a.voussoir_shape) {
+                Some(VoussoirShape::Polygon) => "polygon",
+                Some(VoussoirShape::Curved) => "curved",
+                None => "user",
             },
             portal: scene.piers.is_some(),
             friction: finite_or_null(scene.material.friction),
             total_weight: model.assembly.total_weight(),
-            shape_keys: scene
-                .arch
-                .shape
-                .keys()
+            shape_keys: arch
+                .map(|a| a.shape.keys())
+                .unwrap_or_default()
                 .into_iter()
                 .map(|(k, v)| (k, round15(v)))
                 .collect(),
+            blocks: scene.blocks.as_ref().map(|b| BlocksReport::new(b)),
             piers: scene.piers.as_ref().map(|p| PiersReport {
                 height: p.left.height,
                 width: p.left.base_width(),
@@ -255,9 +311,9 @@ impl SceneReport {
                 left: PierReport::new(&p.left),
                 right: PierReport::new(&p.right),
             }),
-            joints: scene.arch.joints.name(),
-            horizontal_bed_deg: match scene.arch.joints {
-                Stereotomy::HorizontalBed { angle } => Some(round15(angle.to_degrees())),
+            joints: arch.map_or("user", |a| a.joints.name()),
+            horizontal_bed_deg: match arch.map(|a| a.joints) {
+                Some(Stereotomy::HorizontalBed { angle }) => Some(round15(angle.to_degrees())),
                 _ => None,
             },
             unit_weight: scene.material.unit_weight,
@@ -428,7 +484,7 @@ impl MinThicknessReport {
             min_thickness_ratio: m.search.min_thickness.map(|t| t / scene.arch_size()),
             hinges: m.hinges.clone(),
             safety_factor: m.safety_factor,
-            thickness: scene.arch.thickness,
+            thickness: scene.arch.as_ref().map_or(f64::NAN, |a| a.thickness),
             evaluations: m.search.evaluations,
             scene: SceneReport::new(scene, model),
             loads: LoadsReport::new(scene, model),

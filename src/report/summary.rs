@@ -19,6 +19,8 @@ pub fn joint_label(kind: JointKind) -> String {
         JointKind::LeftPier(j) => format!("left pier {j}"),
         JointKind::RightPier(j) => format!("right pier {j}"),
         JointKind::Other => "joint".to_string(),
+        JointKind::Between(a, Some(b)) => format!("blocks {a}|{b}"),
+        JointKind::Between(a, None) => format!("block {a}|ground"),
     }
 }
 
@@ -93,6 +95,13 @@ pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) 
 /// The end of a joint a hinge sits at, in words with its name in the JSON and the CSV:
 /// `intrados (p1)`, `extrados (p2)` on the arch, `inner face (p1)`, `outer face (p2)` on a pier.
 pub fn end_words(kind: JointKind, end: JointEnd) -> &'static str {
+    if matches!(kind, JointKind::Between(..)) {
+        // A joint between the user's blocks has no intrados or faces, only its two ends.
+        return match end {
+            JointEnd::P1 => "end p1",
+            JointEnd::P2 => "end p2",
+        };
+    }
     let pier = matches!(kind, JointKind::LeftPier(_) | JointKind::RightPier(_));
     match (end, pier) {
         (JointEnd::P1, false) => "intrados (p1)",
@@ -142,29 +151,35 @@ pub fn hinge_lines(assembly: &Assembly, hinges: &[Hinge]) -> String {
 /// A one-paragraph description of the scene.
 pub fn describe_scene(scene: &Scene, model: &Model) -> String {
     let assembly = &model.assembly;
-    let a = &scene.arch;
-    let shape = a.shape.describe();
-    let vs = match a.voussoir_shape {
-        VoussoirShape::Polygon => "polygon",
-        VoussoirShape::Curved => "curved",
-    };
-    let mut s = format!(
-        "{shape}, t = {} m, {} {vs} voussoir{}",
-        num(a.thickness),
-        a.voussoirs,
-        if a.voussoirs == 1 { "" } else { "s" }
-    );
-    match a.joints {
-        Stereotomy::Radial => {}
-        Stereotomy::Vertical => s.push_str(", vertical joints"),
-        Stereotomy::HorizontalBed { angle } => {
-            let _ = write!(
-                s,
-                ", horizontal beds up to {} deg, radial joints above",
-                num(angle.to_degrees())
+    let mut s = match (&scene.arch, &scene.blocks) {
+        (Some(a), _) => {
+            let shape = a.shape.describe();
+            let vs = match a.voussoir_shape {
+                VoussoirShape::Polygon => "polygon",
+                VoussoirShape::Curved => "curved",
+            };
+            let mut s = format!(
+                "{shape}, t = {} m, {} {vs} voussoir{}",
+                num(a.thickness),
+                a.voussoirs,
+                if a.voussoirs == 1 { "" } else { "s" }
             );
+            match a.joints {
+                Stereotomy::Radial => {}
+                Stereotomy::Vertical => s.push_str(", vertical joints"),
+                Stereotomy::HorizontalBed { angle } => {
+                    let _ = write!(
+                        s,
+                        ", horizontal beds up to {} deg, radial joints above",
+                        num(angle.to_degrees())
+                    );
+                }
+            }
+            s
         }
-    }
+        (None, Some(b)) => describe_blocks(b),
+        (None, None) => String::new(),
+    };
     if let Some(p) = &scene.piers {
         let _ = write!(s, "\n  {}", p.describe());
     }
@@ -180,6 +195,27 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
         let _ = write!(s, "\n  {}", describe_loads(scene, model));
     }
     s
+}
+
+/// The user's blocks in words: where from, how many joints were found, whether a chain.
+pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
+    let d = &b.detected;
+    let between = d.assembly.joints.len() - d.supports;
+    let shape = match &d.topology {
+        crate::blocks::Topology::Chain => "a chain between two supports".to_string(),
+        crate::blocks::Topology::Column => "a chain standing on one support".to_string(),
+        crate::blocks::Topology::Other(why) => format!("not a chain: {why}"),
+    };
+    format!(
+        "{} from {} ({}): {} found between blocks and {} on the ground y = {} m (tolerance {} m); {shape}",
+        count(d.assembly.blocks.len() as u64, "user block", "user blocks"),
+        b.source_words(),
+        b.units.name(),
+        count(between as u64, "joint", "joints"),
+        count(d.supports as u64, "support", "supports"),
+        num(d.ground_y),
+        sci(d.tolerance, 1)
+    )
 }
 
 /// `mu = 0.4`, or `mu = inf (no sliding)`.
@@ -478,6 +514,16 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
     s
 }
 
+/// The name of the arch's size (`R`, `span/2`), or `size` for the user's blocks.
+fn size_name(scene: &Scene) -> &'static str {
+    scene.arch.as_ref().map_or("size", |a| a.shape.size_name())
+}
+
+/// The arch's thickness (NaN for the user's blocks).
+fn thickness(scene: &Scene) -> f64 {
+    scene.arch.as_ref().map_or(f64::NAN, |a| a.thickness)
+}
+
 /// The human summary of `min-thickness`.
 pub fn min_thickness_summary(
     scene: &Scene,
@@ -492,14 +538,14 @@ pub fn min_thickness_summary(
             let _ = writeln!(
                 s,
                 "Minimum thickness (static, lambda = 0): t_min = {t:.9} m  (t_min / {} = {:.6})",
-                scene.arch.shape.size_name(),
+                size_name(scene),
                 t / scene.arch_size()
             );
             if let Some(f) = m.safety_factor {
                 let _ = writeln!(
                     s,
                     "  geometric safety factor of t = {} m: {f:.4}{}",
-                    num(scene.arch.thickness),
+                    num(thickness(scene)),
                     if f < 1.0 {
                         "  (below 1: this arch cannot stand)"
                     } else {
@@ -558,7 +604,7 @@ pub fn min_thickness_summary(
                 let _ = writeln!(
                     s,
                     "Continuous model minimum thickness: t_min = {t:.6} m (t_min / {} = {:.6})",
-                    scene.arch.shape.size_name(),
+                    size_name(scene),
                     t / scene.arch_size()
                 );
             }
@@ -578,7 +624,17 @@ pub fn min_thickness_summary(
 
 /// A short name of the structure for titles, e.g. `semicircular arch` or `pointed portal`.
 pub fn shape_title(scene: &Scene) -> String {
-    let shape = scene.arch.shape.title();
+    let Some(arch) = &scene.arch else {
+        let n = scene
+            .blocks
+            .as_ref()
+            .map_or(0, |b| b.detected.assembly.blocks.len());
+        return format!(
+            "structure of {}",
+            count(n as u64, "user block", "user blocks")
+        );
+    };
+    let shape = arch.shape.title();
     format!(
         "{shape} {}",
         if scene.piers.is_some() {
@@ -613,12 +669,15 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
         Some(u) => format!("{lower}   {u}"),
         None => lower,
     };
-    format!(
-        "{}, t = {} m, {} voussoirs\n{second}",
-        shape_title(scene),
-        num(scene.arch.thickness),
-        scene.arch.voussoirs
-    )
+    match &scene.arch {
+        Some(arch) => format!(
+            "{}, t = {} m, {} voussoirs\n{second}",
+            shape_title(scene),
+            num(arch.thickness),
+            arch.voussoirs
+        ),
+        None => format!("{}\n{second}", shape_title(scene)),
+    }
 }
 
 /// Title of the DEM drawing: shape, thickness, and the DEM and static multipliers, or in
@@ -634,11 +693,14 @@ pub fn dem_drawing_title(scene: &Scene, rep: &DemReport, lower: Status) -> Strin
         (Status::NoCollapse, _) => "static: no collapse".to_string(),
         _ => "static: cannot stand".to_string(),
     };
-    format!(
-        "{}, t = {} m: DEM\n{dem}  ({lower})",
-        shape_title(scene),
-        num(scene.arch.thickness)
-    )
+    match &scene.arch {
+        Some(arch) => format!(
+            "{}, t = {} m: DEM\n{dem}  ({lower})",
+            shape_title(scene),
+            num(arch.thickness)
+        ),
+        None => format!("{}: DEM\n{dem}  ({lower})", shape_title(scene)),
+    }
 }
 
 /// The human summary of `dem`.
@@ -692,7 +754,11 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
             );
         }
     }
-    if scene.arch.voussoir_shape == VoussoirShape::Curved {
+    if scene
+        .arch
+        .as_ref()
+        .is_some_and(|a| a.voussoir_shape == VoussoirShape::Curved)
+    {
         let _ = writeln!(
             s,
             "  curved voussoirs are simulated as polygons (straight chords): their weights and centroids\n  differ slightly from the exact annular pieces the static bound uses (docs/dem.md)"

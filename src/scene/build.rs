@@ -26,7 +26,25 @@ use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad}
 
 /// Build the assembly and load case of a scene.
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
-    let (assembly, arch) = build_assembly(scene)?;
+    let a = match (&scene.arch, &scene.blocks) {
+        (Some(a), _) => a,
+        (None, Some(b)) => {
+            return super::user_blocks::build_model(
+                b,
+                &scene.loads,
+                scene.seismic.vertical_ratio,
+                &scene.origin,
+            )
+        }
+        (None, None) => {
+            return Err(SceneError::MissingKey {
+                origin: scene.origin.clone(),
+                key: "arch".into(),
+                what: "the [arch] table or [blocks]".into(),
+            })
+        }
+    };
+    let (assembly, arch) = build_assembly(scene, a)?;
     let loads = build_loads(scene, &assembly, &arch)?;
     Ok(Model { assembly, loads })
 }
@@ -43,8 +61,10 @@ struct ArchPlacement {
 
 /// The blocks and joints of a scene: the left pier courses from the base up, the voussoirs
 /// from left to right, the right pier courses from the top down (a chain).
-fn build_assembly(scene: &Scene) -> Result<(Assembly, ArchPlacement), SceneError> {
-    let a = &scene.arch;
+fn build_assembly(
+    scene: &Scene,
+    a: &super::ArchSpec,
+) -> Result<(Assembly, ArchPlacement), SceneError> {
     let g = a.geometry().map_err(|why| SceneError::OutOfRange {
         origin: scene.origin.clone(),
         key: "arch.joints".into(),
@@ -465,5 +485,6 @@ fn describe(kind: BlockKind) -> String {
         BlockKind::LeftPier(c) => format!("left pier course {c}"),
         BlockKind::RightPier(c) => format!("right pier course {c}"),
         BlockKind::Other => "a block".to_string(),
+        BlockKind::User(i) => format!("block {i}"),
     }
 }

@@ -7,8 +7,10 @@
 
 mod build;
 mod piers;
+mod user_blocks;
 pub use build::build;
 pub use piers::{Pier, PierProfile, Piers};
+pub use user_blocks::{BlockSource, BlocksSpec};
 
 use crate::error::{did_you_mean, SceneError};
 use crate::geometry::{
@@ -139,7 +141,10 @@ pub struct SeismicSpec {
 /// A validated scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
-    pub arch: ArchSpec,
+    /// The parametric arch; None when the structure is the user's blocks (`[blocks]`).
+    pub arch: Option<ArchSpec>,
+    /// The user's own blocks (`[blocks]`), instead of `[arch]` and `[piers]`.
+    pub blocks: Option<Arc<BlocksSpec>>,
     pub piers: Option<Piers>,
     pub material: Material,
     /// Loads beyond self-weight (`[[loads]]`), in file order.
@@ -157,6 +162,8 @@ pub struct Scene {
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
     table: Table,
+    /// The scene file's directory (paths in the scene are relative to it).
+    base_dir: Option<std::path::PathBuf>,
 }
 
 impl Scene {
@@ -166,23 +173,32 @@ impl Scene {
             path: path.to_path_buf(),
             source,
         })?;
-        Scene::from_toml_str(&text, &path.display().to_string())
+        let table = parse_toml(&text, &path.display().to_string())?;
+        parse(table, &path.display().to_string(), path.parent())
     }
 
     /// Parse and validate a scene from TOML text; `origin` names it in errors.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
-        let table: Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| SceneError::Syntax {
-                origin: origin.to_string(),
-                message: e.to_string().trim().replace('\n', " "),
-            })?;
-        Scene::from_table(table, origin)
+        Scene::from_table(parse_toml(text, origin)?, origin)
     }
 
-    /// Validate a scene given as a TOML table.
+    /// Validate a scene given as a TOML table (paths in it relative to the working directory).
     pub fn from_table(table: Table, origin: &str) -> Result<Scene, SceneError> {
-        parse(table, origin)
+        parse(table, origin, None)
+    }
+
+    /// The parametric arch, or an error saying that `what` needs one when the scene is made
+    /// of the user's blocks.
+    pub fn parametric(&self, what: &str) -> Result<&ArchSpec, SceneError> {
+        self.arch.as_ref().ok_or_else(|| SceneError::OutOfRange {
+            origin: self.origin.clone(),
+            key: "blocks".into(),
+            value: self
+                .blocks
+                .as_ref()
+                .map_or("?".into(), |b| format!("\"{}\"", b.source_words())),
+            allowed: format!("{what} needs a parametric structure ([arch], [piers]); a scene of the user's own blocks takes `analyze` and `dem`"),
+        })
     }
 
     /// The TOML table behind this scene (overrides included).
@@ -216,7 +232,11 @@ impl Scene {
             })?;
             sets.push_str(&format!(" --set {a}"));
         }
-        parse(table, &format!("{} (with{sets})", self.origin))
+        parse(
+            table,
+            &format!("{} (with{sets})", self.origin),
+            self.base_dir.as_deref(),
+        )
     }
 
     /// A copy of the scene with several `(key, value)` pairs set together, validated once.
@@ -230,7 +250,7 @@ impl Scene {
                 }
             })?;
         }
-        parse(table, &self.origin)
+        parse(table, &self.origin, self.base_dir.as_deref())
     }
 
     /// A copy of the scene with the arch thickness set to `t`.
@@ -242,8 +262,11 @@ impl Scene {
     /// scene's voussoirs, and with a fill the thickness at which the crown's extrados reaches
     /// the fill's level (a thicker ring would stand above its fill).
     pub fn max_thickness(&self) -> f64 {
-        let shape = &self.arch.shape;
-        let mut t_max = shape.max_thickness(self.arch.voussoirs);
+        let Some(arch) = &self.arch else {
+            return f64::NAN;
+        };
+        let shape = &arch.shape;
+        let mut t_max = shape.max_thickness(arch.voussoirs);
         if let Some(fill) = &self.fill {
             if shape.crown_extrados(t_max) > fill.level {
                 // The crown's extrados rises with t: bisect for the thickness that meets the level.
@@ -267,9 +290,14 @@ impl Scene {
         build(self)
     }
 
-    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches.
+    /// The arch's own size: R for circular and pointed arches, span/2 for basket arches; the
+    /// structure's largest extent for the user's blocks.
     pub fn arch_size(&self) -> f64 {
-        self.arch.shape.size()
+        match (&self.arch, &self.blocks) {
+            (Some(a), _) => a.shape.size(),
+            (None, Some(b)) => b.polygons.size(),
+            (None, None) => f64::NAN,
+        }
     }
 
     /// A characteristic length of the structure (its overall size), used to make tolerances
@@ -321,7 +349,7 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
 }
 
 const SECTIONS: &[&str] = &[
-    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site",
+    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site", "blocks",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -602,7 +630,15 @@ fn section<'a>(
     }
 }
 
-fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
+fn parse_toml(text: &str, origin: &str) -> Result<Table, SceneError> {
+    text.parse()
+        .map_err(|e: toml::de::Error| SceneError::Syntax {
+            origin: origin.to_string(),
+            message: e.to_string().trim().replace('\n', " "),
+        })
+}
+
+fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
     for key in table.keys() {
         if !SECTIONS.contains(&key.as_str()) {
             return Err(SceneError::UnknownKey {
@@ -617,26 +653,53 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         }
     }
     let empty = Table::new();
-    let arch_table = section(&table, "arch", origin)?.ok_or_else(|| SceneError::MissingKey {
-        origin: origin.to_string(),
-        key: "arch".to_string(),
-        what: "the [arch] table".to_string(),
-    })?;
-    let arch = parse_arch(Section::new("arch", arch_table, origin))?;
-    let piers = match section(&table, "piers", origin)? {
-        Some(t) => Some(parse_piers(Section::new("piers", t, origin), &arch)?),
-        None => None,
-    };
     let material = parse_material(Section::new(
         "material",
         section(&table, "material", origin)?.unwrap_or(&empty),
         origin,
     ))?;
+    // The structure: the user's blocks, or the parametric arch (and piers).
+    let (arch, piers, blocks) = match section(&table, "blocks", origin)? {
+        Some(t) => {
+            for (name, instead) in [
+                ("arch", "the blocks are the structure"),
+                ("piers", "model piers as blocks"),
+                ("fill", "model the fill as blocks or as [[loads]]"),
+            ] {
+                if table.contains_key(name) {
+                    return Err(SceneError::OutOfRange {
+                        origin: origin.to_string(),
+                        key: name.to_string(),
+                        value: format!("[{name}]"),
+                        allowed: format!("a scene with [blocks] takes no [{name}] ({instead})"),
+                    });
+                }
+            }
+            let spec =
+                user_blocks::parse_blocks(Section::new("blocks", t, origin), &material, base_dir)?;
+            (None, None, Some(Arc::new(spec)))
+        }
+        None => {
+            let arch_table =
+                section(&table, "arch", origin)?.ok_or_else(|| SceneError::MissingKey {
+                    origin: origin.to_string(),
+                    key: "arch".to_string(),
+                    what: "the [arch] table (or [blocks] for a structure of your own blocks)"
+                        .to_string(),
+                })?;
+            let arch = parse_arch(Section::new("arch", arch_table, origin))?;
+            let piers = match section(&table, "piers", origin)? {
+                Some(t) => Some(parse_piers(Section::new("piers", t, origin), &arch)?),
+                None => None,
+            };
+            (Some(arch), piers, None)
+        }
+    };
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
     let loads = parse_loads(&table, origin)?;
-    let fill = match section(&table, "fill", origin)? {
-        Some(t) => Some(parse_fill(Section::new("fill", t, origin), &arch)?),
-        None => None,
+    let fill = match (section(&table, "fill", origin)?, &arch) {
+        (Some(t), Some(arch)) => Some(parse_fill(Section::new("fill", t, origin), arch)?),
+        _ => None,
     };
     let seismic = parse_seismic(Section::new(
         "seismic",
@@ -648,6 +711,7 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         .transpose()?;
     let scene = Scene {
         arch,
+        blocks,
         piers,
         material,
         loads,
@@ -657,6 +721,7 @@ fn parse(table: Table, origin: &str) -> Result<Scene, SceneError> {
         site,
         origin: origin.to_string(),
         table,
+        base_dir: base_dir.map(Path::to_path_buf),
     };
     // Loads are placed on blocks here too (a point outside every block is an error of the
     // scene, whatever the command).
@@ -1120,9 +1185,10 @@ mod tests {
         assert_eq!(s.material.unit_weight, 20000.0);
         assert_eq!(s.material.depth, 1.0);
         assert!(s.material.friction.is_infinite());
-        assert_eq!(s.arch.voussoir_shape, VoussoirShape::Polygon);
-        assert_eq!(s.arch.shape.name(), "circular");
-        let (key, deg) = s.arch.shape.keys()[1];
+        let arch = s.arch.as_ref().unwrap();
+        assert_eq!(arch.voussoir_shape, VoussoirShape::Polygon);
+        assert_eq!(arch.shape.name(), "circular");
+        let (key, deg) = arch.shape.keys()[1];
         assert!(key == "embrace_deg" && (deg - 180.0).abs() < 1e-12);
     }
 
@@ -1130,7 +1196,7 @@ mod tests {
     fn override_revalidates() {
         let s = Scene::from_toml_str(BASE, "t").unwrap();
         let s2 = s.with_override("arch.thickness=0.3").unwrap();
-        assert_eq!(s2.arch.thickness, 0.3);
+        assert_eq!(s2.arch.as_ref().unwrap().thickness, 0.3);
         let e = s.with_override("arch.thickness=-1").unwrap_err();
         assert_eq!(e.key(), Some("arch.thickness"));
         let e = s.with_override("arch.colour=3").unwrap_err();

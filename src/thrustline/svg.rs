@@ -303,8 +303,26 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         legend.push((Glyph::Fill, format!("fill up to y = {} m", sig(level))));
     }
     let thrust = drawing.forces.map(|f| super::thrust_points(assembly, f));
+    // A thrust line runs along a chain; in any other assembly (a wall of several courses) the
+    // resultants of the joints are drawn as points, not joined.
+    let joined = assembly.is_chain() || {
+        let nb = assembly.blocks.len();
+        assembly.joints.len() == nb
+            && assembly
+                .joints
+                .iter()
+                .enumerate()
+                .all(|(k, j)| j.from == k.checked_sub(1) && j.to == Some(k))
+    };
     if thrust.is_some() {
-        legend.push((Glyph::Line(THRUST, 3, false), "thrust line".into()));
+        if joined {
+            legend.push((Glyph::Line(THRUST, 3, false), "thrust line".into()));
+        } else {
+            legend.push((
+                Glyph::Line(THRUST, 3, false),
+                "resultant on each joint (no chain: no thrust line)".into(),
+            ));
+        }
     }
     if !drawing.hinges.is_empty() {
         legend.push((
@@ -490,7 +508,12 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
                     .map(|p| p.filter(|q| q.x.is_finite() && q.y.is_finite())),
             ) {
                 let pts: Vec<_> = run.iter().map(|p| frame.px(*p)).collect();
-                if pts.len() == 1 {
+                if !joined {
+                    for p in pts {
+                        root.draw(&Circle::new(p, 3, THRUST.filled()))
+                            .map_err(plot_err)?;
+                    }
+                } else if pts.len() == 1 {
                     root.draw(&Circle::new(pts[0], 3, THRUST.filled()))
                         .map_err(plot_err)?;
                 } else {

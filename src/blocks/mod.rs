@@ -1,0 +1,494 @@
+//! The user's own blocks: polygons read from a file (JSON, CSV, DXF) or given inline, checked,
+//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]).
+//!
+//! A scene's `[blocks]` table (read by the scene module) names the source; this module knows the
+//! formats and the geometry, nothing of scenes:
+//! - JSON: `{"polygons": [[[x, y], [x, y], ...], ...]}`;
+//! - CSV: rows `block,x,y` (an optional header row), the vertices of a block on consecutive
+//!   rows in order; the block labels are any text, blocks numbered in order of appearance;
+//! - DXF: every closed `LWPOLYLINE` or `POLYLINE` entity (of one layer, when asked) is a block;
+//!   arc segments (bulges) are refused.
+//!
+//! Coordinates are scaled by the scene's `units` (`"m"` or `"mm"`) to metres. Outlines may run
+//! either way round and may close by repeating their first vertex; repeated vertices and
+//! vertices on a straight edge are dropped (they do not change the block), and every outline is
+//! stored counter-clockwise.
+//!
+//! Inputs are bounded before anything is allocated for them: a file larger than
+//! [`MAX_FILE_BYTES`], more than [`MAX_BLOCKS`] blocks, [`MAX_VERTICES`] vertices in all or
+//! [`MAX_BLOCK_VERTICES`] in one block are refused with an error that says so.
+
+pub mod joints;
+
+pub use joints::{detect, Detected, Topology};
+
+use crate::geometry::{cross, Vec2};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Largest block file read (bytes): 64 MiB, some two million vertices of text.
+pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
+/// Largest number of blocks.
+pub const MAX_BLOCKS: usize = 100_000;
+/// Largest number of vertices over all blocks.
+pub const MAX_VERTICES: usize = 2_000_000;
+/// Largest number of vertices of one block (the self-intersection check is quadratic in it).
+pub const MAX_BLOCK_VERTICES: usize = 1_000;
+
+/// Largest coordinate (m) of a vertex: a thousand kilometres, as for every scene length.
+pub const MAX_COORDINATE: f64 = 1e6;
+
+/// The length unit of a block source.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Units {
+    Metres,
+    Millimetres,
+}
+
+impl Units {
+    /// Metres per unit.
+    pub fn scale(self) -> f64 {
+        match self {
+            Units::Metres => 1.0,
+            Units::Millimetres => 1e-3,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Units::Metres => "m",
+            Units::Millimetres => "mm",
+        }
+    }
+}
+
+/// A file format of blocks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Json,
+    Csv,
+    Dxf,
+}
+
+impl Format {
+    /// The format of a file by its extension (case-insensitive).
+    pub fn of_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "json" => Some(Format::Json),
+            "csv" => Some(Format::Csv),
+            "dxf" => Some(Format::Dxf),
+            _ => None,
+        }
+    }
+}
+
+/// Why a block source cannot be used. The messages name the block (its index in the source,
+/// from 0) and coordinates in the source's units where that helps find it.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum BlockError {
+    #[error("cannot read {path}: {message}")]
+    Io { path: PathBuf, message: String },
+    #[error("{path}: {size} bytes is more than the {MAX_FILE_BYTES} a block file may have (blocks::MAX_FILE_BYTES)")]
+    TooLarge { path: PathBuf, size: u64 },
+    #[error("{0}")]
+    Format(String),
+    #[error("{count} {what} is more than the {max} allowed")]
+    TooMany {
+        what: &'static str,
+        count: usize,
+        max: usize,
+    },
+    #[error("no blocks: {0}")]
+    Empty(String),
+    /// A problem of one block's outline.
+    #[error("block {block}: {message}")]
+    Block { block: usize, message: String },
+    /// A problem between blocks, or of the structure as a whole.
+    #[error("{0}")]
+    Structure(String),
+}
+
+/// The outlines of the blocks, in metres, counter-clockwise, in source order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Polygons(pub Vec<Vec<Vec2>>);
+
+impl Polygons {
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    /// Bounding box `(lo, hi)` of every vertex.
+    pub fn bounds(&self) -> (Vec2, Vec2) {
+        let mut lo = Vec2::repeat(f64::INFINITY);
+        let mut hi = Vec2::repeat(f64::NEG_INFINITY);
+        for p in self.0.iter().flatten() {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        (lo, hi)
+    }
+    /// The largest extent of the bounding box (m).
+    pub fn size(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        (hi - lo).max()
+    }
+}
+
+/// Read the blocks of a file, its format told by its extension; `layer` selects the DXF
+/// layer (ignored by the other formats). Coordinates are multiplied by `units.scale()`.
+pub fn read_file(path: &Path, units: Units, layer: Option<&str>) -> Result<Polygons, BlockError> {
+    let format = Format::of_path(path).ok_or_else(|| {
+        BlockError::Format(format!(
+            "{}: unknown block file type (the extension must be .json, .csv or .dxf)",
+            path.display()
+        ))
+    })?;
+    let io = |e: std::io::Error| BlockError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    if size > MAX_FILE_BYTES {
+        return Err(BlockError::TooLarge {
+            path: path.to_path_buf(),
+            size,
+        });
+    }
+    let mut bytes = Vec::with_capacity(size as usize);
+    // `take` guards against a file that grows while it is read.
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(BlockError::TooLarge {
+            path: path.to_path_buf(),
+            size: bytes.len() as u64,
+        });
+    }
+    let name = path.display().to_string();
+    let raw = match format {
+        Format::Json => read_json(&bytes, &name)?,
+        Format::Csv => read_csv(&bytes, &name)?,
+        Format::Dxf => read_dxf(&bytes, &name, layer)?,
+    };
+    clean(raw, units, &name)
+}
+
+/// Blocks given inline (`polygons = [[[x, y], ...], ...]`), in `units`.
+pub fn from_vertices(raw: Vec<Vec<[f64; 2]>>, units: Units) -> Result<Polygons, BlockError> {
+    clean(raw, units, "polygons")
+}
+
+fn count_limits(blocks: usize, vertices: usize) -> Result<(), BlockError> {
+    if blocks > MAX_BLOCKS {
+        return Err(BlockError::TooMany {
+            what: "blocks",
+            count: blocks,
+            max: MAX_BLOCKS,
+        });
+    }
+    if vertices > MAX_VERTICES {
+        return Err(BlockError::TooMany {
+            what: "vertices",
+            count: vertices,
+            max: MAX_VERTICES,
+        });
+    }
+    Ok(())
+}
+
+fn read_json(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> {
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct File {
+        polygons: Vec<Vec<[f64; 2]>>,
+    }
+    // The file's size is bounded, so is what serde allocates for it.
+    let file: File = serde_json::from_slice(bytes).map_err(|e| {
+        BlockError::Format(format!(
+            "{name}: not a block file {{\"polygons\": [[[x, y], ...], ...]}}: {e}"
+        ))
+    })?;
+    Ok(file.polygons)
+}
+
+fn read_csv(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(bytes);
+    let mut blocks: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut labels: Vec<String> = Vec::new();
+    let mut vertices = 0usize;
+    for (row, record) in reader.records().enumerate() {
+        let record =
+            record.map_err(|e| BlockError::Format(format!("{name}: row {}: {e}", row + 1)))?;
+        if record.len() != 3 {
+            return Err(BlockError::Format(format!(
+                "{name}: row {}: {} fields; each row is block,x,y",
+                row + 1,
+                record.len()
+            )));
+        }
+        let (x, y) = (record[1].parse::<f64>(), record[2].parse::<f64>());
+        let (x, y) = match (x, y) {
+            (Ok(x), Ok(y)) => (x, y),
+            _ if row == 0 => continue, // a header row
+            _ => {
+                return Err(BlockError::Format(format!(
+                    "{name}: row {}: `{},{}` are not two numbers x,y",
+                    row + 1,
+                    &record[1],
+                    &record[2]
+                )))
+            }
+        };
+        let label = &record[0];
+        if labels.last().map(String::as_str) != Some(label) {
+            if labels.iter().any(|l| l == label) {
+                return Err(BlockError::Format(format!(
+                    "{name}: row {}: block `{label}` appears again after other blocks; a block's vertices must be on consecutive rows",
+                    row + 1
+                )));
+            }
+            labels.push(label.to_string());
+            blocks.push(Vec::new());
+        }
+        vertices += 1;
+        count_limits(blocks.len(), vertices)?;
+        if let Some(b) = blocks.last_mut() {
+            b.push([x, y]);
+        }
+    }
+    Ok(blocks)
+}
+
+fn read_dxf(
+    bytes: &[u8],
+    name: &str,
+    layer: Option<&str>,
+) -> Result<Vec<Vec<[f64; 2]>>, BlockError> {
+    let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
+        .map_err(|e| BlockError::Format(format!("{name}: not a readable DXF file: {e}")))?;
+    let mut blocks = Vec::new();
+    let mut vertices = 0usize;
+    let mut other_layers = std::collections::BTreeSet::new();
+    for entity in drawing.entities() {
+        let on_layer = layer.is_none_or(|l| entity.common.layer.eq_ignore_ascii_case(l));
+        let (points, closed, bulge): (Vec<[f64; 2]>, bool, bool) = match &entity.specific {
+            dxf::entities::EntityType::LwPolyline(p) => (
+                p.vertices.iter().map(|v| [v.x, v.y]).collect(),
+                p.is_closed(),
+                p.vertices.iter().any(|v| v.bulge != 0.0),
+            ),
+            dxf::entities::EntityType::Polyline(p) => (
+                p.vertices().map(|v| [v.location.x, v.location.y]).collect(),
+                p.is_closed(),
+                p.vertices().any(|v| v.bulge != 0.0),
+            ),
+            _ => continue,
+        };
+        if !on_layer {
+            other_layers.insert(entity.common.layer.clone());
+            continue;
+        }
+        let index = blocks.len();
+        let at = points.first().map_or(String::new(), |p| {
+            format!(" starting at ({}, {})", p[0], p[1])
+        });
+        if !closed {
+            return Err(BlockError::Block {
+                block: index,
+                message: format!(
+                    "{name}: the polyline{at} (handle {:X}, layer `{}`) is open; each block must be a closed polyline",
+                    entity.common.handle.0, entity.common.layer
+                ),
+            });
+        }
+        if bulge {
+            return Err(BlockError::Block {
+                block: index,
+                message: format!(
+                    "{name}: the polyline{at} (handle {:X}) has arc segments (bulges); draw blocks with straight edges",
+                    entity.common.handle.0
+                ),
+            });
+        }
+        vertices += points.len();
+        count_limits(index + 1, vertices)?;
+        blocks.push(points);
+    }
+    if blocks.is_empty() {
+        let hint = match (layer, other_layers.is_empty()) {
+            (Some(l), false) => format!(
+                " on layer `{l}` (polylines lie on layers: {})",
+                other_layers.into_iter().collect::<Vec<_>>().join(", ")
+            ),
+            (Some(l), true) => format!(" on layer `{l}`"),
+            _ => String::new(),
+        };
+        return Err(BlockError::Empty(format!(
+            "{name} has no closed LWPOLYLINE or POLYLINE entity{hint}"
+        )));
+    }
+    Ok(blocks)
+}
+
+/// Check the counts and numbers, scale to metres, drop repeated and straight-angle vertices,
+/// and turn every outline counter-clockwise. `name` names the source in messages.
+fn clean(raw: Vec<Vec<[f64; 2]>>, units: Units, name: &str) -> Result<Polygons, BlockError> {
+    if raw.is_empty() {
+        return Err(BlockError::Empty(format!("{name} holds no polygon")));
+    }
+    count_limits(raw.len(), raw.iter().map(Vec::len).sum())?;
+    let scale = units.scale();
+    let limit = MAX_COORDINATE;
+    let mut out = Vec::with_capacity(raw.len());
+    for (i, poly) in raw.into_iter().enumerate() {
+        let fail = |message: String| BlockError::Block { block: i, message };
+        if poly.len() > MAX_BLOCK_VERTICES {
+            return Err(fail(format!(
+                "{} vertices is more than the {MAX_BLOCK_VERTICES} a block may have",
+                poly.len()
+            )));
+        }
+        if let Some((k, p)) = poly
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p[0].is_finite() && p[1].is_finite()))
+        {
+            return Err(fail(format!(
+                "vertex {k} is ({}, {}): coordinates must be finite numbers",
+                p[0], p[1]
+            )));
+        }
+        let pts: Vec<Vec2> = poly
+            .iter()
+            .map(|p| Vec2::new(p[0] * scale, p[1] * scale))
+            .collect();
+        if let Some((k, p)) = pts
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.x.abs() > limit || p.y.abs() > limit)
+        {
+            return Err(fail(format!(
+                "vertex {k} is ({}, {}) m: coordinates must lie within +-{limit:e} m",
+                p.x, p.y
+            )));
+        }
+        out.push(simplify(pts));
+    }
+    // Tolerance for dropping vertices: relative to the whole structure.
+    let polys = Polygons(out);
+    let tol = 1e-12 * polys.size().max(f64::MIN_POSITIVE);
+    let polys: Vec<Vec<Vec2>> = polys
+        .0
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let p = drop_straight(p, tol);
+            if p.len() < 3 {
+                return Err(BlockError::Block {
+                    block: i,
+                    message: format!(
+                        "its outline has {} distinct vertices, not enough for a block (at least 3 not on one line)",
+                        p.len()
+                    ),
+                });
+            }
+            Ok(counter_clockwise(p))
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Polygons(polys))
+}
+
+/// Drop exactly repeated consecutive vertices (and a closing copy of the first).
+fn simplify(mut pts: Vec<Vec2>) -> Vec<Vec2> {
+    pts.dedup();
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    pts
+}
+
+/// Drop vertices within `tol` of the line through their neighbours, and near-repeats.
+fn drop_straight(mut pts: Vec<Vec2>, tol: f64) -> Vec<Vec2> {
+    loop {
+        let m = pts.len();
+        if m < 3 {
+            return pts;
+        }
+        let drop = (0..m).find(|&k| {
+            let (a, b, c) = (pts[(k + m - 1) % m], pts[k], pts[(k + 1) % m]);
+            let ac = c - a;
+            let len = ac.norm();
+            (b - a).norm() <= tol
+                || (len > tol
+                    && cross(ac, b - a).abs() <= tol * len
+                    && (b - a).dot(&ac) > 0.0
+                    && (c - b).dot(&ac) > 0.0)
+        });
+        match drop {
+            Some(k) => {
+                pts.remove(k);
+            }
+            None => return pts,
+        }
+    }
+}
+
+/// Twice the signed area (positive counter-clockwise).
+pub fn signed_area2(pts: &[Vec2]) -> f64 {
+    let m = pts.len();
+    (0..m).map(|k| cross(pts[k], pts[(k + 1) % m])).sum()
+}
+
+fn counter_clockwise(mut pts: Vec<Vec2>) -> Vec<Vec2> {
+    if signed_area2(&pts) < 0.0 {
+        pts.reverse();
+    }
+    pts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outlines_are_cleaned_and_turned_counter_clockwise() {
+        let raw = vec![vec![
+            [0.0, 0.0],
+            [0.0, 1.0],
+            [0.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 0.5],
+            [1.0, 0.0],
+            [0.0, 0.0],
+        ]];
+        let p = from_vertices(raw, Units::Metres).unwrap();
+        assert_eq!(p.0[0].len(), 4);
+        assert!(signed_area2(&p.0[0]) > 0.0);
+        let mm = from_vertices(
+            vec![vec![[0.0, 0.0], [1000.0, 0.0], [0.0, 500.0]]],
+            Units::Millimetres,
+        )
+        .unwrap();
+        assert_eq!(mm.0[0][1], Vec2::new(1.0, 0.0));
+    }
+
+    #[test]
+    fn csv_groups_consecutive_rows_and_skips_a_header() {
+        let text = b"block,x,y\na,0,0\na,1,0\na,1,1\nb,0,1\nb,1,1\nb,1,2\n";
+        let raw = read_csv(text, "t.csv").unwrap();
+        assert_eq!(raw.len(), 2);
+        assert_eq!(raw[1][2], [1.0, 2.0]);
+        let again = read_csv(b"a,0,0\nb,1,0\na,1,1\n", "t.csv").unwrap_err();
+        assert!(again.to_string().contains("appears again"), "{again}");
+    }
+}

@@ -1,0 +1,377 @@
+//! Scenes of the user's own blocks: the `[blocks]` table (a file or inline polygons, the
+//! ground line, the units, the DXF layer), its checks, and the model it builds — the
+//! assembly found by [`crate::blocks::detect`] and the loads of `[[loads]]` and `[seismic]`
+//! placed on its blocks.
+//!
+//! Load placement on user blocks:
+//! - a point load acts on the first block (in source order) whose outline contains `at`;
+//! - a line load of intensity `q` over `[from_x, to_x]` rests on the top of the structure: the
+//!   range is cut at the ends of the upward-facing edges, and each piece's load `q * length`
+//!   acts on the highest upward-facing edge above it, at that edge's point over the piece's
+//!   mid x (an edge hidden under another block carries nothing, as the top edge above it is
+//!   higher).
+
+use super::{LoadSpec, Material, Section};
+use crate::assembly::{Assembly, BlockKind};
+use crate::blocks::{self, BlockError, Detected, Polygons, Units};
+use crate::error::SceneError;
+use crate::geometry::{cross, Vec2};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
+use std::path::{Path, PathBuf};
+use toml::Value;
+
+/// The keys of `[blocks]`.
+pub(super) const BLOCKS_KEYS: &[&str] = &[
+    "file",
+    "polygons",
+    "ground_y",
+    "layer",
+    "units",
+    "tolerance",
+];
+
+/// Default tolerance of the joint detection, relative to the structure's size.
+pub const DEFAULT_TOLERANCE: f64 = 1e-6;
+
+/// Where the blocks came from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BlockSource {
+    /// A file: as written in the scene, and as resolved (relative to the scene file).
+    File { written: String, path: PathBuf },
+    /// `polygons = [...]` in the scene.
+    Inline,
+}
+
+/// A validated `[blocks]` table and the structure found from it.
+#[derive(Debug, Clone)]
+pub struct BlocksSpec {
+    pub source: BlockSource,
+    pub units: Units,
+    /// `ground_y` as given (None: the lowest vertex).
+    pub ground_y: Option<f64>,
+    pub layer: Option<String>,
+    /// Joint tolerance relative to the structure's size.
+    pub tolerance: f64,
+    /// The outlines, in metres.
+    pub polygons: Polygons,
+    /// Blocks and joints found (weights from `[material]`).
+    pub detected: Detected,
+}
+
+impl BlocksSpec {
+    /// The source in words: the file as written, or `inline polygons`.
+    pub fn source_words(&self) -> String {
+        match &self.source {
+            BlockSource::File { written, .. } => written.clone(),
+            BlockSource::Inline => "inline polygons".to_string(),
+        }
+    }
+}
+
+/// Read `[blocks]` (the section `s`) given the scene's material; `base` is the directory of
+/// the scene file (relative paths are taken from it).
+pub(super) fn parse_blocks(
+    mut s: Section,
+    material: &Material,
+    base: Option<&Path>,
+) -> Result<BlocksSpec, SceneError> {
+    s.check_known(BLOCKS_KEYS, "")?;
+    let units = match s.string("units", Some("m"))?.as_str() {
+        "m" => Units::Metres,
+        "mm" => Units::Millimetres,
+        other => {
+            return Err(s.out_of_range(
+                "units",
+                format!("\"{other}\""),
+                "must be \"m\" (metres) or \"mm\" (millimetres)",
+            ))
+        }
+    };
+    let ground_y = match s.opt_f64("ground_y")? {
+        Some(g) if !(g.is_finite() && g.abs() <= super::MAX_LENGTH) => {
+            return Err(s.out_of_range(
+                "ground_y",
+                g,
+                &format!("must be a finite y within +-{:e} m", super::MAX_LENGTH),
+            ))
+        }
+        g => g.map(|g| g * units.scale()),
+    };
+    let layer = match s.table.get("layer") {
+        Some(_) => Some(s.string("layer", None)?),
+        None => {
+            s.used.insert("layer");
+            None
+        }
+    };
+    let tolerance = s.opt_f64("tolerance")?.unwrap_or(DEFAULT_TOLERANCE);
+    if !(tolerance.is_finite() && (1e-12..=1e-2).contains(&tolerance)) {
+        return Err(s.out_of_range(
+            "tolerance",
+            tolerance,
+            "must be from 1e-12 to 1e-2 (a fraction of the structure's size)",
+        ));
+    }
+    let file = s.table.get("file").is_some();
+    let inline = s.table.get("polygons").is_some();
+    s.used.insert("polygons");
+    let (source, polygons) =
+        match (file, inline) {
+            (true, true) => {
+                return Err(s.out_of_range(
+                    "polygons",
+                    "[...]",
+                    "give either `file` or `polygons`, not both",
+                ))
+            }
+            (false, false) => return Err(s.missing(
+                "file",
+                "a block file (.json, .csv or .dxf, relative to the scene) or inline `polygons`",
+            )),
+            (true, false) => {
+                let written = s.string("file", None)?;
+                let path = match base {
+                    Some(b) if Path::new(&written).is_relative() => b.join(&written),
+                    _ => PathBuf::from(&written),
+                };
+                if layer.is_some() && blocks::Format::of_path(&path) != Some(blocks::Format::Dxf) {
+                    return Err(s.out_of_range(
+                        "layer",
+                        format!("\"{}\"", layer.as_deref().unwrap_or_default()),
+                        "only a .dxf block file has layers",
+                    ));
+                }
+                let polys = blocks::read_file(&path, units, layer.as_deref())
+                    .map_err(|e| blocks_error(&s, "file", &e))?;
+                (BlockSource::File { written, path }, polys)
+            }
+            (false, true) => {
+                s.used.insert("file");
+                let raw = inline_polygons(&s)?;
+                let polys = blocks::from_vertices(raw, units)
+                    .map_err(|e| blocks_error(&s, "polygons", &e))?;
+                (BlockSource::Inline, polys)
+            }
+        };
+    s.finish("")?;
+    let key = if file { "file" } else { "polygons" };
+    let detected = blocks::detect(
+        &polygons,
+        ground_y,
+        tolerance,
+        material.unit_weight * material.depth,
+        material.friction,
+    )
+    .map_err(|e| blocks_error(&s, key, &e))?;
+    Ok(BlocksSpec {
+        source,
+        units,
+        ground_y,
+        layer,
+        tolerance,
+        polygons,
+        detected,
+    })
+}
+
+fn blocks_error(s: &Section, key: &str, e: &BlockError) -> SceneError {
+    SceneError::BadBlocks {
+        origin: s.origin.to_string(),
+        key: s.key(key),
+        message: e.to_string(),
+    }
+}
+
+/// `polygons = [[[x, y], ...], ...]`, counted before it is copied.
+fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
+    let v = s.table.get("polygons");
+    let expected = "a list of polygons [[[x, y], ...], ...]";
+    let wrong = |v: &Value| s.wrong_type("polygons", v, expected);
+    let Some(Value::Array(list)) = v else {
+        return Err(wrong(v.unwrap_or(&Value::Boolean(false))));
+    };
+    let total: usize = list
+        .iter()
+        .map(|p| match p {
+            Value::Array(a) => a.len(),
+            _ => 0,
+        })
+        .sum();
+    if list.len() > blocks::MAX_BLOCKS || total > blocks::MAX_VERTICES {
+        return Err(s.out_of_range(
+            "polygons",
+            format!("{} polygons, {total} vertices", list.len()),
+            &format!(
+                "at most {} blocks and {} vertices",
+                blocks::MAX_BLOCKS,
+                blocks::MAX_VERTICES
+            ),
+        ));
+    }
+    let num = |x: &Value| match x {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    };
+    list.iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let Value::Array(pts) = p else {
+                return Err(wrong(p));
+            };
+            pts.iter()
+                .map(|q| match q {
+                    Value::Array(xy) if xy.len() == 2 => match (num(&xy[0]), num(&xy[1])) {
+                        (Some(x), Some(y)) => Ok([x, y]),
+                        _ => Err(s.wrong_type(
+                            &format!("polygons[{i}]"),
+                            q,
+                            "a vertex [x, y] of two numbers",
+                        )),
+                    },
+                    _ => Err(s.wrong_type(
+                        &format!("polygons[{i}]"),
+                        q,
+                        "a vertex [x, y] of two numbers",
+                    )),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The model of a block scene: the assembly found, and the loads placed on it.
+pub(super) fn build_model(
+    spec: &BlocksSpec,
+    loads: &[LoadSpec],
+    vertical_ratio: f64,
+    origin: &str,
+) -> Result<Model, SceneError> {
+    let assembly = spec.detected.assembly.clone();
+    let mut case = LoadCase::self_weight(&assembly).with_vertical_ratio(vertical_ratio);
+    let tol = spec.detected.tolerance;
+    for (k, load) in loads.iter().enumerate() {
+        match *load {
+            LoadSpec::Point { at, force, seismic } => {
+                let p = Vec2::new(at[0], at[1]);
+                let block =
+                    first_containing(&assembly, p, tol).ok_or_else(|| SceneError::OutOfRange {
+                        origin: origin.to_string(),
+                        key: format!("loads[{k}].at"),
+                        value: format!("[{}, {}]", at[0], at[1]),
+                        allowed: "the point lies outside every block".into(),
+                    })?;
+                let force = Vec2::new(force[0], force[1]);
+                case.add(AppliedLoad {
+                    block,
+                    point: p,
+                    force,
+                    seismic_weight: if seismic { force.y.abs() } else { 0.0 },
+                    source: LoadSource::Load(k),
+                    region: None,
+                });
+            }
+            LoadSpec::Line {
+                from_x,
+                to_x,
+                intensity,
+                seismic,
+            } => {
+                case.add_spread(SpreadLoad {
+                    kind: Spread::Line {
+                        from_x,
+                        to_x,
+                        intensity,
+                    },
+                    seismic,
+                    source: LoadSource::Load(k),
+                });
+                let pieces = roof_pieces(&assembly, from_x, to_x, tol);
+                if pieces.is_empty() {
+                    return Err(SceneError::OutOfRange {
+                        origin: origin.to_string(),
+                        key: format!("loads[{k}].from_x"),
+                        value: format!("{from_x} (to_x = {to_x})"),
+                        allowed: "the loaded length must lie over the top of some block".into(),
+                    });
+                }
+                for (block, point, length) in pieces {
+                    let w = intensity * length;
+                    case.add(AppliedLoad {
+                        block,
+                        point,
+                        force: Vec2::new(0.0, -w),
+                        seismic_weight: if seismic { w } else { 0.0 },
+                        source: LoadSource::Load(k),
+                        region: None,
+                    });
+                }
+            }
+        }
+    }
+    Ok(Model {
+        assembly,
+        loads: case,
+    })
+}
+
+/// The first block in source order whose (convex, counter-clockwise) outline holds `p`.
+fn first_containing(assembly: &Assembly, p: Vec2, tol: f64) -> Option<usize> {
+    let source = |i: usize| match assembly.blocks[i].kind {
+        BlockKind::User(s) => s,
+        _ => i,
+    };
+    (0..assembly.blocks.len())
+        .filter(|&i| {
+            let poly = &assembly.blocks[i].polygon;
+            let m = poly.len();
+            (0..m).all(|k| {
+                let e = poly[(k + 1) % m] - poly[k];
+                cross(e, p - poly[k]) / e.norm() >= -tol
+            })
+        })
+        .min_by_key(|&i| source(i))
+}
+
+/// The pieces of `[from_x, to_x]` under a line load: `(block, point, length)` for each piece
+/// between consecutive ends of upward-facing edges, on the highest such edge above it.
+fn roof_pieces(assembly: &Assembly, from_x: f64, to_x: f64, tol: f64) -> Vec<(usize, Vec2, f64)> {
+    // Upward-facing edges of counter-clockwise outlines run toward -x: (block, left, right).
+    let mut edges = Vec::new();
+    for (i, b) in assembly.blocks.iter().enumerate() {
+        let m = b.polygon.len();
+        for k in 0..m {
+            let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+            if a.x - c.x > tol {
+                edges.push((i, c, a));
+            }
+        }
+    }
+    let mut cuts: Vec<f64> = vec![from_x, to_x];
+    for (_, l, r) in &edges {
+        for x in [l.x, r.x] {
+            if x > from_x && x < to_x {
+                cuts.push(x);
+            }
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut pieces = Vec::new();
+    for w in cuts.windows(2) {
+        let (x0, x1) = (w[0], w[1]);
+        if x1 - x0 <= 0.0 {
+            continue;
+        }
+        let x = 0.5 * (x0 + x1);
+        let top = edges
+            .iter()
+            .filter(|(_, l, r)| l.x <= x && x <= r.x)
+            .map(|&(i, l, r)| (i, l + (x - l.x) / (r.x - l.x) * (r - l)))
+            .max_by(|a, b| a.1.y.total_cmp(&b.1.y));
+        if let Some((i, p)) = top {
+            pieces.push((i, p, x1 - x0));
+        }
+    }
+    pieces
+}

@@ -466,6 +466,45 @@ pub fn cases(
         .collect()
 }
 
+/// A sweep ready to run: its variations, checked against the base scene before anything is
+/// solved ([`check_variations`]), and every case built ([`cases`]). The `sweep` command and
+/// the Python package both run sweeps through it, so they give the same rows.
+#[derive(Debug)]
+pub struct Sweep {
+    variations: Vec<Variation>,
+    cases: Vec<(Vec<Value>, Result<Scene, SceneError>)>,
+}
+
+impl Sweep {
+    /// Check `variations` against `base` and build every case (invalid cases stay, as
+    /// errors, to become rows with status `error`).
+    pub fn new(base: &Scene, variations: Vec<Variation>) -> Result<Sweep, SceneError> {
+        check_variations(base, &variations)?;
+        let cases = cases(base, &variations);
+        Ok(Sweep { variations, cases })
+    }
+
+    /// The varied keys and their values, in order (the first changes slowest).
+    pub fn variations(&self) -> &[Variation] {
+        &self.variations
+    }
+
+    /// Every case: its varied values and its scene (or why it is invalid).
+    pub fn cases(&self) -> &[(Vec<Value>, Result<Scene, SceneError>)] {
+        &self.cases
+    }
+
+    /// Analyse every case by `options` (and the DEM when `dem`) in parallel, as rows in
+    /// order ([`case`]); `progress` is called after each case (from worker threads).
+    pub fn run(&self, options: &Options, dem: bool, progress: &(dyn Fn() + Sync)) -> Vec<SweepRow> {
+        run(
+            &self.cases,
+            |values, scene| case(values, scene, options, dem),
+            progress,
+        )
+    }
+}
+
 /// Run `analyse` on every case in parallel, keeping the order; `progress` is called after
 /// each case (from worker threads).
 pub fn run<R, F>(

@@ -114,10 +114,10 @@ pub fn run(args: Args) -> Result<String, Error> {
     // Everything is checked before anything is solved: the chart's options, the varied keys
     // and values, and the output paths.
     let x = chart_x(&args, &variations)?;
-    sweep::check_variations(&scene, &variations)?;
-    let cases = sweep::cases(&scene, &variations);
+    let plan = sweep::Sweep::new(&scene, variations)?;
+    let (variations, cases) = (plan.variations(), plan.cases());
     if let Some(x) = &x {
-        sweep::check_chart(&variations, &cases, x, args.series.as_deref())?;
+        sweep::check_chart(variations, cases, x, args.series.as_deref())?;
     }
     check_output_paths([args.csv.as_ref(), args.svg.as_ref()])?;
     let bar = progress_bar(cases.len() as u64, "sweep");
@@ -127,23 +127,19 @@ pub fn run(args: Args) -> Result<String, Error> {
         kinematic: args.kinematic.into(),
         ..analysis::Options::default()
     };
-    let rows = sweep::run(
-        &cases,
-        |values, s| sweep::case(values, s, &options, args.run_dem),
-        &|| bar.inc(1),
-    );
+    let rows = plan.run(&options, args.run_dem, &|| bar.inc(1));
     bar.finish_and_clear();
     if let (Some(path), Some(x)) = (&args.svg, &x) {
         let title = format!(
             "{}: collapse multiplier against {}",
-            chart_title(&scene, &cases),
+            chart_title(&scene, cases),
             sweep::key_label(x)
         );
-        let chart = sweep::chart(&variations, &rows, x, args.series.as_deref(), &title)?;
+        let chart = sweep::chart(variations, &rows, x, args.series.as_deref(), &title)?;
         write_chart(path, &chart)?;
     }
     let mut buf = Vec::new();
-    sweep::write_csv(&mut buf, &variations, &rows).map_err(|e| Error::Output {
+    sweep::write_csv(&mut buf, variations, &rows).map_err(|e| Error::Output {
         path: args.csv.clone().unwrap_or_else(|| "stdout".into()),
         message: e.to_string(),
     })?;

@@ -1,0 +1,91 @@
+"""Type stubs of the native module ``voussoir._voussoir`` (Rust, PyO3). Use the package
+``voussoir``: it wraps these functions into result objects."""
+
+from os import PathLike
+from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
+
+__version__: str
+DERIVED_KEYS: List[str]
+KINEMATIC_DEFAULT_MAX_JOINTS: int
+
+class VoussoirError(Exception):
+    """Base class of every error voussoir raises."""
+
+class SceneError(VoussoirError):
+    """A problem with a scene: its file, a key, a value, or a varied key. The message is the
+    command line's."""
+
+    kind: str
+    """io, syntax, unknown_key, missing_key, wrong_type, out_of_range, bad_override,
+    bad_variation, bad_chart or usage."""
+    origin: Optional[str]
+    """The scene's file or source (``<dict>``, ``<string>``), when the error has one."""
+    key: Optional[str]
+    """The dotted scene key (``arch.thickness``) or varied key, when the error has one."""
+    value: Optional[str]
+    """The offending value as text, when the error has one."""
+
+class AnalysisError(VoussoirError):
+    """A failure of an analysis that is not a physical answer."""
+
+    kind: str
+    """solver_setup, solver_failed, assembly or other."""
+
+class Scene:
+    """A validated scene (the TOML format of docs/geometry.md). Immutable; pickles."""
+
+    @staticmethod
+    def from_toml(path: Union[str, PathLike[str]]) -> Scene:
+        """Read and validate a scene file."""
+    @staticmethod
+    def from_toml_str(text: str, origin: str = "<string>") -> Scene:
+        """Parse and validate a scene from TOML text."""
+    @staticmethod
+    def from_dict(d: Mapping[str, Any], origin: str = "<dict>") -> Scene:
+        """Validate a scene given as a dict of its TOML tables."""
+    def with_values(self, values: Mapping[str, Any]) -> Scene:
+        """A copy with dotted keys (or the sweep's ratios) set together, validated once."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The scene as a dict of its TOML tables."""
+    def to_toml(self) -> str:
+        """The scene as TOML text."""
+    @property
+    def origin(self) -> str: ...
+    @property
+    def thickness(self) -> float: ...
+    @property
+    def voussoirs(self) -> int: ...
+    @property
+    def span(self) -> float: ...
+    @property
+    def rise(self) -> float: ...
+    def ratios(self) -> Dict[str, float]:
+        """The dimensionless ratios (t/R, t/span, ...); NaN where not defined."""
+    def __reduce__(self) -> Tuple[Any, Tuple[str, str]]: ...
+
+def analyze_json(
+    scene: Scene,
+    direction: str = "right",
+    continuous: bool = False,
+    kinematic: str = "certified",
+    kinematic_max_joints: int = 200,
+) -> str:
+    """``voussoir analyze --json`` of a scene, as JSON text."""
+
+def min_thickness_json(
+    scene: Scene, continuous: bool = False, kinematic_max_joints: int = 200
+) -> str:
+    """``voussoir min-thickness --json`` of a scene, as JSON text."""
+
+def dem_json(scene: Scene, tolerance: float = 0.01) -> str:
+    """``voussoir dem --json`` of a scene, as JSON text."""
+
+def sweep_rows(
+    scene: Scene,
+    vary: Dict[str, Any],
+    continuous: bool = False,
+    dem: bool = False,
+    kinematic: str = "certified",
+    kinematic_max_joints: int = 200,
+) -> List[Dict[str, Any]]:
+    """The rows of a sweep, with the columns of the CLI's CSV."""

@@ -87,6 +87,9 @@ fn scene_error(py: Python<'_>, e: &LibSceneError) -> PyErr {
             ("bad_variation", None, k, v)
         }
         LibSceneError::BadChart { key, .. } => ("bad_chart", None, Some(key.clone()), None),
+        LibSceneError::BadBlocks { origin, key, .. } => {
+            ("bad_blocks", Some(origin.clone()), Some(key.clone()), None)
+        }
         LibSceneError::Usage(_) => ("usage", None, None, None),
     };
     let err = SceneError::new_err(e.to_string());
@@ -286,16 +289,16 @@ impl Scene {
         self.inner.origin.clone()
     }
 
-    /// Radial thickness t of the arch (m).
+    /// Radial thickness t of the arch (m); None for a scene of the user's own blocks.
     #[getter]
-    fn thickness(&self) -> f64 {
-        self.inner.arch.thickness
+    fn thickness(&self) -> Option<f64> {
+        self.inner.arch.as_ref().map(|a| a.thickness)
     }
 
-    /// Number of voussoirs n.
+    /// Number of voussoirs n; None for a scene of the user's own blocks.
     #[getter]
-    fn voussoirs(&self) -> usize {
-        self.inner.arch.voussoirs
+    fn voussoirs(&self) -> Option<usize> {
+        self.inner.arch.as_ref().map(|a| a.voussoirs)
     }
 
     /// Centreline span of the arch (m).
@@ -327,13 +330,20 @@ impl Scene {
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "Scene({}, t = {} m, {} voussoirs, from {})",
-            report::shape_title(&self.inner),
-            self.inner.arch.thickness,
-            self.inner.arch.voussoirs,
-            self.inner.origin
-        )
+        match &self.inner.arch {
+            Some(a) => format!(
+                "Scene({}, t = {} m, {} voussoirs, from {})",
+                report::shape_title(&self.inner),
+                a.thickness,
+                a.voussoirs,
+                self.inner.origin
+            ),
+            None => format!(
+                "Scene({}, from {})",
+                report::shape_title(&self.inner),
+                self.inner.origin
+            ),
+        }
     }
 }
 
@@ -407,12 +417,13 @@ fn min_thickness_json(
     let (model, t) = py
         .detach(|| -> Result<_, LibAnalysisError> {
             let model = voussoir::scene::build(scene)?;
-            let t = voussoir::thickness::analyse(
-                scene,
-                &StaticSettings::default(),
+            let options = analysis::Options {
+                static_settings: StaticSettings::default(),
                 kinematic_max_joints,
+                kinematic: analysis::KinematicMode::Certified,
                 continuous,
-            )?;
+            };
+            let t = voussoir::thickness::analyse(scene, &options)?;
             Ok((model, t))
         })
         .map_err(|e| analysis_error(py, &e))?;

@@ -28,7 +28,15 @@ use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad}
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
     let (assembly, arch) = build_assembly(scene);
     let loads = build_loads(scene, &assembly, &arch)?;
-    Ok(Model { assembly, loads })
+    let strength = crate::model::Strength {
+        compressive: scene.material.compressive_strength,
+        depth: scene.material.depth,
+    };
+    Ok(Model {
+        assembly,
+        loads,
+        strength,
+    })
 }
 
 /// Where the arch's blocks sit in the assembly, for placing loads.

@@ -1,0 +1,277 @@
+//! Finite compressive strength (issue 13): closed forms, the rigid limit, monotonicity,
+//! hinge positions, the scaling law and full = chain with the crushing cones.
+
+mod common;
+use common::*;
+use voussoir::assembly::JointEnd;
+use voussoir::lp::{self, Program, StaticSettings, Status};
+use voussoir::model::{equilibrium_residual, Model, Strength};
+use voussoir::scene::Scene;
+
+fn strength(fc: f64, depth: f64) -> Strength {
+    Strength {
+        compressive: fc,
+        depth,
+    }
+}
+
+fn with_fc(scene: &Scene, fc: f64) -> Scene {
+    scene
+        .with_override(&format!("material.compressive_strength={fc:e}"))
+        .expect("valid override")
+}
+
+fn analyse(model: &Model, program: Program) -> lp::StaticResult {
+    lp::analyse(model, &StaticSettings::default().program(program)).expect("solves")
+}
+
+fn lambda_of(scene: &Scene, program: Program) -> f64 {
+    let r = analyse(&model_of(scene), program);
+    assert_eq!(r.status, Status::Collapse, "{}", r.solver_status);
+    r.lambda.expect("collapse has a multiplier")
+}
+
+/// The semicircle of the acceptance: R = 5 m, t/R = 0.15, unit weight 20 kN/m^3, depth 1 m.
+fn semicircle_r5(fc: f64, scale: f64) -> Scene {
+    scene(&format!(
+        "[arch]\nshape = \"circular\"\nradius = {}\nthickness = {}\nvoussoirs = 32\n\
+         [material]\nunit_weight = 20000.0\ndepth = {}\ncompressive_strength = {fc:e}\n",
+        5.0 * scale,
+        0.75 * scale,
+        1.0 * scale,
+    ))
+}
+
+#[test]
+fn single_block_closed_form() {
+    // Block b x h, weight W = b h (unit weight density), depth d. Overturning about the toe
+    // with the resultant at the centre of the compressed zone a = W/(fc d), a/2 from the toe:
+    // lambda W h/2 = W (b/2 - a/2), so lambda = (b - a)/h = (b - W/(fc d))/h.
+    let (b, h, d) = (0.6, 1.2, 0.5);
+    let w = b * h;
+    for (fc, program) in [
+        (6.0, Program::Full),
+        (6.0, Program::Auto),
+        (2.5, Program::Full),
+    ] {
+        let model =
+            Model::self_weight(single_block(b, h, f64::INFINITY)).with_strength(strength(fc, d));
+        let r = analyse(&model, program);
+        assert_eq!(r.status, Status::Collapse, "{}", r.solver_status);
+        let lambda = r.lambda.expect("collapse");
+        let a = w / (fc * d);
+        let expected = (b - a) / h;
+        assert!(
+            (lambda - expected).abs() <= 1e-7,
+            "fc = {fc}: {lambda} vs {expected}"
+        );
+        // One hinge at the toe's side (the load acts to the right: the right corner), a/2 in.
+        assert_eq!(r.hinges.len(), 1, "{:?}", r.hinges);
+        let hinge = r.hinges[0];
+        assert!((hinge.compressed_zone - a).abs() <= 1e-7 * b, "{hinge:?}");
+        assert!((hinge.offset - 0.5 * a).abs() <= 1e-7 * b, "{hinge:?}");
+        assert!(
+            (hinge.x - (0.5 * b - 0.5 * a)).abs() <= 1e-7 * b,
+            "{hinge:?}"
+        );
+        let forces = r.forces.expect("forces");
+        let residual = equilibrium_residual(&model.assembly, &model.loads, &forces, lambda, 1.0);
+        assert!(residual <= 1e-8 * w, "residual {residual}");
+    }
+    // Just stronger than the weight needs: a sliver of capacity; just weaker: cannot stand.
+    let fc_full = w / (d * b);
+    let model = Model::self_weight(single_block(b, h, f64::INFINITY));
+    let r = analyse(
+        &model.clone().with_strength(strength(1.01 * fc_full, d)),
+        Program::Full,
+    );
+    let expected = (b - b / 1.01) / h;
+    assert!(
+        (r.lambda.expect("collapse") - expected).abs() <= 1e-7,
+        "{:?}",
+        r.lambda
+    );
+    for program in [Program::Full, Program::Auto] {
+        let r = analyse(
+            &model.clone().with_strength(strength(0.99 * fc_full, d)),
+            program,
+        );
+        assert_eq!(r.status, Status::CannotStand, "{}", r.solver_status);
+        assert!(r.lambda.is_none());
+        let stand = lp::stands(
+            &model.clone().with_strength(strength(0.99 * fc_full, d)),
+            &StaticSettings::default(),
+        )
+        .expect("stand test runs");
+        assert!(!stand.stands && stand.tension > 0.0);
+    }
+}
+
+#[test]
+fn strong_material_returns_to_rigid_values() {
+    // lambda(fc) = lambda_rigid - k/fc + O(1/fc^2): at fc = 1e12 Pa the bundled scenes (W up to
+    // ~1e5 N) still shift by up to ~4e-8 physically, so the check is against the first-order
+    // prediction from fc = 1e9 Pa, to 1e-8; the raw shift is bounded by the same order.
+    for name in [
+        "semicircular.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+    ] {
+        let s = Scene::from_file(&data(name)).expect("bundled scene");
+        for program in [Program::Auto, Program::Full] {
+            let rigid = lambda_of(&s, program);
+            let at = |fc: f64| lambda_of(&with_fc(&s, fc), program);
+            let (l9, l12) = (at(1e9), at(1e12));
+            let predicted = rigid - (rigid - l9) * 1e-3;
+            assert!(
+                (l12 - predicted).abs() <= 1e-8,
+                "{name} {program:?}: rigid {rigid}, 1e9 {l9}, 1e12 {l12}, predicted {predicted}"
+            );
+            assert!(
+                l12 <= rigid + 1e-9 && rigid - l12 <= 5e-8,
+                "{name}: {rigid} {l12}"
+            );
+            // At infinite strength the scene key changes nothing at all.
+            assert_eq!(at(f64::INFINITY), rigid);
+        }
+    }
+}
+
+#[test]
+fn capacity_falls_with_strength_semicircle_r5() {
+    let rigid = lambda_of(&semicircle_r5(f64::INFINITY, 1.0), Program::Auto);
+    let mut last = rigid;
+    let mut values = Vec::new();
+    for fc in [100e6, 20e6, 5e6, 2e6, 1e6, 0.5e6] {
+        let l = lambda_of(&semicircle_r5(fc, 1.0), Program::Auto);
+        assert!(l < last, "fc = {fc:e}: {l} >= {last}");
+        values.push((fc, l));
+        last = l;
+    }
+    let at = |fc: f64| {
+        values
+            .iter()
+            .find(|v| v.0 == fc)
+            .map(|v| v.1)
+            .expect("computed")
+    };
+    let (loss1, loss20) = (1.0 - at(1e6) / rigid, 1.0 - at(20e6) / rigid);
+    println!(
+        "rigid {rigid:.6}; 20 MPa {:.6} (-{:.3}%); 1 MPa {:.6} (-{:.2}%)",
+        at(20e6),
+        100.0 * loss20,
+        at(1e6),
+        100.0 * loss1
+    );
+    // A visible loss at 1 MPa (measured 40.4%), a small one at 20 MPa (2.1%: the hinges move
+    // in by a/2 ~ 4 mm of the 750 mm ring, and lambda falls by about 3.4 per unit t/R this close
+    // to the minimum thickness t/R = 0.107, i.e. ~0.003 of 0.146); the loss is nearly linear
+    // in 1/fc for a strong material, so 20 times the strength loses about 1/20 of it.
+    assert!(loss1 > 0.3, "loss at 1 MPa {loss1}");
+    assert!(loss20 < 0.03, "loss at 20 MPa {loss20}");
+    assert!((loss20 / loss1 - 0.05).abs() < 0.02, "{loss20} / {loss1}");
+}
+
+#[test]
+fn hinges_sit_at_the_centre_of_the_compressed_zone() {
+    for (s, fc) in [
+        (semicircle_r5(1e6, 1.0), 1e6),
+        (
+            with_fc(&Scene::from_file(&data("portal.toml")).expect("scene"), 2e5),
+            2e5,
+        ),
+    ] {
+        let model = model_of(&s);
+        for program in [Program::Auto, Program::Full] {
+            let r = analyse(&model, program);
+            assert_eq!(r.status, Status::Collapse);
+            let forces = r.forces.as_ref().expect("forces");
+            assert!(r.hinges.len() >= 4, "{:?}", r.hinges);
+            for h in &r.hinges {
+                let jt = &model.assembly.joints[h.joint];
+                let f = forces[h.joint];
+                let a = f.n / (fc * model.strength.depth);
+                let len = jt.length();
+                // Distance of the resultant from the hinge's end.
+                let e = f.m / f.n;
+                let from_end = match h.end {
+                    JointEnd::P2 => 0.5 * len - e,
+                    JointEnd::P1 => 0.5 * len + e,
+                };
+                assert!(
+                    (from_end - 0.5 * a).abs() <= 1e-7 * len,
+                    "{h:?}: {from_end} vs {}",
+                    0.5 * a
+                );
+                assert!((h.offset - 0.5 * a).abs() <= 1e-12 * len + 1e-9 * a);
+                assert!((h.compressed_zone - a).abs() <= 1e-9 * a);
+                let thrust = jt.midpoint() + e * jt.tangent();
+                assert!((thrust.x - h.x).hypot(thrust.y - h.y) <= 1e-7 * len);
+            }
+        }
+    }
+}
+
+#[test]
+fn scaling_law() {
+    // Lengths x10 and fc x10: weights per unit depth x100 and depth x10, so N/(fc d) x10 like
+    // every length: the same lambda.
+    for fc in [1e6, 3e6] {
+        let small = lambda_of(&semicircle_r5(fc, 1.0), Program::Auto);
+        let large = lambda_of(&semicircle_r5(10.0 * fc, 10.0), Program::Auto);
+        assert!((small - large).abs() <= 1e-9, "{small} vs {large}");
+        let full = lambda_of(&semicircle_r5(10.0 * fc, 10.0), Program::Full);
+        assert!((full - large).abs() <= 1e-9, "{full} vs {large}");
+    }
+}
+
+#[test]
+fn full_program_equals_chain_program_with_cones() {
+    for name in [
+        "semicircular.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+        "segmental.toml",
+        "filled_arch.toml",
+        "loaded_portal.toml",
+    ] {
+        let base = Scene::from_file(&data(name)).expect("bundled scene");
+        for fc in [2e7, 1e6, 3e5] {
+            let model = model_of(&with_fc(&base, fc));
+            let chain = analyse(&model, Program::Auto);
+            let full = analyse(&model, Program::Full);
+            assert_eq!(chain.status, full.status, "{name} {fc:e}");
+            if let (Some(a), Some(b)) = (chain.lambda, full.lambda) {
+                assert!((a - b).abs() <= 1e-9, "{name} {fc:e}: chain {a} full {b}");
+                let joints = |r: &lp::StaticResult| {
+                    r.hinges
+                        .iter()
+                        .map(|h| (h.joint, h.end))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(joints(&chain), joints(&full), "{name} {fc:e}");
+                assert_eq!(chain.model.cone_rows, 6 * model.assembly.joints.len());
+                assert_eq!(full.model.cone_rows, 6 * model.assembly.joints.len());
+            }
+        }
+    }
+}
+
+#[test]
+fn too_weak_material_cannot_stand() {
+    // The crown joint of the R = 5 m semicircle carries about half the arch's weight times a
+    // thrust ratio; at fc = 20 kPa no thrust line fits: infeasible cone programs give
+    // cannot_stand on both programs, never a number.
+    for program in [Program::Auto, Program::Full] {
+        let r = analyse(&model_of(&semicircle_r5(2e4, 1.0)), program);
+        assert_eq!(
+            r.status,
+            Status::CannotStand,
+            "{program:?}: {}",
+            r.solver_status
+        );
+        assert!(r.lambda.is_none() && r.forces.is_none());
+    }
+}

@@ -275,3 +275,183 @@ fn too_weak_material_cannot_stand() {
         assert!(r.lambda.is_none() && r.forces.is_none());
     }
 }
+
+#[test]
+fn minimum_thickness_grows_as_the_strength_falls() {
+    let mut last = 0.0;
+    for fc in [f64::INFINITY, 2e7, 1e6, 5e5] {
+        let s = semicircle_r5(fc, 1.0);
+        let m = voussoir::thickness::min_thickness(&s, &StaticSettings::default()).expect("runs");
+        let t = m.search.min_thickness.expect("found");
+        assert!(t > last, "fc = {fc:e}: t_min {t} <= {last}");
+        last = t;
+        // At the minimum the crushing structure just stands: a hair thinner it cannot.
+        let (lo, hi) = m.search.bracket.expect("bracket");
+        let stands = |t: f64| {
+            let model = model_of(&s.with_thickness(t).expect("thickness"));
+            lp::stands(&model, &StaticSettings::default())
+                .expect("runs")
+                .stands
+        };
+        assert!(stands(hi) && !stands(lo), "fc = {fc:e}: [{lo}, {hi}]");
+        if fc.is_finite() {
+            // Its hinges sit a/2 inside the joints.
+            assert!(m.hinges.iter().all(|h| h.offset > 0.0), "{:?}", m.hinges);
+        }
+    }
+}
+
+#[test]
+fn sigma_sets_the_strength_and_reads_back() {
+    let base = semicircle_r5(f64::INFINITY, 1.0);
+    assert_eq!(voussoir::sweep::sigma(&base).expect("sigma"), 0.0);
+    for sigma in [0.05, 0.3] {
+        let v = toml::Value::Float(sigma);
+        let s = voussoir::sweep::apply(&base, &[("sigma", &v)]).expect("applies");
+        let back = voussoir::sweep::sigma(&s).expect("sigma");
+        assert!((back - sigma).abs() <= 1e-12 * sigma, "{back} vs {sigma}");
+        // sigma = W/(fc d t) with W = gamma d pi R t for the semicircle (polygon voussoirs
+        // of 32 sides weigh a little less than the annulus).
+        let fc = s.material.compressive_strength;
+        let w = model_of(&s).assembly.total_weight();
+        assert!((w / (fc * 0.75) - sigma).abs() <= 1e-12 * sigma);
+        // The scaling law through sigma: the same sigma on a scene 10 times larger.
+        let large = semicircle_r5(f64::INFINITY, 10.0);
+        let sl = voussoir::sweep::apply(&large, &[("sigma", &v)]).expect("applies");
+        let (a, b) = (lambda_of(&s, Program::Auto), lambda_of(&sl, Program::Auto));
+        assert!((a - b).abs() <= 1e-9, "sigma = {sigma}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn kinematic_check_at_the_crushing_hinges_equals_the_static_value() {
+    // The analysis layer values the mechanism about the centres of the compressed zones by
+    // virtual work; it must equal the static multiplier on every shape.
+    for name in [
+        "semicircular.toml",
+        "pointed.toml",
+        "basket.toml",
+        "portal.toml",
+        "segmental.toml",
+        "loaded_portal.toml",
+    ] {
+        let base = Scene::from_file(&data(name)).expect("bundled scene");
+        for fc in [2e7, 1e6] {
+            let s = with_fc(&base, fc);
+            let a = voussoir::analysis::analyse(&s, &voussoir::analysis::Options::default())
+                .expect("analyses");
+            let l = a.lower.lambda.expect("collapse");
+            let k = a.upper.as_ref().expect("an upper bound");
+            assert_eq!(
+                k.search,
+                voussoir::kinematic::Search::Certified,
+                "{name} {fc:e}: {:?}",
+                k.note
+            );
+            let u = k.lambda_upper.expect("collapse");
+            assert!(
+                (u - l).abs() <= 1e-8 * l.max(1.0),
+                "{name} {fc:e}: {u} vs {l}"
+            );
+            let m = k.mechanism.as_ref().expect("mechanism");
+            assert!(m.hinges.iter().all(|h| h.offset > 0.0));
+            // The exhaustive search keeps rigid hinges: the rigid value, and it says so.
+            let opts = voussoir::analysis::Options {
+                kinematic: voussoir::analysis::KinematicMode::Exhaustive,
+                ..Default::default()
+            };
+            let e = voussoir::analysis::analyse(&s, &opts).expect("analyses");
+            let ek = e.upper.as_ref().expect("exhaustive");
+            let rigid = lambda_of(&base, Program::Auto);
+            assert!(
+                (ek.lambda_upper.expect("collapse") - rigid).abs() <= 1e-8,
+                "{name}"
+            );
+            assert!(
+                ek.note.as_deref().unwrap_or("").contains("rigid hinges"),
+                "{:?}",
+                ek.note
+            );
+        }
+    }
+}
+
+#[test]
+fn dem_and_continuous_refuse_finite_strength() {
+    let s = semicircle_r5(1e6, 1.0);
+    let model = model_of(&s);
+    let params = voussoir::dem::IntegrationParameters::for_model(&model);
+    let err = voussoir::dem::collapse_multiplier(&model, &params, 0.01, &mut |_| {})
+        .expect_err("refused");
+    assert!(
+        matches!(err, voussoir::dem::DemError::FiniteStrength { .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("compressive_strength"), "{err}");
+    let err = voussoir::analysis::continuous(&s, lp::Direction::Right).expect_err("refused");
+    assert!(
+        matches!(
+            err,
+            voussoir::kinematic::KinematicError::FiniteStrength { .. }
+        ),
+        "{err}"
+    );
+    // The CLI says so and fails, rather than printing a rigid number.
+    let out = voussoir()
+        .args(["dem"])
+        .arg(scene_file(&s, "dem"))
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("compressive strength"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn json_reports_hinge_offsets() {
+    let s = semicircle_r5(1e6, 1.0);
+    let out = voussoir()
+        .args(["analyze", "--json"])
+        .arg(scene_file(&s, "json"))
+        .output()
+        .expect("runs");
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let hinges = v["hinges"].as_array().expect("hinges");
+    assert_eq!(hinges.len(), 4);
+    for h in hinges {
+        let (offset, zone) = (
+            h["offset"].as_f64().expect("offset"),
+            h["compressed_zone"].as_f64().expect("zone"),
+        );
+        assert!(
+            zone > 0.0 && (offset - 0.5 * zone).abs() <= 1e-12 * zone,
+            "{h}"
+        );
+    }
+    assert_eq!(v["scene"]["compressive_strength"].as_f64(), Some(1e6));
+    // Rigid: the fields are there, zero.
+    let out = voussoir()
+        .args(["analyze", "--json"])
+        .arg(data("semicircular.toml"))
+        .output()
+        .expect("runs");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    for h in v["hinges"].as_array().expect("hinges") {
+        assert_eq!(h["offset"].as_f64(), Some(0.0));
+        assert_eq!(h["compressed_zone"].as_f64(), Some(0.0));
+    }
+    assert!(v["scene"]["compressive_strength"].is_null());
+}
+
+/// The scene written to a file in the system's temporary directory.
+fn scene_file(s: &Scene, name: &str) -> std::path::PathBuf {
+    let path = std::env::temp_dir().join(format!(
+        "voussoir-crushing-{}-{name}.toml",
+        std::process::id()
+    ));
+    std::fs::write(&path, toml::to_string(s.table()).expect("toml")).expect("write");
+    path
+}

@@ -63,6 +63,10 @@ pub struct SceneReport {
     /// Whether the friction coefficient is infinite (joints cannot slide; `friction` is then
     /// null).
     pub friction_infinite: bool,
+    /// `[material] compressive_strength` (Pa); null means infinite (rigid joints, no crushing).
+    pub compressive_strength: Option<f64>,
+    /// The strength ratio `W/(fc d t)` (0 for rigid joints), see [`crate::sweep::sigma`].
+    pub sigma: f64,
 }
 
 /// `[piers]` echoed in the JSON `scene`.
@@ -202,7 +206,19 @@ impl SceneReport {
             unit_weight: scene.material.unit_weight,
             depth: scene.material.depth,
             friction_infinite: scene.material.friction.is_infinite(),
+            compressive_strength: finite_or_null(scene.material.compressive_strength),
+            sigma: strength_ratio(scene, model),
         }
+    }
+}
+
+/// `W/(fc d t)` of the scene's model (0 for rigid joints).
+fn strength_ratio(scene: &Scene, model: &Model) -> f64 {
+    let fc = scene.material.compressive_strength;
+    if fc.is_finite() {
+        model.assembly.total_weight() / (fc * scene.material.depth * scene.arch.thickness)
+    } else {
+        0.0
     }
 }
 

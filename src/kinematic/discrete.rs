@@ -1215,86 +1215,6 @@ fn slow_patterns<S: Sink>(chain: &Chain, j: [usize; 4], pats: u16, sink: &mut S)
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The fast paths agree with the generic cofactor evaluation on every candidate, under
-    /// loads that are not parallel to the weights (an inclined point load, fill, a vertical
-    /// seismic component).
-    #[test]
-    fn fast_paths_match_generic_evaluation() {
-        let scene = crate::scene::Scene::from_toml_str(
-            "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.2\nthickness=0.2\nvoussoirs=6\n[piers]\nheight=0.8\nwidth=0.35\ncourses=2\n[[loads]]\ntype='point'\nat=[-0.9, -0.2]\nforce=[300.0, -2000.0]\n[fill]\nlevel=1.3\n[seismic]\nvertical_ratio=0.2\n",
-            "t",
-        )
-        .unwrap();
-        let model = crate::scene::build(&scene).unwrap();
-        let chain = Chain::new(&model, 1.0, true);
-        let n = chain.joints();
-        // Four hinges: quadruple_work against evaluate, where admissible.
-        let mut checked = 0;
-        for d in 3..n {
-            for c in 2..d {
-                for b in 1..c {
-                    for a in 0..b {
-                        for pat in 0..16 {
-                            let key = quad_key([a, b, c, d], pat);
-                            if let Some((ax, g, _)) = chain.evaluate(&key) {
-                                let (ax1, g1) = quadruple_work(&chain, [a, b, c, d], pat, 1.0);
-                                let sigma = if ax * ax1 + g * g1 >= 0.0 { 1.0 } else { -1.0 };
-                                let (ax2, g2) = (sigma * ax1, sigma * g1);
-                                let s = ax.abs() + g.abs();
-                                assert!((ax - ax2).abs() <= 1e-9 * s && (g - g2).abs() <= 1e-9 * s);
-                                checked += 1;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        assert!(checked > 100);
-        // Both searches over the whole family agree with brute force.
-        let fast = four_hinges(&chain, false).merge(two_hinges_one_open(&chain, false));
-        let mut brute = Extremes::new();
-        for d in 3..n {
-            for c in 2..d {
-                for b in 1..c {
-                    for a in 0..b {
-                        slow_quadruple(&chain, [a, b, c, d], &mut brute);
-                    }
-                }
-            }
-        }
-        for o in 0..n {
-            for j1 in 0..n {
-                for j2 in j1 + 1..n {
-                    if j1 == o || j2 == o {
-                        continue;
-                    }
-                    for e1 in 0..2u8 {
-                        for e2 in 0..2u8 {
-                            let mut items = [(j1, e1), (j2, e2), (o, OPEN)];
-                            items.sort_unstable();
-                            let key = Key::new(&items);
-                            if let Some((a, g, _)) = chain.evaluate(&key) {
-                                brute.push(a, g, || key);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        let (fb, bb) = (fast.best.unwrap(), brute.best.unwrap());
-        assert!(
-            (fb.0 - bb.0).abs() <= 1e-12 * bb.0.abs().max(1.0),
-            "{fb:?} {bb:?}"
-        );
-        assert_eq!(fb.1, bb.1);
-        assert_eq!(fast.admissible, brute.admissible);
-    }
-}
-
 /// The crushing counterpart of [`certify`]: with a finite compressive strength the static
 /// hinges sit at the centres of the compressed zones (`a/2` from the joint ends,
 /// [`Hinge::offset`]), and the mechanism that rotates about those points is valued by
@@ -1460,4 +1380,84 @@ pub fn certify_crushing(
         searched_joints: 4,
         note: Some(note),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fast paths agree with the generic cofactor evaluation on every candidate, under
+    /// loads that are not parallel to the weights (an inclined point load, fill, a vertical
+    /// seismic component).
+    #[test]
+    fn fast_paths_match_generic_evaluation() {
+        let scene = crate::scene::Scene::from_toml_str(
+            "[arch]\nshape='pointed'\nradius=1.0\neccentricity=0.2\nthickness=0.2\nvoussoirs=6\n[piers]\nheight=0.8\nwidth=0.35\ncourses=2\n[[loads]]\ntype='point'\nat=[-0.9, -0.2]\nforce=[300.0, -2000.0]\n[fill]\nlevel=1.3\n[seismic]\nvertical_ratio=0.2\n",
+            "t",
+        )
+        .unwrap();
+        let model = crate::scene::build(&scene).unwrap();
+        let chain = Chain::new(&model, 1.0, true);
+        let n = chain.joints();
+        // Four hinges: quadruple_work against evaluate, where admissible.
+        let mut checked = 0;
+        for d in 3..n {
+            for c in 2..d {
+                for b in 1..c {
+                    for a in 0..b {
+                        for pat in 0..16 {
+                            let key = quad_key([a, b, c, d], pat);
+                            if let Some((ax, g, _)) = chain.evaluate(&key) {
+                                let (ax1, g1) = quadruple_work(&chain, [a, b, c, d], pat, 1.0);
+                                let sigma = if ax * ax1 + g * g1 >= 0.0 { 1.0 } else { -1.0 };
+                                let (ax2, g2) = (sigma * ax1, sigma * g1);
+                                let s = ax.abs() + g.abs();
+                                assert!((ax - ax2).abs() <= 1e-9 * s && (g - g2).abs() <= 1e-9 * s);
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 100);
+        // Both searches over the whole family agree with brute force.
+        let fast = four_hinges(&chain, false).merge(two_hinges_one_open(&chain, false));
+        let mut brute = Extremes::new();
+        for d in 3..n {
+            for c in 2..d {
+                for b in 1..c {
+                    for a in 0..b {
+                        slow_quadruple(&chain, [a, b, c, d], &mut brute);
+                    }
+                }
+            }
+        }
+        for o in 0..n {
+            for j1 in 0..n {
+                for j2 in j1 + 1..n {
+                    if j1 == o || j2 == o {
+                        continue;
+                    }
+                    for e1 in 0..2u8 {
+                        for e2 in 0..2u8 {
+                            let mut items = [(j1, e1), (j2, e2), (o, OPEN)];
+                            items.sort_unstable();
+                            let key = Key::new(&items);
+                            if let Some((a, g, _)) = chain.evaluate(&key) {
+                                brute.push(a, g, || key);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let (fb, bb) = (fast.best.unwrap(), brute.best.unwrap());
+        assert!(
+            (fb.0 - bb.0).abs() <= 1e-12 * bb.0.abs().max(1.0),
+            "{fb:?} {bb:?}"
+        );
+        assert_eq!(fb.1, bb.1);
+        assert_eq!(fast.admissible, brute.admissible);
+    }
 }

@@ -17,6 +17,8 @@ const SCENE_REBUILD_FIELDS: &[&str] = &[
     "unit_weight",
     "depth",
     "friction_infinite",
+    // Issue 13: null means infinite (no crushing).
+    "compressive_strength",
 ];
 
 /// Issue 9: the loads as read and their totals, in every report.
@@ -81,6 +83,13 @@ fn analyze_fields() {
         "joint",
     );
     has_all(&v["hinges"][0], &["joint", "end", "x", "y"], "hinge");
+    // Issue 13: where a crushing hinge sits inside its joint (0 for rigid joints).
+    has_all(
+        &v["hinges"][0],
+        &["offset", "compressed_zone"],
+        "hinge (crushing)",
+    );
+    has_all(&v["scene"], &["sigma"], "scene (crushing)");
     has_all(
         &v["mechanism_hinges"][0],
         &["joint", "end", "x", "y"],
@@ -247,6 +256,12 @@ fn scene_toml(v: &serde_json::Value) -> String {
         toml_float(&sc["unit_weight"]),
         toml_float(&sc["depth"])
     );
+    if !sc["compressive_strength"].is_null() {
+        t += &format!(
+            "compressive_strength = {}\n",
+            toml_float(&sc["compressive_strength"])
+        );
+    }
     for load in v["loads"].as_array().expect("loads") {
         t += "\n[[loads]]\n";
         for (k, x) in load.as_object().expect("a load") {
@@ -292,6 +307,7 @@ fn the_json_scene_rebuilds_the_scene() {
         ),
         ("loaded_portal.toml", &[]),
         ("filled_arch.toml", &[]),
+        ("semicircular.toml", &["material.compressive_strength=2e5"]),
     ];
     for (file, sets) in cases {
         let mut args = vec!["analyze", "--json"];

@@ -410,9 +410,16 @@ fn classify_joints(
                 Hinge::at(assembly, j, end)
             }
         };
-        if e >= reach - tol * length {
+        // Rigid joints: the end, within tol L (written as before crushing, so rigid results
+        // stay bit for bit the same).
+        let limit = if zone > 0.0 {
+            reach - tol * length
+        } else {
+            reach * (1.0 - 2.0 * tol)
+        };
+        if e >= limit {
             states.hinges.push(hinge(JointEnd::P2));
-        } else if e <= -reach + tol * length {
+        } else if e <= -limit {
             states.hinges.push(hinge(JointEnd::P1));
         }
         if jt.friction.is_finite() && f.v.abs() >= (1.0 - tol) * jt.friction * f.n {

@@ -2,8 +2,11 @@
 //! blocks can be in equilibrium with no-tension joints whose resultants stay inside them and
 //! whose shear obeys Coulomb's law — the safe theorem of limit analysis for masonry
 //! (Heyman, *The Stone Skeleton*, 1995; Livesley, 1978; Gilbert, Casapulla & Ahmed, 2006).
-//! The program is linear (a conic program over the zero and nonnegative cones) and is solved
-//! with Clarabel. For associative (non-sliding or normality) joints its optimum is the
+//! With rigid joints the program is linear (a conic program over the zero and nonnegative
+//! cones) and is solved with Clarabel; with a finite compressive strength (a rectangular stress
+//! block, [`crate::model::Strength`]; Gilbert, Casapulla & Ahmed's crushing extension, as in
+//! RING) every joint adds two rotated second-order cones, and the chain program goes to
+//! Clarabel too (its active set and exact vertex are for the linear program only). For associative (non-sliding or normality) joints its optimum is the
 //! collapse multiplier; the duals of the equilibrium rows are the virtual velocities of the
 //! blocks, i.e. the collapse mechanism.
 

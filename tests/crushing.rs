@@ -455,3 +455,32 @@ fn scene_file(s: &Scene, name: &str) -> std::path::PathBuf {
     std::fs::write(&path, toml::to_string(s.table()).expect("toml")).expect("write");
     path
 }
+
+#[test]
+fn mirror_invariance_with_crushing() {
+    // The mirrored structure loaded the other way has the same multiplier and mirrored hinges.
+    let s = with_fc(
+        &Scene::from_file(&data("loaded_portal.toml")).expect("scene"),
+        1e6,
+    );
+    let model = model_of(&s);
+    let right = lp::analyse(&model, &StaticSettings::default()).expect("solves");
+    let left = lp::analyse(
+        &model.mirrored(),
+        &StaticSettings::default().direction(lp::Direction::Left),
+    )
+    .expect("solves");
+    let (a, b) = (
+        right.lambda.expect("collapse"),
+        left.lambda.expect("collapse"),
+    );
+    assert!((a - b).abs() <= 1e-9, "{a} vs {b}");
+    let offsets = |r: &lp::StaticResult| {
+        let mut o: Vec<f64> = r.hinges.iter().map(|h| h.offset).collect();
+        o.sort_by(f64::total_cmp);
+        o
+    };
+    for (x, y) in offsets(&right).iter().zip(offsets(&left)) {
+        assert!((x - y).abs() <= 1e-7 * x.max(1e-3), "{x} vs {y}");
+    }
+}

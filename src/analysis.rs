@@ -105,7 +105,10 @@ impl SceneAnalysis {
             .joints
             .iter()
             .any(|j| j.friction.is_finite());
-        let local = self.upper.as_ref().is_ok_and(|k| k.search == Search::Local);
+        // With crushing the searches' hinges are rigid (their multiplier is the rigid
+        // structure's): only the static solution's own sliding joints say that sliding governs.
+        let local = self.upper.as_ref().is_ok_and(|k| k.search == Search::Local)
+            || self.model.strength.is_finite();
         match (self.lower.status, self.lower.lambda, self.lambda_upper()) {
             (Status::Collapse, Some(l), Some(u)) => {
                 finite && l < u * (1.0 - 1e-6) && !(local && self.lower.sliding.is_empty())
@@ -127,7 +130,22 @@ impl SceneAnalysis {
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
     let model = crate::scene::build(scene)?;
     let lower = lp::analyse(&model, &options.static_settings)?;
-    let (upper, kinematic_search) = upper_bound(&model, &lower, options);
+    let (mut upper, kinematic_search) = upper_bound(&model, &lower, options);
+    if model.strength.is_finite() && kinematic_search != Some(Search::Certified) {
+        // The searches enumerate hinges at the joint ends: say so, since their multiplier is
+        // the rigid structure's (an upper bound, as crushing only lowers it).
+        upper = upper.map(|mut k| {
+            let rigid = format!(
+                "rigid hinges: this search ignores the compressive strength ({:e} Pa), so its multiplier is the rigid structure's, an upper bound of the crushing one",
+                model.strength.compressive
+            );
+            k.note = Some(match k.note.take() {
+                Some(n) if !n.is_empty() => format!("{n}; {rigid}"),
+                _ => rigid,
+            });
+            k
+        });
+    }
     let continuous = options
         .continuous
         .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
@@ -257,7 +275,13 @@ fn certify_static(
     lower: &StaticResult,
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, String> {
-    let k = kinematic::certify(model, lower, settings).map_err(|e| e.to_string())?;
+    let k = if model.strength.is_finite() {
+        // Hinges at the centres of the compressed zones (see kinematic::certify_crushing).
+        kinematic::certify_crushing(model, lower, settings)
+    } else {
+        kinematic::certify(model, lower, settings)
+    }
+    .map_err(|e| e.to_string())?;
     match (k.lambda_upper, lower.lambda) {
         (Some(u), Some(l)) if (u - l).abs() <= CERTIFY_TOL * l.abs().max(1.0) => Ok(k),
         (u, _) => Err(format!(

@@ -233,13 +233,20 @@ pub enum JointEnd {
     P2,
 }
 
-/// A hinge: a joint whose resultant (or rotation centre) sits at one of its ends.
+/// A hinge: a joint whose resultant (or rotation centre) sits at one of its ends — or, with a
+/// finite compressive strength, at the centre of the compressed zone next to that end.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Hinge {
     pub joint: usize,
     pub end: JointEnd,
+    /// The hinge point (m): the joint's end, or `offset` inside it.
     pub x: f64,
     pub y: f64,
+    /// Distance (m) of the hinge point from the joint's end `end`: `a/2` with crushing, 0 for
+    /// rigid joints.
+    pub offset: f64,
+    /// Width `a = N/(fc d)` (m) of the compressed zone at the hinge; 0 for rigid joints.
+    pub compressed_zone: f64,
 }
 
 impl Hinge {
@@ -254,6 +261,32 @@ impl Hinge {
             end,
             x: p.x,
             y: p.y,
+            offset: 0.0,
+            compressed_zone: 0.0,
+        }
+    }
+
+    /// A crushing hinge: the resultant at the centre of a compressed zone of width
+    /// `compressed_zone` (m) that starts at the end `end` of joint `joint`.
+    pub fn crushing(
+        assembly: &Assembly,
+        joint: usize,
+        end: JointEnd,
+        compressed_zone: f64,
+    ) -> Hinge {
+        let j = &assembly.joints[joint];
+        let offset = 0.5 * compressed_zone;
+        let p = match end {
+            JointEnd::P1 => j.p1 + offset * j.tangent(),
+            JointEnd::P2 => j.p2 - offset * j.tangent(),
+        };
+        Hinge {
+            joint,
+            end,
+            x: p.x,
+            y: p.y,
+            offset,
+            compressed_zone,
         }
     }
 }

@@ -14,7 +14,16 @@ use rayon::prelude::*;
 use toml::Value;
 
 /// Dimensionless keys that can be varied instead of scene keys.
-pub const DERIVED_KEYS: &[&str] = &["t/R", "e/R", "h/R", "b/R", "t/span", "rise/span", "e/span"];
+pub const DERIVED_KEYS: &[&str] = &[
+    "t/R",
+    "e/R",
+    "h/R",
+    "b/R",
+    "t/span",
+    "rise/span",
+    "e/span",
+    "sigma",
+];
 
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,6 +102,7 @@ fn targets(key: &str) -> Vec<&str> {
         "rise/span" => vec!["arch.rise"],
         "h/R" => vec!["piers.height"],
         "b/R" => vec!["piers.width"],
+        "sigma" => vec!["material.compressive_strength"],
         other => vec![other],
     }
 }
@@ -207,7 +217,7 @@ pub fn apply(scene: &Scene, pairs: &[(&str, &Value)]) -> Result<Scene, SceneErro
     // with `e/R` must use the span of the pointed arch with that eccentricity, not the span
     // of the base scene.
     let mut scene = scene;
-    for phase in [SHAPE_KEYS, SIZE_KEYS] {
+    for phase in [SHAPE_KEYS, SIZE_KEYS, STRENGTH_KEYS] {
         let mut targets = Vec::new();
         for (k, v) in derived.iter().filter(|(k, _)| phase.contains(k)) {
             targets.extend(derived_target(&scene, k, v)?);
@@ -223,6 +233,23 @@ pub fn apply(scene: &Scene, pairs: &[(&str, &Value)]) -> Result<Scene, SceneErro
 const SHAPE_KEYS: &[&str] = &["e/R", "e/span", "rise/span"];
 /// Ratios that size the ring or the piers on the shaped arch (applied second).
 const SIZE_KEYS: &[&str] = &["t/R", "t/span", "h/R", "b/R"];
+/// The strength ratio, measured on the sized structure (applied last).
+const STRENGTH_KEYS: &[&str] = &["sigma"];
+
+/// The strength ratio `sigma = W/(fc d t)` of a scene: the weight W of its blocks (N) over
+/// the force its arch ring's section carries at the compressive strength, `fc d t` (depth d,
+/// ring thickness t). For a circular arch W = gamma d A with A proportional to R t, so sigma
+/// is gamma R / fc times a shape factor: with the shape ratios it fixes lambda (scaling the
+/// scene by k and fc by k keeps it). 0 for rigid joints (fc = inf).
+pub fn sigma(scene: &Scene) -> Result<f64, SceneError> {
+    let fc = scene.material.compressive_strength;
+    if !fc.is_finite() {
+        return Ok(0.0);
+    }
+    let t = scene.parametric("the strength ratio sigma")?.thickness;
+    let weight = crate::scene::build(scene)?.assembly.total_weight();
+    Ok(weight / (fc * scene.material.depth * t))
+}
 
 /// The scene key and value a ratio stands for.
 fn derived_target(
@@ -253,6 +280,24 @@ fn derived_target(
         "h/R" => ("piers.height", v * radius.ok_or_else(need_radius)?),
         "b/R" => ("piers.width", v * radius.ok_or_else(need_radius)?),
         "t/span" => ("arch.thickness", v * span(scene)),
+        "sigma" => {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(SceneError::BadOverride {
+                    text: format!("{key}={v}"),
+                    message:
+                        "the strength ratio sigma = W/(fc d t) must be >= 0 (0 for rigid joints)"
+                            .into(),
+                });
+            }
+            // sigma = W/(fc d t): the weight does not depend on fc.
+            let weight = crate::scene::build(scene)?.assembly.total_weight();
+            let fc = if v == 0.0 {
+                f64::INFINITY
+            } else {
+                weight / (v * scene.material.depth * scene.parametric("sigma")?.thickness)
+            };
+            ("material.compressive_strength", fc)
+        }
         "e/span" => {
             if !has_key("eccentricity") {
                 return Err(SceneError::BadOverride {
@@ -318,6 +363,7 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         ("h/R", h / radius),
         ("b/R", b / radius),
         ("e/span", e / span(scene)),
+        ("sigma", sigma(scene).unwrap_or(f64::NAN)),
     ]
 }
 
@@ -359,6 +405,7 @@ fn key_name(key: &str) -> Option<(&'static str, &'static str)> {
         "material.friction" => ("friction coefficient mu", ""),
         "material.unit_weight" => ("unit weight", "N/m^3"),
         "material.depth" => ("depth", "m"),
+        "material.compressive_strength" => ("compressive strength fc", "Pa"),
         "fill.level" => ("fill level", "m"),
         "fill.unit_weight" => ("fill unit weight", "N/m^3"),
         "fill.seismic" => ("seismic fill", ""),

@@ -309,8 +309,18 @@ pub fn analyse(
     let mut kinematic = None;
     let mut kinematic_search = None;
     let mut notes = Vec::new();
+    let crushing = scene.material.compressive_strength.is_finite();
+    if crushing {
+        // The certificate and the exhaustive search value mechanisms with hinges at the joint
+        // ends: they know rigid joints only.
+        notes.push(format!(
+            "rigid hinges: the kinematic search ignores the compressive strength ({:e} Pa), so its minimum thickness is the rigid structure's, below the crushing one",
+            scene.material.compressive_strength
+        ));
+    }
     if options.kinematic == crate::analysis::KinematicMode::Certified
         && lower.search.min_thickness.is_some()
+        && !crushing
     {
         match certify_min_thickness(scene, &lower, settings) {
             Ok(k) => {

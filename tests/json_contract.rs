@@ -19,6 +19,8 @@ const SCENE_REBUILD_FIELDS: &[&str] = &[
     "friction_infinite",
     "joints",
     "horizontal_bed_deg",
+    // Issue 13: null means infinite (no crushing).
+    "compressive_strength",
 ];
 
 /// Issue 9: the loads as read and their totals, in every report.
@@ -83,6 +85,13 @@ fn analyze_fields() {
         "joint",
     );
     has_all(&v["hinges"][0], &["joint", "end", "x", "y"], "hinge");
+    // Issue 13: where a crushing hinge sits inside its joint (0 for rigid joints).
+    has_all(
+        &v["hinges"][0],
+        &["offset", "compressed_zone"],
+        "hinge (crushing)",
+    );
+    has_all(&v["scene"], &["sigma"], "scene (crushing)");
     has_all(
         &v["mechanism_hinges"][0],
         &["joint", "end", "x", "y"],
@@ -275,6 +284,12 @@ fn scene_toml(v: &serde_json::Value) -> String {
         toml_float(&sc["unit_weight"]),
         toml_float(&sc["depth"])
     );
+    if !sc["compressive_strength"].is_null() {
+        t += &format!(
+            "compressive_strength = {}\n",
+            toml_float(&sc["compressive_strength"])
+        );
+    }
     for load in v["loads"].as_array().expect("loads") {
         t += "\n[[loads]]\n";
         for (k, x) in load.as_object().expect("a load") {
@@ -331,6 +346,7 @@ fn the_json_scene_rebuilds_the_scene() {
             &["arch.joints=horizontal_bed", "arch.horizontal_bed_deg=30"],
         ),
         ("semicircular.toml", &["arch.joints=vertical"]),
+        ("semicircular.toml", &["material.compressive_strength=2e5"]),
     ];
     for (file, sets) in cases {
         let mut args = vec!["analyze", "--json"];

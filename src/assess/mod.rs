@@ -279,6 +279,7 @@ impl Linkage {
         Model {
             assembly,
             loads: model.loads.moved(&moves),
+            strength: model.strength,
         }
     }
 }

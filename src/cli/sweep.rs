@@ -13,7 +13,8 @@ pub struct Args {
     scene: SceneArgs,
     /// KEY=V1,V2,... or KEY=START:STOP:STEP; KEY is a scene key (arch.thickness) or a
     /// ratio: t/R, e/R, h/R, b/R (R the centreline radius), t/span, rise/span, e/span (span
-    /// the centreline span; e/span keeps a pointed arch's span). Repeatable.
+    /// the centreline span; e/span keeps a pointed arch's span), sigma (the strength ratio
+    /// W/(fc d t): sets material.compressive_strength; 0 is rigid). Repeatable.
     #[arg(long, value_name = "KEY=VALUES", required = true)]
     vary: Vec<String>,
     /// Write the rows to this CSV file (default: standard output)
@@ -23,7 +24,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
     /// Abscissa of the chart (with --svg): a varied key, or a ratio that changes with the
-    /// varied keys (t/R, e/R, h/R, b/R, t/span, rise/span, e/span); default: the varied key
+    /// varied keys (t/R, e/R, h/R, b/R, t/span, rise/span, e/span, sigma); default: the varied key
     /// when only one is varied
     #[arg(long, value_name = "KEY")]
     x: Option<String>,

@@ -65,6 +65,8 @@ pub enum DemError {
     Settings(String),
     #[error("cannot write snapshots to {path}: {message}")]
     Output { path: PathBuf, message: String },
+    #[error("the DEM models rigid contacts (point contacts at the block corners, with no cap on the normal force), so it cannot check a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); run it without that key for the rigid structure, or rely on the static program, which models crushing")]
+    FiniteStrength { compressive_strength: f64 },
 }
 
 /// Where the bracket search started.
@@ -143,6 +145,12 @@ impl DemResult {
 /// loads on existing blocks.
 fn check_model(model: &Model) -> Result<(), DemError> {
     model.validate()?;
+    if model.strength.is_finite() {
+        // Never a silent rigid run presented as the crushing one.
+        return Err(DemError::FiniteStrength {
+            compressive_strength: model.strength.compressive,
+        });
+    }
     let nb = model.assembly.blocks.len();
     for (k, l) in model.loads.applied().iter().enumerate() {
         let finite = [l.point.x, l.point.y, l.force.x, l.force.y, l.seismic_weight]

@@ -747,6 +747,11 @@ pub fn continuous(
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
     let start = Instant::now();
+    if model.strength.is_finite() {
+        return Err(KinematicError::FiniteStrength {
+            compressive_strength: model.strength.compressive,
+        });
+    }
     let st = Structure::new(model, shape, thickness, direction)?;
     let coarse = st.coarse();
     let sections: Vec<(Vec2, Vec2)> = coarse.iter().map(|p| st.section(*p)).collect();

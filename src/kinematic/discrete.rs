@@ -1215,6 +1215,173 @@ fn slow_patterns<S: Sink>(chain: &Chain, j: [usize; 4], pats: u16, sink: &mut S)
     }
 }
 
+/// The crushing counterpart of [`certify`]: with a finite compressive strength the static
+/// hinges sit at the centres of the compressed zones (`a/2` from the joint ends,
+/// [`Hinge::offset`]), and the mechanism that rotates about those points is valued by
+/// virtual work. A uniform stress block rotating about its own centre does no work, and the
+/// joints that do not hinge do not move, so the work equation of this mechanism is the static
+/// equilibrium at the hinges: its multiplier equals the static one exactly when the static
+/// solution is in equilibrium with its resultants at those points, which is what this checks.
+/// (The associated mechanism, rotating about the far edge of each compressed zone and
+/// dissipating `fc d` times the zone's crushing, is the program's dual.)
+///
+/// Four-hinge mechanisms of a chain between two supports only: hinges `H1..H4` at joints
+/// `j1 < .. < j4` split the chain into three moving bodies; with relative rotations
+/// `theta_i` about `H_i`, closure `sum theta_i rot(H_i) = 0` fixes `theta` up to scale, and
+/// `lambda = -P_permanent / P_seismic` (the loads' powers).
+pub fn certify_crushing(
+    model: &Model,
+    around: &StaticResult,
+    settings: &KinematicSettings,
+) -> Result<KinematicResult, KinematicError> {
+    let start = Instant::now();
+    if around.status != Status::Collapse {
+        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
+    }
+    if !chain_kind(model)? {
+        return Err(KinematicError::NotCertified(
+            "a one-support chain has no four-hinge mechanism".into(),
+        ));
+    }
+    if !around.sliding.is_empty() || !around.open.is_empty() {
+        return Err(KinematicError::NotCertified(format!(
+            "the crushing check takes four-hinge mechanisms only; the static solution has {} open and {} sliding joints",
+            around.open.len(),
+            around.sliding.len()
+        )));
+    }
+    let forces = around
+        .forces
+        .as_ref()
+        .ok_or_else(|| KinematicError::NotCertified("the static solution has no forces".into()))?;
+    // A run of consecutive joints hinged at the same end is one hinge: the joint whose
+    // resultant is nearest its hinge point.
+    let mut hinges: Vec<Hinge> = Vec::new();
+    let miss = |h: &Hinge| {
+        let jt = &model.assembly.joints[h.joint];
+        let f = forces[h.joint];
+        let e = f.m / f.n;
+        let from_end = match h.end {
+            JointEnd::P1 => 0.5 * jt.length() + e,
+            JointEnd::P2 => 0.5 * jt.length() - e,
+        };
+        (from_end - h.offset).abs() / jt.length()
+    };
+    let mut sorted = around.hinges.clone();
+    sorted.sort_by_key(|h| h.joint);
+    for h in sorted {
+        match hinges.last_mut() {
+            Some(last) if last.end == h.end && h.joint == last.joint + 1 => {
+                if miss(&h) < miss(last) {
+                    *last = h;
+                }
+            }
+            _ => hinges.push(h),
+        }
+    }
+    if hinges.len() != 4 {
+        return Err(KinematicError::NotCertified(format!(
+            "the static solution has {} crushing hinges, not four",
+            hinges.len()
+        )));
+    }
+    let point = |h: &Hinge| Vec2::new(h.x, h.y);
+    let twist = |p: Vec2| nalgebra::Vector3::new(1.0, p.y, -p.x);
+    let m = nalgebra::Matrix3::from_columns(&[
+        twist(point(&hinges[1])),
+        twist(point(&hinges[2])),
+        twist(point(&hinges[3])),
+    ]);
+    let theta = m
+        .lu()
+        .solve(&(-twist(point(&hinges[0]))))
+        .filter(|t| t.iter().all(|v| v.is_finite()))
+        .ok_or_else(|| {
+            KinematicError::NotCertified(
+                "three of the crushing hinges are collinear: no four-hinge mechanism".into(),
+            )
+        })?;
+    let thetas = [1.0, theta[0], theta[1], theta[2]];
+    // The twist of each block: the sum of the relative rotations of the hinges before it.
+    let sign = settings.direction.sign();
+    let (mut p_perm, mut p_seis) = (0.0, 0.0);
+    let mut twists = Vec::with_capacity(model.assembly.blocks.len());
+    for b in 0..model.assembly.blocks.len() {
+        let mut t = nalgebra::Vector3::zeros();
+        for (h, th) in hinges.iter().zip(thetas) {
+            if h.joint <= b {
+                t += th * twist(point(h));
+            }
+        }
+        let velocity = |q: Vec2| Vec2::new(t[1] - t[0] * q.y, t[2] + t[0] * q.x);
+        let g = model.loads.reference(b);
+        let power = |w: crate::model::Wrench| w.force.dot(&velocity(g)) + w.moment * t[0];
+        p_perm += power(model.loads.permanent(b));
+        p_seis += power(model.loads.seismic(b, sign));
+        twists.push(t);
+    }
+    let scale_ref = model.loads.force_scale() * model.assembly.size();
+    if p_seis.abs() <= 1e-12 * scale_ref {
+        return Err(KinematicError::NotCertified(
+            "the seismic load does no work on the mechanism of the crushing hinges".into(),
+        ));
+    }
+    let lambda = -p_perm / p_seis;
+    // Velocities: the seismic load does positive work; the fastest centroid moves at 1.
+    let mut velocities: Vec<[f64; 3]> = model
+        .assembly
+        .blocks
+        .iter()
+        .zip(&twists)
+        .map(|(blk, t)| {
+            let c = blk.centroid;
+            [t[1] - t[0] * c.y, t[2] + t[0] * c.x, t[0]]
+        })
+        .collect();
+    let vmax = velocities
+        .iter()
+        .fold(0.0_f64, |a, v| a.max(v[0].hypot(v[1])));
+    let s = p_seis.signum() / vmax.max(1e-300);
+    for v in &mut velocities {
+        for c in v.iter_mut() {
+            *c *= s;
+        }
+    }
+    let note = format!(
+        "crushing: the mechanism rotating about the centres of the compressed zones at joints {} (a/2 = {} mm from the ends) has lambda = {lambda:.10} by virtual work",
+        hinges
+            .iter()
+            .map(|h| h.joint.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        hinges
+            .iter()
+            .map(|h| format!("{:.3}", 1e3 * h.offset))
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    Ok(KinematicResult {
+        status: Status::Collapse,
+        lambda_upper: Some(lambda),
+        lambda_signed: Some(lambda),
+        lambda_needed: None,
+        mechanism: Some(Mechanism {
+            family: Family::FourHinges,
+            hinges,
+            open: Vec::new(),
+            velocities,
+            lambda,
+        }),
+        direction: settings.direction,
+        candidates: 1,
+        admissible: 1,
+        wall_time_s: start.elapsed().as_secs_f64(),
+        search: Search::Certified,
+        searched_joints: 4,
+        note: Some(note),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -74,7 +74,7 @@ pub use continuous::{
     continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
     MinThickness,
 };
-pub use discrete::{analyse, analyse_local, certify, mechanism_work};
+pub use discrete::{analyse, analyse_local, certify, certify_crushing, mechanism_work};
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
@@ -106,6 +106,8 @@ pub enum KinematicError {
     },
     #[error("no certified upper bound from the static solution: {0}")]
     NotCertified(String),
+    #[error("the continuous model puts rigid hinges on the intrados and extrados, so it does not model a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); it is not run rather than report the rigid arch's multiplier as the crushing one")]
+    FiniteStrength { compressive_strength: f64 },
 }
 
 /// Default half-width (joints) of the window of the local search around each static hinge.

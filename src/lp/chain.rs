@@ -26,7 +26,7 @@ use super::{check_almost_solved, solve_conic, ModelSize, StaticResult, StaticSet
 use crate::assembly::{Assembly, JointForce};
 use crate::error::AnalysisError;
 use crate::geometry::{cross, Vec2};
-use crate::model::{equilibrium_residual, LoadCase, Model};
+use crate::model::{equilibrium_residual, LoadCase, Model, Strength};
 use crate::outcome::{Status, LAMBDA_CAP};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{SolverStatus, SupportedConeT};
@@ -88,10 +88,21 @@ struct ChainProgram {
     rows: usize,
     /// Every row as `g(x) = coef . x + c >= 0`, for the exact vertex step.
     dense: Vec<([f64; 4], f64)>,
+    /// Per joint, `(r, kappa)` of the crushing cones: the no-tension rows are `g2 = c1 / r`
+    /// and `g1 = c2 / r` with `r = ls / L` (c1, c2 the end forces over the force scale, as in
+    /// the full program), and the cones are the full program's, `2 c kappa >= (c1 + c2)^2`
+    /// with `kappa = fc d L / fs`. Empty for rigid joints (a linear program).
+    kappa: Vec<(f64, f64)>,
 }
 
 impl ChainProgram {
-    fn new(assembly: &Assembly, loads: &LoadCase, sign: f64, cap: Option<f64>) -> ChainProgram {
+    fn new(
+        assembly: &Assembly,
+        loads: &LoadCase,
+        strength: Strength,
+        sign: f64,
+        cap: Option<f64>,
+    ) -> ChainProgram {
         let nj = assembly.joints.len();
         let ls = assembly.size();
         let fs = loads.force_scale();
@@ -156,6 +167,16 @@ impl ChainProgram {
             push_row([-1.0, 0.0, 0.0, 0.0], cap, &mut dense);
         }
         let m = dense.len();
+        let kappa = if strength.is_finite() {
+            let capacity = strength.line_capacity();
+            assembly
+                .joints
+                .iter()
+                .map(|jt| (ls / jt.length(), capacity * jt.length() / fs))
+                .collect()
+        } else {
+            Vec::new()
+        };
         ChainProgram {
             sums,
             reference,
@@ -164,20 +185,44 @@ impl ChainProgram {
             friction_joints,
             rows: m,
             dense,
+            kappa,
         }
     }
 
     /// Clarabel's form of the program: minimise `-lambda` subject to `A x + s = b`, `s >= 0`,
     /// with each row `g(x) = coef . x + c >= 0` stored as `-coef . x + s = c`. Built column by
     /// column (four columns), so no sort.
+    /// With finite strength, the crushing cones follow the linear rows, two per joint (of
+    /// `c1 = r g2` and `c2 = r g1`), each as in the full program
+    /// `s = [c + 1, c - 1, sqrt2 (c1 + c2) / sqrt(kappa)]` in `SecondOrderConeT(3)`.
+    /// The no-tension rows follow from the cones and are then left out (as in the full
+    /// program).
     fn conic(&self) -> ConicForm {
-        let m = self.dense.len();
+        let skip = self.no_tension_rows_implied();
+        let mut rows: Vec<([f64; 4], f64)> = self.dense[skip..].to_vec();
+        let lin = rows.len();
+        let scaled = |(coef, c): ([f64; 4], f64), f: f64| (coef.map(|v| f * v), f * c);
+        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+            let (g2, g1) = (self.dense[2 * k], self.dense[2 * k + 1]);
+            let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
+            let mut sum = ([0.0; 4], w * (g1.1 + g2.1));
+            for c in 0..4 {
+                sum.0[c] = w * (g1.0[c] + g2.0[c]);
+            }
+            for g in [g2, g1] {
+                let (coef, c) = scaled(g, r);
+                rows.push((coef, c + 1.0));
+                rows.push((coef, c - 1.0));
+                rows.push(sum);
+            }
+        }
+        let m = rows.len();
         let mut colptr = Vec::with_capacity(5);
         let mut rowval = Vec::with_capacity(4 * m);
         let mut nzval = Vec::with_capacity(4 * m);
         colptr.push(0);
         for col in 0..4 {
-            for (r, (coef, _)) in self.dense.iter().enumerate() {
+            for (r, (coef, _)) in rows.iter().enumerate() {
                 if coef[col] != 0.0 {
                     rowval.push(r);
                     nzval.push(-coef[col]);
@@ -185,10 +230,15 @@ impl ChainProgram {
             }
             colptr.push(rowval.len());
         }
+        let mut cones = Vec::new();
+        if lin > 0 {
+            cones.push(SupportedConeT::NonnegativeConeT(lin));
+        }
+        cones.extend((0..2 * self.kappa.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
         ConicForm {
             a: CscMatrix::new(m, 4, colptr, rowval, nzval),
-            b: self.dense.iter().map(|&(_, c)| c).collect(),
-            cones: vec![SupportedConeT::NonnegativeConeT(m)],
+            b: rows.iter().map(|&(_, c)| c).collect(),
+            cones,
             q: vec![-1.0, 0.0, 0.0, 0.0],
         }
     }
@@ -429,13 +479,47 @@ impl ChainProgram {
 
     /// The program's size, for the report.
     fn size(&self) -> ModelSize {
+        let cone_rows = 6 * self.kappa.len();
+        let inequality_rows = self.rows - self.no_tension_rows_implied();
         ModelSize {
             variables: 4,
-            constraints: self.rows,
+            constraints: inequality_rows + cone_rows,
             equality_rows: 0,
-            inequality_rows: self.rows,
+            inequality_rows,
             friction_rows: 2 * self.friction_joints.len(),
+            cone_rows,
         }
+    }
+
+    /// How many leading rows (the no-tension rows) the conic form leaves out because the
+    /// crushing cones imply them: all `2 nj` with finite strength, none when rigid.
+    fn no_tension_rows_implied(&self) -> usize {
+        2 * self.kappa.len()
+    }
+
+    /// Fold the duals of the crushing cones (after the linear rows in `z`) into multipliers of
+    /// the no-tension rows they are built from, so [`Self::mechanism`] reads them: the cone of
+    /// the row `g` with partner `h` holds `s = [r g + 1, r g - 1, w (g + h)]`
+    /// (`w = sqrt2 r / sqrt(kappa)`), so its dual `(z0, z1, z2)` acts on `g` with weight
+    /// `r (z0 + z1) + w z2` and on `h` with `w z2`.
+    fn fold_cone_duals(&self, z: &[f64]) -> Vec<f64> {
+        let skip = self.no_tension_rows_implied();
+        let m = self.rows - skip;
+        let mut y = vec![0.0; skip];
+        y.extend_from_slice(&z[..m]);
+        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+            let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
+            for (c, (g, h)) in [(2 * k, 2 * k + 1), (2 * k + 1, 2 * k)]
+                .into_iter()
+                .enumerate()
+            {
+                let base = m + 6 * k + 3 * c;
+                let (z0, z1, z2) = (z[base], z[base + 1], z[base + 2]);
+                y[g] += r * (z0 + z1) + w * z2;
+                y[h] += w * z2;
+            }
+        }
+        y
     }
 
     /// Joint forces of the solution `x` (SI units).
@@ -543,10 +627,12 @@ impl ChainProgram {
 /// The multipliers equilibrium allows form an interval, so the structure stands at lambda = 0
 /// exactly when this is at most 0 (and the largest at least 0).
 pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
-    if !model.assembly.is_chain() {
+    // The active set solves linear programs only: with crushing cones the conic stand test
+    // decides.
+    if !model.assembly.is_chain() || model.strength.is_finite() {
         return None;
     }
-    let program = ChainProgram::new(&model.assembly, &model.loads, sign, None);
+    let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, sign, None);
     let lambda = program.active_set(-1.0, LAMBDA_CAP).optimal()?.x[0];
     lambda.is_finite().then_some(lambda)
 }
@@ -556,10 +642,10 @@ pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
 /// multipliers equilibrium allows. None when the model is not a chain or the method does not
 /// decide (the interior point then does).
 pub(super) fn stands_at_rest(model: &Model) -> Option<bool> {
-    if !model.assembly.is_chain() {
+    if !model.assembly.is_chain() || model.strength.is_finite() {
         return None;
     }
-    let program = ChainProgram::new(&model.assembly, &model.loads, 1.0, None);
+    let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, 1.0, None);
     match program.active_set(1.0, 0.0) {
         // The cap row makes lambda exactly 0 at the vertex when it binds; otherwise lambda is
         // the largest multiplier, below 0.
@@ -610,9 +696,16 @@ fn active_set_result(
         "active set; exact vertex".to_string(),
         program.size(),
     )
-    .read_solution(assembly, settings, lambda, forces, residual, true, || {
-        program.mechanism(assembly, loads, sign, &z)
-    });
+    .read_solution(
+        assembly,
+        model.strength,
+        settings,
+        lambda,
+        forces,
+        residual,
+        true,
+        || program.mechanism(assembly, loads, sign, &z),
+    );
     Some(result)
 }
 
@@ -633,8 +726,11 @@ pub fn analyse_chain(
         ));
     }
     let sign = settings.direction.sign();
-    let mut program = ChainProgram::new(assembly, loads, sign, None);
-    if settings.active_set {
+    let conic_program = model.strength.is_finite();
+    let mut program = ChainProgram::new(assembly, loads, model.strength, sign, None);
+    // The active set and the vertex step are exact for the linear program only; with crushing
+    // cones the interior point's solution is the answer.
+    if settings.active_set && !conic_program {
         if let Some(r) = active_set_result(model, &program, settings) {
             let mut r = super::stands_at_zero(model, settings, r)?;
             // The wall time covers the stand test at lambda = 0 too.
@@ -656,7 +752,7 @@ pub fn analyse_chain(
         sol.status,
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
-        program = ChainProgram::new(assembly, loads, sign, Some(LAMBDA_CAP));
+        program = ChainProgram::new(assembly, loads, model.strength, sign, Some(LAMBDA_CAP));
         let conic = program.conic();
         sol = solve_conic(
             &CscMatrix::zeros((4, 4)),
@@ -673,7 +769,10 @@ pub fn analyse_chain(
         StaticResult::unsolved(settings, sol.iterations, format!("{:?}", sol.status), size);
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
-            if let Some(v) = program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas)) {
+            if conic_program {
+                sol.z = program.fold_cone_duals(&sol.z);
+            } else if let Some(v) = program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas))
+            {
                 sol.x = v;
                 result.solver_status.push_str("; exact vertex");
             }
@@ -681,10 +780,16 @@ pub fn analyse_chain(
             let forces = program.forces(assembly, &sol.x);
             let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
             check_almost_solved(sol.status, residual, program.force_scale, sol.iterations)?;
-            result =
-                result.read_solution(assembly, settings, lambda, forces, residual, capped, || {
-                    program.mechanism(assembly, loads, sign, &sol.z)
-                });
+            result = result.read_solution(
+                assembly,
+                model.strength,
+                settings,
+                lambda,
+                forces,
+                residual,
+                capped,
+                || program.mechanism(assembly, loads, sign, &sol.z),
+            );
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;

@@ -2,8 +2,11 @@
 //! blocks can be in equilibrium with no-tension joints whose resultants stay inside them and
 //! whose shear obeys Coulomb's law — the safe theorem of limit analysis for masonry
 //! (Heyman, *The Stone Skeleton*, 1995; Livesley, 1978; Gilbert, Casapulla & Ahmed, 2006).
-//! The program is linear (a conic program over the zero and nonnegative cones) and is solved
-//! with Clarabel. For associative (non-sliding or normality) joints its optimum is the
+//! With rigid joints the program is linear (a conic program over the zero and nonnegative
+//! cones) and is solved with Clarabel; with a finite compressive strength (a rectangular stress
+//! block, [`crate::model::Strength`]; Gilbert, Casapulla & Ahmed's crushing extension, as in
+//! RING) every joint adds two rotated second-order cones, and the chain program goes to
+//! Clarabel too (its active set and exact vertex are for the linear program only). For associative (non-sliding or normality) joints its optimum is the
 //! collapse multiplier; the duals of the equilibrium rows are the virtual velocities of the
 //! blocks, i.e. the collapse mechanism.
 
@@ -19,7 +22,7 @@ pub use settings::{Program, StaticSettings};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
-use crate::model::{equilibrium_residual, Model};
+use crate::model::{equilibrium_residual, Model, Strength};
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 
@@ -31,6 +34,9 @@ pub struct ModelSize {
     pub equality_rows: usize,
     pub inequality_rows: usize,
     pub friction_rows: usize,
+    /// Rows in second-order cones (the crushing cones: 3 per cone, 2 cones per joint; 0 for
+    /// rigid joints). Counted in `constraints`.
+    pub cone_rows: usize,
 }
 
 /// Result of the static analysis.
@@ -70,8 +76,15 @@ pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult,
         // The chain's program is exact when its vertex step lands; when it does not (a
         // degenerate optimum) or the interior-point solve falls short, the full program,
         // the proven path, decides.
+        // With finite compressive strength the chain program is conic (no vertex to land on):
+        // its interior-point solution is the answer, as the full program's is.
+        let conic = model.strength.is_finite();
         match analyse_chain(model, settings) {
-            Ok(r) if r.status != Status::Collapse || r.solver_status.contains("exact vertex") => {
+            Ok(r)
+                if conic
+                    || r.status != Status::Collapse
+                    || r.solver_status.contains("exact vertex") =>
+            {
                 return Ok(r)
             }
             Ok(_) | Err(AnalysisError::SolverFailed { .. }) => {}
@@ -90,7 +103,13 @@ pub fn analyse_full(
     let (assembly, loads) = (&model.assembly, &model.loads);
     model.validate()?;
     let sign = settings.direction.sign();
-    let problem = StaticProblem::new(assembly, loads, Objective::MaxLambda { sign, cap: None });
+    let strength = model.strength;
+    let problem = StaticProblem::with_strength(
+        assembly,
+        loads,
+        strength,
+        Objective::MaxLambda { sign, cap: None },
+    );
     let mut sol = run(&problem, settings)?;
     let mut size = problem_size(&problem);
     let mut lambda_capped = false;
@@ -99,9 +118,10 @@ pub fn analyse_full(
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         // Unbounded above, or both infeasible: a capped program tells which.
-        let capped = StaticProblem::new(
+        let capped = StaticProblem::with_strength(
             assembly,
             loads,
+            strength,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
@@ -121,6 +141,7 @@ pub fn analyse_full(
             check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
             result = result.read_solution(
                 assembly,
+                strength,
                 settings,
                 lambda,
                 forces,
@@ -241,6 +262,7 @@ impl StaticResult {
     fn read_solution(
         mut self,
         assembly: &Assembly,
+        strength: Strength,
         settings: &StaticSettings,
         lambda: f64,
         forces: Vec<JointForce>,
@@ -256,7 +278,7 @@ impl StaticResult {
             self.status = Status::Collapse;
             self.lambda = Some(lambda);
             self.equilibrium_residual = residual;
-            let states = classify_joints(assembly, &forces, settings.hinge_tolerance);
+            let states = classify_joints(assembly, strength, &forces, settings.hinge_tolerance);
             self.hinges = states.hinges;
             self.sliding = states.sliding;
             self.open = states.open;
@@ -310,10 +332,11 @@ fn check_almost_solved(
 fn problem_size(p: &StaticProblem) -> ModelSize {
     ModelSize {
         variables: p.variables(),
-        constraints: p.equality_rows + p.inequality_rows,
+        constraints: p.equality_rows + p.inequality_rows + p.cone_rows,
         equality_rows: p.equality_rows,
         inequality_rows: p.inequality_rows,
         friction_rows: 2 * p.friction_joints.len(),
+        cone_rows: p.cone_rows,
     }
 }
 
@@ -393,7 +416,15 @@ struct JointStates {
     open: Vec<usize>,
 }
 
-fn classify_joints(assembly: &Assembly, forces: &[JointForce], tol: f64) -> JointStates {
+/// A joint is a hinge when its resultant lies within `tol L` of the farthest point it may
+/// reach: the joint's end for rigid joints, the centre of the compressed zone (`a/2` from the
+/// end, `a = N/(fc d)`) with finite strength, where the crushing cone is tight.
+fn classify_joints(
+    assembly: &Assembly,
+    strength: Strength,
+    forces: &[JointForce],
+    tol: f64,
+) -> JointStates {
     let mut states = JointStates::default();
     let nmax = forces.iter().fold(0.0_f64, |a, f| a.max(f.n));
     for (j, (jt, f)) in assembly.joints.iter().zip(forces).enumerate() {
@@ -401,12 +432,28 @@ fn classify_joints(assembly: &Assembly, forces: &[JointForce], tol: f64) -> Join
             states.open.push(j);
             continue;
         }
-        let half = 0.5 * jt.length();
+        let length = jt.length();
+        let zone = strength.compressed_zone(f.n);
+        let reach = 0.5 * (length - zone);
         let e = f.m / f.n;
-        if e >= half * (1.0 - 2.0 * tol) {
-            states.hinges.push(Hinge::at(assembly, j, JointEnd::P2));
-        } else if e <= -half * (1.0 - 2.0 * tol) {
-            states.hinges.push(Hinge::at(assembly, j, JointEnd::P1));
+        let hinge = |end| {
+            if strength.is_finite() {
+                Hinge::crushing(assembly, j, end, zone)
+            } else {
+                Hinge::at(assembly, j, end)
+            }
+        };
+        // Rigid joints: the end, within tol L (written as before crushing, so rigid results
+        // stay bit for bit the same).
+        let limit = if zone > 0.0 {
+            reach - tol * length
+        } else {
+            reach * (1.0 - 2.0 * tol)
+        };
+        if e >= limit {
+            states.hinges.push(hinge(JointEnd::P2));
+        } else if e <= -limit {
+            states.hinges.push(hinge(JointEnd::P1));
         }
         if jt.friction.is_finite() && f.v.abs() >= (1.0 - tol) * jt.friction * f.n {
             states.sliding.push(j);
@@ -500,7 +547,8 @@ pub fn stands_at_rest(model: &Model, settings: &StaticSettings) -> Result<bool, 
 fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     model.validate()?;
-    let problem = StaticProblem::new(assembly, loads, Objective::MinTension);
+    let problem =
+        StaticProblem::with_strength(assembly, loads, model.strength, Objective::MinTension);
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -517,7 +565,7 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
     let residual = equilibrium_residual(assembly, loads, &forces, 0.0, 1.0);
     let stands = tau <= 0.0;
     let hinges = if stands {
-        classify_joints(assembly, &forces, settings.hinge_tolerance).hinges
+        classify_joints(assembly, model.strength, &forces, settings.hinge_tolerance).hinges
     } else {
         Vec::new()
     };

@@ -8,23 +8,33 @@
 //!    `sum_j +-(c1 n + c2 n + V u) + lambda S + P = 0`, with `P` the block's permanent loads
 //!    and `S` its seismic forces per unit lambda, both from the [`LoadCase`] (for self-weight
 //!    alone `P = -W e_y`, `S = d W e_x`);
-//! 2. nonnegative cone: `c1, c2 >= 0` (no tension, resultant inside the joint), then for joints
+//! 2. nonnegative cone: `c1, c2 >= 0` (no tension, resultant inside the joint; implied by
+//!    the crushing cones of item 3 and left out with them), then for joints
 //!    with finite friction `mu (c1 + c2) - V >= 0` and `mu (c1 + c2) + V >= 0` (the planar
 //!    Coulomb cone is a pair of half-planes, so no second-order cone is needed).
+//!
+//! 3. with a finite compressive strength `fc` over the depth `d` (a rectangular stress block,
+//!    [`Strength`]), two rotated second-order cones per joint: with `N = c1 + c2` and
+//!    `M = (c2 - c1) L/2`, the crushing condition `|M| <= N L/2 - N^2/(2 fc d)` is exactly
+//!    `2 c1 kappa >= N^2` and `2 c2 kappa >= N^2`, `kappa = fc d L / fs` (since
+//!    `N L/2 - M = c1 L` and `N L/2 + M = c2 L`), and `N <= fc d L` follows from the two.
+//!    Each is given to Clarabel as `SecondOrderConeT(3)`, divided by kappa for scaling:
+//!    `||(c - 1, sqrt2 N / sqrt(kappa))|| <= c + 1`, no linearisation.
 //!
 //! The objective `q = -e_lambda` maximises lambda (Clarabel minimises).
 //!
 //! A second program, [`Objective::MinTension`], tests whether the structure stands at
 //! lambda = 0 (a phase-one program): column 0 becomes a relaxation `tau` added to every
 //! inequality row, `c1 + tau >= 0`, `c2 + tau >= 0`, `mu N -+ V + tau >= 0`, with `tau >= -1`,
-//! and `tau` is minimised. The structure stands if and only if `tau* <= 0`. Unlike the
+//! and in the crushing cones `c + tau` stands for `c` (`2 (c + tau) kappa >= N^2`); `tau` is
+//! minimised. The structure stands if and only if `tau* <= 0`. Unlike the
 //! lambda program, whose feasible set shrinks to a single point at the minimum thickness and
 //! defeats interior-point methods there, this program always has a strict interior, so its
 //! optimum changes sign cleanly as the thickness crosses the minimum.
 
 use crate::assembly::Assembly;
 use crate::geometry::{cross, Vec2};
-use crate::model::LoadCase;
+use crate::model::{LoadCase, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
 
@@ -45,6 +55,8 @@ pub struct StaticProblem {
     pub equality_rows: usize,
     /// Number of inequality rows.
     pub inequality_rows: usize,
+    /// Number of second-order-cone rows (3 per crushing cone, 2 cones per joint; 0 when rigid).
+    pub cone_rows: usize,
 }
 
 /// What the program optimises.
@@ -65,7 +77,18 @@ pub fn column(joint: usize, which: usize) -> usize {
 impl StaticProblem {
     /// Build the program for `assembly` under `loads`, with the seismic load in direction
     /// `sign` (+1 right, -1 left). `lambda_cap`, when given, adds the row `lambda <= cap`.
+    /// Rigid joints (infinite compressive strength).
     pub fn new(assembly: &Assembly, loads: &LoadCase, objective: Objective) -> StaticProblem {
+        Self::with_strength(assembly, loads, Strength::rigid(), objective)
+    }
+
+    /// The program with joints of compressive strength `strength` (crushing cones when finite).
+    pub fn with_strength(
+        assembly: &Assembly,
+        loads: &LoadCase,
+        strength: Strength,
+        objective: Objective,
+    ) -> StaticProblem {
         let (sign, lambda_cap, relax) = match objective {
             Objective::MaxLambda { sign, cap } => (sign, cap, false),
             Objective::MinTension => (0.0, None, true),
@@ -122,10 +145,15 @@ impl StaticProblem {
         }
         let equality_rows = 3 * nb;
         let mut row = equality_rows;
-        for j in 0..nj {
-            push(row, column(j, 0), -1.0);
-            push(row + 1, column(j, 1), -1.0);
-            row += 2;
+        // With crushing cones `c >= 0` follows from the cones (c + 1 >= |c - 1|): the rows
+        // are left out, since a nearly parallel duplicate of a strong material's cone splits
+        // its dual between the two and costs the interior point accuracy.
+        if !strength.is_finite() {
+            for j in 0..nj {
+                push(row, column(j, 0), -1.0);
+                push(row + 1, column(j, 1), -1.0);
+                row += 2;
+            }
         }
         let mut friction_joints = Vec::new();
         for (j, jt) in assembly.joints.iter().enumerate() {
@@ -157,6 +185,32 @@ impl StaticProblem {
         if relax {
             b[row - 1] = 1.0;
         }
+        let mut cone_rows = 0;
+        if strength.is_finite() {
+            // Per joint and end: `2 c kappa >= N^2` divided by kappa, i.e.
+            // s = [c + 1, c - 1, sqrt2 N / sqrt(kappa)] in the second-order cone (c + tau in
+            // place of c in the phase-one program). Written with kappa itself the cone's rows
+            // would hold c +- kappa, and at a strong material (kappa ~ 1e6 and more) c would
+            // drown in round-off of kappa; c and N are O(1) here (forces over the weight).
+            for (j, jt) in assembly.joints.iter().enumerate() {
+                let kappa = strength.line_capacity() * jt.length() / fs;
+                let w = std::f64::consts::SQRT_2 / kappa.sqrt();
+                for which in 0..2 {
+                    for (k, kb) in [(0, 1.0), (1, -1.0)] {
+                        push(row + k, column(j, which), -1.0);
+                        if relax {
+                            push(row + k, 0, -1.0);
+                        }
+                        b.push(kb);
+                    }
+                    push(row + 2, column(j, 0), -w);
+                    push(row + 2, column(j, 1), -w);
+                    b.push(0.0);
+                    row += 3;
+                    cone_rows += 3;
+                }
+            }
+        }
         let a = csc_from_triplets(row, nvar, &rows, &cols, &vals);
         let mut q = vec![0.0; nvar];
         q[0] = if relax { 1.0 } else { -1.0 };
@@ -165,15 +219,21 @@ impl StaticProblem {
             q,
             a,
             b,
-            cones: vec![
-                SupportedConeT::ZeroConeT(equality_rows),
-                SupportedConeT::NonnegativeConeT(inequality_rows),
-            ],
+            cones: {
+                let mut cones = vec![SupportedConeT::ZeroConeT(equality_rows)];
+                if inequality_rows > 0 {
+                    // None with crushing cones, infinite friction and no cap.
+                    cones.push(SupportedConeT::NonnegativeConeT(inequality_rows));
+                }
+                cones.extend((0..cone_rows / 3).map(|_| SupportedConeT::SecondOrderConeT(3)));
+                cones
+            },
             length_scale: ls,
             force_scale: fs,
             friction_joints,
             equality_rows,
             inequality_rows,
+            cone_rows,
         }
     }
 

@@ -74,6 +74,10 @@ pub struct SceneReport {
     /// Whether the friction coefficient is infinite (joints cannot slide; `friction` is then
     /// null).
     pub friction_infinite: bool,
+    /// `[material] compressive_strength` (Pa); null means infinite (rigid joints, no crushing).
+    pub compressive_strength: Option<f64>,
+    /// The strength ratio `W/(fc d t)` (0 for rigid joints), see [`crate::sweep::sigma`].
+    pub sigma: f64,
 }
 
 /// `[blocks]` echoed in the JSON `scene`, with what was found: present only for scenes of the
@@ -319,7 +323,21 @@ impl SceneReport {
             unit_weight: scene.material.unit_weight,
             depth: scene.material.depth,
             friction_infinite: scene.material.friction.is_infinite(),
+            compressive_strength: finite_or_null(scene.material.compressive_strength),
+            sigma: strength_ratio(scene, model),
         }
+    }
+}
+
+/// `W/(fc d t)` of the scene's model (0 for rigid joints).
+fn strength_ratio(scene: &Scene, model: &Model) -> f64 {
+    let fc = scene.material.compressive_strength;
+    if fc.is_finite() {
+        // No ring thickness in a scene of the user's own blocks: no ratio (null).
+        let t = scene.arch.as_ref().map_or(f64::NAN, |a| a.thickness);
+        model.assembly.total_weight() / (fc * scene.material.depth * t)
+    } else {
+        0.0
     }
 }
 

@@ -4,7 +4,7 @@ use super::{DemReport, MinThicknessReport};
 use crate::analysis::SceneAnalysis;
 use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
 use crate::geometry::Stereotomy;
-use crate::kinematic::Family;
+use crate::kinematic::{Family, Search};
 use crate::lp::StaticResult;
 use crate::model::Model;
 use crate::outcome::{Direction, Status};
@@ -135,9 +135,19 @@ pub fn hinge_lines(assembly: &Assembly, hinges: &[Hinge]) -> String {
             }
             _ => String::new(),
         };
+        // A crushing hinge sits a/2 inside the joint, at the centre of its compressed zone.
+        let inset = if h.compressed_zone > 0.0 {
+            format!(
+                ", {:.2} mm in (compressed zone {:.2} mm)",
+                1e3 * h.offset,
+                1e3 * h.compressed_zone
+            )
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             s,
-            "    joint {:>4} ({}), {}, at ({:.4}, {:.4}) m{angles}",
+            "    joint {:>4} ({}), {}{inset}, at ({:.4}, {:.4}) m{angles}",
             h.joint,
             joint_label(joint.kind),
             end_words(joint.kind, h.end),
@@ -218,14 +228,20 @@ pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
     )
 }
 
-/// `mu = 0.4`, or `mu = inf (no sliding)`.
+/// `mu = 0.4`, or `mu = inf (no sliding)`; with a finite compressive strength also
+/// `fc = 1 MPa (crushing)`.
 fn mu_words(scene: &Scene) -> String {
     let mu = scene.material.friction;
-    if mu.is_finite() {
+    let mut words = if mu.is_finite() {
         format!("mu = {}", num(mu))
     } else {
         "mu = inf (no sliding)".to_string()
+    };
+    let fc = scene.material.compressive_strength;
+    if fc.is_finite() {
+        let _ = write!(words, ", fc = {} MPa (crushing)", num(fc / 1e6));
     }
+    words
 }
 
 /// One or two lines on the loads beyond self-weight and their totals.
@@ -349,6 +365,12 @@ pub fn analysis_summary(scene: &Scene, a: &SceneAnalysis) -> String {
                     let _ = writeln!(
                         s,
                         "  sliding governs: the static bound {l:.6} is below the rotational mechanisms' {u:.6}{below}"
+                    );
+                } else if a.model.strength.is_finite() && k.search != Search::Certified {
+                    let _ = writeln!(
+                        s,
+                        "  the upper bound is the rigid structure's (rigid hinges), {} above the static bound with crushing",
+                        sci(gap, 1)
                     );
                 } else {
                     let _ = writeln!(s, "  bounds agree: relative gap {}", sci(gap, 1));

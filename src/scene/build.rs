@@ -26,6 +26,10 @@ use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad}
 
 /// Build the assembly and load case of a scene.
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
+    let strength = crate::model::Strength {
+        compressive: scene.material.compressive_strength,
+        depth: scene.material.depth,
+    };
     let a = match (&scene.arch, &scene.blocks) {
         (Some(a), _) => a,
         (None, Some(b)) => {
@@ -33,6 +37,7 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
                 b,
                 &scene.loads,
                 scene.seismic.vertical_ratio,
+                strength,
                 &scene.origin,
             )
         }
@@ -46,7 +51,11 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
     };
     let (assembly, arch) = build_assembly(scene, a)?;
     let loads = build_loads(scene, &assembly, &arch)?;
-    Ok(Model { assembly, loads })
+    Ok(Model {
+        assembly,
+        loads,
+        strength,
+    })
 }
 
 /// Where the arch's blocks sit in the assembly, for placing loads.

@@ -87,6 +87,9 @@ pub struct Material {
     pub depth: f64,
     /// Coulomb friction coefficient; `f64::INFINITY` means joints cannot slide.
     pub friction: f64,
+    /// Compressive strength fc (Pa) of the joints, a rectangular stress block over `depth`;
+    /// `f64::INFINITY` (the default) means joints cannot crush.
+    pub compressive_strength: f64,
 }
 
 /// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
@@ -367,7 +370,7 @@ const SHAPE_KEYS: &[(&str, &[&str])] = &[
     ("pointed", &["radius", "eccentricity"]),
     ("basket", &["span", "rise", "side_angle_deg"]),
 ];
-const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction"];
+const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction", "compressive_strength"];
 const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic"];
 const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
 /// The keys of a `[[loads]]` entry every type takes, and those each type adds.
@@ -1164,11 +1167,20 @@ fn parse_material(mut s: Section) -> Result<Material, SceneError> {
             &format!("must be from 0 to {MAX_FRICTION:e}, or inf for no sliding (a larger finite coefficient is inf to solver precision, and its rows would wreck the conic program's scaling)"),
         ));
     }
+    let compressive_strength = s.opt_f64("compressive_strength")?.unwrap_or(f64::INFINITY);
+    if compressive_strength.is_nan() || compressive_strength <= 0.0 {
+        return Err(s.out_of_range(
+            "compressive_strength",
+            compressive_strength,
+            "must be a stress > 0 in Pa (for example 1e6 for 1 MPa), or inf for joints that cannot crush",
+        ));
+    }
     s.finish("")?;
     Ok(Material {
         unit_weight,
         depth,
         friction,
+        compressive_strength,
     })
 }
 

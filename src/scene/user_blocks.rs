@@ -245,6 +245,7 @@ pub(super) fn build_model(
     spec: &BlocksSpec,
     loads: &[LoadSpec],
     vertical_ratio: f64,
+    strength: crate::model::Strength,
     origin: &str,
 ) -> Result<Model, SceneError> {
     let assembly = spec.detected.assembly.clone();
@@ -312,6 +313,7 @@ pub(super) fn build_model(
     Ok(Model {
         assembly,
         loads: case,
+        strength,
     })
 }
 

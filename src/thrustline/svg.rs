@@ -43,7 +43,7 @@ use plotters::element::{Circle, DashedPathElement, PathElement, Polygon, Rectang
 use plotters::prelude::{DrawingArea, IntoDrawingArea, SVGBackend};
 use plotters::style::{Color, FontStyle, IntoFont, RGBColor, ShapeStyle, TextStyle, WHITE};
 
-use crate::assembly::{Assembly, Hinge, JointForce};
+use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::geometry::Vec2;
 use crate::model::{AppliedLoad, LoadCase, LoadSource};
 use crate::outcome::Direction;
@@ -329,6 +329,12 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             Glyph::Hinge,
             format!("hinge ({}), numbered along the chain", drawing.hinges.len()),
         ));
+        if drawing.hinges.iter().any(|h| h.compressed_zone > 0.0) {
+            legend.push((
+                Glyph::Line(HINGE, 5, false),
+                "compressed zone at a hinge (crushing: the hinge at its centre)".into(),
+            ));
+        }
     }
     if !drawing.sliding.is_empty() {
         legend.push((Glyph::Line(SLIDING, 6, false), "sliding joint".into()));
@@ -609,6 +615,21 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     if !drawing.hinges.is_empty() {
         svg.layer("hinges", |root| {
             for h in drawing.hinges {
+                if h.compressed_zone > 0.0 {
+                    // With crushing: the compressed zone, a thick bar from the joint's end over
+                    // the width a, the hinge circle at its centre.
+                    let jt = &assembly.joints[h.joint];
+                    let (end, inward) = match h.end {
+                        JointEnd::P1 => (jt.p1, jt.tangent()),
+                        JointEnd::P2 => (jt.p2, -jt.tangent()),
+                    };
+                    let zone = vec![
+                        frame.px(end),
+                        frame.px(end + h.compressed_zone.min(jt.length()) * inward),
+                    ];
+                    root.draw(&PathElement::new(zone, HINGE.stroke_width(5)))
+                        .map_err(plot_err)?;
+                }
                 let c = frame.px(Vec2::new(h.x, h.y));
                 root.draw(&Circle::new(c, 6, HINGE.stroke_width(3)))
                     .map_err(plot_err)?;

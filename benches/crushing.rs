@@ -1,0 +1,68 @@
+//! Cost of the static program with finite compressive strength (issue 13): the semicircle of
+//! the acceptance (R = 5 m, t/R = 0.15, unit weight 20 kN/m^3, depth 1 m) at n = 64 and 1000
+//! voussoirs, rigid next to fc = 20 MPa and 1 MPa, on the chain program (`Program::Auto`: the
+//! active set when rigid, Clarabel with the crushing cones otherwise) and on the full program
+//! (Clarabel, with the cones when crushing). Run with `cargo bench --bench crushing`. One
+//! thread; each time is the median of repeated runs of `lp::analyse`.
+//!
+//! A plain table (`harness = false`), as the other benches.
+
+use std::time::Instant;
+
+use voussoir::lp::{self, Program, StaticSettings};
+use voussoir::scene::Scene;
+
+fn semicircle(n: usize, fc: f64) -> Scene {
+    Scene::from_toml_str(
+        &format!(
+            "[arch]\nshape = \"circular\"\nradius = 5.0\nthickness = 0.75\nvoussoirs = {n}\n\
+             [material]\nunit_weight = 20000.0\ncompressive_strength = {fc:e}\n"
+        ),
+        "bench",
+    )
+    .expect("valid scene")
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    println!("| n | fc | program | lambda | ms (median) | iterations | solver |");
+    println!("|---:|---|---|---:|---:|---:|---|");
+    for n in [64, 1000] {
+        for fc in [f64::INFINITY, 20e6, 1e6] {
+            let model = voussoir::scene::build(&semicircle(n, fc)).expect("valid model");
+            for program in [Program::Auto, Program::Full] {
+                let settings = StaticSettings::default().program(program);
+                let runs = if n > 500 { 7 } else { 21 };
+                let mut times = Vec::with_capacity(runs);
+                let mut last = None;
+                for _ in 0..runs {
+                    let start = Instant::now();
+                    let r = lp::analyse(&model, &settings).expect("solves");
+                    times.push(start.elapsed().as_secs_f64());
+                    last = Some(r);
+                }
+                let r = last.expect("ran");
+                println!(
+                    "| {n} | {} | {} | {:.9} | {:.3} | {} | {} |",
+                    if fc.is_finite() {
+                        format!("{} MPa", fc / 1e6)
+                    } else {
+                        "inf (rigid)".to_string()
+                    },
+                    match program {
+                        Program::Auto => "chain",
+                        Program::Full => "full",
+                    },
+                    r.lambda.unwrap_or(f64::NAN),
+                    1e3 * median(times),
+                    r.iterations,
+                    r.solver_status,
+                );
+            }
+        }
+    }
+}

@@ -1,4 +1,4 @@
-//! Cost of the static (lower-bound) program against the number of voussoirs (semicircle,
+//! Cost of the full static program (three unknowns per joint, Clarabel) against the number of voussoirs (semicircle,
 //! t/R = 0.15, n = 16 .. 2000), split into its parts, with fitted growth exponents; then, at
 //! n = 1000, Clarabel settings that trade work for robustness. Run with
 //! `cargo bench --bench static_solve`. One thread; each figure is the median of repeated runs.
@@ -92,7 +92,7 @@ fn split(scene: &Scene, s: clarabel::solver::DefaultSettings<f64>) -> Split {
 fn main() {
     let ns = [16usize, 32, 64, 128, 256, 512, 1000, 2000];
     println!("Static solve, semicircle t/R = 0.15 (median of repeated runs, one thread)\n");
-    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | lp::analyse ms | faer ms |");
+    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | lp::analyse_full ms | faer ms |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for n in ns {
@@ -115,7 +115,7 @@ fn main() {
                 .map(|_| {
                     let t = Instant::now();
                     let m = voussoir::scene::build(&scene).expect("valid model");
-                    lp::analyse(&m, &StaticSettings::default()).expect("solves");
+                    lp::analyse_full(&m, &StaticSettings::default()).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),
@@ -129,7 +129,7 @@ fn main() {
                         linear_solver: "faer".into(),
                         ..StaticSettings::default()
                     };
-                    lp::analyse(&m, &s).expect("solves");
+                    lp::analyse_full(&m, &s).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),
@@ -158,7 +158,7 @@ fn main() {
         loglog_slope(&pts).map_or("-".to_string(), |e| format!("{e:.2}"))
     };
     println!(
-        "\nfitted exponents (n >= 64, least squares on log-log): lp::analyse n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}, faer n^{}",
+        "\nfitted exponents (n >= 64, least squares on log-log): lp::analyse_full n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}, faer n^{}",
         fit(|r| r.1),
         fit(|r| r.2),
         fit(|r| r.3),

@@ -17,6 +17,10 @@ pub struct Args {
     /// Relative width of the final bracket [lambda_stands, lambda_collapses]
     #[arg(long, default_value_t = 0.01)]
     tolerance: f64,
+    /// Start the bracket search at the static lower bound (fast: the DEM then verifies the
+    /// static value instead of finding its own threshold from dem.initial_guess or 0.2)
+    #[arg(long)]
+    from_static: bool,
     /// Write block positions during the runs (CSV) into this directory
     #[arg(long, value_name = "DIR")]
     snapshots: Option<std::path::PathBuf>,
@@ -31,6 +35,7 @@ pub fn run(args: Args) -> Result<String, Error> {
     let options = DemOptions {
         tolerance: args.tolerance,
         snapshots: args.snapshots.is_some() || args.svg.is_some(),
+        from_static: args.from_static,
     };
     let bar = progress_bar(1000, "dem");
     let d = analysis::dem(&scene, &options, &mut |f| {
@@ -45,7 +50,7 @@ pub fn run(args: Args) -> Result<String, Error> {
             message: e.to_string(),
         })?;
     }
-    let rep = report::DemReport::new(&scene, model, result, d.lower.lambda);
+    let rep = report::DemReport::of(&scene, &d);
     if let Some(path) = &args.svg {
         // Collapse is detected at a small displacement: amplify it so the mechanism shows,
         // and say so.

@@ -67,15 +67,22 @@ pub enum DemError {
     Output { path: PathBuf, message: String },
 }
 
+/// The first multiplier of a bracket search that is not told where to start and must not
+/// lean on the static bound: `crate::analysis::dem_of` starts here unless the scene sets
+/// `dem.initial_guess` or the caller asks for the static start. Independent of the structure
+/// on purpose; the search widens or bisects from it (docs/dem.md).
+pub const DEFAULT_INITIAL_GUESS: f64 = 0.2;
+
 /// Where the bracket search started.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GuessSource {
-    /// `IntegrationParameters::initial_guess`.
+    /// `IntegrationParameters::initial_guess` (the scene's `dem.initial_guess`).
     Given,
-    /// The static lower bound, solved by `collapse_multiplier`.
+    /// The static lower bound (solved by `collapse_multiplier`, or handed to it by the
+    /// analysis layer's `--from-static` mode): the bracket then verifies that value.
     Static,
-    /// A fixed 0.2 (the static program found no multiplier).
+    /// [`DEFAULT_INITIAL_GUESS`]: nothing given (or the static program found no multiplier).
     Default,
 }
 
@@ -275,6 +282,53 @@ impl DemResult {
     }
 }
 
+/// The model the DEM actually simulates, when it differs from `model`: every block as its
+/// polygon (curved voussoirs as their chord polygons) with the polygon's area, centroid and
+/// weight (the unit weight of the block times the polygon's area, as [`World::new`] does),
+/// and the same other loads, seismic masses and vertical ratio. `None` when every block
+/// already is its polygon (relative area and centroid differences below 1e-12), so the static
+/// bound of `model` is the one to compare a DEM bracket with.
+pub fn simulated_model(model: &Model) -> Option<Model> {
+    let assembly = &model.assembly;
+    let mut changed = false;
+    let mut blocks = assembly.blocks.clone();
+    let size = assembly.size().max(f64::MIN_POSITIVE);
+    for b in &mut blocks {
+        if b.polygon.len() < 3 || !(b.area > 0.0) {
+            continue;
+        }
+        let (area, centroid) = crate::geometry::polygon_area_centroid(&b.polygon);
+        let area = area.abs();
+        if (area - b.area).abs() > 1e-12 * b.area || (centroid - b.centroid).norm() > 1e-12 * size {
+            changed = true;
+            b.weight *= area / b.area;
+            b.area = area;
+            b.centroid = centroid;
+        }
+    }
+    if !changed {
+        return None;
+    }
+    let polygons = Assembly {
+        blocks,
+        joints: assembly.joints.clone(),
+    };
+    let mut loads = crate::model::LoadCase::self_weight(&polygons)
+        .with_vertical_ratio(model.loads.vertical_ratio());
+    for l in model.loads.applied() {
+        if l.source != crate::model::LoadSource::SelfWeight {
+            loads.add(l.clone());
+        }
+    }
+    for s in model.loads.spread() {
+        loads.add_spread(*s);
+    }
+    Some(Model {
+        assembly: polygons,
+        loads,
+    })
+}
+
 /// Most runs one search may take (a bisection from a 1% bracket needs a handful).
 const MAX_RUNS: usize = 60;
 
@@ -300,7 +354,7 @@ pub fn collapse_multiplier(
             Ok(r) if r.lambda.is_some_and(|l| l > 0.0) => {
                 (r.lambda.unwrap_or(0.2), GuessSource::Static)
             }
-            _ => (0.2, GuessSource::Default),
+            _ => (DEFAULT_INITIAL_GUESS, GuessSource::Default),
         },
     };
     let mut world = World::new(model, params);

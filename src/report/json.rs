@@ -519,16 +519,33 @@ pub struct DemReport {
     pub lambda_stands: Option<f64>,
     pub lambda_collapses: Option<f64>,
     pub lambda_dem: Option<f64>,
-    /// The static lower bound of the same assembly, for comparison.
+    /// The static lower bound of the scene's own assembly.
     pub lambda_lower: Option<f64>,
-    /// `(lambda_dem - lambda_lower) / lambda_lower`.
+    /// `(lambda_dem - lambda_lower_simulated) / lambda_lower_simulated`: the DEM against the
+    /// static bound of the shapes it simulated.
     pub relative_difference: Option<f64>,
     /// `(lambda_collapses - lambda_stands) / lambda_dem`.
     pub bracket_width: Option<f64>,
-    /// Whether `lambda_lower` lies inside `[lambda_stands, lambda_collapses]`: then the DEM
-    /// confirms it to within the bracket, and `relative_difference` (the bracket's midpoint
-    /// against it, zero when the search was centred on it) is known only to half the width.
+    /// Whether `lambda_lower_simulated` lies inside `[lambda_stands, lambda_collapses]`: then
+    /// the DEM confirms it to within the bracket, and `relative_difference` (the bracket's
+    /// midpoint against it) is known only to half the width.
     pub static_inside_bracket: Option<bool>,
+    /// The bracket: the largest multiplier a run stood at and the smallest one a run did not
+    /// (the same values as `lambda_stands` and `lambda_collapses`).
+    pub lambda_dem_low: Option<f64>,
+    pub lambda_dem_high: Option<f64>,
+    /// The static lower bound of the shapes the DEM simulated: `lambda_lower` unless
+    /// `simulated_shape` is `chord_polygons` (curved voussoirs simulated as their chord
+    /// polygons), then the static bound of that polygon assembly under the same loads.
+    pub lambda_lower_simulated: Option<f64>,
+    /// `blocks` (the assembly's own polygons) or `chord_polygons`.
+    pub simulated_shape: &'static str,
+    /// Where the bracket search started, and from what: `given` (the scene's
+    /// `dem.initial_guess`), `default` (a fixed value independent of the static bound) or
+    /// `static` (`--from-static`: the search verifies the static value, so
+    /// `relative_difference` is small by construction).
+    pub initial_guess: f64,
+    pub guess_source: crate::dem::GuessSource,
     pub steps: u64,
     pub wall_time_s: f64,
     /// Joints seen opening at one end, sliding, and opening fully at the onset of collapse.
@@ -547,6 +564,36 @@ pub struct DemReport {
 }
 
 impl DemReport {
+    /// The report of a DEM check, compared with the static bound of the shapes it simulated.
+    pub fn of(scene: &Scene, d: &crate::analysis::DemAnalysis) -> Self {
+        let mut rep = DemReport::new(scene, &d.model, &d.result, d.lower.lambda);
+        rep.compare_with(d.lower_simulated, d.chord_polygons);
+        rep
+    }
+
+    /// Compare the bracket with `lambda_lower_simulated`, the static bound of the shapes the
+    /// DEM simulated (`chord_polygons`: curved voussoirs as polygons).
+    pub fn compare_with(&mut self, lambda_lower_simulated: Option<f64>, chord_polygons: bool) {
+        let l = lambda_lower_simulated;
+        self.lambda_lower_simulated = l;
+        self.simulated_shape = if chord_polygons {
+            "chord_polygons"
+        } else {
+            "blocks"
+        };
+        self.relative_difference = match (self.lambda_dem, l) {
+            (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
+            _ => None,
+        };
+        self.static_inside_bracket = match (l, self.lambda_stands, self.lambda_collapses) {
+            (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
+            _ => None,
+        };
+    }
+
+    /// The report of a DEM result of `model`, compared with `lambda_lower` as the static bound
+    /// of the shapes simulated (true when no block is curved; otherwise use
+    /// [`DemReport::of`] or [`DemReport::compare_with`]).
     pub fn new(
         scene: &Scene,
         model: &Model,
@@ -575,6 +622,12 @@ impl DemReport {
                 (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
                 _ => None,
             },
+            lambda_dem_low: r.lambda_stands,
+            lambda_dem_high: r.lambda_collapses,
+            lambda_lower_simulated: lambda_lower,
+            simulated_shape: "blocks",
+            initial_guess: r.initial_guess,
+            guess_source: r.guess_source,
             steps: r.steps,
             wall_time_s: r.wall_time_s,
             hinges: r.hinges.clone(),

@@ -41,6 +41,7 @@
 mod body;
 mod params;
 mod protocol;
+pub mod record;
 mod world;
 
 pub use params::{IntegrationParameters, DEM_KEYS};
@@ -294,7 +295,7 @@ pub fn simulated_model(model: &Model) -> Option<Model> {
     let mut blocks = assembly.blocks.clone();
     let size = assembly.size().max(f64::MIN_POSITIVE);
     for b in &mut blocks {
-        if b.polygon.len() < 3 || !(b.area > 0.0) {
+        if b.polygon.len() < 3 || b.area.is_nan() || b.area <= 0.0 {
             continue;
         }
         let (area, centroid) = crate::geometry::polygon_area_centroid(&b.polygon);

@@ -39,6 +39,7 @@
 //! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
 
 mod body;
+pub mod dynamic;
 mod params;
 mod protocol;
 pub mod record;
@@ -565,6 +566,41 @@ impl Simulation {
     /// `IntegrationParameters::local_damping`).
     pub fn set_local_damping(&mut self, alpha: f64) {
         self.world.local_damping = alpha;
+    }
+    /// Apply a horizontal ground acceleration `a` (m/s^2, toward +x) from now on, as the
+    /// equivalent body force `-m a` on every seismic mass (see [`dynamic`]), with full
+    /// permanent loads. The body force is horizontal whatever the vertical seismic ratio.
+    pub fn set_ground_acceleration(&mut self, a: f64) {
+        self.world.seismic_direction = Vec2::new(1.0, 0.0);
+        self.world.load = world::Load {
+            gravity: 1.0,
+            lambda: -a / self.world.params.gravity,
+        };
+    }
+    /// Turn block `i` rigidly by `angle` (rad, counter-clockwise) about the point `pivot`, at
+    /// rest (for initial conditions such as a rocking block released from a tilt).
+    pub fn rotate_block_about(&mut self, i: usize, pivot: Vec2, angle: f64) {
+        let Some(b) = self.world.bodies.iter_mut().find(|b| b.block == Some(i)) else {
+            return;
+        };
+        let (sn, cs) = angle.sin_cos();
+        let r = b.pos - pivot;
+        b.pos = pivot + Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y);
+        b.angle += angle;
+        b.vel = Vec2::zeros();
+        b.omega = 0.0;
+        b.refresh();
+        self.world.broad_phase();
+        self.world.narrow_phase();
+    }
+    /// Centroid velocity and angular velocity (rad/s) of every assembly block.
+    pub fn velocities(&self) -> Vec<(Vec2, f64)> {
+        self.world
+            .bodies
+            .iter()
+            .filter(|b| b.block.is_some())
+            .map(|b| (b.vel, b.omega))
+            .collect()
     }
     /// Advance one time step.
     pub fn step(&mut self) {

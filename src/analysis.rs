@@ -403,6 +403,38 @@ pub fn dem_of(
     Ok(result)
 }
 
+/// A dynamic DEM run of a scene under a ground motion.
+#[derive(Debug, Clone)]
+pub struct DynamicAnalysis {
+    pub model: Model,
+    pub excitation: crate::dem::record::Excitation,
+    pub result: crate::dem::dynamic::DynamicResult,
+}
+
+/// Run a scene's blocks under the ground motion `excitation` (see [`crate::dem::dynamic`]),
+/// with the scene's `[dem]` knobs.
+pub fn dem_dynamic(
+    scene: &Scene,
+    excitation: &crate::dem::record::Excitation,
+    settings: &crate::dem::dynamic::DynamicSettings,
+) -> Result<DynamicAnalysis, AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let params = dem_parameters(scene, &model)?;
+    let result = crate::dem::dynamic::respond(
+        &model,
+        &params,
+        &|t| excitation.at(t),
+        excitation.duration(),
+        settings,
+    )
+    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    Ok(DynamicAnalysis {
+        model,
+        excitation: excitation.clone(),
+        result,
+    })
+}
+
 /// The DEM's stepping knobs for a scene: the defaults of its geometry, then its `[dem]` table.
 pub fn dem_parameters(
     scene: &Scene,

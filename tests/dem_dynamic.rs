@@ -11,6 +11,8 @@ use voussoir::dem::{IntegrationParameters, Simulation};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
 
+mod common;
+
 const G: f64 = 9.81;
 
 /// A rectangular block b x h standing on the ground, no sliding.
@@ -183,4 +185,72 @@ fn rectangular_pulse_overturning_threshold() {
         assert!(!lo.collapsed, "p t1 = {x}: overturned at 0.97 a_min");
         assert!(hi.collapsed, "p t1 = {x}: survived 1.03 a_min");
     }
+}
+
+/// `voussoir dem --record` and `--pulse`: the JSON of a dynamic run, its history CSV, and a bad
+/// record refused with the line named.
+#[test]
+fn cli_runs_records_and_pulses() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // A block of the user's own: the single block 0.2 x 1 as a scene.
+    let scene = dir.path().join("block.toml");
+    std::fs::write(
+        &scene,
+        "[blocks]\npolygons = [[[-0.1, 0.0], [0.1, 0.0], [0.1, 1.0], [-0.1, 1.0]]]\n[material]\nfriction = \"inf\"\n",
+    )
+    .expect("scene");
+    let rec = dir.path().join("rec.csv");
+    // Half the uplift threshold g tan(alpha) = 0.2 g for 0.5 s: the block stays put.
+    std::fs::write(&rec, "time,acc\n0,0\n0.1,0.1\n0.4,0.1\n0.5,0\n").expect("record");
+    let history = dir.path().join("h.csv");
+    let out = common::voussoir()
+        .args(["dem", "--json", "--record"])
+        .arg(&rec)
+        .arg("--history")
+        .arg(&history)
+        .arg(&scene)
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert_eq!(v["status"], "survives", "{v}");
+    assert!((v["pga"].as_f64().expect("pga") - 0.1 * 9.80665).abs() < 1e-12);
+    assert!(v["peak_rotation"].as_f64().expect("rotation") < 1e-3);
+    let h = std::fs::read_to_string(&history).expect("history");
+    assert!(h.starts_with("time_s,ground_acceleration_m_s2,displacement_m,rotation_rad"));
+    assert!(h.lines().count() > 50);
+    // A rectangular pulse of 0.5 g for 1 s overturns it (far above g alpha / (1 - e^{-p t1})).
+    let out = common::voussoir()
+        .args([
+            "dem",
+            "--json",
+            "--pulse",
+            "rect",
+            "--amplitude",
+            "0.5",
+            "--period",
+            "1",
+        ])
+        .arg(&scene)
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    assert_eq!(v["status"], "collapse", "{v}");
+    // A bad record: the error names the file and the line.
+    let bad = dir.path().join("bad.AT2");
+    std::fs::write(
+        &bad,
+        "PEER\nEVENT\nACCELERATION TIME HISTORY IN UNITS OF G\nNPTS=    3, DT=   .0100 SEC\n0.1 0.2\n",
+    )
+    .expect("bad");
+    let out = common::voussoir()
+        .args(["dem", "--record"])
+        .arg(&bad)
+        .arg(&scene)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        err.contains("bad.AT2, line 4") && err.contains("NPTS = 3"),
+        "{err}"
+    );
 }

@@ -455,3 +455,63 @@ pub fn parse_text(
         source: path.display().to_string(),
     })
 }
+
+/// A ground motion of either kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Excitation {
+    Record(GroundMotion),
+    Pulse(Pulse),
+}
+
+impl Excitation {
+    /// The acceleration (m/s^2) at time `t` (s).
+    pub fn at(&self, t: f64) -> f64 {
+        match self {
+            Excitation::Record(r) => r.at(t),
+            Excitation::Pulse(p) => p.at(t),
+        }
+    }
+    /// How long the ground moves (s).
+    pub fn duration(&self) -> f64 {
+        match self {
+            Excitation::Record(r) => r.duration(),
+            Excitation::Pulse(p) => p.period,
+        }
+    }
+    /// Peak ground acceleration (m/s^2).
+    pub fn pga(&self) -> f64 {
+        match self {
+            Excitation::Record(r) => r.pga(),
+            Excitation::Pulse(p) => p.amplitude.abs(),
+        }
+    }
+    /// The same motion with every acceleration times `s`.
+    pub fn scaled(&self, s: f64) -> Excitation {
+        match self {
+            Excitation::Record(r) => Excitation::Record(r.scaled(s)),
+            Excitation::Pulse(p) => Excitation::Pulse(Pulse {
+                amplitude: p.amplitude * s,
+                ..*p
+            }),
+        }
+    }
+    /// A short description for reports.
+    pub fn describe(&self) -> String {
+        match self {
+            Excitation::Record(r) => format!("record {}", r.source),
+            Excitation::Pulse(p) => format!(
+                "{} pulse, amplitude {} m/s^2, {} {} s",
+                match p.shape {
+                    PulseShape::Sine => "sine",
+                    PulseShape::Rect => "rectangular",
+                },
+                p.amplitude,
+                match p.shape {
+                    PulseShape::Sine => "period",
+                    PulseShape::Rect => "duration",
+                },
+                p.period
+            ),
+        }
+    }
+}

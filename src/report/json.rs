@@ -653,3 +653,54 @@ impl DemReport {
         }
     }
 }
+
+/// `dem --record FILE --json` / `dem --pulse ... --json`: a dynamic run under ground motion.
+#[derive(Debug, Serialize)]
+pub struct DynamicReport {
+    /// `collapse`, `survives` or `cannot_stand`.
+    pub status: &'static str,
+    /// What moved the ground, its peak acceleration (m/s^2) and duration (s).
+    pub excitation: String,
+    pub pga: f64,
+    pub duration: f64,
+    pub collapse_time: Option<f64>,
+    /// The control block, its peak and residual horizontal displacement (m) and rotation
+    /// (rad).
+    pub control_block: usize,
+    pub peak_displacement: f64,
+    pub peak_rotation: f64,
+    pub residual_displacement: f64,
+    pub residual_rotation: f64,
+    pub steps: u64,
+    pub time_step: f64,
+    pub wall_time_s: f64,
+    pub scene: SceneReport,
+}
+
+impl DynamicReport {
+    pub fn new(scene: &Scene, d: &crate::analysis::DynamicAnalysis) -> Self {
+        let r = &d.result;
+        DynamicReport {
+            status: if r.cannot_stand {
+                "cannot_stand"
+            } else if r.collapsed {
+                "collapse"
+            } else {
+                "survives"
+            },
+            excitation: d.excitation.describe(),
+            pga: d.excitation.pga(),
+            duration: d.excitation.duration(),
+            collapse_time: r.collapse_time,
+            control_block: r.control_block,
+            peak_displacement: r.peak_displacement,
+            peak_rotation: r.peak_rotation,
+            residual_displacement: r.residual_displacement,
+            residual_rotation: r.residual_rotation,
+            steps: r.steps,
+            time_step: r.time_step,
+            wall_time_s: r.wall_time_s,
+            scene: SceneReport::new(scene, &d.model),
+        }
+    }
+}

@@ -793,3 +793,52 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
     );
     s
 }
+
+/// The text summary of a dynamic DEM run.
+pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::DynamicReport) -> String {
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
+    let _ = writeln!(
+        s,
+        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g, {:.3} s)",
+        rep.excitation,
+        rep.pga,
+        rep.pga / crate::dem::record::STANDARD_GRAVITY,
+        rep.duration
+    );
+    match rep.status {
+        "cannot_stand" => {
+            let _ = writeln!(
+                s,
+                "DEM: CANNOT STAND — the blocks do not come to rest under their permanent loads"
+            );
+            return s;
+        }
+        "collapse" => {
+            let _ = writeln!(
+                s,
+                "DEM: COLLAPSE at t = {:.3} s (a block moved by a quarter of the structure's size)",
+                rep.collapse_time.unwrap_or(f64::NAN)
+            );
+        }
+        _ => {
+            let _ = writeln!(s, "DEM: survives");
+        }
+    }
+    let _ = writeln!(
+        s,
+        "  block {}: peak displacement {:.4e} m, peak rotation {:.4e} rad; residual {:.4e} m, {:.4e} rad",
+        rep.control_block,
+        rep.peak_displacement,
+        rep.peak_rotation,
+        rep.residual_displacement,
+        rep.residual_rotation
+    );
+    let _ = writeln!(
+        s,
+        "  no local damping: energy is lost only at the contacts (docs/dem.md)\n  {}, time step {:.3e} s, {:.2} s wall time",
+        count(rep.steps, "time step", "time steps"),
+        rep.time_step,
+        rep.wall_time_s
+    );
+    s
+}

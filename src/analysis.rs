@@ -435,6 +435,29 @@ pub fn dem_dynamic(
     })
 }
 
+/// Scale a ground motion up until the scene's blocks collapse (see [`crate::dem::dynamic::ida`]),
+/// to a relative `tolerance`, trying scales up to 1000.
+pub fn dem_ida(
+    scene: &Scene,
+    excitation: &crate::dem::record::Excitation,
+    settings: &crate::dem::dynamic::DynamicSettings,
+    tolerance: f64,
+) -> Result<(Model, crate::dem::dynamic::IdaResult), AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let params = dem_parameters(scene, &model)?;
+    let r = crate::dem::dynamic::ida(
+        &model,
+        &params,
+        &|t| excitation.at(t),
+        excitation.duration(),
+        settings,
+        tolerance,
+        1000.0,
+    )
+    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    Ok((model, r))
+}
+
 /// The DEM's stepping knobs for a scene: the defaults of its geometry, then its `[dem]` table.
 pub fn dem_parameters(
     scene: &Scene,

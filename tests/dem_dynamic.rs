@@ -187,6 +187,38 @@ fn rectangular_pulse_overturning_threshold() {
     }
 }
 
+/// The incremental dynamic analysis of a rectangular pulse finds Housner's threshold: the
+/// collapse scale times the pulse amplitude brackets a_min = g alpha / (1 - exp(-p t1)) within
+/// the 3% the direct runs show (p t1 = 1).
+#[test]
+fn ida_of_a_rectangular_pulse_finds_the_overturning_amplitude() {
+    let (b, h) = (0.1, 1.0);
+    let m = block(b, h);
+    let k = housner(b, h);
+    let p = IntegrationParameters::for_model(&m);
+    let t1 = 1.0 / k.p;
+    let a_min = G * k.alpha / (1.0 - (-1.0_f64).exp());
+    // A unit pulse of a_min / 4: the IDA must double twice and then bisect.
+    let pulse = Pulse::new(PulseShape::Rect, 0.25 * a_min, t1).expect("pulse");
+    let settings = DynamicSettings {
+        tail: 4.0,
+        ..Default::default()
+    };
+    let r = dynamic::ida(&m, &p, &|t: f64| pulse.at(t), t1, &settings, 0.01, 100.0).expect("IDA");
+    let hi = r.scale_collapses.expect("collapses");
+    let lo = r.scale_survives;
+    assert!(hi - lo <= 0.01 * hi && lo < hi, "[{lo}, {hi}]");
+    let (a_lo, a_hi) = (lo * 0.25 * a_min, hi * 0.25 * a_min);
+    eprintln!(
+        "IDA: [{a_lo:.5}, {a_hi:.5}] m/s^2 against a_min {a_min:.5} ({} runs)",
+        r.runs.len()
+    );
+    assert!(
+        a_hi >= 0.97 * a_min && a_lo <= 1.03 * a_min,
+        "[{a_lo}, {a_hi}] vs {a_min}"
+    );
+}
+
 /// `voussoir dem --record` and `--pulse`: the JSON of a dynamic run, its history CSV, and a bad
 /// record refused with the line named.
 #[test]

@@ -51,6 +51,10 @@ pub struct Args {
     /// Multiply the ground motion by this factor
     #[arg(long, default_value_t = 1.0)]
     scale: f64,
+    /// Scale the ground motion up until collapse (incremental dynamic analysis) to
+    /// --tolerance, and report the collapse scale and PGA
+    #[arg(long)]
+    ida: bool,
     /// Write the control block's time history (time, ground acceleration, displacement,
     /// rotation) to this CSV file
     #[arg(long, value_name = "FILE")]
@@ -110,6 +114,15 @@ fn run_dynamic(
     motion: &Excitation,
 ) -> Result<String, Error> {
     let settings = dem::dynamic::DynamicSettings::default();
+    if args.ida {
+        let (model, r) = analysis::dem_ida(scene, motion, &settings, args.tolerance)?;
+        let rep = report::IdaReport::new(motion, &r);
+        return Ok(if args.json {
+            json(&rep)
+        } else {
+            report::ida_summary(scene, &model, &rep)
+        });
+    }
     let d = analysis::dem_dynamic(scene, motion, &settings)?;
     if let Some(path) = &args.history {
         let err = |e: &dyn std::fmt::Display| Error::Output {

@@ -200,3 +200,78 @@ fn argmax(v: &[f64]) -> usize {
         )
         .0
 }
+
+/// An incremental dynamic analysis: the scale factor of a ground motion that brings down
+/// the structure, bracketed.
+#[derive(Debug, Clone)]
+pub struct IdaResult {
+    /// Largest scale a run survived (0: none tried) and smallest one that collapsed (`None`:
+    /// none up to the largest scale tried).
+    pub scale_survives: f64,
+    pub scale_collapses: Option<f64>,
+    /// Scales run, with whether each collapsed.
+    pub runs: Vec<(f64, bool)>,
+    pub steps: u64,
+    pub wall_time_s: f64,
+}
+
+/// Scale `ground` up (doubling from 1) until a run collapses, then bisect until the bracket
+/// `[scale_survives, scale_collapses]` is narrower than `tolerance` times its top, or stop at
+/// `max_scale`. Dynamic collapse need not be monotonic in the scale (a stronger motion can
+/// push a block back): this reports the first bracket found, from below.
+pub fn ida(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &dyn Fn(f64) -> f64,
+    duration: f64,
+    settings: &DynamicSettings,
+    tolerance: f64,
+    max_scale: f64,
+) -> Result<IdaResult, DemError> {
+    let clock = Instant::now();
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+        return Err(DemError::Settings(format!(
+            "IDA tolerance = {tolerance}: must be > 0 and < 1"
+        )));
+    }
+    let quiet = DynamicSettings {
+        history_every: None,
+        ..settings.clone()
+    };
+    let mut out = IdaResult {
+        scale_survives: 0.0,
+        scale_collapses: None,
+        runs: Vec::new(),
+        steps: 0,
+        wall_time_s: 0.0,
+    };
+    let mut scale = 1.0;
+    for _ in 0..60 {
+        if let Some(hi) = out.scale_collapses {
+            if hi - out.scale_survives <= tolerance * hi {
+                break;
+            }
+            scale = 0.5 * (out.scale_survives + hi);
+        } else if scale > max_scale {
+            break;
+        }
+        let r = respond(model, params, &|t| scale * ground(t), duration, &quiet)?;
+        out.steps += r.steps;
+        if r.cannot_stand {
+            return Err(DemError::Settings(
+                "the structure does not stand under its permanent loads".to_string(),
+            ));
+        }
+        out.runs.push((scale, r.collapsed));
+        if r.collapsed {
+            out.scale_collapses = Some(scale);
+        } else {
+            out.scale_survives = scale;
+            if out.scale_collapses.is_none() {
+                scale *= 2.0;
+            }
+        }
+    }
+    out.wall_time_s = clock.elapsed().as_secs_f64();
+    Ok(out)
+}

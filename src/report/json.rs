@@ -704,3 +704,39 @@ impl DynamicReport {
         }
     }
 }
+
+/// `dem --record FILE --ida --json`: the scale of a ground motion that brings the structure
+/// down.
+#[derive(Debug, Serialize)]
+pub struct IdaReport {
+    pub excitation: String,
+    /// Peak ground acceleration of the unscaled motion (m/s^2).
+    pub pga: f64,
+    /// Largest scale survived, smallest scale that collapsed (null: none up to 1000), and the
+    /// PGA at the latter (m/s^2).
+    pub scale_survives: f64,
+    pub scale_collapses: Option<f64>,
+    pub collapse_pga: Option<f64>,
+    /// Every run: scale and whether it collapsed.
+    pub runs: Vec<(f64, bool)>,
+    pub steps: u64,
+    pub wall_time_s: f64,
+}
+
+impl IdaReport {
+    pub fn new(
+        excitation: &crate::dem::record::Excitation,
+        r: &crate::dem::dynamic::IdaResult,
+    ) -> Self {
+        IdaReport {
+            excitation: excitation.describe(),
+            pga: excitation.pga(),
+            scale_survives: r.scale_survives,
+            scale_collapses: r.scale_collapses,
+            collapse_pga: r.scale_collapses.map(|s| s * excitation.pga()),
+            runs: r.runs.clone(),
+            steps: r.steps,
+            wall_time_s: r.wall_time_s,
+        }
+    }
+}

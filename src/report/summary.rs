@@ -842,3 +842,37 @@ pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::Dynami
     );
     s
 }
+
+/// The text summary of an incremental dynamic analysis.
+pub fn ida_summary(scene: &Scene, model: &Model, rep: &crate::report::IdaReport) -> String {
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
+    let g = crate::dem::record::STANDARD_GRAVITY;
+    let _ = writeln!(
+        s,
+        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g)",
+        rep.excitation,
+        rep.pga,
+        rep.pga / g
+    );
+    match (rep.scale_collapses, rep.collapse_pga) {
+        (Some(hi), Some(pga)) => {
+            let _ = writeln!(
+                s,
+                "IDA: survives at scale {:.4}, collapses at scale {hi:.4} (PGA {pga:.4} m/s^2 = {:.4} g)",
+                rep.scale_survives,
+                pga / g
+            );
+        }
+        _ => {
+            let _ = writeln!(s, "IDA: no collapse up to scale {:.4}", rep.scale_survives);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "  {}, {}, {:.2} s wall time (the first bracket from below: dynamic collapse need not be monotonic in the scale)",
+        count(rep.runs.len() as u64, "run", "runs"),
+        count(rep.steps, "time step", "time steps"),
+        rep.wall_time_s
+    );
+    s
+}

@@ -771,14 +771,14 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
         );
     }
     let start = match rep.guess_source {
-        crate::dem::GuessSource::Static => "the static lower bound (--from-static: the DEM verifies the static value, a difference near 0 is by construction)".to_string(),
-        crate::dem::GuessSource::Given => "dem.initial_guess".to_string(),
-        crate::dem::GuessSource::Default => "the default start, independent of the static bound".to_string(),
+        crate::dem::GuessSource::Static => "the static lower bound (--from-static: the DEM verifies the static value; a difference near 0 is by construction)",
+        crate::dem::GuessSource::Given => "dem.initial_guess",
+        crate::dem::GuessSource::Default => "the default start, independent of the static bound",
     };
     let _ = writeln!(
         s,
-        "  bracket searched from lambda = {} ({start})",
-        num(rep.initial_guess)
+        "  bracket searched from lambda = {:.6}, {start}",
+        rep.initial_guess
     );
     if rep.friction_infinite {
         let _ = writeln!(s, "  mu = inf simulated as mu = {}", num(rep.friction));

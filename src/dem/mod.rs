@@ -325,10 +325,11 @@ pub fn simulated_model(model: &Model) -> Option<Model> {
     for s in model.loads.spread() {
         loads.add_spread(*s);
     }
-    Some(Model {
-        assembly: polygons,
-        loads,
-    })
+    // Everything else about the model (e.g. joint properties added later) stays as it is.
+    let mut simulated = model.clone();
+    simulated.assembly = polygons;
+    simulated.loads = loads;
+    Some(simulated)
 }
 
 /// Most runs one search may take (a bisection from a 1% bracket needs a handful).

@@ -330,6 +330,12 @@ pub struct DemOptions {
     /// Record block positions during the runs (for snapshots and drawings), every third of the
     /// load ramp unless the scene sets `dem.snapshot_interval`. Default false.
     pub snapshots: bool,
+    /// Start the bracket search at the static lower bound (the fast mode: the first bracket
+    /// around it usually verifies it, so the DEM confirms the static value rather than
+    /// measuring its own threshold). Default false: the search starts at the scene's
+    /// `dem.initial_guess`, or [`crate::dem::DEFAULT_INITIAL_GUESS`], independent of the
+    /// static bound.
+    pub from_static: bool,
 }
 
 impl Default for DemOptions {
@@ -337,20 +343,28 @@ impl Default for DemOptions {
         DemOptions {
             tolerance: 0.01,
             snapshots: false,
+            from_static: false,
         }
     }
 }
 
-/// A DEM check with the static bound it started from.
+/// A DEM check with the static bounds it is compared with.
 #[derive(Debug, Clone)]
 pub struct DemAnalysis {
     pub model: Model,
-    /// The static analysis of the same model (its multiplier is the DEM's first guess).
+    /// The static analysis of the same model.
     pub lower: StaticResult,
+    /// The static lower bound of the shapes the DEM simulates ([`crate::dem::simulated_model`]:
+    /// curved voussoirs as their chord polygons); `lower.lambda` when they are the model's own.
+    pub lower_simulated: Option<f64>,
+    /// Whether the DEM simulates other shapes than the model's (curved voussoirs as chord
+    /// polygons).
+    pub chord_polygons: bool,
     pub result: crate::dem::DemResult,
 }
 
-/// Check a scene's collapse multiplier with the DEM, starting from its static bound.
+/// Check a scene's collapse multiplier with the DEM, from its own start (or from the static
+/// bound with `options.from_static`), and the static bounds to compare it with.
 pub fn dem(
     scene: &Scene,
     options: &DemOptions,
@@ -358,16 +372,33 @@ pub fn dem(
 ) -> Result<DemAnalysis, AnalysisError> {
     let model = crate::scene::build(scene)?;
     let lower = lp::analyse(&model, &StaticSettings::default())?;
+    let (lower_simulated, chord_polygons) = simulated_static(&model, lower.lambda)?;
     let result = dem_of(scene, &model, lower.lambda, options, progress)?;
     Ok(DemAnalysis {
         model,
         lower,
+        lower_simulated,
+        chord_polygons,
         result,
     })
 }
 
-/// The DEM check of `model` (built from `scene`), starting from the static multiplier
-/// `lambda_lower` when there is one.
+/// The static lower bound of the shapes the DEM simulates for `model`, whose own static bound
+/// is `lambda_lower`, and whether those shapes differ from the model's (curved voussoirs are
+/// simulated as their chord polygons, [`crate::dem::simulated_model`]).
+pub fn simulated_static(
+    model: &Model,
+    lambda_lower: Option<f64>,
+) -> Result<(Option<f64>, bool), AnalysisError> {
+    match crate::dem::simulated_model(model) {
+        None => Ok((lambda_lower, false)),
+        Some(m) => Ok((lp::analyse(&m, &StaticSettings::default())?.lambda, true)),
+    }
+}
+
+/// The DEM check of `model` (built from `scene`). The bracket search starts at the static
+/// multiplier `lambda_lower` with `options.from_static` (when there is one), otherwise at the
+/// scene's `dem.initial_guess` or [`crate::dem::DEFAULT_INITIAL_GUESS`].
 pub fn dem_of(
     scene: &Scene,
     model: &Model,
@@ -375,13 +406,80 @@ pub fn dem_of(
     options: &DemOptions,
     progress: &mut dyn FnMut(f64),
 ) -> Result<crate::dem::DemResult, AnalysisError> {
-    let mut params = dem_parameters(scene, model)?.initial_guess(lambda_lower.filter(|l| *l > 0.0));
+    use crate::dem::GuessSource;
+    let mut params = dem_parameters(scene, model)?;
+    let (guess, source) = match (options.from_static, lambda_lower.filter(|l| *l > 0.0)) {
+        (true, Some(l)) => (l, GuessSource::Static),
+        _ => match params.initial_guess {
+            Some(g) => (g, GuessSource::Given),
+            None => (crate::dem::DEFAULT_INITIAL_GUESS, GuessSource::Default),
+        },
+    };
+    params = params.initial_guess(Some(guess));
     if options.snapshots && params.snapshot_interval.is_none() {
         let every = params.ramp_time / 3.0;
         params = params.snapshot_interval(Some(every));
     }
-    crate::dem::collapse_multiplier(model, &params, options.tolerance, progress)
-        .map_err(|e| AnalysisError::Other(e.to_string()))
+    let mut result = crate::dem::collapse_multiplier(model, &params, options.tolerance, progress)
+        .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    // The search was handed its start; say where that start came from.
+    result.guess_source = source;
+    Ok(result)
+}
+
+/// A dynamic DEM run of a scene under a ground motion.
+#[derive(Debug, Clone)]
+pub struct DynamicAnalysis {
+    pub model: Model,
+    pub excitation: crate::dem::record::Excitation,
+    pub result: crate::dem::dynamic::DynamicResult,
+}
+
+/// Run a scene's blocks under the ground motion `excitation` (see [`crate::dem::dynamic`]),
+/// with the scene's `[dem]` knobs.
+pub fn dem_dynamic(
+    scene: &Scene,
+    excitation: &crate::dem::record::Excitation,
+    settings: &crate::dem::dynamic::DynamicSettings,
+) -> Result<DynamicAnalysis, AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let params = dem_parameters(scene, &model)?;
+    let result = crate::dem::dynamic::respond(
+        &model,
+        &params,
+        &|t| excitation.at(t),
+        excitation.duration(),
+        settings,
+    )
+    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    Ok(DynamicAnalysis {
+        model,
+        excitation: excitation.clone(),
+        result,
+    })
+}
+
+/// Scale a ground motion up until the scene's blocks collapse (see [`crate::dem::dynamic::ida`]),
+/// to a relative `tolerance`, trying scales up to 1000.
+pub fn dem_ida(
+    scene: &Scene,
+    excitation: &crate::dem::record::Excitation,
+    settings: &crate::dem::dynamic::DynamicSettings,
+    tolerance: f64,
+) -> Result<(Model, crate::dem::dynamic::IdaResult), AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let params = dem_parameters(scene, &model)?;
+    let r = crate::dem::dynamic::ida(
+        &model,
+        &params,
+        &|t| excitation.at(t),
+        excitation.duration(),
+        settings,
+        tolerance,
+        1000.0,
+    )
+    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    Ok((model, r))
 }
 
 /// The DEM's stepping knobs for a scene: the defaults of its geometry, then its `[dem]` table.

@@ -631,8 +631,11 @@ pub fn static_case(
 
 /// One case by every method in `options` (the static bound always; the kinematic bound when
 /// the chain is small enough; the continuous model and the DEM when asked), as a row.
-/// Extra columns: `lambda_continuous` with `options.continuous`, `lambda_dem` and
-/// `dem_time_s` (the DEM's wall time) with `dem`. `solve_time_s` is the time of the static,
+/// Extra columns: `lambda_continuous` with `options.continuous`; with `dem`, `lambda_dem`,
+/// `dem_time_s` (the DEM's wall time), the bracket `lambda_dem_low`, `lambda_dem_high`, its
+/// relative width `dem_bracket_width` and `static_inside_dem_bracket` (1 when the static bound
+/// of the shapes simulated lies inside, else 0). The DEM starts from its own guess, not from
+/// the static bound (see `analysis::DemOptions::from_static`). `solve_time_s` is the time of the static,
 /// kinematic and continuous analyses, without the DEM.
 pub fn case(
     values: &[Value],
@@ -677,23 +680,48 @@ pub fn case(
             }
             if dem {
                 let dem_start = std::time::Instant::now();
-                let d = match analysis::dem_of(
+                let d = analysis::dem_of(
                     scene,
                     &a.model,
                     a.lower.lambda,
                     &analysis::DemOptions::default(),
                     &mut |_| {},
-                ) {
-                    Ok(r) => r.lambda_dem,
+                )
+                .and_then(|r| {
+                    // Compared with the static bound of the shapes simulated (curved voussoirs
+                    // as chord polygons), solved only when those differ.
+                    let (l, _) = analysis::simulated_static(&a.model, a.lower.lambda)?;
+                    Ok((r, l))
+                });
+                let (mid, low, high, width, inside) = match d {
+                    Ok((r, l)) => {
+                        let inside = match (l, r.lambda_stands, r.lambda_collapses) {
+                            (Some(l), Some(lo), Some(hi)) => {
+                                Some(f64::from(u8::from(lo <= l && l <= hi)))
+                            }
+                            _ => None,
+                        };
+                        (
+                            r.lambda_dem,
+                            r.lambda_stands,
+                            r.lambda_collapses,
+                            r.bracket_width,
+                            inside,
+                        )
+                    }
                     Err(e) => {
                         // The static and kinematic results stand; say why the DEM has none.
                         row.error = Some(format!("DEM: {e}"));
-                        None
+                        (None, None, None, None, None)
                     }
                 };
-                row.extra.push(("lambda_dem", d));
+                row.extra.push(("lambda_dem", mid));
                 row.extra
                     .push(("dem_time_s", Some(dem_start.elapsed().as_secs_f64())));
+                row.extra.push(("lambda_dem_low", low));
+                row.extra.push(("lambda_dem_high", high));
+                row.extra.push(("dem_bracket_width", width));
+                row.extra.push(("static_inside_dem_bracket", inside));
             }
         }
         Err(e) => {

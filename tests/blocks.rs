@@ -334,7 +334,7 @@ fn a_running_bond_wall_is_no_chain_and_static_and_dem_agree() {
             s,
             &analysis::DemOptions {
                 tolerance: 0.005,
-                snapshots: false,
+                ..Default::default()
             },
             &mut |_| {},
         )

@@ -594,6 +594,18 @@ fn sweep_dem_times_the_dem_in_its_own_column() {
     assert_eq!(col("solve_time_s"), col("hinges") + 1);
     let num = |name: &str| -> f64 { row[col(name)].parse().expect("a number") };
     assert!(num("lambda_dem") > 0.0);
+    // The DEM's own bracket (issue 15): its ends, width and whether the static bound lies in it.
+    assert_eq!(col("lambda_dem_low"), col("dem_time_s") + 1);
+    let (lo, hi, mid) = (
+        num("lambda_dem_low"),
+        num("lambda_dem_high"),
+        num("lambda_dem"),
+    );
+    assert!(lo < mid && mid < hi, "[{lo}, {hi}] {mid}");
+    assert!((num("dem_bracket_width") - (hi - lo) / mid).abs() < 1e-9);
+    let l = num("lambda_lower");
+    let inside = num("static_inside_dem_bracket");
+    assert_eq!(inside, if lo <= l && l <= hi { 1.0 } else { 0.0 });
     // The DEM (thousands of time steps) takes far longer than the static and kinematic
     // analyses of 8 voussoirs; solve_time_s no longer includes it.
     assert!(

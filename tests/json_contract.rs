@@ -206,9 +206,19 @@ fn dem_fields() {
             "undecided_runs",
             "runs",
             "scene",
+            "lambda_dem_low",
+            "lambda_dem_high",
+            "lambda_lower_simulated",
+            "simulated_shape",
+            "initial_guess",
+            "guess_source",
         ],
         "dem",
     );
+    // The bracket is the DEM's own: searched from the default start, not the static bound.
+    assert_eq!(v["guess_source"], "default");
+    assert_eq!(v["lambda_dem_low"], v["lambda_stands"]);
+    assert_eq!(v["lambda_dem_high"], v["lambda_collapses"]);
     has_all(&v["scene"], SCENE_REBUILD_FIELDS, "dem scene");
     has_all(&v, LOAD_FIELDS, "dem");
 }

@@ -437,17 +437,12 @@ fn dem_json(py: Python<'_>, scene: &Scene, tolerance: f64) -> PyResult<String> {
     let scene = &scene.inner;
     let options = DemOptions {
         tolerance,
-        snapshots: false,
+        ..DemOptions::default()
     };
     let d = py
         .detach(|| analysis::dem(scene, &options, &mut |_| {}))
         .map_err(|e| analysis_error(py, &e))?;
-    to_json(&report::DemReport::new(
-        scene,
-        &d.model,
-        &d.result,
-        d.lower.lambda,
-    ))
+    to_json(&report::DemReport::of(scene, &d))
 }
 
 /// One varied key's values: a string in the CLI's syntax (`"0.1,0.2"`, `"0.1:0.2:0.01"`), a

@@ -35,8 +35,9 @@ pub struct Args {
     /// Add the continuous model's multiplier (column lambda_continuous)
     #[arg(long)]
     continuous: bool,
-    /// Add the DEM multiplier, bracketed to 1% (columns lambda_dem and its wall time
-    /// dem_time_s, not counted in solve_time_s; about a second per case)
+    /// Add the DEM multiplier, bracketed to 1% from its own start (columns lambda_dem, its wall
+    /// time dem_time_s, not counted in solve_time_s, lambda_dem_low, lambda_dem_high,
+    /// dem_bracket_width, static_inside_dem_bracket; a few seconds per case)
     #[arg(long = "dem")]
     run_dem: bool,
     /// Largest chain (joints) for the kinematic search; 0 turns it off

@@ -39,8 +39,10 @@
 //! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
 
 mod body;
+pub mod dynamic;
 mod params;
 mod protocol;
+pub mod record;
 mod world;
 
 pub use params::{IntegrationParameters, DEM_KEYS};
@@ -69,15 +71,22 @@ pub enum DemError {
     FiniteStrength { compressive_strength: f64 },
 }
 
+/// The first multiplier of a bracket search that is not told where to start and must not
+/// lean on the static bound: `crate::analysis::dem_of` starts here unless the scene sets
+/// `dem.initial_guess` or the caller asks for the static start. Independent of the structure
+/// on purpose; the search widens or bisects from it (docs/dem.md).
+pub const DEFAULT_INITIAL_GUESS: f64 = 0.2;
+
 /// Where the bracket search started.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GuessSource {
-    /// `IntegrationParameters::initial_guess`.
+    /// `IntegrationParameters::initial_guess` (the scene's `dem.initial_guess`).
     Given,
-    /// The static lower bound, solved by `collapse_multiplier`.
+    /// The static lower bound (solved by `collapse_multiplier`, or handed to it by the
+    /// analysis layer's `--from-static` mode): the bracket then verifies that value.
     Static,
-    /// A fixed 0.2 (the static program found no multiplier).
+    /// [`DEFAULT_INITIAL_GUESS`]: nothing given (or the static program found no multiplier).
     Default,
 }
 
@@ -283,6 +292,54 @@ impl DemResult {
     }
 }
 
+/// The model the DEM actually simulates, when it differs from `model`: every block as its
+/// polygon (curved voussoirs as their chord polygons) with the polygon's area, centroid and
+/// weight (the unit weight of the block times the polygon's area, as [`World::new`] does),
+/// and the same other loads, seismic masses and vertical ratio. `None` when every block
+/// already is its polygon (relative area and centroid differences below 1e-12), so the static
+/// bound of `model` is the one to compare a DEM bracket with.
+pub fn simulated_model(model: &Model) -> Option<Model> {
+    let assembly = &model.assembly;
+    let mut changed = false;
+    let mut blocks = assembly.blocks.clone();
+    let size = assembly.size().max(f64::MIN_POSITIVE);
+    for b in &mut blocks {
+        if b.polygon.len() < 3 || b.area.is_nan() || b.area <= 0.0 {
+            continue;
+        }
+        let (area, centroid) = crate::geometry::polygon_area_centroid(&b.polygon);
+        let area = area.abs();
+        if (area - b.area).abs() > 1e-12 * b.area || (centroid - b.centroid).norm() > 1e-12 * size {
+            changed = true;
+            b.weight *= area / b.area;
+            b.area = area;
+            b.centroid = centroid;
+        }
+    }
+    if !changed {
+        return None;
+    }
+    let polygons = Assembly {
+        blocks,
+        joints: assembly.joints.clone(),
+    };
+    let mut loads = crate::model::LoadCase::self_weight(&polygons)
+        .with_vertical_ratio(model.loads.vertical_ratio());
+    for l in model.loads.applied() {
+        if l.source != crate::model::LoadSource::SelfWeight {
+            loads.add(l.clone());
+        }
+    }
+    for s in model.loads.spread() {
+        loads.add_spread(*s);
+    }
+    // Everything else about the model (e.g. joint properties added later) stays as it is.
+    let mut simulated = model.clone();
+    simulated.assembly = polygons;
+    simulated.loads = loads;
+    Some(simulated)
+}
+
 /// Most runs one search may take (a bisection from a 1% bracket needs a handful).
 const MAX_RUNS: usize = 60;
 
@@ -308,7 +365,7 @@ pub fn collapse_multiplier(
             Ok(r) if r.lambda.is_some_and(|l| l > 0.0) => {
                 (r.lambda.unwrap_or(0.2), GuessSource::Static)
             }
-            _ => (0.2, GuessSource::Default),
+            _ => (DEFAULT_INITIAL_GUESS, GuessSource::Default),
         },
     };
     let mut world = World::new(model, params);
@@ -518,6 +575,41 @@ impl Simulation {
     /// `IntegrationParameters::local_damping`).
     pub fn set_local_damping(&mut self, alpha: f64) {
         self.world.local_damping = alpha;
+    }
+    /// Apply a horizontal ground acceleration `a` (m/s^2, toward +x) from now on, as the
+    /// equivalent body force `-m a` on every seismic mass (see [`dynamic`]), with full
+    /// permanent loads. The body force is horizontal whatever the vertical seismic ratio.
+    pub fn set_ground_acceleration(&mut self, a: f64) {
+        self.world.seismic_direction = Vec2::new(1.0, 0.0);
+        self.world.load = world::Load {
+            gravity: 1.0,
+            lambda: -a / self.world.params.gravity,
+        };
+    }
+    /// Turn block `i` rigidly by `angle` (rad, counter-clockwise) about the point `pivot`, at
+    /// rest (for initial conditions such as a rocking block released from a tilt).
+    pub fn rotate_block_about(&mut self, i: usize, pivot: Vec2, angle: f64) {
+        let Some(b) = self.world.bodies.iter_mut().find(|b| b.block == Some(i)) else {
+            return;
+        };
+        let (sn, cs) = angle.sin_cos();
+        let r = b.pos - pivot;
+        b.pos = pivot + Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y);
+        b.angle += angle;
+        b.vel = Vec2::zeros();
+        b.omega = 0.0;
+        b.refresh();
+        self.world.broad_phase();
+        self.world.narrow_phase();
+    }
+    /// Centroid velocity and angular velocity (rad/s) of every assembly block.
+    pub fn velocities(&self) -> Vec<(Vec2, f64)> {
+        self.world
+            .bodies
+            .iter()
+            .filter(|b| b.block.is_some())
+            .map(|b| (b.vel, b.omega))
+            .collect()
     }
     /// Advance one time step.
     pub fn step(&mut self) {

@@ -537,16 +537,33 @@ pub struct DemReport {
     pub lambda_stands: Option<f64>,
     pub lambda_collapses: Option<f64>,
     pub lambda_dem: Option<f64>,
-    /// The static lower bound of the same assembly, for comparison.
+    /// The static lower bound of the scene's own assembly.
     pub lambda_lower: Option<f64>,
-    /// `(lambda_dem - lambda_lower) / lambda_lower`.
+    /// `(lambda_dem - lambda_lower_simulated) / lambda_lower_simulated`: the DEM against the
+    /// static bound of the shapes it simulated.
     pub relative_difference: Option<f64>,
     /// `(lambda_collapses - lambda_stands) / lambda_dem`.
     pub bracket_width: Option<f64>,
-    /// Whether `lambda_lower` lies inside `[lambda_stands, lambda_collapses]`: then the DEM
-    /// confirms it to within the bracket, and `relative_difference` (the bracket's midpoint
-    /// against it, zero when the search was centred on it) is known only to half the width.
+    /// Whether `lambda_lower_simulated` lies inside `[lambda_stands, lambda_collapses]`: then
+    /// the DEM confirms it to within the bracket, and `relative_difference` (the bracket's
+    /// midpoint against it) is known only to half the width.
     pub static_inside_bracket: Option<bool>,
+    /// The bracket: the largest multiplier a run stood at and the smallest one a run did not
+    /// (the same values as `lambda_stands` and `lambda_collapses`).
+    pub lambda_dem_low: Option<f64>,
+    pub lambda_dem_high: Option<f64>,
+    /// The static lower bound of the shapes the DEM simulated: `lambda_lower` unless
+    /// `simulated_shape` is `chord_polygons` (curved voussoirs simulated as their chord
+    /// polygons), then the static bound of that polygon assembly under the same loads.
+    pub lambda_lower_simulated: Option<f64>,
+    /// `blocks` (the assembly's own polygons) or `chord_polygons`.
+    pub simulated_shape: &'static str,
+    /// Where the bracket search started, and from what: `given` (the scene's
+    /// `dem.initial_guess`), `default` (a fixed value independent of the static bound) or
+    /// `static` (`--from-static`: the search verifies the static value, so
+    /// `relative_difference` is small by construction).
+    pub initial_guess: f64,
+    pub guess_source: crate::dem::GuessSource,
     pub steps: u64,
     pub wall_time_s: f64,
     /// Joints seen opening at one end, sliding, and opening fully at the onset of collapse.
@@ -565,6 +582,36 @@ pub struct DemReport {
 }
 
 impl DemReport {
+    /// The report of a DEM check, compared with the static bound of the shapes it simulated.
+    pub fn of(scene: &Scene, d: &crate::analysis::DemAnalysis) -> Self {
+        let mut rep = DemReport::new(scene, &d.model, &d.result, d.lower.lambda);
+        rep.compare_with(d.lower_simulated, d.chord_polygons);
+        rep
+    }
+
+    /// Compare the bracket with `lambda_lower_simulated`, the static bound of the shapes the
+    /// DEM simulated (`chord_polygons`: curved voussoirs as polygons).
+    pub fn compare_with(&mut self, lambda_lower_simulated: Option<f64>, chord_polygons: bool) {
+        let l = lambda_lower_simulated;
+        self.lambda_lower_simulated = l;
+        self.simulated_shape = if chord_polygons {
+            "chord_polygons"
+        } else {
+            "blocks"
+        };
+        self.relative_difference = match (self.lambda_dem, l) {
+            (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
+            _ => None,
+        };
+        self.static_inside_bracket = match (l, self.lambda_stands, self.lambda_collapses) {
+            (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
+            _ => None,
+        };
+    }
+
+    /// The report of a DEM result of `model`, compared with `lambda_lower` as the static bound
+    /// of the shapes simulated (true when no block is curved; otherwise use
+    /// [`DemReport::of`] or [`DemReport::compare_with`]).
     pub fn new(
         scene: &Scene,
         model: &Model,
@@ -593,6 +640,12 @@ impl DemReport {
                 (Some(l), Some(a), Some(b)) => Some(a <= l && l <= b),
                 _ => None,
             },
+            lambda_dem_low: r.lambda_stands,
+            lambda_dem_high: r.lambda_collapses,
+            lambda_lower_simulated: lambda_lower,
+            simulated_shape: "blocks",
+            initial_guess: r.initial_guess,
+            guess_source: r.guess_source,
             steps: r.steps,
             wall_time_s: r.wall_time_s,
             hinges: r.hinges.clone(),
@@ -615,6 +668,93 @@ impl DemReport {
                 .collect(),
             scene: SceneReport::new(scene, model),
             loads: LoadsReport::new(scene, model),
+        }
+    }
+}
+
+/// `dem --record FILE --json` / `dem --pulse ... --json`: a dynamic run under ground motion.
+#[derive(Debug, Serialize)]
+pub struct DynamicReport {
+    /// `collapse`, `survives` or `cannot_stand`.
+    pub status: &'static str,
+    /// What moved the ground, its peak acceleration (m/s^2) and duration (s).
+    pub excitation: String,
+    pub pga: f64,
+    pub duration: f64,
+    pub collapse_time: Option<f64>,
+    /// The control block, its peak and residual horizontal displacement (m) and rotation
+    /// (rad).
+    pub control_block: usize,
+    pub peak_displacement: f64,
+    pub peak_rotation: f64,
+    pub residual_displacement: f64,
+    pub residual_rotation: f64,
+    pub steps: u64,
+    pub time_step: f64,
+    pub wall_time_s: f64,
+    pub scene: SceneReport,
+}
+
+impl DynamicReport {
+    pub fn new(scene: &Scene, d: &crate::analysis::DynamicAnalysis) -> Self {
+        let r = &d.result;
+        DynamicReport {
+            status: if r.cannot_stand {
+                "cannot_stand"
+            } else if r.collapsed {
+                "collapse"
+            } else {
+                "survives"
+            },
+            excitation: d.excitation.describe(),
+            pga: d.excitation.pga(),
+            duration: d.excitation.duration(),
+            collapse_time: r.collapse_time,
+            control_block: r.control_block,
+            peak_displacement: r.peak_displacement,
+            peak_rotation: r.peak_rotation,
+            residual_displacement: r.residual_displacement,
+            residual_rotation: r.residual_rotation,
+            steps: r.steps,
+            time_step: r.time_step,
+            wall_time_s: r.wall_time_s,
+            scene: SceneReport::new(scene, &d.model),
+        }
+    }
+}
+
+/// `dem --record FILE --ida --json`: the scale of a ground motion that brings the structure
+/// down.
+#[derive(Debug, Serialize)]
+pub struct IdaReport {
+    pub excitation: String,
+    /// Peak ground acceleration of the unscaled motion (m/s^2).
+    pub pga: f64,
+    /// Largest scale survived, smallest scale that collapsed (null: none up to 1000), and the
+    /// PGA at the latter (m/s^2).
+    pub scale_survives: f64,
+    pub scale_collapses: Option<f64>,
+    pub collapse_pga: Option<f64>,
+    /// Every run: scale and whether it collapsed.
+    pub runs: Vec<(f64, bool)>,
+    pub steps: u64,
+    pub wall_time_s: f64,
+}
+
+impl IdaReport {
+    pub fn new(
+        excitation: &crate::dem::record::Excitation,
+        r: &crate::dem::dynamic::IdaResult,
+    ) -> Self {
+        IdaReport {
+            excitation: excitation.describe(),
+            pga: excitation.pga(),
+            scale_survives: r.scale_survives,
+            scale_collapses: r.scale_collapses,
+            collapse_pga: r.scale_collapses.map(|s| s * excitation.pga()),
+            runs: r.runs.clone(),
+            steps: r.steps,
+            wall_time_s: r.wall_time_s,
         }
     }
 }

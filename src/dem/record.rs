@@ -1,0 +1,517 @@
+//! Ground-motion input for dynamic DEM runs: acceleration records read from files and
+//! analytic pulses, as one [`GroundMotion`] (horizontal ground acceleration in m/s^2 against
+//! time, linearly interpolated between samples, zero before the start and after the end).
+//!
+//! Formats read:
+//! - PEER NGA `.AT2` files (PEER Ground Motion Database; Ancheta et al. 2014, "NGA-West2
+//!   database", Earthquake Spectra 30:989-1005): four header lines (database, event and
+//!   station, `ACCELERATION TIME HISTORY IN UNITS OF G`, then the sampling) and the samples
+//!   in g, any number per line. The sampling line comes in the two styles the database has
+//!   used: `NPTS=  3000, DT=   .0100 SEC` (NGA-West2) and `4164  0.0100  NPTS, DT` (the older
+//!   NGA files);
+//! - text or CSV with one column (acceleration; the time step is given separately) or two
+//!   (time, acceleration), separated by commas, semicolons, tabs or spaces, `#` comments and
+//!   one optional header line of column names; the unit of acceleration is said by the
+//!   caller ([`AccelUnit`]), since nothing in such a file says it;
+//! - pulses ([`Pulse`]): one full sine cycle `A sin(2 pi t / T)` for `0 <= t <= T`, or a
+//!   rectangular pulse `A` for `0 <= t < T` (Housner 1963, "The behavior of inverted
+//!   pendulum structures during earthquakes", BSSA 53:403-417, uses both).
+//!
+//! Every error names the file and the line ([`RecordError`]). A record in g is converted with
+//! the standard gravity 9.80665 m/s^2.
+
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Standard gravity (m/s^2), the g of records given in g.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// What is wrong with a ground-motion input, and where.
+#[derive(Debug, Error, PartialEq)]
+pub enum RecordError {
+    #[error("{path}: cannot read the record: {message}")]
+    Io { path: PathBuf, message: String },
+    #[error("{path}, line {line}: {message}")]
+    Header {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error("{path}, line {line}: `{token}` is not a finite number")]
+    NotANumber {
+        path: PathBuf,
+        line: usize,
+        token: String,
+    },
+    #[error("{path}, line {line}: the time step DT = {value} must be a finite number > 0")]
+    TimeStep {
+        path: PathBuf,
+        line: usize,
+        value: String,
+    },
+    #[error("{path}, line {line}: NPTS = {declared}, but the data (lines {first_data_line}-{last_data_line}) hold {found} values")]
+    Count {
+        path: PathBuf,
+        line: usize,
+        declared: usize,
+        found: usize,
+        first_data_line: usize,
+        last_data_line: usize,
+    },
+    #[error("{path}, line {line}: {message}")]
+    Data {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error("{path}: {message}")]
+    Empty { path: PathBuf, message: String },
+    #[error("pulse: {0}")]
+    Pulse(String),
+}
+
+/// Unit of the accelerations of a text record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AccelUnit {
+    /// Multiples of the standard gravity.
+    G,
+    /// m/s^2.
+    MetersPerSecondSquared,
+    /// cm/s^2 (gal).
+    CentimetersPerSecondSquared,
+}
+
+impl AccelUnit {
+    /// m/s^2 per unit.
+    pub fn factor(self) -> f64 {
+        match self {
+            AccelUnit::G => STANDARD_GRAVITY,
+            AccelUnit::MetersPerSecondSquared => 1.0,
+            AccelUnit::CentimetersPerSecondSquared => 0.01,
+        }
+    }
+}
+
+/// A ground acceleration history: samples `accel[i]` (m/s^2) at strictly increasing
+/// `time[i]` (s), the first at `time[0]` >= 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundMotion {
+    pub time: Vec<f64>,
+    pub accel: Vec<f64>,
+    /// Where it came from (file name or pulse description), for reports.
+    pub source: String,
+}
+
+impl GroundMotion {
+    /// The acceleration (m/s^2) at time `t` (s): linear between samples, 0 outside.
+    pub fn at(&self, t: f64) -> f64 {
+        let (time, a) = (&self.time, &self.accel);
+        let (Some(&first), Some(&last)) = (time.first(), time.last()) else {
+            return 0.0;
+        };
+        if !(t >= first && t <= last) {
+            return 0.0;
+        }
+        // First sample after t.
+        let k = time.partition_point(|&s| s <= t);
+        if k == 0 {
+            return a[0];
+        }
+        if k >= time.len() {
+            return a[time.len() - 1];
+        }
+        let (t0, t1) = (time[k - 1], time[k]);
+        a[k - 1] + (a[k] - a[k - 1]) * (t - t0) / (t1 - t0)
+    }
+
+    /// Duration (s): the time of the last sample.
+    pub fn duration(&self) -> f64 {
+        self.time.last().copied().unwrap_or(0.0)
+    }
+
+    /// Peak ground acceleration (m/s^2), the largest absolute sample.
+    pub fn pga(&self) -> f64 {
+        self.accel.iter().fold(0.0_f64, |m, a| m.max(a.abs()))
+    }
+
+    /// The same history with every acceleration times `s`.
+    pub fn scaled(&self, s: f64) -> GroundMotion {
+        GroundMotion {
+            time: self.time.clone(),
+            accel: self.accel.iter().map(|a| a * s).collect(),
+            source: self.source.clone(),
+        }
+    }
+}
+
+/// The shape of an analytic pulse.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PulseShape {
+    /// One full cycle `A sin(2 pi t / T)`, `0 <= t <= T`.
+    Sine,
+    /// `A` for `0 <= t < T`.
+    Rect,
+}
+
+/// An analytic acceleration pulse of amplitude `amplitude` (m/s^2) and period (sine) or
+/// duration (rect) `period` (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pulse {
+    pub shape: PulseShape,
+    pub amplitude: f64,
+    pub period: f64,
+}
+
+impl Pulse {
+    /// A pulse, checked: finite amplitude, finite period > 0.
+    pub fn new(shape: PulseShape, amplitude: f64, period: f64) -> Result<Pulse, RecordError> {
+        if !amplitude.is_finite() {
+            return Err(RecordError::Pulse(format!(
+                "amplitude = {amplitude}: must be a finite number"
+            )));
+        }
+        if !(period.is_finite() && period > 0.0) {
+            return Err(RecordError::Pulse(format!(
+                "period = {period}: must be a finite number of seconds > 0"
+            )));
+        }
+        Ok(Pulse {
+            shape,
+            amplitude,
+            period,
+        })
+    }
+
+    /// The acceleration (m/s^2) at time `t` (s), exact (not sampled).
+    pub fn at(&self, t: f64) -> f64 {
+        match self.shape {
+            PulseShape::Sine if (0.0..=self.period).contains(&t) => {
+                self.amplitude * (std::f64::consts::TAU * t / self.period).sin()
+            }
+            PulseShape::Rect if (0.0..self.period).contains(&t) => self.amplitude,
+            _ => 0.0,
+        }
+    }
+}
+
+/// Parse one number of a record, Fortran `D` exponents included.
+fn number(token: &str, path: &Path, line: usize) -> Result<f64, RecordError> {
+    let t = token.trim();
+    let parsed = t
+        .parse::<f64>()
+        .or_else(|_| t.replace(['D', 'd'], "E").parse::<f64>());
+    match parsed {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(RecordError::NotANumber {
+            path: path.to_path_buf(),
+            line,
+            token: t.to_string(),
+        }),
+    }
+}
+
+/// Read a record file: `.AT2` (any case) as PEER NGA, anything else as text with `unit` and,
+/// for one column, the time step `dt`.
+pub fn read(path: &Path, unit: AccelUnit, dt: Option<f64>) -> Result<GroundMotion, RecordError> {
+    let text = std::fs::read_to_string(path).map_err(|e| RecordError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let at2 = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("at2"));
+    if at2 {
+        parse_at2(&text, path)
+    } else {
+        parse_text(&text, path, unit, dt)
+    }
+}
+
+/// The sampling line of an AT2 header: `NPTS= 3000, DT= .0100 SEC` or `4164 0.0100 NPTS, DT`.
+fn at2_sampling(text: &str, path: &Path, line: usize) -> Result<(usize, f64), RecordError> {
+    let header = |message: String| RecordError::Header {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let upper = text.to_ascii_uppercase();
+    let (npts, dt) = if let (Some(n), Some(d)) = (upper.find("NPTS="), upper.find("DT=")) {
+        // NGA-West2 style: the value follows each `=`.
+        let value = |from: usize| {
+            upper[from..]
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .find(|s| !s.is_empty())
+                .unwrap_or("")
+                .to_string()
+        };
+        (value(n + 5), value(d + 3))
+    } else if upper.contains("NPTS") && upper.contains("DT") {
+        // Older style: the two numbers, then the words `NPTS, DT`.
+        let tokens: Vec<&str> = upper
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .collect();
+        if tokens.len() < 2 {
+            return Err(header(format!(
+                "expected `NPTS, DT` values before the words, found `{}`",
+                text.trim()
+            )));
+        }
+        (tokens[0].to_string(), tokens[1].to_string())
+    } else {
+        return Err(header(format!(
+            "expected the sampling line `NPTS= 3000, DT= .0100 SEC` or `3000 0.0100 NPTS, DT`, found `{}`",
+            text.trim()
+        )));
+    };
+    let n = match npts.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 1.0 && v.fract() == 0.0 => v as usize,
+        _ => {
+            return Err(header(format!(
+                "NPTS = `{npts}` is not a whole number of points >= 1"
+            )))
+        }
+    };
+    let dt_value = npts_dt_number(&dt).ok_or_else(|| RecordError::TimeStep {
+        path: path.to_path_buf(),
+        line,
+        value: dt.clone(),
+    })?;
+    Ok((n, dt_value))
+}
+
+fn npts_dt_number(s: &str) -> Option<f64> {
+    s.parse::<f64>().ok().filter(|v| v.is_finite() && *v > 0.0)
+}
+
+/// Parse the text of a PEER NGA `.AT2` file (`path` names it in errors).
+pub fn parse_at2(text: &str, path: &Path) -> Result<GroundMotion, RecordError> {
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 4 {
+        return Err(RecordError::Header {
+            path: path.to_path_buf(),
+            line: lines.len() + 1,
+            message: format!(
+                "an AT2 file has four header lines; this one ends after {}",
+                lines.len()
+            ),
+        });
+    }
+    let units = lines[2].to_ascii_uppercase();
+    if units.contains("UNITS OF") && !units.contains("UNITS OF G") {
+        return Err(RecordError::Header {
+            path: path.to_path_buf(),
+            line: 3,
+            message: format!(
+                "expected `ACCELERATION TIME HISTORY IN UNITS OF G`, found `{}`",
+                lines[2].trim()
+            ),
+        });
+    }
+    if units.contains("VELOCITY") || units.contains("DISPLACEMENT") {
+        return Err(RecordError::Header {
+            path: path.to_path_buf(),
+            line: 3,
+            message: format!(
+                "this is not an acceleration record (`{}`): give the .AT2 file",
+                lines[2].trim()
+            ),
+        });
+    }
+    let (npts, dt) = at2_sampling(lines[3], path, 4)?;
+    let mut accel = Vec::with_capacity(npts);
+    let mut last_line = 4;
+    for (k, l) in lines.iter().enumerate().skip(4) {
+        let line = k + 1;
+        let mut any = false;
+        for token in l.split(|c: char| c == ',' || c.is_whitespace()) {
+            if token.is_empty() {
+                continue;
+            }
+            accel.push(STANDARD_GRAVITY * number(token, path, line)?);
+            any = true;
+        }
+        if any {
+            last_line = line;
+        }
+    }
+    if accel.len() != npts {
+        return Err(RecordError::Count {
+            path: path.to_path_buf(),
+            line: 4,
+            declared: npts,
+            found: accel.len(),
+            first_data_line: 5,
+            last_data_line: last_line.max(5),
+        });
+    }
+    let time = (0..npts).map(|i| i as f64 * dt).collect();
+    Ok(GroundMotion {
+        time,
+        accel,
+        source: path.display().to_string(),
+    })
+}
+
+/// Parse a one- or two-column text/CSV record (`path` names it in errors): accelerations in
+/// `unit`; one column needs the time step `dt`.
+pub fn parse_text(
+    text: &str,
+    path: &Path,
+    unit: AccelUnit,
+    dt: Option<f64>,
+) -> Result<GroundMotion, RecordError> {
+    let data_err = |line: usize, message: String| RecordError::Data {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
+    let mut columns: Option<usize> = None;
+    for (k, raw) in text.lines().enumerate() {
+        let line = k + 1;
+        let l = raw.split('#').next().unwrap_or("").trim();
+        if l.is_empty() {
+            continue;
+        }
+        let tokens: Vec<&str> = l
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .collect();
+        // One header line of column names may precede the data.
+        if rows.is_empty() && columns.is_none() && tokens.iter().all(|t| t.parse::<f64>().is_err())
+        {
+            columns = Some(tokens.len());
+            continue;
+        }
+        let values = tokens
+            .iter()
+            .map(|t| number(t, path, line))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let n = rows.first().map_or(values.len(), |r| r.1.len());
+        if values.len() != n || !(1..=2).contains(&n) {
+            return Err(data_err(
+                line,
+                format!(
+                    "{} values; a record has one column (acceleration) or two (time, acceleration) on every line",
+                    values.len()
+                ),
+            ));
+        }
+        rows.push((line, values));
+    }
+    if rows.is_empty() {
+        return Err(RecordError::Empty {
+            path: path.to_path_buf(),
+            message: "no samples".to_string(),
+        });
+    }
+    let f = unit.factor();
+    let two = rows[0].1.len() == 2;
+    let (time, accel) = if two {
+        let mut time = Vec::with_capacity(rows.len());
+        for (line, v) in &rows {
+            let t = v[0];
+            if let Some(&prev) = time.last() {
+                if t <= prev {
+                    return Err(data_err(
+                        *line,
+                        format!("time {t} s does not increase (previous {prev} s)"),
+                    ));
+                }
+            } else if t < 0.0 {
+                return Err(data_err(*line, format!("time {t} s is negative")));
+            }
+            time.push(t);
+        }
+        (time, rows.iter().map(|(_, v)| f * v[1]).collect())
+    } else {
+        let dt = match dt {
+            Some(d) if d.is_finite() && d > 0.0 => d,
+            Some(d) => {
+                return Err(RecordError::TimeStep {
+                    path: path.to_path_buf(),
+                    line: rows[0].0,
+                    value: d.to_string(),
+                })
+            }
+            None => {
+                return Err(data_err(
+                    rows[0].0,
+                    "one column of accelerations: give the time step (--dt) or a time column"
+                        .to_string(),
+                ))
+            }
+        };
+        (
+            (0..rows.len()).map(|i| i as f64 * dt).collect(),
+            rows.iter().map(|(_, v)| f * v[0]).collect(),
+        )
+    };
+    Ok(GroundMotion {
+        time,
+        accel,
+        source: path.display().to_string(),
+    })
+}
+
+/// A ground motion of either kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Excitation {
+    Record(GroundMotion),
+    Pulse(Pulse),
+}
+
+impl Excitation {
+    /// The acceleration (m/s^2) at time `t` (s).
+    pub fn at(&self, t: f64) -> f64 {
+        match self {
+            Excitation::Record(r) => r.at(t),
+            Excitation::Pulse(p) => p.at(t),
+        }
+    }
+    /// How long the ground moves (s).
+    pub fn duration(&self) -> f64 {
+        match self {
+            Excitation::Record(r) => r.duration(),
+            Excitation::Pulse(p) => p.period,
+        }
+    }
+    /// Peak ground acceleration (m/s^2).
+    pub fn pga(&self) -> f64 {
+        match self {
+            Excitation::Record(r) => r.pga(),
+            Excitation::Pulse(p) => p.amplitude.abs(),
+        }
+    }
+    /// The same motion with every acceleration times `s`.
+    pub fn scaled(&self, s: f64) -> Excitation {
+        match self {
+            Excitation::Record(r) => Excitation::Record(r.scaled(s)),
+            Excitation::Pulse(p) => Excitation::Pulse(Pulse {
+                amplitude: p.amplitude * s,
+                ..*p
+            }),
+        }
+    }
+    /// A short description for reports.
+    pub fn describe(&self) -> String {
+        match self {
+            Excitation::Record(r) => format!("record {}", r.source),
+            Excitation::Pulse(p) => format!(
+                "{} pulse, amplitude {} m/s^2, {} {} s",
+                match p.shape {
+                    PulseShape::Sine => "sine",
+                    PulseShape::Rect => "rectangular",
+                },
+                p.amplitude,
+                match p.shape {
+                    PulseShape::Sine => "period",
+                    PulseShape::Rect => "duration",
+                },
+                p.period
+            ),
+        }
+    }
+}

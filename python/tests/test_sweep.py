@@ -119,7 +119,8 @@ SPEED_ARGS = ("arch.thickness", "0.1:0.2998:0.0002")
 def test_a_thousand_cases_at_the_speed_of_the_cli(cli, tmp_path):
     """The same 1,000 cases from Python and from the CLI (which also starts a process, reads
     the scene and writes a CSV): best of three runs each, interleaved; Python within 20 %."""
-    scene = voussoir.Scene.from_toml(str(SEMI)).with_values({"arch.voussoirs": 256})
+    # Long enough to measure (the chain program solves a 1000-voussoir case in under 1 ms).
+    scene = voussoir.Scene.from_toml(str(SEMI)).with_values({"arch.voussoirs": 1000})
     out = tmp_path / "sweep.csv"
     key, spec = SPEED_ARGS
     cli_args = ["sweep", SEMI, "--set", "arch.voussoirs=256", "--vary", f"{key}={spec}",
@@ -140,12 +141,13 @@ def test_a_thousand_cases_at_the_speed_of_the_cli(cli, tmp_path):
 
 def test_the_gil_is_released_while_solving():
     """Python code runs on while a sweep solves in another thread."""
-    scene = voussoir.Scene.from_toml(str(SEMI)).with_values({"arch.voussoirs": 256})
+    # Long enough to measure (the chain program solves a 1000-voussoir case in under 1 ms).
+    scene = voussoir.Scene.from_toml(str(SEMI)).with_values({"arch.voussoirs": 1000})
     done = threading.Event()
     ticks = 0
 
     def solve():
-        voussoir.sweep(scene, {"arch.thickness": "0.1:0.2998:0.0004"})
+        voussoir.sweep(scene, {"arch.thickness": "0.1:0.2999:0.0001"})
         done.set()
 
     worker = threading.Thread(target=solve)

@@ -102,6 +102,37 @@ pub struct AppliedLoad {
     pub region: Option<Vec<Vec2>>,
 }
 
+impl AppliedLoad {
+    /// The point load `loads[k]` of a scene: `force` (N) at `point`, carried by `block`, with
+    /// the seismic mass `|force_y| / g` when `seismic` (an upward force too: docs/geometry.md).
+    pub fn point(k: usize, block: usize, point: Vec2, force: Vec2, seismic: bool) -> Self {
+        AppliedLoad {
+            block,
+            point,
+            force,
+            seismic_weight: if seismic { force.y.abs() } else { 0.0 },
+            source: LoadSource::Load(k),
+            region: None,
+        }
+    }
+}
+
+impl SpreadLoad {
+    /// The line load `loads[k]` of a scene, kept whole: `intensity` (N/m, downward) over
+    /// `from_x..to_x`.
+    pub fn line(k: usize, from_x: f64, to_x: f64, intensity: f64, seismic: bool) -> Self {
+        SpreadLoad {
+            kind: Spread::Line {
+                from_x,
+                to_x,
+                intensity,
+            },
+            seismic,
+            source: LoadSource::Load(k),
+        }
+    }
+}
+
 /// A load spread along the extrados of an arch ring, as the scene gave it. The blocks carry
 /// its resultants (in [`LoadCase::applied`]); this whole description is kept for the
 /// continuous model, whose sections can fall anywhere along the ring.

@@ -213,14 +213,7 @@ fn build_loads(
                     }
                 })?;
                 let force = Vec2::new(force[0], force[1]);
-                case.add(AppliedLoad {
-                    block,
-                    point: p,
-                    force,
-                    seismic_weight: if seismic { force.y.abs() } else { 0.0 },
-                    source: LoadSource::Load(k),
-                    region: None,
-                });
+                case.add(AppliedLoad::point(k, block, p, force, seismic));
             }
             LoadSpec::Line {
                 from_x,
@@ -228,15 +221,7 @@ fn build_loads(
                 intensity,
                 seismic,
             } => {
-                case.add_spread(SpreadLoad {
-                    kind: Spread::Line {
-                        from_x,
-                        to_x,
-                        intensity,
-                    },
-                    seismic,
-                    source: LoadSource::Load(k),
-                });
+                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic));
                 let mut carried = false;
                 for LoadedEdge { block, a, b, arc } in loaded_edges(arch) {
                     // The edges run left to right (a.x < b.x).

@@ -16,7 +16,7 @@ use crate::assembly::{Assembly, BlockKind};
 use crate::blocks::{self, BlockError, Detected, Polygons, Units};
 use crate::error::SceneError;
 use crate::geometry::{cross, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, SpreadLoad};
 use std::path::{Path, PathBuf};
 use toml::Value;
 
@@ -263,14 +263,7 @@ pub(super) fn build_model(
                         allowed: "the point lies outside every block".into(),
                     })?;
                 let force = Vec2::new(force[0], force[1]);
-                case.add(AppliedLoad {
-                    block,
-                    point: p,
-                    force,
-                    seismic_weight: if seismic { force.y.abs() } else { 0.0 },
-                    source: LoadSource::Load(k),
-                    region: None,
-                });
+                case.add(AppliedLoad::point(k, block, p, force, seismic));
             }
             LoadSpec::Line {
                 from_x,
@@ -278,15 +271,7 @@ pub(super) fn build_model(
                 intensity,
                 seismic,
             } => {
-                case.add_spread(SpreadLoad {
-                    kind: Spread::Line {
-                        from_x,
-                        to_x,
-                        intensity,
-                    },
-                    seismic,
-                    source: LoadSource::Load(k),
-                });
+                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic));
                 let pieces = roof_pieces(&assembly, from_x, to_x, tol);
                 if pieces.is_empty() {
                     return Err(SceneError::OutOfRange {

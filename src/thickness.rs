@@ -224,14 +224,22 @@ pub fn certify_min_thickness(
         let s = scene.with_thickness(t).map_err(|e| e.to_string())?;
         crate::scene::build(&s).map_err(|e| e.to_string())
     };
-    let model = build(hi)?;
+    // The static search keeps its model at t_min (= hi): no need to build it again.
+    let built;
+    let model = match &lower.at_minimum {
+        Some((m, _)) => m,
+        None => {
+            built = build(hi)?;
+            &built
+        }
+    };
     // The direction whose largest multiplier is (nearly) zero at hi is the one that binds.
     let mut governing: Option<lp::StaticResult> = None;
     for d in [
         crate::outcome::Direction::Right,
         crate::outcome::Direction::Left,
     ] {
-        let r = lp::analyse(&model, &settings.clone().direction(d)).map_err(|e| e.to_string())?;
+        let r = lp::analyse(model, &settings.clone().direction(d)).map_err(|e| e.to_string())?;
         if r.status == Status::Collapse
             && governing.as_ref().is_none_or(|g| {
                 r.lambda.unwrap_or(f64::INFINITY) < g.lambda.unwrap_or(f64::INFINITY)
@@ -243,7 +251,7 @@ pub fn certify_min_thickness(
     let around = governing.ok_or("no direction collapses at the static minimum thickness")?;
     let direction = around.direction;
     let ks = KinematicSettings::default().direction(direction);
-    let certified = kinematic::certify(&model, &around, &ks).map_err(|e| e.to_string())?;
+    let certified = kinematic::certify(model, &around, &ks).map_err(|e| e.to_string())?;
     let mechanism = certified
         .mechanism
         .ok_or("the certified mechanism is missing")?;

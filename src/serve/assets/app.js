@@ -1,0 +1,769 @@
+// The page of `voussoir serve`: the scene as sliders and number fields, the drawing and the
+// collapse multiplier returned by POST /api/analyze, a chart of lambda over one parameter's
+// range from POST /api/sweep, and downloads of what the server returned.
+//
+// The page holds no policy: parameter ranges, presets and limits come from GET /api/parameters,
+// every value is validated by the server, and its errors are shown beside the field they name.
+// Live updates: at most one analysis request is in flight; events that arrive meanwhile only
+// mark the scene dirty, and the latest scene is sent as soon as the previous answer is drawn,
+// so the drawing never lags more than one request behind and the server is never flooded.
+'use strict';
+
+(function () {
+  const $ = (id) => document.getElementById(id);
+
+  // Scene tables that are always there (their keys have defaults); any other table (piers,
+  // fill, seismic, loads, ...) must be present in the scene for its parameters to show.
+  const ALWAYS_PRESENT = new Set(['arch', 'material']);
+  // Keys whose value may be infinite ("inf", or omitted, in the scene).
+  const MAY_BE_INFINITE = new Set(['material.friction', 'material.compressive_strength']);
+  const SECTION_TITLES = {
+    arch: 'Arch', piers: 'Piers', material: 'Material', fill: 'Fill',
+    seismic: 'Seismic', loads: 'Loads',
+  };
+  const STATUS_WORDS = {
+    collapse: 'Collapse mechanism',
+    no_collapse: 'Stands at any λ',
+    stands: 'Stands',
+    cannot_stand: 'Cannot stand',
+  };
+  const STATUS_NOTES = {
+    no_collapse: 'A thrust line fits for any horizontal acceleration.',
+    stands: 'A thrust line fits at this acceleration.',
+    cannot_stand: 'No thrust line fits even without horizontal load.',
+  };
+  // How many points a chart asks for (at most the server's limit).
+  const SWEEP_POINTS = 41;
+  // How many update times window.voussoirTimings keeps.
+  const TIMINGS_KEPT = 500;
+
+  const state = {
+    parameters: [],       // from /api/parameters
+    byKey: new Map(),     // key -> parameter
+    shapes: [],           // presets: {name, label, scene}
+    limits: {},
+    initial: null,        // {scene, origin} from /api/scene
+    scene: null,          // the scene being edited (JSON with the scene file's keys)
+    preset: null,         // name of the preset picked, or null for the scene from the command line
+    direction: 'right',
+    last: null,           // last successful analysis (the server's object)
+    lastOk: false,        // whether the drawing shows the current scene
+    lastKey: null,        // the parameter moved last
+  };
+
+  // Live analysis: one request in flight, the latest state sent next.
+  const live = { inFlight: false, dirty: false, since: null, changedKey: null };
+  // Sweep chart: one request in flight; a new one aborts the old.
+  const chart = { sig: null, key: null, rows: null, controller: null, error: null };
+
+  window.voussoirTimings = [];
+
+  // ---- scene helpers ------------------------------------------------------------------------
+
+  const clone = (x) => JSON.parse(JSON.stringify(x));
+  const segments = (key) => key.split('.').map((s) => (/^\d+$/.test(s) ? Number(s) : s));
+
+  function getKey(obj, key) {
+    let cur = obj;
+    for (const s of segments(key)) {
+      if (cur === null || typeof cur !== 'object' || !(s in cur)) return undefined;
+      cur = cur[s];
+    }
+    return cur;
+  }
+
+  function setKey(obj, key, value) {
+    const segs = segments(key);
+    let cur = obj;
+    for (let i = 0; i < segs.length - 1; i++) {
+      if (cur[segs[i]] === null || typeof cur[segs[i]] !== 'object') {
+        cur[segs[i]] = typeof segs[i + 1] === 'number' ? [] : {};
+      }
+      cur = cur[segs[i]];
+    }
+    cur[segs[segs.length - 1]] = value;
+  }
+
+  function deleteKey(obj, key) {
+    const segs = segments(key);
+    let cur = obj;
+    for (let i = 0; i < segs.length - 1; i++) {
+      if (cur === null || typeof cur !== 'object') return;
+      cur = cur[segs[i]];
+    }
+    if (cur !== null && typeof cur === 'object') delete cur[segs[segs.length - 1]];
+  }
+
+  // The preset a scene looks like, for the parameters' "shapes" lists.
+  function presetOf(scene) {
+    const names = new Set(state.shapes.map((s) => s.name));
+    const hasLoads = Array.isArray(scene.loads) && scene.loads.length > 0;
+    const guess = scene.piers
+      ? (hasLoads && names.has('loaded_portal') ? 'loaded_portal' : 'portal')
+      : scene.fill && names.has('filled_arch') ? 'filled_arch' : scene.arch && scene.arch.shape;
+    return guess || 'circular';
+  }
+
+  function sectionPresent(key) {
+    const first = segments(key)[0];
+    if (ALWAYS_PRESENT.has(first)) return true;
+    if (getKey(state.scene, key.split('.').slice(0, -1).join('.')) === undefined) return false;
+    return state.scene[first] !== undefined && state.scene[first] !== null;
+  }
+
+  function visible(p) {
+    if (!sectionPresent(p.key)) return false;
+    if (getKey(state.scene, p.key) !== undefined) return true;
+    const shapes = p.shapes || [];
+    const archShape = state.scene.arch && state.scene.arch.shape;
+    if (p.key.startsWith('arch.')) return shapes.includes(archShape);
+    const preset = state.preset || presetOf(state.scene);
+    return shapes.includes(preset) || shapes.includes(archShape);
+  }
+
+  function isInfinite(v) {
+    return v === 'inf' || v === Infinity || v === '+inf';
+  }
+
+  // The value a field shows: the scene's, else the one of the preset the scene looks like (the
+  // default), else any preset's, else the parameter's own default or the middle of its range.
+  function shownValue(p) {
+    const v = getKey(state.scene, p.key);
+    if (v !== undefined) return v;
+    if (MAY_BE_INFINITE.has(p.key) || p.infinite) return 'inf';
+    const preset = state.shapes.find((s) => s.name === (state.preset || presetOf(state.scene)));
+    const fromPreset = preset && getKey(preset.scene, p.key);
+    if (typeof fromPreset === 'number') return fromPreset;
+    for (const s of state.shapes) {
+      const x = getKey(s.scene, p.key);
+      if (typeof x === 'number') return x;
+    }
+    if (typeof p.default === 'number') return p.default;
+    return p.integer ? Math.round((p.min + p.max) / 2) : (p.min + p.max) / 2;
+  }
+
+  // ---- formatting ---------------------------------------------------------------------------
+
+  const fmt = (x, digits) => (typeof x === 'number' && Number.isFinite(x) ? x.toFixed(digits) : '—');
+
+  function niceTicks(lo, hi, count) {
+    const span = hi - lo;
+    if (!(span > 0)) return [lo];
+    const raw = span / count;
+    const mag = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) || raw;
+    const ticks = [];
+    for (let v = Math.ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step) {
+      ticks.push(Math.abs(v) < step * 1e-9 ? 0 : v);
+    }
+    return ticks;
+  }
+
+  function tickLabel(v, ticks) {
+    const step = ticks.length > 1 ? Math.abs(ticks[1] - ticks[0]) : Math.abs(v) || 1;
+    const decimals = Math.max(0, Math.min(6, -Math.floor(Math.log10(step) + 1e-9) + (step / Math.pow(10, Math.floor(Math.log10(step))) === 2.5 ? 1 : 0)));
+    return v.toFixed(decimals);
+  }
+
+  // ---- the parameter form -------------------------------------------------------------------
+
+  function buildForm() {
+    const form = $('v-params');
+    form.replaceChildren();
+    const groups = new Map();
+    for (const p of state.parameters) {
+      if (!visible(p)) continue;
+      const section = segments(p.key)[0];
+      if (!groups.has(section)) groups.set(section, []);
+      groups.get(section).push(p);
+    }
+    for (const [section, params] of groups) {
+      const fieldset = document.createElement('fieldset');
+      fieldset.className = 'panel group';
+      const legend = document.createElement('legend');
+      legend.textContent = SECTION_TITLES[section] || section.charAt(0).toUpperCase() + section.slice(1);
+      fieldset.append(legend);
+      for (const p of params) fieldset.append(buildField(p));
+      form.append(fieldset);
+    }
+  }
+
+  function fieldId(key) {
+    return 'f-' + key.replace(/[^A-Za-z0-9_-]/g, '-');
+  }
+
+  function buildField(p) {
+    const id = fieldId(p.key);
+    const row = document.createElement('div');
+    row.className = 'field';
+    row.dataset.key = p.key;
+
+    const head = document.createElement('div');
+    head.className = 'field-head';
+    const label = document.createElement('label');
+    label.htmlFor = id + '-number';
+    label.textContent = p.label;
+    if (p.help) label.title = p.help;
+    const entry = document.createElement('span');
+    entry.className = 'entry';
+    const number = document.createElement('input');
+    number.type = 'number';
+    number.id = id + '-number';
+    number.step = 'any';
+    number.inputMode = p.integer ? 'numeric' : 'decimal';
+    number.setAttribute('aria-describedby', id + '-error');
+    const unit = document.createElement('span');
+    unit.className = 'unit';
+    unit.textContent = p.unit || '';
+    entry.append(number, unit);
+    head.append(label, entry);
+
+    const slider = document.createElement('input');
+    slider.type = 'range';
+    slider.id = id + '-range';
+    slider.min = String(p.min);
+    slider.max = String(p.max);
+    slider.step = String(p.integer ? Math.max(1, p.step || 1) : p.step || (p.max - p.min) / 200);
+    slider.setAttribute('aria-label', p.label + (p.unit ? ' (' + p.unit + ')' : ''));
+
+    const range = document.createElement('div');
+    range.className = 'range';
+    const lo = document.createElement('span');
+    lo.className = 'bound';
+    lo.textContent = String(p.min);
+    const hi = document.createElement('span');
+    hi.className = 'bound';
+    hi.textContent = String(p.max);
+    range.append(lo, slider, hi);
+
+    const error = document.createElement('p');
+    error.className = 'field-error';
+    error.id = id + '-error';
+    error.hidden = true;
+
+    row.append(head, range);
+
+    let infinite = null;
+    if (MAY_BE_INFINITE.has(p.key) || p.infinite) {
+      const box = document.createElement('label');
+      box.className = 'infinite';
+      infinite = document.createElement('input');
+      infinite.type = 'checkbox';
+      infinite.id = id + '-inf';
+      box.append(infinite, document.createTextNode(' ∞ (none)'));
+      box.title = 'Infinite: the key is left out of the scene';
+      head.insertBefore(box, entry);
+      infinite.addEventListener('change', (ev) => {
+        const t = performance.now();
+        if (infinite.checked) deleteKey(state.scene, p.key);
+        else setKey(state.scene, p.key, Number(slider.value));
+        syncField(p);
+        changed(p.key, t, ev);
+      });
+    }
+    row.append(error);
+
+    slider.addEventListener('pointerdown', () => startSweep(p.key));
+    slider.addEventListener('keydown', () => startSweep(p.key));
+    slider.addEventListener('input', (ev) => {
+      const t = performance.now();
+      const v = Number(slider.value);
+      number.value = slider.value;
+      setKey(state.scene, p.key, v);
+      changed(p.key, t, ev);
+    });
+    number.addEventListener('change', (ev) => {
+      const t = performance.now();
+      const text = number.value.trim();
+      const v = Number(text);
+      if (text === '' || !Number.isFinite(v)) {
+        showFieldError(p.key, 'Enter a number' + (p.unit ? ' in ' + p.unit : '') + '.');
+        return;
+      }
+      slider.value = String(v);
+      setKey(state.scene, p.key, v);
+      changed(p.key, t, ev);
+    });
+
+    row._sync = () => {
+      const v = shownValue(p);
+      const inf = isInfinite(v);
+      if (infinite) infinite.checked = inf;
+      number.disabled = inf;
+      slider.disabled = inf;
+      if (inf) {
+        number.value = '';
+        number.placeholder = '∞';
+        slider.value = String(p.max);
+      } else {
+        number.placeholder = '';
+        number.value = String(v);
+        slider.value = String(v);
+      }
+    };
+    row._sync();
+    return row;
+  }
+
+  function fieldRow(key) {
+    for (const row of $('v-params').querySelectorAll('.field')) {
+      if (row.dataset.key === key) return row;
+    }
+    return null;
+  }
+
+  function syncField(p) {
+    const row = fieldRow(p.key);
+    if (row) row._sync();
+  }
+
+  function syncAll() {
+    for (const row of $('v-params').querySelectorAll('.field')) row._sync();
+  }
+
+  // ---- errors -------------------------------------------------------------------------------
+
+  function clearErrors() {
+    for (const row of $('v-params').querySelectorAll('.field.has-error')) {
+      row.classList.remove('has-error');
+      const e = row.querySelector('.field-error');
+      e.hidden = true;
+      e.textContent = '';
+    }
+    showMessage(null);
+  }
+
+  function showFieldError(key, message) {
+    const row = key ? fieldRow(key) : null;
+    if (!row) return false;
+    row.classList.add('has-error');
+    const e = row.querySelector('.field-error');
+    e.textContent = message;
+    e.hidden = false;
+    return true;
+  }
+
+  function showMessage(message) {
+    const box = $('v-message');
+    box.hidden = !message;
+    box.textContent = message || '';
+  }
+
+  function showError(err) {
+    clearErrors();
+    const text = err.error || 'The server refused the scene.';
+    if (!showFieldError(err.key, text)) showMessage(err.key ? text + ' (' + err.key + ')' : text);
+    state.lastOk = false;
+    document.body.classList.add('stale');
+    setDownloads(false);
+  }
+
+  // ---- live analysis ------------------------------------------------------------------------
+
+  function changed(key, eventTime) {
+    state.lastKey = key;
+    requestAnalysis(eventTime, key);
+    startSweep(key);
+  }
+
+  function requestAnalysis(eventTime, key) {
+    // The latency of an update counts from the first field event the drawing does not show
+    // yet (eventTime is null for the first load, a preset or the direction: not timed).
+    if (live.since === null && eventTime !== null) live.since = eventTime;
+    live.dirty = true;
+    live.changedKey = key || live.changedKey;
+    pump();
+  }
+
+  async function pump() {
+    if (live.inFlight || !live.dirty) return;
+    live.dirty = false;
+    const since = live.since;
+    live.since = null;
+    live.inFlight = true;
+    const body = JSON.stringify({ scene: state.scene, direction: state.direction });
+    let outcome;
+    try {
+      const response = await fetch('/api/analyze', {
+        method: 'POST', headers: { 'content-type': 'application/json' }, body,
+      });
+      outcome = await readJson(response);
+    } catch (e) {
+      outcome = { ok: false, body: { error: 'The server did not answer (' + e.message + '). Is `voussoir serve` still running?', key: null } };
+    }
+    if (outcome.ok) render(outcome.body, since);
+    else showError(outcome.body);
+    live.inFlight = false;
+    pump();
+  }
+
+  async function readJson(response) {
+    let body = null;
+    try {
+      body = await response.json();
+    } catch (e) {
+      body = null;
+    }
+    if (response.ok && body) return { ok: true, body };
+    if (!body || typeof body !== 'object') {
+      const what = response.status === 413
+        ? 'The scene is larger than the server accepts (' + (state.limits.max_body_bytes || '?') + ' bytes).'
+        : 'The server answered ' + response.status + ' ' + response.statusText + '.';
+      body = { error: what, key: null };
+    }
+    return { ok: false, status: response.status, body };
+  }
+
+  function render(result, since) {
+    clearErrors();
+    const drawing = $('v-drawing');
+    const svg = parseSvg(result.svg);
+    if (svg) drawing.replaceChildren(svg);
+    else drawing.replaceChildren(placeholder('The server sent no drawing.'));
+    state.last = result;
+    state.lastOk = true;
+    document.body.classList.remove('stale');
+    showResult(result);
+    setDownloads(true);
+    // Lay the new drawing out before stopping the clock (painting follows within a frame).
+    drawing.getBoundingClientRect();
+    if (since !== null) {
+      const ms = performance.now() - since;
+      const timings = window.voussoirTimings;
+      timings.push(ms);
+      if (timings.length > TIMINGS_KEPT) timings.splice(0, timings.length - TIMINGS_KEPT);
+      const server = typeof result.elapsed_ms === 'number' ? ' (server ' + result.elapsed_ms.toFixed(1) + ' ms)' : '';
+      $('v-timing').textContent = 'updated in ' + ms.toFixed(0) + ' ms' + server;
+    }
+    drawChart();
+  }
+
+  function parseSvg(text) {
+    if (typeof text !== 'string' || text === '') return null;
+    const doc = new DOMParser().parseFromString(text, 'image/svg+xml');
+    const root = doc.documentElement;
+    if (!root || root.nodeName !== 'svg') return null;
+    root.removeAttribute('width');
+    root.removeAttribute('height');
+    root.setAttribute('preserveAspectRatio', 'xMidYMid meet');
+    root.setAttribute('role', 'img');
+    const title = root.querySelector('title');
+    if (title) root.setAttribute('aria-label', title.textContent);
+    return document.importNode(root, true);
+  }
+
+  function placeholder(text) {
+    const p = document.createElement('p');
+    p.className = 'placeholder';
+    p.textContent = text;
+    return p;
+  }
+
+  function showResult(r) {
+    const status = $('v-status');
+    status.dataset.status = r.status || '';
+    status.textContent = STATUS_WORDS[r.status] || String(r.status || '').replace(/_/g, ' ');
+    const lambda = $('v-lambda');
+    lambda.textContent = fmt(r.lambda_lower, 4);
+    lambda.dataset.value = r.lambda_lower === null || r.lambda_lower === undefined ? '' : String(r.lambda_lower);
+    $('v-lower').textContent = fmt(r.lambda_lower, 6);
+    $('v-upper').textContent = fmt(r.lambda_upper, 6);
+    let note = STATUS_NOTES[r.status] || '';
+    if (r.status === 'collapse') {
+      const hinges = Array.isArray(r.hinges) ? r.hinges.length : 0;
+      const parts = [hinges + (hinges === 1 ? ' hinge' : ' hinges')];
+      if (Array.isArray(r.sliding) && r.sliding.length) parts.push(r.sliding.length + ' sliding');
+      if (typeof r.lambda_upper === 'number') {
+        parts.push(typeof r.gap === 'number' && r.gap < 1e-6
+          ? 'bounds agree'
+          : 'gap ' + (100 * (r.gap || 0)).toPrecision(2) + ' %' + (r.sliding_governs ? ' (sliding governs)' : ''));
+      }
+      note = parts.join(' · ');
+    }
+    $('v-note').textContent = note;
+  }
+
+  // ---- downloads ----------------------------------------------------------------------------
+
+  function setDownloads(enabled) {
+    for (const id of ['v-dl-toml', 'v-dl-svg', 'v-dl-json']) $(id).disabled = !enabled;
+  }
+
+  function baseName() {
+    const s = state.scene || {};
+    const name = state.preset || (state.initial && state.initial.origin
+      ? state.initial.origin.split(/[\\/]/).pop().replace(/\.toml$/i, '') : 'scene');
+    const t = s.arch && typeof s.arch.thickness === 'number' ? '-t' + s.arch.thickness : '';
+    return (name || 'scene').replace(/[^A-Za-z0-9_.-]+/g, '_') + t;
+  }
+
+  function download(text, type, filename) {
+    const url = URL.createObjectURL(new Blob([text], { type }));
+    const a = document.createElement('a');
+    a.href = url;
+    a.download = filename;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 10000);
+  }
+
+  function analysisJson(r) {
+    // What `voussoir analyze --json` prints: the answer without the page's extra fields.
+    const copy = {};
+    for (const [k, v] of Object.entries(r)) {
+      if (k !== 'svg' && k !== 'toml' && k !== 'elapsed_ms') copy[k] = v;
+    }
+    return JSON.stringify(copy, null, 2) + '\n';
+  }
+
+  // ---- sweep chart --------------------------------------------------------------------------
+
+  function sweepSignature(key) {
+    const rest = clone(state.scene);
+    deleteKey(rest, key);
+    return key + '|' + state.direction + '|' + JSON.stringify(rest);
+  }
+
+  async function startSweep(key) {
+    const p = state.byKey.get(key);
+    if (!p) return;
+    const sig = sweepSignature(key);
+    if (chart.sig === sig) return;
+    if (chart.controller) chart.controller.abort();
+    const controller = new AbortController();
+    chart.controller = controller;
+    chart.sig = sig;
+    chart.key = key;
+    chart.rows = null;
+    chart.error = null;
+    const maxPoints = state.limits.max_sweep_points || SWEEP_POINTS;
+    let points = Math.min(SWEEP_POINTS, maxPoints);
+    if (p.integer) points = Math.max(2, Math.min(points, Math.floor(p.max - p.min) + 1));
+    const body = {
+      scene: state.scene, key, from: p.min, to: p.max, points, direction: state.direction,
+    };
+    drawChart();
+    try {
+      const response = await fetch('/api/sweep', {
+        method: 'POST', headers: { 'content-type': 'application/json' },
+        body: JSON.stringify(body), signal: controller.signal,
+      });
+      const outcome = await readJson(response);
+      if (chart.controller !== controller) return;
+      if (outcome.ok) chart.rows = outcome.body.rows || [];
+      else chart.error = outcome.body.error || 'The sweep failed.';
+    } catch (e) {
+      if (e.name === 'AbortError' || chart.controller !== controller) return;
+      chart.error = 'The sweep failed (' + e.message + ').';
+    }
+    chart.controller = null;
+    drawChart();
+  }
+
+  const SVG_NS = 'http://www.w3.org/2000/svg';
+  function el(name, attrs, text) {
+    const e = document.createElementNS(SVG_NS, name);
+    for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, String(v));
+    if (text !== undefined) e.textContent = text;
+    return e;
+  }
+
+  function drawChart() {
+    const box = $('v-chart');
+    const p = chart.key ? state.byKey.get(chart.key) : null;
+    if (!p) return;
+    $('v-chart-title').textContent = 'λ against ' + p.label.charAt(0).toLowerCase() + p.label.slice(1);
+    for (const row of $('v-params').querySelectorAll('.field')) {
+      row.classList.toggle('charted', row.dataset.key === chart.key);
+    }
+    if (chart.error) {
+      box.replaceChildren(placeholder(chart.error));
+      return;
+    }
+    if (!chart.rows) {
+      box.replaceChildren(placeholder('Computing λ over ' + p.min + '–' + p.max + (p.unit ? ' ' + p.unit : '') + '…'));
+      return;
+    }
+    const W = 300, H = 178, L = 40, R = 10, T = 10, B = 34;
+    const xs = [p.min, p.max];
+    const x = (v) => L + (v - xs[0]) / (xs[1] - xs[0] || 1) * (W - L - R);
+    const finite = (v) => typeof v === 'number' && Number.isFinite(v);
+    const current = getKey(state.scene, p.key);
+    const currentLambda = state.lastOk && state.last ? state.last.lambda_lower : null;
+    let ymax = 0;
+    for (const r of chart.rows) {
+      if (finite(r.lambda_lower)) ymax = Math.max(ymax, r.lambda_lower);
+      if (finite(r.lambda_upper)) ymax = Math.max(ymax, r.lambda_upper);
+    }
+    if (finite(currentLambda)) ymax = Math.max(ymax, currentLambda);
+    const yTicks = niceTicks(0, ymax > 0 ? ymax : 1, 4);
+    const ytop = Math.max(yTicks[yTicks.length - 1], ymax > 0 ? ymax : 1);
+    const y = (v) => T + (1 - v / ytop) * (H - T - B);
+
+    const svg = el('svg', { viewBox: `0 0 ${W} ${H}`, class: 'chart-svg', role: 'img',
+      'aria-label': 'λ against ' + p.label });
+    // Bands where the structure cannot stand (red) or stands at any λ (green).
+    const step = chart.rows.length > 1 ? Math.abs(chart.rows[1].value - chart.rows[0].value) : 0;
+    for (const r of chart.rows) {
+      if (r.status !== 'cannot_stand' && r.status !== 'no_collapse') continue;
+      const x0 = Math.max(L, x(r.value - step / 2));
+      const x1 = Math.min(W - R, x(r.value + step / 2));
+      svg.append(el('rect', { x: x0, y: T, width: Math.max(0.5, x1 - x0), height: H - T - B,
+        class: r.status === 'cannot_stand' ? 'band-fail' : 'band-stands' }));
+    }
+    for (const v of yTicks) {
+      svg.append(el('line', { x1: L, x2: W - R, y1: y(v), y2: y(v), class: 'grid' }));
+      svg.append(el('text', { x: L - 5, y: y(v) + 3.5, class: 'tick', 'text-anchor': 'end' }, tickLabel(v, yTicks)));
+    }
+    const xTicks = niceTicks(xs[0], xs[1], 4);
+    for (const v of xTicks) {
+      svg.append(el('line', { x1: x(v), x2: x(v), y1: H - B, y2: H - B + 4, class: 'axis' }));
+      svg.append(el('text', { x: x(v), y: H - B + 14, class: 'tick', 'text-anchor': 'middle' }, tickLabel(v, xTicks)));
+    }
+    svg.append(el('line', { x1: L, x2: W - R, y1: H - B, y2: H - B, class: 'axis' }));
+    svg.append(el('line', { x1: L, x2: L, y1: T, y2: H - B, class: 'axis' }));
+    svg.append(el('text', { x: (L + W - R) / 2, y: H - 4, class: 'axis-label', 'text-anchor': 'middle' },
+      p.label + (p.unit ? ' (' + p.unit + ')' : '')));
+    svg.append(el('text', { x: 12, y: T + 10, class: 'axis-label', 'text-anchor': 'middle' }, 'λ'));
+
+    // One polyline per run of rows with a multiplier (rows that failed are skipped; rows
+    // without a multiplier break the line).
+    const line = (field, cls) => {
+      let run = [];
+      const flush = () => {
+        if (run.length > 1) svg.append(el('polyline', { points: run.join(' '), class: cls }));
+        else if (run.length === 1) {
+          const [px, py] = run[0].split(',');
+          svg.append(el('circle', { cx: px, cy: py, r: 1.5, class: cls + '-dot' }));
+        }
+        run = [];
+      };
+      for (const r of chart.rows) {
+        if (r.error) continue;
+        if (finite(r[field])) run.push(x(r.value).toFixed(2) + ',' + y(r[field]).toFixed(2));
+        else flush();
+      }
+      flush();
+    };
+    const differs = chart.rows.some((r) => finite(r.lambda_upper) && finite(r.lambda_lower)
+      && Math.abs(r.lambda_upper - r.lambda_lower) > 1e-6 * Math.max(1, r.lambda_lower));
+    if (differs) line('lambda_upper', 'series-upper');
+    line('lambda_lower', 'series');
+
+    if (typeof current === 'number' && current >= xs[0] && current <= xs[1]) {
+      svg.append(el('line', { x1: x(current), x2: x(current), y1: T, y2: H - B, class: 'marker-line' }));
+      if (finite(currentLambda)) {
+        svg.append(el('circle', { cx: x(current), cy: y(currentLambda), r: 4, class: 'marker' }));
+      }
+    }
+    const failed = chart.rows.filter((r) => r.error).length;
+    const nodes = [svg];
+    const legend = document.createElement('p');
+    legend.className = 'chart-legend';
+    const bits = [];
+    if (differs) bits.push('solid: lower bound, dashed: upper');
+    if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');
+    if (chart.rows.some((r) => r.status === 'no_collapse')) bits.push('green: stands at any λ');
+    if (failed) bits.push(failed + ' of ' + chart.rows.length + ' values refused');
+    if (bits.length) {
+      legend.textContent = bits.join(' · ');
+      nodes.push(legend);
+    }
+    box.replaceChildren(...nodes);
+  }
+
+  // ---- shape picker and direction -----------------------------------------------------------
+
+  function buildShapePicker() {
+    const box = $('v-shapes');
+    box.replaceChildren();
+    const add = (name, label, title) => {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.dataset.preset = name;
+      b.textContent = label;
+      if (title) b.title = title;
+      b.addEventListener('click', () => pickPreset(name));
+      box.append(b);
+    };
+    const origin = state.initial.origin || '';
+    add('', 'Scene file', origin ? 'The scene given on the command line: ' + origin : 'The scene the server started with');
+    for (const s of state.shapes) add(s.name, s.label || s.name);
+    markPreset();
+  }
+
+  function markPreset() {
+    for (const b of $('v-shapes').querySelectorAll('button')) {
+      const on = (b.dataset.preset || null) === state.preset;
+      b.setAttribute('aria-pressed', on ? 'true' : 'false');
+    }
+  }
+
+  function pickPreset(name) {
+    const preset = state.shapes.find((s) => s.name === name);
+    state.preset = preset ? name : null;
+    state.scene = clone(preset ? preset.scene : state.initial.scene);
+    markPreset();
+    buildForm();
+    requestAnalysis(null, null);
+    const key = state.lastKey && state.byKey.has(state.lastKey) && fieldRow(state.lastKey)
+      ? state.lastKey : 'arch.thickness';
+    startSweep(key);
+  }
+
+  function setDirection(direction) {
+    state.direction = direction;
+    for (const b of $('v-direction').querySelectorAll('button')) {
+      b.setAttribute('aria-pressed', b.dataset.direction === direction ? 'true' : 'false');
+    }
+    requestAnalysis(null, null);
+    if (chart.key) startSweep(chart.key);
+  }
+
+  // ---- start --------------------------------------------------------------------------------
+
+  async function start() {
+    let params, scene;
+    try {
+      const [a, b] = await Promise.all([fetch('/api/parameters'), fetch('/api/scene')]);
+      params = await readJson(a);
+      scene = await readJson(b);
+    } catch (e) {
+      showMessage('Could not reach the server: ' + e.message);
+      return;
+    }
+    if (!params.ok || !scene.ok) {
+      showMessage((params.ok ? scene : params).body.error || 'The server refused the page\'s first request.');
+      return;
+    }
+    state.parameters = params.body.parameters || [];
+    state.byKey = new Map(state.parameters.map((p) => [p.key, p]));
+    state.shapes = params.body.shapes || [];
+    state.limits = params.body.limits || {};
+    state.initial = { scene: scene.body.scene, origin: scene.body.origin || '' };
+    state.scene = clone(scene.body.scene);
+    $('v-origin').textContent = state.initial.origin;
+    $('v-origin').title = 'The scene voussoir serve was started with';
+    buildShapePicker();
+    buildForm();
+    for (const b of $('v-direction').querySelectorAll('button')) {
+      b.addEventListener('click', () => setDirection(b.dataset.direction));
+    }
+    $('v-dl-toml').addEventListener('click', () => {
+      if (state.last) download(state.last.toml, 'application/toml', baseName() + '.toml');
+    });
+    $('v-dl-svg').addEventListener('click', () => {
+      if (state.last) download(state.last.svg, 'image/svg+xml', baseName() + '.svg');
+    });
+    $('v-dl-json').addEventListener('click', () => {
+      if (state.last) download(analysisJson(state.last), 'application/json', baseName() + '.json');
+    });
+    requestAnalysis(null, null);
+    if (state.byKey.has('arch.thickness')) startSweep('arch.thickness');
+  }
+
+  // Exposed for the end-to-end tests and the curious: the scene being edited.
+  window.voussoir = { state, syncAll };
+  start();
+})();

@@ -375,13 +375,20 @@
     pump();
   }
 
+  // <body data-busy>: whether the drawing may still change (a request in flight or pending).
+  function markBusy() {
+    document.body.dataset.busy = String(live.inFlight || live.dirty);
+  }
+
   async function pump() {
+    markBusy();
     if (live.inFlight || !live.dirty) return;
     live.dirty = false;
     const since = live.since;
     live.since = null;
     live.inFlight = true;
     const body = JSON.stringify({ scene: state.scene, direction: state.direction });
+    markBusy();
     let outcome;
     try {
       const response = await fetch('/api/analyze', {
@@ -537,6 +544,7 @@
     chart.key = key;
     chart.rows = null;
     chart.error = null;
+    document.body.dataset.sweeping = 'true';
     const maxPoints = state.limits.max_sweep_points || SWEEP_POINTS;
     let points = Math.min(SWEEP_POINTS, maxPoints);
     if (p.integer) points = Math.max(2, Math.min(points, Math.floor(p.max - p.min) + 1));
@@ -558,6 +566,7 @@
       chart.error = 'The sweep failed (' + e.message + ').';
     }
     chart.controller = null;
+    document.body.dataset.sweeping = 'false';
     drawChart();
   }
 

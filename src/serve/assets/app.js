@@ -250,9 +250,9 @@
       infinite = document.createElement('input');
       infinite.type = 'checkbox';
       infinite.id = id + '-inf';
-      box.append(infinite, document.createTextNode(' ∞ (none)'));
-      box.title = 'Infinite: the key is left out of the scene';
-      head.insertBefore(box, entry);
+      box.append(infinite, document.createTextNode(' ∞'));
+      box.title = 'Infinite (' + p.label + ' left out of the scene)';
+      range.append(box);
       infinite.addEventListener('change', (ev) => {
         const t = performance.now();
         if (infinite.checked) deleteKey(state.scene, p.key);
@@ -355,6 +355,7 @@
     if (!showFieldError(err.key, text)) showMessage(err.key ? text + ' (' + err.key + ')' : text);
     state.lastOk = false;
     document.body.classList.add('stale');
+    $('v-note').textContent = 'The scene has an error: the last valid result is shown, dimmed.';
     setDownloads(false);
   }
 
@@ -625,7 +626,7 @@
       svg.append(el('line', { x1: L, x2: W - R, y1: y(v), y2: y(v), class: 'grid' }));
       svg.append(el('text', { x: L - 5, y: y(v) + 3.5, class: 'tick', 'text-anchor': 'end' }, tickLabel(v, yTicks)));
     }
-    const xTicks = niceTicks(xs[0], xs[1], 4);
+    const xTicks = niceTicks(xs[0], xs[1], 5);
     for (const v of xTicks) {
       svg.append(el('line', { x1: x(v), x2: x(v), y1: H - B, y2: H - B + 4, class: 'axis' }));
       svg.append(el('text', { x: x(v), y: H - B + 14, class: 'tick', 'text-anchor': 'middle' }, tickLabel(v, xTicks)));
@@ -671,6 +672,9 @@
     const legend = document.createElement('p');
     legend.className = 'chart-legend';
     const bits = [];
+    if (typeof current === 'number' && finite(currentLambda)) {
+      bits.push('at ' + current + (p.unit ? ' ' + p.unit : '') + ': λ = ' + currentLambda.toFixed(4));
+    }
     if (differs) bits.push('solid: lower bound, dashed: upper');
     if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');
     if (chart.rows.some((r) => r.status === 'no_collapse')) bits.push('green: stands at any λ');
@@ -697,7 +701,8 @@
       box.append(b);
     };
     const origin = state.initial.origin || '';
-    add('', 'Scene file', origin ? 'The scene given on the command line: ' + origin : 'The scene the server started with');
+    const file = /\.toml$/i.test(origin) ? origin.split(/[\\/]/).pop() : '';
+    add('', file || 'Start scene', origin ? 'The scene voussoir serve was started with: ' + origin : 'The scene voussoir serve was started with');
     for (const s of state.shapes) add(s.name, s.label || s.name);
     markPreset();
   }
@@ -752,8 +757,6 @@
     state.limits = params.body.limits || {};
     state.initial = { scene: scene.body.scene, origin: scene.body.origin || '' };
     state.scene = clone(scene.body.scene);
-    $('v-origin').textContent = state.initial.origin;
-    $('v-origin').title = 'The scene voussoir serve was started with';
     buildShapePicker();
     buildForm();
     for (const b of $('v-direction').querySelectorAll('button')) {

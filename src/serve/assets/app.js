@@ -254,7 +254,7 @@
       box.title = 'Infinite (' + p.label + ' left out of the scene)';
       range.append(box);
       infinite.addEventListener('change', (ev) => {
-        const t = performance.now();
+        const t = eventTime(ev);
         if (infinite.checked) deleteKey(state.scene, p.key);
         else setKey(state.scene, p.key, Number(slider.value));
         syncField(p);
@@ -266,14 +266,14 @@
     slider.addEventListener('pointerdown', () => startSweep(p.key));
     slider.addEventListener('keydown', () => startSweep(p.key));
     slider.addEventListener('input', (ev) => {
-      const t = performance.now();
+      const t = eventTime(ev);
       const v = Number(slider.value);
       number.value = slider.value;
       setKey(state.scene, p.key, v);
       changed(p.key, t, ev);
     });
     number.addEventListener('change', (ev) => {
-      const t = performance.now();
+      const t = eventTime(ev);
       const text = number.value.trim();
       const v = Number(text);
       if (text === '' || !Number.isFinite(v)) {
@@ -319,6 +319,13 @@
 
   function syncAll() {
     for (const row of $('v-params').querySelectorAll('.field')) row._sync();
+  }
+
+  // When an event happened, on performance.now()'s clock (Event.timeStamp is on it too and
+  // includes any wait before the handler ran).
+  function eventTime(ev) {
+    const now = performance.now();
+    return ev && ev.timeStamp > 0 && ev.timeStamp <= now ? ev.timeStamp : now;
   }
 
   // ---- errors -------------------------------------------------------------------------------

@@ -602,7 +602,14 @@
       box.replaceChildren(placeholder('Computing λ over ' + p.min + '–' + p.max + (p.unit ? ' ' + p.unit : '') + '…'));
       return;
     }
-    const W = 300, H = 178, L = 40, R = 10, T = 10, B = 34;
+    const usable = chart.rows.filter((r) => !r.error);
+    if (usable.length === 0) {
+      const first = chart.rows.find((r) => r.error);
+      box.replaceChildren(placeholder('No value of ' + p.label + ' in ' + p.min + '–' + p.max
+        + ' could be analysed' + (first ? ': ' + first.error : '.')));
+      return;
+    }
+    const W = 300, H = 184, L = 40, R = 10, T = 16, B = 34;
     const xs = [p.min, p.max];
     const x = (v) => L + (v - xs[0]) / (xs[1] - xs[0] || 1) * (W - L - R);
     const finite = (v) => typeof v === 'number' && Number.isFinite(v);
@@ -642,7 +649,7 @@
     svg.append(el('line', { x1: L, x2: L, y1: T, y2: H - B, class: 'axis' }));
     svg.append(el('text', { x: (L + W - R) / 2, y: H - 4, class: 'axis-label', 'text-anchor': 'middle' },
       p.label + (p.unit ? ' (' + p.unit + ')' : '')));
-    svg.append(el('text', { x: 12, y: T + 10, class: 'axis-label', 'text-anchor': 'middle' }, 'λ'));
+    svg.append(el('text', { x: L - 5, y: T - 6, class: 'axis-label', 'text-anchor': 'end' }, 'λ'));
 
     // One polyline per run of rows with a multiplier (rows that failed are skipped; rows
     // without a multiplier break the line).

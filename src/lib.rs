@@ -13,6 +13,8 @@ pub mod outcome;
 pub mod overrides;
 pub mod report;
 pub mod scene;
+#[cfg(feature = "serve")]
+pub mod serve;
 pub mod spectrum;
 pub mod study;
 pub mod sweep;

@@ -37,6 +37,10 @@ enum Command {
     /// Seismic verdict of the governing mechanism at a site (NTC 2018 / Circolare 2019
     /// C8.7.1: participating mass, capacity curve, linear and nonlinear kinematic checks)
     Assess(cli::assess::Args),
+    /// The arch explorer in the browser: a local page with sliders, the thrust line and the
+    /// mechanism redrawn live, on a JSON API (127.0.0.1 only)
+    #[cfg(feature = "serve")]
+    Serve(cli::serve::Args),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +52,8 @@ fn main() -> ExitCode {
         Command::MinThickness(a) => cli::min_thickness::run(a),
         Command::Convergence(a) => cli::convergence::run(a),
         Command::Assess(a) => cli::assess::run(a),
+        #[cfg(feature = "serve")]
+        Command::Serve(a) => cli::serve::run(a),
     };
     match result {
         Ok(out) => {

@@ -1,11 +1,10 @@
 //! `voussoir analyze`: the collapse multiplier of a scene by both bounds.
 
-use super::{json, write_atomically, write_svg, Dir, SceneArgs};
+use super::{json, write_atomically, Dir, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
 use voussoir::lp::StaticSettings;
 use voussoir::report;
-use voussoir::thrustline::svg::{Drawing, Mechanism};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -73,20 +72,12 @@ pub fn run(args: Args) -> Result<String, Error> {
         }
     }
     if let Some(path) = &args.svg {
-        let drawing = Drawing {
-            title: report::drawing_title(&scene, &a),
-            forces: result.forces.as_deref(),
-            hinges: &result.hinges,
-            sliding: &result.sliding,
-            mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
-                velocities: &result.mechanism,
-                amplification: None,
-            }),
-            load: Some(options.direction()),
-            loads: Some(&a.model.loads),
-            ..Default::default()
-        };
-        write_svg(path, assembly, &drawing)?;
+        let text =
+            report::analysis_svg(&scene, &a, options.direction()).map_err(|e| Error::Output {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+        super::write_text(path, &text)?;
     }
     Ok(if args.json {
         json(&report::AnalysisReport::new(&scene, &a))

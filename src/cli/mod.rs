@@ -8,6 +8,8 @@ pub mod assess;
 pub mod convergence;
 pub mod dem;
 pub mod min_thickness;
+#[cfg(feature = "serve")]
+pub mod serve;
 pub mod study;
 pub mod sweep;
 

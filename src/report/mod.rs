@@ -10,3 +10,29 @@ pub use self::csv::write_thrust_csv;
 pub use crate::geometry::trim;
 pub use json::*;
 pub use summary::*;
+
+/// The drawing of one analysis, as `voussoir analyze --svg` writes it and `voussoir serve`
+/// returns it: the blocks, the thrust line, the hinges, the sliding joints, the mechanism and
+/// the loads, under the analysis's title.
+pub fn analysis_svg(
+    scene: &crate::scene::Scene,
+    a: &crate::analysis::SceneAnalysis,
+    direction: crate::outcome::Direction,
+) -> Result<String, crate::thrustline::svg::SvgError> {
+    use crate::thrustline::svg::{structure_svg, Drawing, Mechanism};
+    let result = &a.lower;
+    let drawing = Drawing {
+        title: drawing_title(scene, a),
+        forces: result.forces.as_deref(),
+        hinges: &result.hinges,
+        sliding: &result.sliding,
+        mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
+            velocities: &result.mechanism,
+            amplification: None,
+        }),
+        load: Some(direction),
+        loads: Some(&a.model.loads),
+        ..Default::default()
+    };
+    structure_svg(&a.model.assembly, &drawing)
+}

@@ -190,6 +190,22 @@ impl Scene {
         parse(table, origin, None)
     }
 
+    /// Validate a scene given as a TOML table whose relative paths (`blocks.file`) are
+    /// relative to `base_dir` (the directory of the scene file it came from, when it did).
+    pub fn from_table_in(
+        table: Table,
+        origin: &str,
+        base_dir: Option<&Path>,
+    ) -> Result<Scene, SceneError> {
+        parse(table, origin, base_dir)
+    }
+
+    /// The directory the scene's relative paths are relative to (None: the working
+    /// directory).
+    pub fn base_dir(&self) -> Option<&Path> {
+        self.base_dir.as_deref()
+    }
+
     /// The parametric arch, or an error saying that `what` needs one when the scene is made
     /// of the user's blocks.
     pub fn parametric(&self, what: &str) -> Result<&ArchSpec, SceneError> {

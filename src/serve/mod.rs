@@ -1,0 +1,121 @@
+//! `voussoir serve`: the arch explorer in the browser and the JSON API behind it.
+//!
+//! One page (three embedded files, [`assets`]) and four JSON endpoints ([`api`]), all on the
+//! same analysis layer as the CLI: `POST /api/analyze` returns exactly the object
+//! `voussoir analyze --json` prints, plus the drawing `analyze --svg` writes; `POST
+//! /api/sweep` runs [`crate::sweep::Sweep`], as `voussoir sweep` does. The server holds no
+//! policy of its own beyond its [`Limits`]: scenes are validated by [`crate::scene`], and the
+//! slider ranges the page shows come from [`parameters`].
+//!
+//! Safety: the server binds to loopback ([`DEFAULT_ADDR`]); request bodies, voussoir counts
+//! and sweep sizes are limited; a request that cannot be analysed is answered with a 400 and
+//! the message (naming the scene key when there is one), and a panic in an analysis is caught
+//! and answered with a 500, never a crash. The server reads no files on request: a scene's
+//! `blocks.file` is accepted only when it is the file of the scene the server was started
+//! with.
+
+pub mod api;
+pub mod assets;
+pub mod parameters;
+
+use crate::scene::Scene;
+use std::net::{Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// Where `voussoir serve` listens unless told otherwise: loopback only, port 8080.
+pub const DEFAULT_ADDR: SocketAddr =
+    SocketAddr::new(std::net::IpAddr::V4(Ipv4Addr::LOCALHOST), 8080);
+
+/// What one request may ask for. The defaults keep every answer fast on a laptop (the page's
+/// update target is 50 ms for n <= 200); the CLI takes larger scenes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest request body (bytes); a larger one is answered with 413.
+    pub max_body_bytes: usize,
+    /// Largest `arch.voussoirs`, and largest number of pier courses on each side.
+    pub max_voussoirs: usize,
+    /// Largest number of the user's blocks (`blocks.polygons`).
+    pub max_blocks: usize,
+    /// Largest number of cases in one `/api/sweep`.
+    pub max_sweep_points: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_body_bytes: 64 * 1024,
+            max_voussoirs: 1000,
+            max_blocks: 1000,
+            max_sweep_points: 101,
+        }
+    }
+}
+
+/// What the server knows: the scene it was started with and its limits.
+#[derive(Debug)]
+pub struct ServerState {
+    /// The scene the page opens with (`GET /api/scene`).
+    pub scene: Scene,
+    /// Its `blocks.file`, as written in the scene, when it has one: the only file a request
+    /// may name (resolved against the start scene's directory).
+    pub(crate) blocks_file: Option<String>,
+    pub(crate) base_dir: Option<PathBuf>,
+    pub limits: Limits,
+}
+
+impl ServerState {
+    /// The state of a server opening with `scene`.
+    pub fn new(scene: Scene, limits: Limits) -> Self {
+        let blocks_file = scene
+            .table()
+            .get("blocks")
+            .and_then(|b| b.get("file"))
+            .and_then(|f| f.as_str())
+            .map(str::to_string);
+        let base_dir = scene.base_dir().map(|p| p.to_path_buf());
+        ServerState {
+            scene,
+            blocks_file,
+            base_dir,
+            limits,
+        }
+    }
+
+    /// The state of a server opening with the bundled semicircular arch.
+    pub fn with_default_scene(limits: Limits) -> Result<Self, crate::error::SceneError> {
+        let scene = Scene::from_toml_str(parameters::DEFAULT_SCENE, "bundled semicircular arch")?;
+        Ok(ServerState::new(scene, limits))
+    }
+}
+
+/// The router: the page's three files and the API.
+pub fn router(state: Arc<ServerState>) -> axum::Router {
+    use axum::routing::{get, post};
+    let limit = state.limits.max_body_bytes;
+    axum::Router::new()
+        .route("/", get(assets::index))
+        .route("/app.js", get(assets::script))
+        .route("/style.css", get(assets::style))
+        .route("/api/scene", get(api::scene))
+        .route("/api/parameters", get(api::parameters))
+        .route("/api/analyze", post(api::analyze))
+        .route("/api/sweep", post(api::sweep))
+        .fallback(api::not_found)
+        .layer(axum::extract::DefaultBodyLimit::max(limit))
+        .with_state(state)
+}
+
+/// Serve `state` on `listener` until Ctrl-C.
+pub async fn serve(
+    listener: tokio::net::TcpListener,
+    state: Arc<ServerState>,
+) -> std::io::Result<()> {
+    axum::serve(listener, router(state))
+        .with_graceful_shutdown(async {
+            // An error here means no signal handler could be installed: then the server runs
+            // until it is killed, which is what Ctrl-C would have done.
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
+}

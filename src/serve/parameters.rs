@@ -1,0 +1,351 @@
+//! What the page offers: the scene keys it has sliders for (label, unit, slider range) and
+//! the structures it starts from (presets: the bundled example scenes).
+//!
+//! Slider ranges are practical ranges for a structure of a few metres, not the validity
+//! ranges: the scene parser ([`crate::scene`]) decides what is valid, and its message is shown
+//! beside the field when a value typed into a number field is refused. A preset may narrow a
+//! range to its own size (a 1 m arch's thickness slider does not run to 1.5 m).
+
+use serde::Serialize;
+
+/// The scene the page opens with when `voussoir serve` is given none.
+pub const DEFAULT_SCENE: &str = include_str!("../../data/semicircular.toml");
+
+/// One slider: a scene key, how to label it, and its practical range.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Slider {
+    /// The dotted scene key, e.g. `arch.thickness`.
+    pub key: &'static str,
+    pub label: &'static str,
+    /// SI unit, or `deg` for keys ending in `_deg`; empty when dimensionless.
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+    pub step: f64,
+    /// A whole number (voussoirs, courses).
+    pub integer: bool,
+    /// The scene section the key is in: the page shows the slider when the scene has it.
+    pub section: &'static str,
+    /// For `arch` keys, the `arch.shape` values the key belongs to.
+    pub arch_shapes: &'static [&'static str],
+    /// What an absent key means, for keys that may be left out (e.g. friction: infinite).
+    pub absent: Option<&'static str>,
+    pub help: &'static str,
+}
+
+/// A slider and the presets whose scenes have its key (`GET /api/parameters`).
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameter {
+    #[serde(flatten)]
+    pub slider: Slider,
+    pub shapes: Vec<&'static str>,
+}
+
+/// One starting structure.
+#[derive(Debug, Clone)]
+pub struct Preset {
+    pub name: &'static str,
+    pub label: &'static str,
+    /// The scene, as TOML (a bundled example scene).
+    pub toml: &'static str,
+    /// Slider ranges narrowed to this structure: `(key, min, max)`.
+    pub ranges: &'static [(&'static str, f64, f64)],
+}
+
+const ALL_SHAPES: &[&str] = &["circular", "pointed", "basket"];
+
+/// The presets, in the order of the shape picker.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "circular",
+        label: "Circular arch",
+        toml: DEFAULT_SCENE,
+        ranges: &[("arch.thickness", 0.08, 0.5), ("arch.radius", 0.5, 10.0)],
+    },
+    Preset {
+        name: "pointed",
+        label: "Pointed arch",
+        toml: include_str!("../../data/pointed.toml"),
+        ranges: &[("arch.thickness", 0.05, 0.5), ("arch.radius", 0.5, 10.0)],
+    },
+    Preset {
+        name: "basket",
+        label: "Basket-handle arch",
+        toml: include_str!("../../data/basket.toml"),
+        ranges: &[("arch.thickness", 0.05, 0.5), ("arch.rise", 0.3, 1.0)],
+    },
+    Preset {
+        name: "portal",
+        label: "Portal (arch on piers)",
+        toml: include_str!("../../data/portal.toml"),
+        ranges: &[],
+    },
+    Preset {
+        name: "loaded_portal",
+        label: "Portal with point and line loads",
+        toml: include_str!("../../data/loaded_portal.toml"),
+        ranges: &[("arch.thickness", 0.15, 1.2), ("arch.radius", 1.0, 10.0)],
+    },
+    Preset {
+        name: "filled_arch",
+        label: "Arch with fill and vertical acceleration",
+        toml: include_str!("../../data/filled_arch.toml"),
+        ranges: &[("arch.thickness", 0.15, 1.0), ("fill.level", 2.2, 5.0)],
+    },
+];
+
+/// The sliders, in the order the page lists them.
+pub const SLIDERS: &[Slider] = &[
+    Slider {
+        key: "arch.thickness",
+        label: "Thickness t",
+        unit: "m",
+        min: 0.01,
+        max: 1.5,
+        step: 0.005,
+        integer: false,
+        section: "arch",
+        arch_shapes: ALL_SHAPES,
+        absent: None,
+        help: "Thickness of the arch ring, measured radially.",
+    },
+    Slider {
+        key: "arch.radius",
+        label: "Radius R",
+        unit: "m",
+        min: 0.5,
+        max: 10.0,
+        step: 0.05,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["circular", "pointed"],
+        absent: None,
+        help: "Centreline radius (of each arc of a pointed arch).",
+    },
+    Slider {
+        key: "arch.embrace_deg",
+        label: "Embrace",
+        unit: "deg",
+        min: 60.0,
+        max: 240.0,
+        step: 1.0,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["circular"],
+        absent: None,
+        help: "Angle the arch spans at its centre (180 for a semicircle; a portal needs 180).",
+    },
+    Slider {
+        key: "arch.eccentricity",
+        label: "Eccentricity e",
+        unit: "m",
+        min: 0.0,
+        max: 0.6,
+        step: 0.01,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["pointed"],
+        absent: None,
+        help: "Distance of each arc's centre from the axis: 0 is a semicircle.",
+    },
+    Slider {
+        key: "arch.span",
+        label: "Span",
+        unit: "m",
+        min: 0.5,
+        max: 20.0,
+        step: 0.05,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["basket"],
+        absent: None,
+        help: "Centreline span of the basket-handle arch.",
+    },
+    Slider {
+        key: "arch.rise",
+        label: "Rise",
+        unit: "m",
+        min: 0.1,
+        max: 10.0,
+        step: 0.01,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["basket"],
+        absent: None,
+        help: "Centreline rise: at most half the span.",
+    },
+    Slider {
+        key: "arch.side_angle_deg",
+        label: "Side-arc angle",
+        unit: "deg",
+        min: 10.0,
+        max: 80.0,
+        step: 1.0,
+        integer: false,
+        section: "arch",
+        arch_shapes: &["basket"],
+        absent: None,
+        help: "Angle subtended by each side arc of the three-centred arch.",
+    },
+    Slider {
+        key: "arch.voussoirs",
+        label: "Voussoirs n",
+        unit: "",
+        min: 4.0,
+        max: 200.0,
+        step: 1.0,
+        integer: true,
+        section: "arch",
+        arch_shapes: ALL_SHAPES,
+        absent: None,
+        help: "Number of voussoirs (even for a pointed arch).",
+    },
+    Slider {
+        key: "piers.height",
+        label: "Pier height h",
+        unit: "m",
+        min: 0.2,
+        max: 10.0,
+        step: 0.05,
+        integer: false,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Height of the piers below the springings.",
+    },
+    Slider {
+        key: "piers.width",
+        label: "Pier width b",
+        unit: "m",
+        min: 0.1,
+        max: 5.0,
+        step: 0.05,
+        integer: false,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Width of each pier.",
+    },
+    Slider {
+        key: "piers.courses",
+        label: "Pier courses",
+        unit: "",
+        min: 1.0,
+        max: 20.0,
+        step: 1.0,
+        integer: true,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Number of blocks stacked in each pier.",
+    },
+    Slider {
+        key: "fill.level",
+        label: "Fill level",
+        unit: "m",
+        min: 0.0,
+        max: 10.0,
+        step: 0.05,
+        integer: false,
+        section: "fill",
+        arch_shapes: &[],
+        absent: None,
+        help: "Height of the fill's top surface (y = 0 at the springings).",
+    },
+    Slider {
+        key: "fill.unit_weight",
+        label: "Fill unit weight",
+        unit: "N/m^3",
+        min: 0.0,
+        max: 25000.0,
+        step: 500.0,
+        integer: false,
+        section: "fill",
+        arch_shapes: &[],
+        absent: None,
+        help: "Unit weight of the fill, which loads the extrados vertically.",
+    },
+    Slider {
+        key: "seismic.vertical_ratio",
+        label: "Vertical / horizontal acceleration",
+        unit: "",
+        min: -1.0,
+        max: 1.0,
+        step: 0.05,
+        integer: false,
+        section: "seismic",
+        arch_shapes: &[],
+        absent: Some("0 (no vertical acceleration)"),
+        help: "Vertical ground acceleration as a share of the horizontal one (positive upward).",
+    },
+    Slider {
+        key: "material.friction",
+        label: "Friction coefficient",
+        unit: "",
+        min: 0.1,
+        max: 2.0,
+        step: 0.01,
+        integer: false,
+        section: "material",
+        arch_shapes: &[],
+        absent: Some("inf (joints cannot slide)"),
+        help: "Coulomb friction coefficient of the joints.",
+    },
+    Slider {
+        key: "material.unit_weight",
+        label: "Unit weight",
+        unit: "N/m^3",
+        min: 10000.0,
+        max: 30000.0,
+        step: 500.0,
+        integer: false,
+        section: "material",
+        arch_shapes: &[],
+        absent: None,
+        help: "Unit weight of the masonry.",
+    },
+    Slider {
+        key: "material.compressive_strength",
+        label: "Compressive strength",
+        unit: "Pa",
+        min: 0.5e6,
+        max: 50e6,
+        step: 0.5e6,
+        integer: false,
+        section: "material",
+        arch_shapes: &[],
+        absent: Some("inf (joints cannot crush)"),
+        help: "Masonry compressive strength: hinges move inward by half the compressed zone.",
+    },
+];
+
+/// Whether a preset's scene has `key` (its section, and for arch keys its shape).
+fn preset_has(preset: &Preset, section: &str, arch_shapes: &[&str]) -> bool {
+    let Ok(table) = preset.toml.parse::<toml::Table>() else {
+        return false;
+    };
+    let Some(sec) = table.get(section) else {
+        // Optional sections the page may add: material keys and the vertical component.
+        return section == "seismic";
+    };
+    if section != "arch" {
+        return true;
+    }
+    let shape = sec.get("shape").and_then(|s| s.as_str()).unwrap_or("");
+    arch_shapes.contains(&shape)
+}
+
+/// Every slider, with the presets whose scenes have its key.
+pub fn parameters() -> Vec<Parameter> {
+    SLIDERS
+        .iter()
+        .map(|&slider| Parameter {
+            slider,
+            shapes: PRESETS
+                .iter()
+                .filter(|p| preset_has(p, slider.section, slider.arch_shapes))
+                .map(|p| p.name)
+                .collect(),
+        })
+        .collect()
+}

@@ -8,7 +8,9 @@ import { chromium } from 'playwright-core';
 
 // The repository root (tests/e2e/..): the tests run from anywhere.
 export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-export const BIN = path.resolve(ROOT, process.env.VOUSSOIR_BIN || 'target/release/voussoir');
+// The binary: VOUSSOIR_BIN, else the release build in cargo's target directory.
+export const BIN = path.resolve(ROOT, process.env.VOUSSOIR_BIN
+  || path.join(process.env.CARGO_TARGET_DIR || 'target', 'release', 'voussoir'));
 export const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 
 export function scenePath(name) {

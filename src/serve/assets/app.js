@@ -12,11 +12,6 @@
 (function () {
   const $ = (id) => document.getElementById(id);
 
-  // Scene tables that are always there (their keys have defaults); any other table (piers,
-  // fill, seismic, loads, ...) must be present in the scene for its parameters to show.
-  const ALWAYS_PRESENT = new Set(['arch', 'material']);
-  // Keys whose value may be infinite ("inf", or omitted, in the scene).
-  const MAY_BE_INFINITE = new Set(['material.friction', 'material.compressive_strength']);
   const SECTION_TITLES = {
     arch: 'Arch', piers: 'Piers', material: 'Material', fill: 'Fill',
     seismic: 'Seismic', loads: 'Loads',
@@ -94,7 +89,7 @@
     if (cur !== null && typeof cur === 'object') delete cur[segs[segs.length - 1]];
   }
 
-  // The preset a scene looks like, for the parameters' "shapes" lists.
+  // The preset a scene looks like (for a scene that does not say, the values it leaves out).
   function presetOf(scene) {
     const names = new Set(state.shapes.map((s) => s.name));
     const hasLoads = Array.isArray(scene.loads) && scene.loads.length > 0;
@@ -104,33 +99,55 @@
     return guess || 'circular';
   }
 
-  function sectionPresent(key) {
-    const first = segments(key)[0];
-    if (ALWAYS_PRESENT.has(first)) return true;
-    if (getKey(state.scene, key.split('.').slice(0, -1).join('.')) === undefined) return false;
-    return state.scene[first] !== undefined && state.scene[first] !== null;
+  const sectionOf = (p) => p.section || segments(p.key)[0];
+
+  // What an absent key means, from the parameter's `absent` ("inf (joints cannot slide)",
+  // "0 (no vertical acceleration)"): 'inf', a number, or undefined (the key is required).
+  function absentValue(p) {
+    if (typeof p.absent !== 'string') return undefined;
+    const word = p.absent.trim().split(/\s+/)[0];
+    if (isInfinite(word)) return 'inf';
+    const x = Number(word);
+    return Number.isFinite(x) ? x : undefined;
   }
 
+  const mayBeInfinite = (p) => absentValue(p) === 'inf';
+
+  // A parameter is shown when the scene has its section (a section whose keys may all be
+  // left out, such as [material] or [seismic], counts as there) and, for an arch key, when
+  // the scene's arch shape is one of the parameter's `arch_shapes`.
   function visible(p) {
-    if (!sectionPresent(p.key)) return false;
+    const section = sectionOf(p);
+    const has = state.scene[section] !== undefined && state.scene[section] !== null;
+    if (!has && !(section === 'material' || absentValue(p) !== undefined)) return false;
     if (getKey(state.scene, p.key) !== undefined) return true;
-    const shapes = p.shapes || [];
-    const archShape = state.scene.arch && state.scene.arch.shape;
-    if (p.key.startsWith('arch.')) return shapes.includes(archShape);
-    const preset = state.preset || presetOf(state.scene);
-    return shapes.includes(preset) || shapes.includes(archShape);
+    if (section === 'arch') {
+      const archShape = state.scene.arch && state.scene.arch.shape;
+      const shapes = p.arch_shapes || p.shapes || [];
+      return shapes.includes(archShape);
+    }
+    return true;
   }
 
   function isInfinite(v) {
     return v === 'inf' || v === Infinity || v === '+inf';
   }
 
-  // The value a field shows: the scene's, else the one of the preset the scene looks like (the
-  // default), else any preset's, else the parameter's own default or the middle of its range.
+  // The slider's range: the preset's own when it narrows it, else the parameter's.
+  function rangeOf(p) {
+    const preset = state.preset && state.shapes.find((s) => s.name === state.preset);
+    const r = preset && preset.ranges && preset.ranges[p.key];
+    if (Array.isArray(r) && r.length === 2 && r[0] < r[1]) return { min: r[0], max: r[1] };
+    return { min: p.min, max: p.max };
+  }
+
+  // The value a field shows: the scene's, else what leaving it out means, else the one of the
+  // preset the scene looks like, else any preset's, else the middle of its range.
   function shownValue(p) {
     const v = getKey(state.scene, p.key);
     if (v !== undefined) return v;
-    if (MAY_BE_INFINITE.has(p.key) || p.infinite) return 'inf';
+    const absent = absentValue(p);
+    if (absent !== undefined) return absent;
     const preset = state.shapes.find((s) => s.name === (state.preset || presetOf(state.scene)));
     const fromPreset = preset && getKey(preset.scene, p.key);
     if (typeof fromPreset === 'number') return fromPreset;
@@ -138,13 +155,24 @@
       const x = getKey(s.scene, p.key);
       if (typeof x === 'number') return x;
     }
-    if (typeof p.default === 'number') return p.default;
-    return p.integer ? Math.round((p.min + p.max) / 2) : (p.min + p.max) / 2;
+    const { min, max } = rangeOf(p);
+    return p.integer ? Math.round((min + max) / 2) : (min + max) / 2;
   }
 
   // ---- formatting ---------------------------------------------------------------------------
 
   const fmt = (x, digits) => (typeof x === 'number' && Number.isFinite(x) ? x.toFixed(digits) : '—');
+
+  // Units as typed in the API ("N/m^3") as they are printed ("N/m³").
+  function prettyUnit(unit) {
+    return (unit || '').replace(/\^2/g, '²').replace(/\^3/g, '³').replace(/\^-1/g, '⁻¹');
+  }
+
+  // A range end, short: 500000 as 5e5.
+  function compact(v) {
+    if (Math.abs(v) >= 1e5) return v.toExponential().replace('e+', 'e');
+    return String(v);
+  }
 
   function niceTicks(lo, hi, count) {
     const span = hi - lo;
@@ -214,26 +242,27 @@
     number.setAttribute('aria-describedby', id + '-error');
     const unit = document.createElement('span');
     unit.className = 'unit';
-    unit.textContent = p.unit || '';
+    unit.textContent = prettyUnit(p.unit);
     entry.append(number, unit);
     head.append(label, entry);
 
     const slider = document.createElement('input');
     slider.type = 'range';
     slider.id = id + '-range';
-    slider.min = String(p.min);
-    slider.max = String(p.max);
-    slider.step = String(p.integer ? Math.max(1, p.step || 1) : p.step || (p.max - p.min) / 200);
-    slider.setAttribute('aria-label', p.label + (p.unit ? ' (' + p.unit + ')' : ''));
+    const { min, max } = rangeOf(p);
+    slider.min = String(min);
+    slider.max = String(max);
+    slider.step = String(p.integer ? Math.max(1, p.step || 1) : p.step || (max - min) / 200);
+    slider.setAttribute('aria-label', p.label + (p.unit ? ' (' + prettyUnit(p.unit) + ')' : ''));
 
     const range = document.createElement('div');
     range.className = 'range';
     const lo = document.createElement('span');
     lo.className = 'bound';
-    lo.textContent = String(p.min);
+    lo.textContent = compact(min);
     const hi = document.createElement('span');
     hi.className = 'bound';
-    hi.textContent = String(p.max);
+    hi.textContent = compact(max);
     range.append(lo, slider, hi);
 
     const error = document.createElement('p');
@@ -244,7 +273,7 @@
     row.append(head, range);
 
     let infinite = null;
-    if (MAY_BE_INFINITE.has(p.key) || p.infinite) {
+    if (mayBeInfinite(p)) {
       const box = document.createElement('label');
       box.className = 'infinite';
       infinite = document.createElement('input');
@@ -277,7 +306,7 @@
       const text = number.value.trim();
       const v = Number(text);
       if (text === '' || !Number.isFinite(v)) {
-        showFieldError(p.key, 'Enter a number' + (p.unit ? ' in ' + p.unit : '') + '.');
+        showFieldError(p.key, 'Enter a number' + (p.unit ? ' in ' + prettyUnit(p.unit) : '') + '.');
         return;
       }
       slider.value = String(v);
@@ -294,7 +323,7 @@
       if (inf) {
         number.value = '';
         number.placeholder = '∞';
-        slider.value = String(p.max);
+        slider.value = String(max);
       } else {
         number.placeholder = '';
         number.value = String(v);
@@ -537,7 +566,9 @@
   function sweepSignature(key) {
     const rest = clone(state.scene);
     deleteKey(rest, key);
-    return key + '|' + state.direction + '|' + JSON.stringify(rest);
+    const p = state.byKey.get(key);
+    const r = p ? rangeOf(p) : {};
+    return [key, r.min, r.max, state.direction, JSON.stringify(rest)].join('|');
   }
 
   async function startSweep(key) {
@@ -555,9 +586,10 @@
     document.body.dataset.sweeping = 'true';
     const maxPoints = state.limits.max_sweep_points || SWEEP_POINTS;
     let points = Math.min(SWEEP_POINTS, maxPoints);
-    if (p.integer) points = Math.max(2, Math.min(points, Math.floor(p.max - p.min) + 1));
+    const { min, max } = rangeOf(p);
+    if (p.integer) points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
     const body = {
-      scene: state.scene, key, from: p.min, to: p.max, points, direction: state.direction,
+      scene: state.scene, key, from: min, to: max, points, direction: state.direction,
     };
     drawChart();
     try {
@@ -599,18 +631,19 @@
       return;
     }
     if (!chart.rows) {
-      box.replaceChildren(placeholder('Computing λ over ' + p.min + '–' + p.max + (p.unit ? ' ' + p.unit : '') + '…'));
+      box.replaceChildren(placeholder('Computing λ over ' + rangeOf(p).min + '–' + rangeOf(p).max + (p.unit ? ' ' + prettyUnit(p.unit) : '') + '…'));
       return;
     }
     const usable = chart.rows.filter((r) => !r.error);
     if (usable.length === 0) {
       const first = chart.rows.find((r) => r.error);
-      box.replaceChildren(placeholder('No value of ' + p.label + ' in ' + p.min + '–' + p.max
+      box.replaceChildren(placeholder('No value of ' + p.label + ' in ' + rangeOf(p).min + '–' + rangeOf(p).max
         + ' could be analysed' + (first ? ': ' + first.error : '.')));
       return;
     }
-    const W = 300, H = 184, L = 40, R = 10, T = 16, B = 34;
-    const xs = [p.min, p.max];
+    const W = 300, H = 184, L = 46, R = 10, T = 12, B = 34;
+    const range = rangeOf(p);
+    const xs = [range.min, range.max];
     const x = (v) => L + (v - xs[0]) / (xs[1] - xs[0] || 1) * (W - L - R);
     const finite = (v) => typeof v === 'number' && Number.isFinite(v);
     const current = getKey(state.scene, p.key);
@@ -648,8 +681,8 @@
     svg.append(el('line', { x1: L, x2: W - R, y1: H - B, y2: H - B, class: 'axis' }));
     svg.append(el('line', { x1: L, x2: L, y1: T, y2: H - B, class: 'axis' }));
     svg.append(el('text', { x: (L + W - R) / 2, y: H - 4, class: 'axis-label', 'text-anchor': 'middle' },
-      p.label + (p.unit ? ' (' + p.unit + ')' : '')));
-    svg.append(el('text', { x: L - 5, y: T - 6, class: 'axis-label', 'text-anchor': 'end' }, 'λ'));
+      p.label + (p.unit ? ' (' + prettyUnit(p.unit) + ')' : '')));
+    svg.append(el('text', { x: 8, y: (T + H - B) / 2 + 4, class: 'axis-label lambda-axis', 'text-anchor': 'middle' }, 'λ'));
 
     // One polyline per run of rows with a multiplier (rows that failed are skipped; rows
     // without a multiplier break the line).
@@ -687,7 +720,7 @@
     legend.className = 'chart-legend';
     const bits = [];
     if (typeof current === 'number' && finite(currentLambda)) {
-      bits.push('at ' + current + (p.unit ? ' ' + p.unit : '') + ': λ = ' + currentLambda.toFixed(4));
+      bits.push('at ' + current + (p.unit ? ' ' + prettyUnit(p.unit) : '') + ': λ = ' + currentLambda.toFixed(4));
     }
     if (differs) bits.push('solid: lower bound, dashed: upper');
     if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');
@@ -717,7 +750,12 @@
     const origin = state.initial.origin || '';
     const file = /\.toml$/i.test(origin) ? origin.split(/[\\/]/).pop() : '';
     add('', file || 'Start scene', origin ? 'The scene voussoir serve was started with: ' + origin : 'The scene voussoir serve was started with');
-    for (const s of state.shapes) add(s.name, s.label || s.name);
+    // The buttons carry the preset's name in words ("loaded_portal": "Loaded portal"); its
+    // label is the tooltip.
+    for (const s of state.shapes) {
+      const word = s.name.replace(/_/g, ' ');
+      add(s.name, word.charAt(0).toUpperCase() + word.slice(1), s.label || '');
+    }
     markPreset();
   }
 

@@ -349,7 +349,7 @@ fn request_scene(
     };
     let table = to_table("", scene)?;
     check_limits(&table, state)?;
-    let scene = Scene::from_table_in(table, "request", state.base_dir.as_deref())?;
+    let scene = Scene::from_table_in(table, "scene", state.base_dir.as_deref())?;
     Ok((scene, direction))
 }
 

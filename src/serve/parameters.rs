@@ -38,6 +38,7 @@ pub struct Slider {
 pub struct Parameter {
     #[serde(flatten)]
     pub slider: Slider,
+    /// The presets whose scenes have the key (or may take it: see `absent`).
     pub shapes: Vec<&'static str>,
 }
 
@@ -319,20 +320,17 @@ pub const SLIDERS: &[Slider] = &[
     },
 ];
 
-/// Whether a preset's scene has `key` (its section, and for arch keys its shape).
-fn preset_has(preset: &Preset, section: &str, arch_shapes: &[&str]) -> bool {
+/// Whether a preset's scene has the slider's key, or may take it (a key whose absence means
+/// something, such as infinite friction, or the optional vertical component).
+fn preset_has(preset: &Preset, slider: &Slider) -> bool {
     let Ok(table) = preset.toml.parse::<toml::Table>() else {
         return false;
     };
-    let Some(sec) = table.get(section) else {
-        // Optional sections the page may add: material keys and the vertical component.
-        return section == "seismic";
-    };
-    if section != "arch" {
-        return true;
+    let (section, name) = slider.key.split_once('.').unwrap_or((slider.key, ""));
+    match table.get(section) {
+        Some(sec) => sec.get(name).is_some() || slider.absent.is_some(),
+        None => slider.absent.is_some() && section == "seismic",
     }
-    let shape = sec.get("shape").and_then(|s| s.as_str()).unwrap_or("");
-    arch_shapes.contains(&shape)
 }
 
 /// Every slider, with the presets whose scenes have its key.
@@ -343,7 +341,7 @@ pub fn parameters() -> Vec<Parameter> {
             slider,
             shapes: PRESETS
                 .iter()
-                .filter(|p| preset_has(p, slider.section, slider.arch_shapes))
+                .filter(|p| preset_has(p, &slider))
                 .map(|p| p.name)
                 .collect(),
         })

@@ -1,0 +1,570 @@
+//! The API of `voussoir serve` (src/serve/, docs/web.md): every endpoint answers with what
+//! the CLI and the library say for the same scene, and every bad request (malformed, invalid,
+//! oversized, over a limit, naming a file) is refused with a 4xx and a message naming the
+//! key, never a crash. The router is called in process; one test goes through a real socket
+//! to the binary.
+#![cfg(feature = "serve")]
+
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
+use http_body_util::BodyExt;
+use serde_json::{json, Value};
+use std::sync::Arc;
+use tower::ServiceExt;
+use voussoir::analysis::{self, Options};
+use voussoir::lp::StaticSettings;
+use voussoir::outcome::Direction;
+use voussoir::scene::Scene;
+use voussoir::serve::{self, parameters, Limits, ServerState};
+
+fn runtime() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .expect("tokio runtime")
+}
+
+fn state() -> Arc<ServerState> {
+    Arc::new(ServerState::with_default_scene(Limits::default()).expect("bundled scene"))
+}
+
+/// One request to the router: status, content type and body.
+fn call(
+    state: &Arc<ServerState>,
+    method: &str,
+    path: &str,
+    body: Vec<u8>,
+) -> (StatusCode, String, Vec<u8>) {
+    runtime().block_on(async {
+        let request = Request::builder()
+            .method(method)
+            .uri(path)
+            .header("content-type", "application/json")
+            .body(Body::from(body))
+            .expect("request");
+        let response = serve::router(state.clone())
+            .oneshot(request)
+            .await
+            .expect("router answers");
+        let status = response.status();
+        let kind = response
+            .headers()
+            .get("content-type")
+            .and_then(|v| v.to_str().ok())
+            .unwrap_or("")
+            .to_string();
+        let bytes = response
+            .into_body()
+            .collect()
+            .await
+            .expect("body")
+            .to_bytes()
+            .to_vec();
+        (status, kind, bytes)
+    })
+}
+
+fn post(state: &Arc<ServerState>, path: &str, body: &Value) -> (StatusCode, Value) {
+    let (status, kind, bytes) = call(state, "POST", path, body.to_string().into_bytes());
+    assert!(kind.starts_with("application/json"), "{path}: {kind}");
+    (status, serde_json::from_slice(&bytes).expect("JSON answer"))
+}
+
+fn get_json(state: &Arc<ServerState>, path: &str) -> Value {
+    let (status, kind, bytes) = call(state, "GET", path, Vec::new());
+    assert_eq!(status, StatusCode::OK, "{path}");
+    assert!(kind.starts_with("application/json"), "{path}: {kind}");
+    serde_json::from_slice(&bytes).expect("JSON answer")
+}
+
+fn data(name: &str) -> String {
+    format!("{}/data/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A scene file as the JSON the page sends (the TOML keys as JSON; inf as "inf").
+fn scene_json(file: &str) -> Value {
+    let scene = Scene::from_file(std::path::Path::new(&data(file))).expect("scene");
+    serve::api::table_json(scene.table())
+}
+
+fn library_lambda(scene: &Scene, direction: Direction) -> analysis::SceneAnalysis {
+    let options = Options {
+        static_settings: StaticSettings::default().direction(direction),
+        ..Options::default()
+    };
+    analysis::analyse(scene, &options).expect("analysis")
+}
+
+fn refused(answer: &(StatusCode, Value), status: StatusCode, kind: &str, key: Option<&str>) {
+    let (s, body) = answer;
+    assert_eq!(*s, status, "{body}");
+    assert_eq!(body["kind"], kind, "{body}");
+    assert_eq!(body["key"].as_str(), key, "{body}");
+    let message = body["error"].as_str().expect("an error message");
+    assert!(message.len() > 10, "{message}");
+    if let Some(key) = key {
+        assert!(
+            message.contains(key),
+            "the message names `{key}`: {message}"
+        );
+    }
+}
+
+#[test]
+fn the_page_and_its_files_are_served_with_their_types() {
+    let s = state();
+    let (status, kind, body) = call(&s, "GET", "/", Vec::new());
+    assert_eq!(status, StatusCode::OK);
+    assert!(kind.starts_with("text/html"), "{kind}");
+    let html = String::from_utf8(body).expect("utf-8");
+    assert!(
+        html.contains("app.js") && html.contains("style.css"),
+        "{html}"
+    );
+    let (status, kind, _) = call(&s, "GET", "/app.js", Vec::new());
+    assert_eq!(status, StatusCode::OK);
+    assert!(kind.starts_with("text/javascript"), "{kind}");
+    let (status, kind, _) = call(&s, "GET", "/style.css", Vec::new());
+    assert_eq!(status, StatusCode::OK);
+    assert!(kind.starts_with("text/css"), "{kind}");
+    let (status, kind, body) = call(&s, "GET", "/no/such/page", Vec::new());
+    assert_eq!(status, StatusCode::NOT_FOUND);
+    assert!(kind.starts_with("application/json"));
+    let body: Value = serde_json::from_slice(&body).expect("JSON");
+    assert_eq!(body["kind"], "not_found");
+}
+
+/// The analysis of the bundled arch through the API is the CLI's, field for field, and the
+/// drawing is the file `analyze --svg` writes, byte for byte.
+#[test]
+fn analyze_returns_the_cli_json_and_drawing() {
+    let s = state();
+    let scene = get_json(&s, "/api/scene");
+    assert_eq!(scene["scene"], scene_json("semicircular.toml"));
+    assert_eq!(scene["scene"]["material"]["friction"], "inf");
+    let (status, answer) = post(&s, "/api/analyze", &json!({"scene": scene["scene"]}));
+    assert_eq!(status, StatusCode::OK, "{answer}");
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let svg = dir.path().join("a.svg");
+    let out = assert_cmd::Command::cargo_bin("voussoir")
+        .expect("binary")
+        .args(["analyze", &data("semicircular.toml"), "--json", "--svg"])
+        .arg(&svg)
+        .output()
+        .expect("run");
+    assert!(out.status.success());
+    let cli: Value = serde_json::from_slice(&out.stdout).expect("CLI JSON");
+    let cli = cli.as_object().expect("object");
+    for (field, value) in cli {
+        if field.ends_with("time_s") {
+            continue; // wall-clock times differ run to run
+        }
+        if field == "scene" {
+            // Only where the scene came from differs (a file, or the request).
+            let mut api = answer[field].clone();
+            api["origin"] = value["origin"].clone();
+            assert_eq!(&api, value);
+            continue;
+        }
+        assert_eq!(&answer[field], value, "field `{field}`");
+    }
+    assert_eq!(
+        answer["svg"].as_str().expect("svg"),
+        std::fs::read_to_string(&svg).expect("svg file")
+    );
+    roxmltree::Document::parse(answer["svg"].as_str().unwrap_or("")).expect("valid SVG");
+    assert!(answer["elapsed_ms"].as_f64().is_some_and(|t| t > 0.0));
+    // The TOML to download is the same scene.
+    let again = Scene::from_toml_str(answer["toml"].as_str().expect("toml"), "downloaded")
+        .expect("the returned TOML is a valid scene");
+    let a = library_lambda(&again, Direction::Right);
+    assert_eq!(a.lower.lambda, answer["lambda_lower"].as_f64());
+}
+
+/// Every preset analyses through the API to the library's value, in both directions; the
+/// bare scene and the wrapped one are the same request; the symmetric arch gives the same
+/// value both ways and the loaded portal does not.
+#[test]
+fn every_preset_analyses_to_the_library_value_in_both_directions() {
+    let s = state();
+    let params = get_json(&s, "/api/parameters");
+    let presets = params["shapes"].as_array().expect("shapes");
+    assert_eq!(presets.len(), parameters::PRESETS.len());
+    for preset in presets {
+        let name = preset["name"].as_str().expect("name");
+        let scene_value = &preset["scene"];
+        let p = parameters::PRESETS
+            .iter()
+            .find(|p| p.name == name)
+            .expect("preset");
+        let scene = Scene::from_toml_str(p.toml, name).expect("preset scene");
+        let mut by_direction = Vec::new();
+        for (dir, text) in [(Direction::Right, "right"), (Direction::Left, "left")] {
+            let expected = library_lambda(&scene, dir);
+            let (status, wrapped) = post(
+                &s,
+                "/api/analyze",
+                &json!({"scene": scene_value, "direction": text}),
+            );
+            assert_eq!(status, StatusCode::OK, "{name}: {wrapped}");
+            assert_eq!(
+                wrapped["lambda_lower"].as_f64(),
+                expected.lower.lambda,
+                "{name} {text}"
+            );
+            assert_eq!(wrapped["status"], expected.lower.status.as_str(), "{name}");
+            let (status, bare) = post(&s, &format!("/api/analyze?direction={text}"), scene_value);
+            assert_eq!(status, StatusCode::OK);
+            assert_eq!(bare["lambda_lower"], wrapped["lambda_lower"], "{name}");
+            assert_eq!(bare["svg"], wrapped["svg"], "{name}");
+            by_direction.push(expected.lower.lambda.expect("every preset collapses"));
+        }
+        let symmetric = matches!(name, "circular" | "pointed" | "basket" | "portal");
+        let differ = (by_direction[0] - by_direction[1]).abs();
+        if symmetric {
+            assert!(differ < 1e-9, "{name}: {by_direction:?}");
+        } else if name == "loaded_portal" {
+            assert!(differ > 1e-3, "{name}: {by_direction:?}");
+        }
+    }
+}
+
+#[test]
+fn parameters_name_real_scene_keys_with_sane_ranges() {
+    let s = state();
+    let params = get_json(&s, "/api/parameters");
+    let limits = &params["limits"];
+    assert_eq!(limits["max_voussoirs"], Limits::default().max_voussoirs);
+    assert_eq!(limits["max_body_bytes"], Limits::default().max_body_bytes);
+    let base = Scene::from_toml_str(parameters::DEFAULT_SCENE, "default").expect("scene");
+    for p in params["parameters"].as_array().expect("parameters") {
+        let key = p["key"].as_str().expect("key");
+        let (lo, hi, step) = (
+            p["min"].as_f64().expect("min"),
+            p["max"].as_f64().expect("max"),
+            p["step"].as_f64().expect("step"),
+        );
+        assert!(lo < hi && step > 0.0 && step <= hi - lo, "{key}");
+        // Every preset listed for a slider has its key, or may take it (an optional
+        // section or key).
+        for name in p["shapes"].as_array().expect("shapes") {
+            let preset = params["shapes"]
+                .as_array()
+                .and_then(|ps| ps.iter().find(|q| q["name"] == *name))
+                .expect("listed preset");
+            let (section, k) = key.split_once('.').expect("dotted");
+            let has = preset["scene"][section][k] != Value::Null;
+            assert!(
+                has || !p["absent"].is_null() || section == "seismic",
+                "{key} in {name}"
+            );
+        }
+        // The key is one the scene format knows: setting it to a value inside the slider's
+        // range on the scene it applies to is accepted (or refused with its own key).
+        if p["shapes"]
+            .as_array()
+            .is_some_and(|s| s.contains(&json!("circular")))
+        {
+            let mid = if p["integer"] == true {
+                toml::Value::Integer(((lo + hi) / 2.0).round() as i64)
+            } else {
+                toml::Value::Float((lo + hi) / 2.0)
+            };
+            match base.with_value(key, mid) {
+                Ok(_) => {}
+                Err(e) => assert_eq!(e.key(), Some(key), "{key}: {e}"),
+            }
+        }
+    }
+}
+
+/// Bad requests are 400s (413 over the size limit) with a message naming the key.
+#[test]
+fn bad_requests_are_refused_with_the_key_they_are_about() {
+    let s = state();
+    let good = scene_json("semicircular.toml");
+    let with = |section: &str, key: &str, value: Value| {
+        let mut scene = good.clone();
+        scene[section][key] = value;
+        json!({ "scene": scene })
+    };
+    // Malformed bodies.
+    for body in [&b"{not json"[..], b"", b"[1, 2]", b"42", b"\xff\xfe"] {
+        let (status, _, bytes) = call(&s, "POST", "/api/analyze", body.to_vec());
+        let answer: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+        refused(
+            &(status, answer),
+            StatusCode::BAD_REQUEST,
+            "malformed_json",
+            None,
+        );
+    }
+    refused(
+        &post(&s, "/api/analyze", &json!({"scene": [1, 2]})),
+        StatusCode::BAD_REQUEST,
+        "malformed_json",
+        Some("scene"),
+    );
+    // Invalid scenes: the scene parser's own words, with the dotted key.
+    refused(
+        &post(&s, "/api/analyze", &with("arch", "thickness", json!(0.0))),
+        StatusCode::BAD_REQUEST,
+        "out_of_range",
+        Some("arch.thickness"),
+    );
+    refused(
+        &post(&s, "/api/analyze", &with("arch", "radius", json!(-1.0))),
+        StatusCode::BAD_REQUEST,
+        "out_of_range",
+        Some("arch.radius"),
+    );
+    refused(
+        &post(
+            &s,
+            "/api/analyze",
+            &with("arch", "thickness", json!("thick")),
+        ),
+        StatusCode::BAD_REQUEST,
+        "wrong_type",
+        Some("arch.thickness"),
+    );
+    refused(
+        &post(&s, "/api/analyze", &with("arch", "thickness", Value::Null)),
+        StatusCode::BAD_REQUEST,
+        "wrong_type",
+        Some("arch.thickness"),
+    );
+    let (status, answer) = post(&s, "/api/analyze", &with("arch", "thicknes", json!(0.2)));
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert_eq!(answer["kind"], "unknown_key");
+    assert!(
+        answer["error"].as_str().unwrap_or("").contains("thickness"),
+        "{answer}"
+    );
+    // Limits: the voussoir count, and files.
+    refused(
+        &post(&s, "/api/analyze", &with("arch", "voussoirs", json!(5000))),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("arch.voussoirs"),
+    );
+    let mut blocks = json!({"blocks": {"file": "/etc/passwd"}, "material": good["material"]});
+    refused(
+        &post(&s, "/api/analyze", &blocks),
+        StatusCode::BAD_REQUEST,
+        "file_refused",
+        Some("blocks.file"),
+    );
+    blocks["blocks"] = json!({"polygons": vec![json!([[0, 0], [1, 0], [1, 1]]); 1001]});
+    refused(
+        &post(&s, "/api/analyze", &blocks),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("blocks.polygons"),
+    );
+    // Options.
+    refused(
+        &post(
+            &s,
+            "/api/analyze",
+            &json!({"scene": good, "direction": "up"}),
+        ),
+        StatusCode::BAD_REQUEST,
+        "bad_option",
+        Some("direction"),
+    );
+    // Oversized: 413 with a message, and the server goes on answering.
+    let big = format!(
+        "{{\"scene\": {good}, \"pad\": \"{}\"}}",
+        "x".repeat(Limits::default().max_body_bytes)
+    );
+    let (status, _, bytes) = call(&s, "POST", "/api/analyze", big.into_bytes());
+    let answer: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+    refused(
+        &(status, answer),
+        StatusCode::PAYLOAD_TOO_LARGE,
+        "too_large",
+        None,
+    );
+    let (status, _) = post(&s, "/api/analyze", &json!({ "scene": good }));
+    assert_eq!(status, StatusCode::OK);
+}
+
+/// A user-block scene given inline analyses like its file: the hand-derived single block
+/// b/h (width 0.4, height 1.0: lambda = 0.4).
+#[test]
+fn inline_blocks_analyse_and_give_b_over_h() {
+    let s = state();
+    let scene = json!({
+        "blocks": {"polygons": [[[0.0, 0.0], [0.4, 0.0], [0.4, 1.0], [0.0, 1.0]]]},
+        "material": {"unit_weight": 20000.0, "depth": 1.0}
+    });
+    let (status, answer) = post(&s, "/api/analyze", &scene);
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let lambda = answer["lambda_lower"].as_f64().expect("lambda");
+    assert!((lambda - 0.4).abs() < 1e-9, "{lambda}");
+}
+
+/// The sweep's rows are the analyses of each value; whole-number keys give whole numbers
+/// without repeats; bad sweeps are refused with their option named.
+#[test]
+fn sweep_rows_are_the_analyses_of_each_value() {
+    let s = state();
+    let scene = scene_json("semicircular.toml");
+    let (status, answer) = post(
+        &s,
+        "/api/sweep",
+        &json!({"scene": scene, "key": "arch.thickness", "from": 0.1, "to": 0.3, "points": 5}),
+    );
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let rows = answer["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), 5);
+    let base = Scene::from_file(std::path::Path::new(&data("semicircular.toml"))).expect("scene");
+    for row in rows {
+        let t = row["value"].as_f64().expect("value");
+        let a = library_lambda(&base.with_thickness(t).expect("scene"), Direction::Right);
+        assert_eq!(row["status"], a.lower.status.as_str(), "t = {t}");
+        if row["status"] == "collapse" {
+            assert_eq!(row["lambda_lower"].as_f64(), a.lower.lambda, "t = {t}");
+            let upper = row["lambda_upper"].as_f64().expect("upper bound");
+            assert!(
+                (upper - a.lower.lambda.unwrap_or(f64::NAN)).abs() < 1e-9,
+                "t = {t}"
+            );
+        }
+    }
+    // The thin end cannot stand (t/R = 0.1 is below Milankovitch's 0.1075); lambda grows.
+    assert_eq!(rows[0]["status"], "cannot_stand");
+    let lambdas: Vec<f64> = rows[1..]
+        .iter()
+        .map(|r| r["lambda_lower"].as_f64().expect("lambda"))
+        .collect();
+    assert!(lambdas.windows(2).all(|w| w[1] > w[0]), "{lambdas:?}");
+
+    let (status, answer) = post(
+        &s,
+        "/api/sweep",
+        &json!({"scene": scene, "key": "arch.voussoirs", "from": 8, "to": 10, "points": 9}),
+    );
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let values: Vec<Value> = answer["rows"]
+        .as_array()
+        .expect("rows")
+        .iter()
+        .map(|r| r["value"].clone())
+        .collect();
+    assert_eq!(values, vec![json!(8), json!(9), json!(10)]);
+
+    let sweep = |extra: Value| {
+        let mut body =
+            json!({"scene": scene, "key": "arch.thickness", "from": 0.1, "to": 0.3, "points": 5});
+        for (k, v) in extra.as_object().expect("object") {
+            body[k] = v.clone();
+        }
+        post(&s, "/api/sweep", &body)
+    };
+    refused(
+        &sweep(json!({"points": 0})),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("points"),
+    );
+    refused(
+        &sweep(json!({"points": 1000})),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("points"),
+    );
+    refused(
+        &sweep(json!({"from": 0.5})),
+        StatusCode::BAD_REQUEST,
+        "bad_option",
+        Some("to"),
+    );
+    refused(
+        &sweep(json!({"to": "big"})),
+        StatusCode::BAD_REQUEST,
+        "bad_option",
+        Some("to"),
+    );
+    refused(
+        &sweep(json!({"key": 3})),
+        StatusCode::BAD_REQUEST,
+        "bad_option",
+        Some("key"),
+    );
+    let (status, answer) = sweep(json!({"key": "arch.colour"}));
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{answer}");
+    assert!(
+        answer["error"]
+            .as_str()
+            .unwrap_or("")
+            .contains("arch.colour"),
+        "{answer}"
+    );
+    let (status, answer) = post(&s, "/api/sweep", &json!({"key": "arch.thickness"}));
+    refused(
+        &(status, answer),
+        StatusCode::BAD_REQUEST,
+        "bad_option",
+        Some("scene"),
+    );
+    let (status, _, bytes) = call(&s, "POST", "/api/sweep", b"{oops".to_vec());
+    let answer: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+    refused(
+        &(status, answer),
+        StatusCode::BAD_REQUEST,
+        "malformed_json",
+        None,
+    );
+}
+
+/// The binary: `serve --port 0` prints its address on the first line, answers a real HTTP
+/// request on loopback, and a bad scene file stops it with the file named.
+#[test]
+fn the_binary_serves_on_loopback() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let bin = assert_cmd::cargo::cargo_bin("voussoir");
+    let mut child = std::process::Command::new(&bin)
+        .args(["serve", "--port", "0", &data("portal.toml")])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start the server");
+    let mut first = String::new();
+    let stdout = child.stdout.take().expect("stdout");
+    BufReader::new(stdout)
+        .read_line(&mut first)
+        .expect("first line");
+    let url = first
+        .trim()
+        .strip_prefix("voussoir serve: listening on http://")
+        .expect("the address line")
+        .trim_end_matches('/')
+        .to_string();
+    assert!(url.starts_with("127.0.0.1:"), "{url}");
+    let answer = (|| -> std::io::Result<String> {
+        let mut stream = std::net::TcpStream::connect(&url)?;
+        write!(
+            stream,
+            "GET /api/scene HTTP/1.1\r\nHost: {url}\r\nConnection: close\r\n\r\n"
+        )?;
+        let mut text = String::new();
+        stream.read_to_string(&mut text)?;
+        Ok(text)
+    })();
+    let _ = child.kill();
+    let _ = child.wait();
+    let answer = answer.expect("an HTTP answer");
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    assert!(answer.contains("\"piers\""), "the portal scene: {answer}");
+
+    let out = std::process::Command::new(&bin)
+        .args(["serve", "--port", "0", "no/such/scene.toml"])
+        .output()
+        .expect("run");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no/such/scene.toml"), "{err}");
+}

@@ -225,6 +225,18 @@ test('a preset and the direction toggle give the CLI\'s values for that scene', 
     const json = JSON.parse((await download(page, '#v-dl-json')).text);
     assert.equal(json.direction, 'left');
     sameAnalysis(json, cli, 'portal, leftward');
+    // The chart of the pier height (1 m, a whole number in JSON) runs over real values.
+    const swept = page.waitForResponse((r) => r.url().endsWith('/api/sweep'));
+    const h = field(page, 'piers.height');
+    await h.slider.focus();
+    await page.keyboard.press('ArrowRight');
+    const rows = (await (await swept).json()).rows;
+    const asked = JSON.parse((await swept).request().postData()).points;
+    assert.equal(rows.length, asked, 'one row per point asked for');
+    assert.ok(rows.some((r) => !Number.isInteger(r.value)), 'pier heights between whole metres');
+    await settled(page);
+    await chartSettled(page);
+    assert.match(await page.locator('#v-chart-title').textContent(), /pier height/i);
     // Back to a plain arch: the piers' fields go away.
     await page.click('#v-shapes button[data-preset="circular"]');
     await settled(page);

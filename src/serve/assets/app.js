@@ -588,8 +588,18 @@
     let points = Math.min(SWEEP_POINTS, maxPoints);
     const { min, max } = rangeOf(p);
     if (p.integer) points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
+    // The server sweeps whole numbers when the scene holds the key as an integer, and JSON
+    // cannot tell 1.0 from 1: a real-valued key whose value is a whole number (a 1 m radius)
+    // would be swept at 0, 1, 2, ... only. Its value in the sweep's scene is replaced at every
+    // point anyway, so send it nudged off the integer.
+    let scene = state.scene;
+    const value = getKey(scene, key);
+    if (!p.integer && typeof value === 'number' && Number.isInteger(value)) {
+      scene = clone(scene);
+      setKey(scene, key, value === 0 ? 1e-12 : value * (1 + 1e-12));
+    }
     const body = {
-      scene: state.scene, key, from: min, to: max, points, direction: state.direction,
+      scene, key, from: min, to: max, points, direction: state.direction,
     };
     drawChart();
     try {
@@ -655,6 +665,10 @@
     }
     if (finite(currentLambda)) ymax = Math.max(ymax, currentLambda);
     const yTicks = niceTicks(0, ymax > 0 ? ymax : 1, 4);
+    // Headroom: the top gridline is at or above the highest point.
+    if (yTicks.length > 1 && yTicks[yTicks.length - 1] < ymax) {
+      yTicks.push(yTicks[yTicks.length - 1] + (yTicks[1] - yTicks[0]));
+    }
     const ytop = Math.max(yTicks[yTicks.length - 1], ymax > 0 ? ymax : 1);
     const y = (v) => T + (1 - v / ytop) * (H - T - B);
 

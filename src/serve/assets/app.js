@@ -40,6 +40,7 @@
     initial: null,        // {scene, origin} from /api/scene
     scene: null,          // the scene being edited (JSON with the scene file's keys)
     preset: null,         // name of the preset picked, or null for the scene from the command line
+    startPreset: null,    // the preset the start scene is, if it is one (for its slider ranges)
     direction: 'right',
     last: null,           // last successful analysis (the server's object)
     lastOk: false,        // whether the drawing shows the current scene
@@ -56,6 +57,9 @@
   // ---- scene helpers ------------------------------------------------------------------------
 
   const clone = (x) => JSON.parse(JSON.stringify(x));
+  // JSON text with object keys sorted, to compare two scenes.
+  const canonical = (x) => JSON.stringify(x, (k, v) => (v && typeof v === 'object' && !Array.isArray(v)
+    ? Object.fromEntries(Object.keys(v).sort().map((key) => [key, v[key]])) : v));
   const segments = (key) => key.split('.').map((s) => (/^\d+$/.test(s) ? Number(s) : s));
 
   function getKey(obj, key) {
@@ -135,7 +139,8 @@
 
   // The slider's range: the preset's own when it narrows it, else the parameter's.
   function rangeOf(p) {
-    const preset = state.preset && state.shapes.find((s) => s.name === state.preset);
+    const name = state.preset || state.startPreset;
+    const preset = name && state.shapes.find((s) => s.name === name);
     const r = preset && preset.ranges && preset.ranges[p.key];
     if (Array.isArray(r) && r.length === 2 && r[0] < r[1]) return { min: r[0], max: r[1] };
     return { min: p.min, max: p.max };
@@ -664,7 +669,7 @@
       if (finite(r.lambda_upper)) ymax = Math.max(ymax, r.lambda_upper);
     }
     if (finite(currentLambda)) ymax = Math.max(ymax, currentLambda);
-    const yTicks = niceTicks(0, ymax > 0 ? ymax : 1, 4);
+    const yTicks = niceTicks(0, ymax > 0 ? ymax : 1, 5);
     // Headroom: the top gridline is at or above the highest point.
     if (yTicks.length > 1 && yTicks[yTicks.length - 1] < ymax) {
       yTicks.push(yTicks[yTicks.length - 1] + (yTicks[1] - yTicks[0]));
@@ -823,6 +828,9 @@
     state.limits = params.body.limits || {};
     state.initial = { scene: scene.body.scene, origin: scene.body.origin || '' };
     state.scene = clone(scene.body.scene);
+    const same = canonical(state.initial.scene);
+    const twin = state.shapes.find((s) => canonical(s.scene) === same);
+    state.startPreset = twin ? twin.name : null;
     buildShapePicker();
     buildForm();
     for (const b of $('v-direction').querySelectorAll('button')) {

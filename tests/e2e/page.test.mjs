@@ -172,6 +172,18 @@ test('validation errors are shown beside the field they name, and cleared', asyn
       await f.error.waitFor({ state: 'hidden' });
       assert.ok(await page.locator('#v-dl-toml').isEnabled());
     }
+    // The server's own limit (the CLI takes more) is shown the same way, with the limit.
+    const limits = await page.evaluate(async () => (await (await fetch('/api/parameters')).json()).limits);
+    const n = field(page, 'arch.voussoirs');
+    await n.number.fill(String(limits.max_voussoirs + 2));
+    await n.number.press('Enter');
+    await settled(page);
+    await n.error.waitFor({ state: 'visible' });
+    assert.match(await n.error.textContent(), new RegExp(`at most ${limits.max_voussoirs}`));
+    await n.number.fill('32');
+    await n.number.press('Enter');
+    await settled(page);
+    await n.error.waitFor({ state: 'hidden' });
     assertShows(await shown(page), analyze(SCENE), 'after the errors');
   } finally {
     await context.close();
@@ -225,6 +237,14 @@ test('a preset and the direction toggle give the CLI\'s values for that scene', 
     const json = JSON.parse((await download(page, '#v-dl-json')).text);
     assert.equal(json.direction, 'left');
     sameAnalysis(json, cli, 'portal, leftward');
+    // The portal is symmetric: to the left it fails at the multiplier it has to the right,
+    // with the mirror image of its hinges (joint j of J + 1 joints becomes J - j).
+    const right = analyze(file, {}, 'right');
+    assert.ok(Math.abs(json.lambda_lower - right.lambda_lower) <= 1e-9 * right.lambda_lower,
+      `left ${json.lambda_lower}, right ${right.lambda_lower}`);
+    const last = json.joints.length - 1;
+    assert.deepEqual(json.hinges.map((h) => last - h.joint).sort((a, b) => a - b),
+      right.hinges.map((h) => h.joint).sort((a, b) => a - b));
     // The chart of the pier height (1 m, a whole number in JSON) runs over real values.
     const swept = page.waitForResponse((r) => r.url().endsWith('/api/sweep'));
     const h = field(page, 'piers.height');

@@ -393,7 +393,9 @@
   function showError(err) {
     clearErrors();
     const text = err.error || 'The server refused the scene.';
-    if (!showFieldError(err.key, text)) showMessage(err.key ? text + ' (' + err.key + ')' : text);
+    if (!showFieldError(err.key, text)) {
+      showMessage(err.key && !text.includes(err.key) ? text + ' (' + err.key + ')' : text);
+    }
     state.lastOk = false;
     document.body.classList.add('stale');
     $('v-note').textContent = 'The scene has an error: the last valid result is shown, dimmed.';

@@ -48,7 +48,7 @@
   };
 
   // Live analysis: one request in flight, the latest state sent next.
-  const live = { inFlight: false, dirty: false, since: null, changedKey: null };
+  const live = { inFlight: false, dirty: false, since: null };
   // Sweep chart: one request in flight; a new one aborts the old.
   const chart = { sig: null, key: null, rows: null, controller: null, error: null };
 
@@ -406,16 +406,15 @@
 
   function changed(key, eventTime) {
     state.lastKey = key;
-    requestAnalysis(eventTime, key);
+    requestAnalysis(eventTime);
     startSweep(key);
   }
 
-  function requestAnalysis(eventTime, key) {
+  function requestAnalysis(eventTime) {
     // The latency of an update counts from the first field event the drawing does not show
     // yet (eventTime is null for the first load, a preset or the direction: not timed).
     if (live.since === null && eventTime !== null) live.since = eventTime;
     live.dirty = true;
-    live.changedKey = key || live.changedKey;
     pump();
   }
 
@@ -442,10 +441,16 @@
     } catch (e) {
       outcome = { ok: false, body: { error: 'The server did not answer (' + e.message + '). Is `voussoir serve` still running?', key: null } };
     }
-    if (outcome.ok) render(outcome.body, since);
-    else showError(outcome.body);
-    live.inFlight = false;
-    pump();
+    try {
+      if (outcome.ok) render(outcome.body, since);
+      else showError(outcome.body);
+    } catch (e) {
+      showMessage('The page could not show the answer: ' + e.message);
+    } finally {
+      // Whatever happened, the next scene goes out: the page never stops updating.
+      live.inFlight = false;
+      pump();
+    }
   }
 
   async function readJson(response) {
@@ -516,7 +521,12 @@
     status.textContent = STATUS_WORDS[r.status] || String(r.status || '').replace(/_/g, ' ');
     const lambda = $('v-lambda');
     lambda.textContent = fmt(r.lambda_lower, 4);
+    lambda.classList.toggle('none', typeof r.lambda_lower !== 'number');
     lambda.dataset.value = r.lambda_lower === null || r.lambda_lower === undefined ? '' : String(r.lambda_lower);
+    // lambda_c is certified when the bounds meet; otherwise it lies between them.
+    const apart = typeof r.lambda_upper === 'number' && typeof r.lambda_lower === 'number'
+      && !(typeof r.gap === 'number' && r.gap < 1e-6);
+    $('v-lambda-relation').textContent = apart ? '≥' : '=';
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);
     let note = STATUS_NOTES[r.status] || '';
@@ -541,10 +551,11 @@
   }
 
   function baseName() {
-    const s = state.scene || {};
+    // Named after what was analysed (the last answer), not the fields (which may be ahead).
+    const read = (state.last && state.last.scene) || {};
     const name = state.preset || (state.initial && state.initial.origin
       ? state.initial.origin.split(/[\\/]/).pop().replace(/\.toml$/i, '') : 'scene');
-    const t = s.arch && typeof s.arch.thickness === 'number' ? '-t' + s.arch.thickness : '';
+    const t = typeof read.thickness === 'number' ? '-t' + read.thickness : '';
     return (name || 'scene').replace(/[^A-Za-z0-9_.-]+/g, '_') + t;
   }
 
@@ -793,7 +804,7 @@
     state.scene = clone(preset ? preset.scene : state.initial.scene);
     markPreset();
     buildForm();
-    requestAnalysis(null, null);
+    requestAnalysis(null);
     const key = state.lastKey && state.byKey.has(state.lastKey) && fieldRow(state.lastKey)
       ? state.lastKey : 'arch.thickness';
     startSweep(key);
@@ -804,7 +815,7 @@
     for (const b of $('v-direction').querySelectorAll('button')) {
       b.setAttribute('aria-pressed', b.dataset.direction === direction ? 'true' : 'false');
     }
-    requestAnalysis(null, null);
+    requestAnalysis(null);
     if (chart.key) startSweep(chart.key);
   }
 
@@ -847,7 +858,7 @@
     $('v-dl-json').addEventListener('click', () => {
       if (state.last) download(analysisJson(state.last), 'application/json', baseName() + '.json');
     });
-    requestAnalysis(null, null);
+    requestAnalysis(null);
     if (state.byKey.has('arch.thickness')) startSweep('arch.thickness');
   }
 

@@ -456,6 +456,24 @@ fn sweep_rows_are_the_analyses_of_each_value() {
         .collect();
     assert_eq!(values, vec![json!(8), json!(9), json!(10)]);
 
+    // A real-valued key whose value is a whole number (JSON writes 1.0 as 1) stays real.
+    let portal = scene_json("portal.toml");
+    let mut one = portal.clone();
+    one["piers"]["height"] = json!(1);
+    let (status, answer) = post(
+        &s,
+        "/api/sweep",
+        &json!({"scene": one, "key": "piers.height", "from": 1, "to": 2, "points": 5}),
+    );
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let heights: Vec<f64> = answer["rows"]
+        .as_array()
+        .expect("rows")
+        .iter()
+        .map(|r| r["value"].as_f64().expect("height"))
+        .collect();
+    assert_eq!(heights, vec![1.0, 1.25, 1.5, 1.75, 2.0]);
+
     let sweep = |extra: Value| {
         let mut body =
             json!({"scene": scene, "key": "arch.thickness", "from": 0.1, "to": 0.3, "points": 5});

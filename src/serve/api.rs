@@ -465,8 +465,8 @@ pub async fn analyze(
     Ok(Json(JsonValue::Object(out)).into_response())
 }
 
-/// The values of a sweep from `from` to `to` in `points` steps; whole numbers for a key the
-/// scene holds as an integer (voussoirs, courses), without repeats.
+/// The values of a sweep from `from` to `to` in `points` steps; whole numbers, without
+/// repeats, for a whole-number key (voussoirs, courses).
 fn sweep_values(scene: &Scene, key: &str, from: f64, to: f64, points: usize) -> Vec<Toml> {
     let mut current: Option<&Toml> = None;
     if let Some((section, name)) = key.split_once('.') {
@@ -479,7 +479,14 @@ fn sweep_values(scene: &Scene, key: &str, from: f64, to: f64, points: usize) -> 
             from + (to - from) * i as f64 / (points - 1) as f64
         }
     };
-    if matches!(current, Some(Toml::Integer(_))) {
+    // A key a slider describes says itself whether it is whole (JSON writes 1.0 as 1, so the
+    // scene's value alone cannot tell a pier height of 1 m from a count); any other key
+    // follows the type of its value in the scene.
+    let whole = match parameters::SLIDERS.iter().find(|p| p.key == key) {
+        Some(p) => p.integer,
+        None => matches!(current, Some(Toml::Integer(_))),
+    };
+    if whole {
         let mut values: Vec<i64> = (0..points).map(|i| at(i).round() as i64).collect();
         values.dedup();
         values.into_iter().map(Toml::Integer).collect()

@@ -606,18 +606,8 @@
     let points = Math.min(SWEEP_POINTS, maxPoints);
     const { min, max } = rangeOf(p);
     if (p.integer) points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
-    // The server sweeps whole numbers when the scene holds the key as an integer, and JSON
-    // cannot tell 1.0 from 1: a real-valued key whose value is a whole number (a 1 m radius)
-    // would be swept at 0, 1, 2, ... only. Its value in the sweep's scene is replaced at every
-    // point anyway, so send it nudged off the integer.
-    let scene = state.scene;
-    const value = getKey(scene, key);
-    if (!p.integer && typeof value === 'number' && Number.isInteger(value)) {
-      scene = clone(scene);
-      setKey(scene, key, value === 0 ? 1e-12 : value * (1 + 1e-12));
-    }
     const body = {
-      scene, key, from: min, to: max, points, direction: state.direction,
+      scene: state.scene, key, from: min, to: max, points, direction: state.direction,
     };
     drawChart();
     try {

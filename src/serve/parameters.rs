@@ -79,7 +79,11 @@ pub const PRESETS: &[Preset] = &[
         name: "portal",
         label: "Portal (arch on piers)",
         toml: include_str!("../../data/portal.toml"),
-        ranges: &[],
+        ranges: &[
+            ("arch.thickness", 0.05, 0.5),
+            ("piers.height", 0.2, 6.0),
+            ("piers.width", 0.1, 2.0),
+        ],
     },
     Preset {
         name: "loaded_portal",

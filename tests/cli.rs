@@ -87,6 +87,41 @@ fn set_overrides_and_statuses_reach_the_json() {
     assert!(v["lambda_lower"].is_null());
 }
 
+/// `--set` values are applied to the file before it is validated, once: an override can
+/// mend a file that is invalid on its own (a pointed arch needs an even voussoir count), and
+/// the result is the same scene as a valid file with that value.
+#[test]
+fn set_can_mend_a_file_invalid_on_its_own() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let odd = dir.path().join("odd.toml");
+    let text = std::fs::read_to_string(data("pointed.toml")).expect("pointed.toml");
+    assert!(text.contains("voussoirs = 32"));
+    std::fs::write(&odd, text.replace("voussoirs = 32", "voussoirs = 33")).expect("write");
+    let err = voussoir().arg("analyze").arg(&odd).assert().failure();
+    let err = String::from_utf8_lossy(&err.get_output().stderr).to_string();
+    assert!(
+        err.contains("arch.voussoirs") && err.contains("even"),
+        "{err}"
+    );
+    let lambda = |file: &std::path::Path, set: &[&str]| -> serde_json::Value {
+        let mut cmd = voussoir();
+        cmd.arg("analyze").arg(file).arg("--json");
+        for s in set {
+            cmd.args(["--set", s]);
+        }
+        let out = cmd.assert().success();
+        let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+        v["lambda_lower"].clone()
+    };
+    let mended = lambda(&odd, &["arch.voussoirs=12"]);
+    let valid = lambda(
+        std::path::Path::new(&data("pointed.toml")),
+        &["arch.voussoirs=12"],
+    );
+    assert!(mended.as_f64().is_some_and(|l| l > 0.0), "{mended}");
+    assert_eq!(mended, valid);
+}
+
 #[test]
 fn thrust_csv_has_a_row_per_joint() {
     let dir = tempfile::tempdir().expect("tempdir");

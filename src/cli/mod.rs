@@ -64,13 +64,10 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// Read the scene and apply the overrides.
+    /// Read the scene and apply the overrides, validating once (so an override can mend the
+    /// file).
     pub fn load(&self) -> Result<Scene, Error> {
-        let scene = Scene::from_file(&self.scene)?;
-        if self.set.is_empty() {
-            return Ok(scene);
-        }
-        Ok(scene.with_overrides(&self.set)?)
+        Ok(Scene::from_file_with_overrides(&self.scene, &self.set)?)
     }
 }
 

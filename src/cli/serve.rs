@@ -32,15 +32,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         ..Limits::default()
     };
     let state = match &args.scene {
-        Some(path) => {
-            let scene = Scene::from_file(path)?;
-            let scene = if args.set.is_empty() {
-                scene
-            } else {
-                scene.with_overrides(&args.set)?
-            };
-            ServerState::new(scene, limits)
-        }
+        Some(path) => ServerState::new(Scene::from_file_with_overrides(path, &args.set)?, limits),
         None if args.set.is_empty() => ServerState::with_default_scene(limits)?,
         None => ServerState::with_default_scene(limits)?
             .scene

@@ -150,10 +150,11 @@ fn excitation(args: &Args) -> Result<Option<GroundInput>, Error> {
         return Ok(None);
     };
     if !(args.scale.is_finite() && args.scale >= 0.0) {
-        return Err(bad(RecordError::Pulse(format!(
-            "--scale {}: must be a finite number >= 0",
-            args.scale
-        ))));
+        return Err(bad(RecordError::Flag {
+            flag: "--scale".to_string(),
+            value: args.scale.to_string(),
+            message: "must be a finite number >= 0".to_string(),
+        }));
     }
     let vertical = match &args.record_vertical {
         Some(path) => Some(Excitation::Record(

@@ -345,6 +345,17 @@ pub fn run(args: Args) -> Result<String, Error> {
         super::check_output_paths([Some(path)])?;
         return run_pulse_curve(&args, &scene, path);
     }
+    if let Some(path) = args.animation.as_ref().filter(|p| {
+        !p.extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
+    }) {
+        return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {
+            flag: "--animation".to_string(),
+            value: path.display().to_string(),
+            message: "the animation is an HTML page: name the file .html".to_string(),
+        })));
+    }
     if let Some(motion) = excitation(&args)? {
         super::check_output_paths([args.history.as_ref(), args.animation.as_ref()])?;
         return run_dynamic(&args, &scene, &motion);

@@ -150,30 +150,31 @@ pub fn html(d: &DynamicAnalysis, title: &str) -> Option<String> {
     let g = crate::dem::record::STANDARD_GRAVITY;
     let tx = |t: f64| px0 + (px1 - px0) * t / end;
     let ay = |a: f64| 0.5 * (py0 + py1) - 0.5 * (py1 - py0) * a / peak;
+    let pga = peak / 1.15;
     let _ = writeln!(
         svg,
         r##"<rect x="{px0}" y="{py0}" width="{:.1}" height="{:.1}" fill="none" stroke="#999999"/>
 <line x1="{px0}" y1="{zy:.2}" x2="{px1}" y2="{zy:.2}" stroke="#bbbbbb"/>
-<text x="{:.1}" y="{:.1}" text-anchor="end">{:+.3} g</text>
-<text x="{:.1}" y="{:.1}" text-anchor="end">{:+.3} g</text>
-<text x="{:.1}" y="{zy:.2}" text-anchor="end" dominant-baseline="middle">0</text>
+<line x1="{px0}" y1="{top:.2}" x2="{px1}" y2="{top:.2}" stroke="#dddddd" stroke-dasharray="4 4"/>
+<line x1="{px0}" y1="{bottom:.2}" x2="{px1}" y2="{bottom:.2}" stroke="#dddddd" stroke-dasharray="4 4"/>
+<text x="{lx:.1}" y="{top:.2}" text-anchor="end" dominant-baseline="middle">{:+.3} g</text>
+<text x="{lx:.1}" y="{bottom:.2}" text-anchor="end" dominant-baseline="middle">{:+.3} g</text>
+<text x="{lx:.1}" y="{zy:.2}" text-anchor="end" dominant-baseline="middle">0</text>
 <text x="{px0}" y="{:.1}">0 s</text>
 <text x="{px1}" y="{:.1}" text-anchor="end">{end:.2} s</text>
-<text x="{:.1}" y="{:.1}" text-anchor="middle">ground acceleration (time, s)</text>"##,
+<text x="{:.1}" y="{:.1}" text-anchor="middle">time (s)</text>"##,
         px1 - px0,
         py1 - py0,
-        px0 - 6.0,
-        py0 + 10.0,
-        peak / g,
-        px0 - 6.0,
-        py1,
-        -peak / g,
-        px0 - 6.0,
+        pga / g,
+        -pga / g,
         py1 + 18.0,
         py1 + 18.0,
         0.5 * (px0 + px1),
         py1 + 18.0,
         zy = ay(0.0),
+        top = ay(pga),
+        bottom = ay(-pga),
+        lx = px0 - 6.0,
     );
     let mut line = |pick: fn(&Vec2) -> f64, colour: &str, name: &str, row: f64| {
         let pts: Vec<String> = samples
@@ -185,17 +186,27 @@ pub fn html(d: &DynamicAnalysis, title: &str) -> Option<String> {
             r##"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.2"/>
 <text x="{:.1}" y="{:.1}" fill="{colour}">{name}</text>"##,
             pts.join(" "),
-            px0 + 8.0,
-            py0 + 16.0 + 16.0 * row
+            px0 + 190.0 * row,
+            py0 - 8.0
         );
     };
     let mut row = 0.0;
     if horizontal {
-        line(|a| a.x, "#1f77b4", "horizontal (+x)", row);
-        row += 1.0;
+        line(
+            |a| a.x,
+            "#1f77b4",
+            "ground acceleration, horizontal (+x)",
+            row,
+        );
+        row += 1.5;
     }
     if vertical {
-        line(|a| a.y, "#2ca02c", "vertical (up)", row);
+        line(
+            |a| a.y,
+            "#2ca02c",
+            "ground acceleration, vertical (up)",
+            row,
+        );
     }
     let _ = writeln!(
         svg,

@@ -510,8 +510,10 @@ pub const PULSE_CURVE_MAX_G: f64 = 50.0;
 /// The minimum amplitude of one-cycle sine and rectangular pulses (`shapes`) that brings the
 /// scene's blocks down, at each of `periods` (s), to a relative `tolerance`, with
 /// [`crate::dem::dynamic::minimum_amplitude`]. Every search starts at the static collapse
-/// multiplier times g: a pulse of any duration below it cannot form a mechanism of rigid
-/// blocks (a long rectangular pulse tends to it), so the search mostly doubles up from there.
+/// multiplier times g: no pulse below it can form a mechanism of rigid blocks (a long
+/// rectangular pulse tends to it), so the search mostly doubles up from there; the DEM's
+/// elastic contacts, loaded at once by a rectangular pulse, can collapse slightly below it,
+/// and the search then halves down.
 /// `progress` receives the fraction of points done.
 pub fn dem_pulse_curve(
     scene: &Scene,

@@ -1,6 +1,8 @@
 //! Ground-motion input for dynamic DEM runs: acceleration records read from files and
-//! analytic pulses, as one [`GroundMotion`] (horizontal ground acceleration in m/s^2 against
-//! time, linearly interpolated between samples, zero before the start and after the end).
+//! analytic pulses, as one [`GroundMotion`] (ground acceleration in m/s^2 against time,
+//! linearly interpolated between samples, zero before the start and after the end), and the
+//! direction they act in ([`GroundInput`]: one motion along x or y, and optionally a
+//! vertical one with a horizontal one; positive toward +x and upward).
 //!
 //! Formats read:
 //! - PEER NGA `.AT2` files (PEER Ground Motion Database; Ancheta et al. 2014, "NGA-West2

@@ -9,7 +9,7 @@
 
 use voussoir::analysis;
 use voussoir::dem::dynamic::DynamicSettings;
-use voussoir::dem::record::{Excitation, GroundMotion};
+use voussoir::dem::record::{Excitation, GroundInput, GroundMotion};
 use voussoir::scene::Scene;
 
 fn record() -> GroundMotion {
@@ -47,7 +47,7 @@ fn main() {
         "bench",
     )
     .expect("valid scene");
-    let motion = Excitation::Record(record());
+    let motion: GroundInput = Excitation::Record(record()).into();
     let settings = DynamicSettings {
         history_every: None,
         ..DynamicSettings::default()
@@ -58,7 +58,7 @@ fn main() {
         .expect("thread pool");
     println!(
         "DEM under ground motion: semicircle R = 1 m, t/R = 0.15, n = 20, mu = 0.8; {}\n",
-        motion.describe()
+        motion.main.describe()
     );
     println!("| run | collapsed | steps | time step (s) | steps/s | wall s |");
     println!("|---|---|---:|---:|---:|---:|");

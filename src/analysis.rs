@@ -431,30 +431,30 @@ pub fn dem_of(
 #[derive(Debug, Clone)]
 pub struct DynamicAnalysis {
     pub model: Model,
-    pub excitation: crate::dem::record::Excitation,
+    pub ground: crate::dem::record::GroundInput,
     pub result: crate::dem::dynamic::DynamicResult,
 }
 
-/// Run a scene's blocks under the ground motion `excitation` (see [`crate::dem::dynamic`]),
-/// with the scene's `[dem]` knobs.
+/// Run a scene's blocks under the ground motion `ground` (see [`crate::dem::dynamic`]), with
+/// the scene's `[dem]` knobs.
 pub fn dem_dynamic(
     scene: &Scene,
-    excitation: &crate::dem::record::Excitation,
+    ground: &crate::dem::record::GroundInput,
     settings: &crate::dem::dynamic::DynamicSettings,
 ) -> Result<DynamicAnalysis, AnalysisError> {
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
-    let result = crate::dem::dynamic::respond(
+    let result = crate::dem::dynamic::respond_xy(
         &model,
         &params,
-        &|t| excitation.at(t),
-        excitation.duration(),
+        &|t| ground.at(t),
+        ground.duration(),
         settings,
     )
     .map_err(|e| AnalysisError::Other(e.to_string()))?;
     Ok(DynamicAnalysis {
         model,
-        excitation: excitation.clone(),
+        ground: ground.clone(),
         result,
     })
 }
@@ -463,23 +463,120 @@ pub fn dem_dynamic(
 /// to a relative `tolerance`, trying scales up to 1000.
 pub fn dem_ida(
     scene: &Scene,
-    excitation: &crate::dem::record::Excitation,
+    ground: &crate::dem::record::GroundInput,
     settings: &crate::dem::dynamic::DynamicSettings,
     tolerance: f64,
 ) -> Result<(Model, crate::dem::dynamic::IdaResult), AnalysisError> {
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
-    let r = crate::dem::dynamic::ida(
+    let r = crate::dem::dynamic::ida_xy(
         &model,
         &params,
-        &|t| excitation.at(t),
-        excitation.duration(),
+        &|t| ground.at(t),
+        ground.duration(),
         settings,
         tolerance,
         1000.0,
     )
     .map_err(|e| AnalysisError::Other(e.to_string()))?;
     Ok((model, r))
+}
+
+/// One point of a pulse curve: the minimum collapse amplitude of a pulse of one shape and
+/// period, bracketed (m/s^2).
+#[derive(Debug, Clone)]
+pub struct PulseCurvePoint {
+    pub shape: crate::dem::record::PulseShape,
+    pub period: f64,
+    pub bracket: crate::dem::dynamic::AmplitudeBracket,
+}
+
+/// A minimum-amplitude-against-period curve of pulses for a scene.
+#[derive(Debug, Clone)]
+pub struct PulseCurve {
+    pub model: Model,
+    /// The static lower bound the amplitude search starts from (`lambda g`; 0.1 g when there
+    /// is none), and the relative bracket width asked for.
+    pub lambda_lower: Option<f64>,
+    pub start_amplitude: f64,
+    pub tolerance: f64,
+    pub points: Vec<PulseCurvePoint>,
+    pub wall_time_s: f64,
+}
+
+/// The largest pulse amplitude a curve tries, in multiples of g.
+pub const PULSE_CURVE_MAX_G: f64 = 50.0;
+
+/// The minimum amplitude of one-cycle sine and rectangular pulses (`shapes`) that brings the
+/// scene's blocks down, at each of `periods` (s), to a relative `tolerance`, with
+/// [`crate::dem::dynamic::minimum_amplitude`]. Every search starts at the static collapse
+/// multiplier times g: no pulse below it can form a mechanism of rigid blocks (a long
+/// rectangular pulse tends to it), so the search mostly doubles up from there; the DEM's
+/// elastic contacts, loaded at once by a rectangular pulse, can collapse slightly below it,
+/// and the search then halves down.
+/// `progress` receives the fraction of points done.
+pub fn dem_pulse_curve(
+    scene: &Scene,
+    shapes: &[crate::dem::record::PulseShape],
+    periods: &[f64],
+    settings: &crate::dem::dynamic::DynamicSettings,
+    tolerance: f64,
+    progress: &mut dyn FnMut(f64),
+) -> Result<PulseCurve, AnalysisError> {
+    use crate::dem::record::Pulse;
+    let clock = std::time::Instant::now();
+    if let Some(t) = periods.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
+        return Err(crate::error::RecordError::Flag {
+            flag: "--periods".to_string(),
+            value: t.to_string(),
+            message: "a pulse period must be a finite number of seconds > 0".to_string(),
+        }
+        .into());
+    }
+    let model = crate::scene::build(scene)?;
+    let params = dem_parameters(scene, &model)?;
+    let lower = lp::analyse(&model, &StaticSettings::default())?;
+    let lambda_lower = lower.lambda.filter(|l| *l > 0.0);
+    let g = params.gravity;
+    let start = lambda_lower.unwrap_or(0.1) * g;
+    let mut points = Vec::new();
+    let total = (shapes.len() * periods.len()).max(1);
+    for &shape in shapes {
+        for &period in periods {
+            let bracket = crate::dem::dynamic::minimum_amplitude(
+                &model,
+                &params,
+                &|a, t| {
+                    Pulse {
+                        shape,
+                        amplitude: a,
+                        period,
+                    }
+                    .at(t)
+                },
+                period,
+                settings,
+                start,
+                tolerance,
+                PULSE_CURVE_MAX_G * g,
+            )
+            .map_err(|e| AnalysisError::Other(e.to_string()))?;
+            points.push(PulseCurvePoint {
+                shape,
+                period,
+                bracket,
+            });
+            progress(points.len() as f64 / total as f64);
+        }
+    }
+    Ok(PulseCurve {
+        model,
+        lambda_lower,
+        start_amplitude: start,
+        tolerance,
+        points,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    })
 }
 
 /// The DEM's stepping knobs for a scene: the defaults of its geometry, then its `[dem]` table.

@@ -146,6 +146,58 @@ pub fn did_you_mean(word: &str, candidates: &[&str]) -> String {
     closest(word, candidates).map_or(String::new(), |c| format!(" (did you mean `{c}`?)"))
 }
 
+/// What is wrong with a ground-motion input (`dem::record`), and where: the file, the line
+/// and the value read there.
+#[derive(Debug, Error, PartialEq)]
+pub enum RecordError {
+    #[error("{path}: cannot read the record: {message}")]
+    Io { path: PathBuf, message: String },
+    #[error("{path}, line {line}: {message}")]
+    Header {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error("{path}, line {line}: `{token}` is not a finite number")]
+    NotANumber {
+        path: PathBuf,
+        line: usize,
+        token: String,
+    },
+    #[error("{path}, line {line}: the time step DT = {value} must be a finite number > 0")]
+    TimeStep {
+        path: PathBuf,
+        line: usize,
+        value: String,
+    },
+    #[error("{path}, line {line}: NPTS = {declared}, but the data (lines {first_data_line}-{last_data_line}) hold {found} values")]
+    Count {
+        path: PathBuf,
+        line: usize,
+        declared: usize,
+        found: usize,
+        first_data_line: usize,
+        last_data_line: usize,
+    },
+    #[error("{path}, line {line}: {message}")]
+    Data {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error("{path}: {message}")]
+    Empty { path: PathBuf, message: String },
+    #[error("pulse: {0}")]
+    Pulse(String),
+    /// A command-line value of a ground motion (`--scale`, `--component`, ...).
+    #[error("{flag} {value}: {message}")]
+    Flag {
+        flag: String,
+        value: String,
+        message: String,
+    },
+}
+
 /// A failure of an analysis that is not a physical answer (those are statuses, not errors).
 #[derive(Debug, Error)]
 pub enum AnalysisError {
@@ -157,6 +209,9 @@ pub enum AnalysisError {
     Assembly(String),
     #[error("{0}")]
     Scene(#[from] SceneError),
+    /// A ground-motion record or pulse that cannot be read or used.
+    #[error(transparent)]
+    Record(#[from] RecordError),
     #[error("{0}")]
     Other(String),
 }

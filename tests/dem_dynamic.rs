@@ -286,3 +286,112 @@ fn cli_runs_records_and_pulses() {
         "{err}"
     );
 }
+
+/// A vertical ground acceleration a_v (upward positive) acts on the block as the body force
+/// -m a_v: the effective gravity is g + a_v, and with no horizontal force nothing turns the
+/// block. While g + a_v > 0 the ground keeps pushing up on it, so it never leaves the ground
+/// (only the contact springs breathe); past a_v = -g (the ground falling faster than g) it
+/// floats. Ramped in over 0.1 s, held 1 s; and one sine cycle of 0.9 g over 0.5 s.
+#[test]
+fn vertical_acceleration_below_g_never_uplifts() {
+    let (b, h) = (0.2, 1.0);
+    let m = block(b, h);
+    let p = IntegrationParameters::for_model(&m);
+    let settings = DynamicSettings {
+        tail: 0.5,
+        history_every: None,
+        frames_every: Some(0.005),
+        ..Default::default()
+    };
+    // Largest rise of the centroid and largest rotation over the run.
+    let run = |ground: &dyn Fn(f64) -> Vec2, duration: f64| {
+        let r = dynamic::respond_xy(&m, &p, ground, duration, &settings).expect("run");
+        let y0 = r.start[0].0.y;
+        let rise = r
+            .frames
+            .iter()
+            .map(|f| f.blocks[0].0.y - y0)
+            .fold(f64::NEG_INFINITY, f64::max);
+        (r, rise)
+    };
+    // The block stands on its two base corners, each pressed into the ground by the spring
+    // overlap W / (2 kn) under its weight (g + a_v scales it): the centroid can rise by less
+    // than that while the corners still touch, and leaves the ground when it rises more.
+    let overlap = 0.5 * m.assembly.blocks[0].weight / p.normal_stiffness;
+    for a_v in [-0.9 * G, 0.9 * G] {
+        let (r, rise) = run(&|t: f64| Vec2::new(0.0, a_v * (t / 0.1).min(1.0)), 1.1);
+        eprintln!(
+            "a_v = {:+.2} g held: rise {rise:.3e} m (overlap {overlap:.3e} m), peak rotation {:.3e} rad",
+            a_v / G,
+            r.peak_rotation
+        );
+        assert!(!r.collapsed);
+        assert!(rise < overlap, "rose {rise} m: the corners left the ground");
+        assert!(r.peak_rotation < 1e-9, "{}", r.peak_rotation);
+    }
+    let cycle = Pulse::new(PulseShape::Sine, 0.9 * G, 0.5).expect("pulse");
+    let (r, rise) = run(&|t: f64| Vec2::new(0.0, cycle.at(t)), 0.5);
+    eprintln!(
+        "sine 0.9 g: rise {rise:.3e} m, peak rotation {:.3e}",
+        r.peak_rotation
+    );
+    assert!(!r.collapsed);
+    assert!(rise < overlap, "rose {rise} m: the corners left the ground");
+    // Past -g the ground falls away from the block: it rises relative to the ground as
+    // (-a_v - g) t^2 / 2 once the springs have let go.
+    let a_v = -1.2 * G;
+    let (_, rise) = run(&|t: f64| Vec2::new(0.0, a_v * (t / 0.1).min(1.0)), 0.5);
+    eprintln!("a_v = -1.2 g: rise {rise:.3e} m");
+    assert!(rise > 100.0 * overlap, "rose only {rise} m");
+}
+
+/// With a simultaneous vertical acceleration a_v (upward positive) the block is loaded by
+/// m (g + a_v) down and m a_h sideways: moments about the far base corner, m a_h h/2 against
+/// m (g + a_v) b/2, put the uplift at |a_h| = (g + a_v) tan(alpha). Both ramped in over 0.1 s,
+/// held; the same +-5 % as the horizontal test (docs/dem.md), at a_v = +-0.3 g.
+#[test]
+fn uplift_under_simultaneous_vertical_acceleration() {
+    let (b, h) = (0.2, 1.0);
+    let m = block(b, h);
+    let alpha = (b / h).atan();
+    let p = IntegrationParameters::for_model(&m);
+    let settings = DynamicSettings {
+        tail: 0.0,
+        history_every: None,
+        ..Default::default()
+    };
+    for a_v in [0.3 * G, -0.3 * G] {
+        let threshold = (G + a_v) * alpha.tan();
+        let run = |f: f64| {
+            let a_h = f * threshold;
+            dynamic::respond_xy(
+                &m,
+                &p,
+                &|t: f64| Vec2::new(a_h, a_v) * (t / 0.1).min(1.0),
+                3.0,
+                &settings,
+            )
+            .expect("run")
+        };
+        let (below, above) = (run(0.95), run(1.05));
+        eprintln!(
+            "a_v = {:+.1} g: threshold {threshold:.4} m/s^2; 0.95: peak rotation {:.3e}; 1.05: collapsed {} at {:?}",
+            a_v / G,
+            below.peak_rotation,
+            above.collapsed,
+            above.collapse_time
+        );
+        assert!(!below.collapsed);
+        assert!(
+            below.peak_rotation < 1e-3 * alpha,
+            "{}",
+            below.peak_rotation
+        );
+        assert!(
+            above.collapsed,
+            "a_v = {a_v}: no uplift at 1.05 (g + a_v) tan(alpha)"
+        );
+        // Not the horizontal-only threshold: at a_v = +0.3 g, 1.05 (g + a_v) tan(alpha) is
+        // above it, at -0.3 g below it, and the block follows the combined one.
+    }
+}

@@ -266,3 +266,24 @@ fn files_are_read_by_their_extension() {
     assert!(matches!(e, RecordError::Io { .. }));
     assert!(e.to_string().contains("none.at2"));
 }
+
+/// A bad record reaches the analysis layer's error as itself (`AnalysisError::Record`), not
+/// as a string: a caller can match the file, the line and the value, and the message is the
+/// record's own, word for word.
+#[test]
+fn record_errors_stay_typed_in_the_analysis_error() {
+    use voussoir::error::AnalysisError;
+    let text = WEST2.replace("-.4000000E-02", "-.4ooo000E-02");
+    let e = at2(&text).expect_err("bad sample");
+    let message = e.to_string();
+    let a: AnalysisError = e.into();
+    assert_eq!(a.to_string(), message);
+    match a {
+        AnalysisError::Record(RecordError::NotANumber { path, line, token }) => {
+            assert_eq!(path, Path::new("test.AT2"));
+            assert_eq!(line, 5);
+            assert_eq!(token, "-.4ooo000E-02");
+        }
+        other => panic!("not a typed record error: {other:?}"),
+    }
+}

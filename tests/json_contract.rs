@@ -430,3 +430,107 @@ fn load_fields_carry_the_loads_as_read() {
     );
     assert!((s - (w + 10000.0)).abs() <= 1e-6 * s, "seismic {s}");
 }
+
+/// Issue 15: the dynamic run, its incremental dynamic analysis and the pulse curve (a single
+/// block 0.2 x 1 under short pulses, so the runs take milliseconds).
+#[test]
+fn dynamic_fields() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("block.toml");
+    std::fs::write(
+        &scene,
+        "[blocks]\npolygons = [[[-0.1, 0.0], [0.1, 0.0], [0.1, 1.0], [-0.1, 1.0]]]\n[material]\nfriction = \"inf\"\n",
+    )
+    .expect("scene");
+    let run = |args: &[&str]| -> serde_json::Value {
+        let out = voussoir()
+            .args(["dem", "--json"])
+            .args(args)
+            .arg(&scene)
+            .assert()
+            .success();
+        serde_json::from_slice(&out.get_output().stdout).expect("one JSON object")
+    };
+    let pulse = ["--pulse", "rect", "--amplitude", "0.1", "--period", "0.2"];
+    let v = run(&pulse);
+    has_all(
+        &v,
+        &[
+            "status",
+            "excitation",
+            "pga",
+            "duration",
+            "collapse_time",
+            "control_block",
+            "peak_displacement",
+            "peak_rotation",
+            "residual_displacement",
+            "residual_rotation",
+            "steps",
+            "time_step",
+            "wall_time_s",
+            "scene",
+            // Added with the vertical component.
+            "component",
+            "vertical_excitation",
+            "pga_vertical",
+        ],
+        "dem --pulse",
+    );
+    let mut ida = pulse.to_vec();
+    ida.extend(["--ida", "--tolerance", "0.1"]);
+    let v = run(&ida);
+    has_all(
+        &v,
+        &[
+            "excitation",
+            "pga",
+            "scale_survives",
+            "scale_collapses",
+            "collapse_pga",
+            "runs",
+            "steps",
+            "wall_time_s",
+            "tolerance",
+            "bracket_width",
+            "component",
+            "vertical_excitation",
+            "pga_vertical",
+            "collapse_pga_vertical",
+        ],
+        "dem --ida",
+    );
+    let svg = dir.path().join("curve.svg");
+    let v = run(&[
+        "--pulse-curve",
+        svg.to_str().expect("path"),
+        "--periods",
+        "0.2",
+        "--tolerance",
+        "0.1",
+    ]);
+    has_all(
+        &v,
+        &[
+            "lambda_lower",
+            "start_amplitude",
+            "tolerance",
+            "points",
+            "wall_time_s",
+        ],
+        "dem --pulse-curve",
+    );
+    for p in v["points"].as_array().expect("points") {
+        has_all(
+            p,
+            &[
+                "shape",
+                "period",
+                "amplitude_survives",
+                "amplitude_collapses",
+                "runs",
+            ],
+            "dem --pulse-curve points",
+        );
+    }
+}

@@ -1,11 +1,14 @@
 //! `voussoir dem`: the collapse multiplier bracketed by discrete-element runs.
 
-use super::{json, progress_bar, write_svg, SceneArgs};
+use super::{json, progress_bar, write_chart, write_svg, write_text, SceneArgs};
 use voussoir::analysis::{self, DemOptions};
 use voussoir::dem;
-use voussoir::dem::record::{self, AccelUnit, Excitation, Pulse, PulseShape};
-use voussoir::error::Error;
+use voussoir::dem::record::{
+    self, AccelUnit, Component, Excitation, GroundInput, Pulse, PulseShape, RecordError,
+};
+use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
+use voussoir::thrustline::chart::{Chart, Series};
 use voussoir::thrustline::svg::{self, Drawing};
 
 #[derive(clap::Args)]
@@ -56,9 +59,47 @@ pub struct Args {
     #[arg(long)]
     ida: bool,
     /// Write the control block's time history (time, ground acceleration, displacement,
-    /// rotation) to this CSV file
+    /// rotation, vertical ground acceleration) to this CSV file
     #[arg(long, value_name = "FILE")]
     history: Option<std::path::PathBuf>,
+    /// Direction the --record or --pulse motion acts in: x (horizontal, toward +x for a
+    /// positive acceleration) or y (vertical, upward)
+    #[arg(long, value_enum, default_value = "x")]
+    component: ComponentArg,
+    /// A vertical ground-acceleration record acting together with the horizontal --record or
+    /// --pulse (upward positive; same --units, --dt and --scale)
+    #[arg(long, value_name = "FILE", conflicts_with = "pulse_curve")]
+    record_vertical: Option<std::path::PathBuf>,
+    /// Free motion after the ground stops (s), so a block still moving can come back or fall
+    #[arg(long, default_value_t = 2.0)]
+    tail: f64,
+    /// Write an animation of the blocks under the ground motion, with the ground acceleration
+    /// plotted under them, to this self-contained HTML page
+    #[arg(long, value_name = "FILE.html", conflicts_with = "ida")]
+    animation: Option<std::path::PathBuf>,
+    /// Find the minimum collapse amplitude of sine and rectangular pulses against their
+    /// period (to --tolerance) and draw it to this SVG file (the numbers go to the CSV file
+    /// of the same name)
+    #[arg(long, value_name = "FILE.svg", conflicts_with_all = ["record", "pulse", "ida", "animation"])]
+    pulse_curve: Option<std::path::PathBuf>,
+    /// Pulse periods (s) of --pulse-curve, comma-separated
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.1,0.15,0.25,0.4,0.6,1,1.5,2.5"
+    )]
+    periods: Vec<f64>,
+    /// Pulse shapes of --pulse-curve
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "sine,rect")]
+    shapes: Vec<PulseArg>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ComponentArg {
+    /// Horizontal
+    X,
+    /// Vertical
+    Y,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -79,49 +120,179 @@ enum UnitsArg {
     Cms2,
 }
 
-fn excitation(args: &Args) -> Result<Option<Excitation>, Error> {
+fn shape(p: PulseArg) -> PulseShape {
+    match p {
+        PulseArg::Sine => PulseShape::Sine,
+        PulseArg::Rect => PulseShape::Rect,
+    }
+}
+
+fn excitation(args: &Args) -> Result<Option<GroundInput>, Error> {
     let unit = match args.units {
         UnitsArg::G => AccelUnit::G,
         UnitsArg::Ms2 => AccelUnit::MetersPerSecondSquared,
         UnitsArg::Cms2 => AccelUnit::CentimetersPerSecondSquared,
     };
-    let bad = |e: record::RecordError| {
-        Error::Analysis(voussoir::error::AnalysisError::Other(e.to_string()))
-    };
+    let bad = |e: RecordError| Error::Analysis(AnalysisError::Record(e));
     let motion = if let Some(path) = &args.record {
         Excitation::Record(record::read(path, unit, args.dt).map_err(bad)?)
-    } else if let (Some(shape), Some(a), Some(t)) = (args.pulse, args.amplitude, args.period) {
-        let shape = match shape {
-            PulseArg::Sine => PulseShape::Sine,
-            PulseArg::Rect => PulseShape::Rect,
-        };
-        Excitation::Pulse(Pulse::new(shape, a * unit.factor(), t).map_err(bad)?)
+    } else if let (Some(p), Some(a), Some(t)) = (args.pulse, args.amplitude, args.period) {
+        Excitation::Pulse(Pulse::new(shape(p), a * unit.factor(), t).map_err(bad)?)
     } else {
+        if let Some(path) = &args.record_vertical {
+            return Err(bad(RecordError::Flag {
+                flag: "--record-vertical".to_string(),
+                value: path.display().to_string(),
+                message: "acts together with a horizontal --record or --pulse: give one"
+                    .to_string(),
+            }));
+        }
         return Ok(None);
     };
     if !(args.scale.is_finite() && args.scale >= 0.0) {
-        return Err(bad(record::RecordError::Pulse(format!(
-            "--scale {}: must be a finite number >= 0",
-            args.scale
-        ))));
+        return Err(bad(RecordError::Flag {
+            flag: "--scale".to_string(),
+            value: args.scale.to_string(),
+            message: "must be a finite number >= 0".to_string(),
+        }));
     }
-    Ok(Some(motion.scaled(args.scale)))
+    let vertical = match &args.record_vertical {
+        Some(path) => Some(Excitation::Record(
+            record::read(path, unit, args.dt).map_err(bad)?,
+        )),
+        None => None,
+    };
+    let component = match args.component {
+        ComponentArg::X => Component::X,
+        ComponentArg::Y => Component::Y,
+    };
+    let ground = GroundInput::new(motion, component, vertical).map_err(bad)?;
+    Ok(Some(ground.scaled(args.scale)))
+}
+
+fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
+    if !(args.tail.is_finite() && args.tail >= 0.0) {
+        return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {
+            flag: "--tail".to_string(),
+            value: args.tail.to_string(),
+            message: "must be a finite number of seconds >= 0".to_string(),
+        })));
+    }
+    Ok(dem::dynamic::DynamicSettings {
+        tail: args.tail,
+        ..Default::default()
+    })
+}
+
+/// The most frames an animation holds (25 per second of simulated time up to this).
+const MAX_FRAMES: usize = 1500;
+
+fn run_pulse_curve(
+    args: &Args,
+    scene: &voussoir::scene::Scene,
+    path: &std::path::Path,
+) -> Result<String, Error> {
+    let shapes: Vec<PulseShape> = args.shapes.iter().map(|&p| shape(p)).collect();
+    let total = shapes.len() * args.periods.len();
+    let bar = progress_bar(total as u64, "pulse curve");
+    let curve = analysis::dem_pulse_curve(
+        scene,
+        &shapes,
+        &args.periods,
+        &settings(args)?,
+        args.tolerance,
+        &mut |f| bar.set_position((f * total as f64).round() as u64),
+    )?;
+    bar.finish_and_clear();
+    let rep = report::PulseCurveReport::new(&curve);
+    let csv_path = path.with_extension("csv");
+    let err = |e: &dyn std::fmt::Display| Error::Output {
+        path: csv_path.clone(),
+        message: e.to_string(),
+    };
+    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| err(&e))?;
+    w.write_record([
+        "shape",
+        "period_s",
+        "amplitude_survives_m_s2",
+        "amplitude_collapses_m_s2",
+        "amplitude_collapses_g",
+        "runs",
+    ])
+    .map_err(|e| err(&e))?;
+    for p in &rep.points {
+        w.write_record([
+            p.shape.to_string(),
+            format!("{}", p.period),
+            format!("{:.6}", p.amplitude_survives),
+            p.amplitude_collapses
+                .map_or(String::new(), |a| format!("{a:.6}")),
+            p.amplitude_collapses.map_or(String::new(), |a| {
+                format!("{:.6}", a / record::STANDARD_GRAVITY)
+            }),
+            p.runs.to_string(),
+        ])
+        .map_err(|e| err(&e))?;
+    }
+    w.flush().map_err(|e| err(&e))?;
+    let series = args
+        .shapes
+        .iter()
+        .map(|&p| {
+            let name = match p {
+                PulseArg::Sine => "sine",
+                PulseArg::Rect => "rect",
+            };
+            Series::new(
+                format!("{name} pulse"),
+                rep.points.iter().filter(|q| q.shape == name).map(|q| {
+                    (
+                        q.period,
+                        q.amplitude_collapses.map(|a| a / record::STANDARD_GRAVITY),
+                    )
+                }),
+            )
+        })
+        .collect();
+    let chart = Chart {
+        title: format!(
+            "Minimum collapse amplitude of one pulse (DEM, to {:.1}%): {}",
+            100.0 * args.tolerance,
+            scene.origin
+        ),
+        x_label: "pulse period T (s)".to_string(),
+        y_label: "amplitude (g)".to_string(),
+        legend_title: Some("pulse".to_string()),
+        series,
+    };
+    write_chart(path, &chart)?;
+    Ok(if args.json {
+        json(&rep)
+    } else {
+        report::pulse_curve_summary(scene, &curve.model, &rep)
+    })
 }
 
 fn run_dynamic(
     args: &Args,
     scene: &voussoir::scene::Scene,
-    motion: &Excitation,
+    motion: &GroundInput,
 ) -> Result<String, Error> {
-    let settings = dem::dynamic::DynamicSettings::default();
+    let mut settings = settings(args)?;
     if args.ida {
         let (model, r) = analysis::dem_ida(scene, motion, &settings, args.tolerance)?;
-        let rep = report::IdaReport::new(motion, &r);
+        let rep = report::IdaReport::new(motion, &r, args.tolerance);
         return Ok(if args.json {
             json(&rep)
         } else {
             report::ida_summary(scene, &model, &rep)
         });
+    }
+    if args.animation.is_some() {
+        settings.frames_every = Some(report::animation::frame_interval(
+            motion.duration() + settings.tail,
+            MAX_FRAMES,
+        ));
     }
     let d = analysis::dem_dynamic(scene, motion, &settings)?;
     if let Some(path) = &args.history {
@@ -135,6 +306,7 @@ fn run_dynamic(
             "ground_acceleration_m_s2",
             "displacement_m",
             "rotation_rad",
+            "ground_acceleration_vertical_m_s2",
         ])
         .map_err(|e| err(&e))?;
         for h in &d.result.history {
@@ -143,12 +315,23 @@ fn run_dynamic(
                 format!("{:.6e}", h.ground_acceleration),
                 format!("{:.9e}", h.displacement),
                 format!("{:.9e}", h.rotation),
+                format!("{:.6e}", h.ground_acceleration_vertical),
             ])
             .map_err(|e| err(&e))?;
         }
         w.flush().map_err(|e| err(&e))?;
     }
     let rep = report::DynamicReport::new(scene, &d);
+    if let Some(path) = &args.animation {
+        let title = format!("{} — {}", scene.origin, report::dynamic_headline(&rep));
+        let page = report::animation::html(&d, &title).ok_or_else(|| Error::Output {
+            path: path.clone(),
+            message:
+                "the structure does not stand under its permanent loads: nothing moves to animate"
+                    .to_string(),
+        })?;
+        write_text(path, &page)?;
+    }
     Ok(if args.json {
         json(&rep)
     } else {
@@ -158,9 +341,34 @@ fn run_dynamic(
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    if let Some(path) = &args.pulse_curve {
+        super::check_output_paths([Some(path)])?;
+        return run_pulse_curve(&args, &scene, path);
+    }
+    if let Some(path) = args.animation.as_ref().filter(|p| {
+        !p.extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
+    }) {
+        return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {
+            flag: "--animation".to_string(),
+            value: path.display().to_string(),
+            message: "the animation is an HTML page: name the file .html".to_string(),
+        })));
+    }
     if let Some(motion) = excitation(&args)? {
-        super::check_output_paths([args.history.as_ref()])?;
+        super::check_output_paths([args.history.as_ref(), args.animation.as_ref()])?;
         return run_dynamic(&args, &scene, &motion);
+    }
+    if args.animation.is_some() {
+        return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {
+            flag: "--animation".to_string(),
+            value: args
+                .animation
+                .as_ref()
+                .map_or(String::new(), |p| p.display().to_string()),
+            message: "animates a dynamic run: give a --record or a --pulse".to_string(),
+        })));
     }
     super::check_output_paths([args.svg.as_ref()])?;
     let options = DemOptions {

@@ -1,8 +1,14 @@
-//! Dynamic response of the blocks to a horizontal ground acceleration `a_g(t)` (a record or a
-//! pulse, [`super::record`]): after settling under the permanent loads, the ground motion acts
-//! as the equivalent body force `-m a_g(t)` on every seismic mass (the blocks' equations
-//! written in the frame of the moving ground, where the ground stays fixed), which is the
-//! model's seismic load with `lambda(t) = -a_g(t) / g` along +x.
+//! Dynamic response of the blocks to a ground acceleration `a_g(t) = (a_h(t), a_v(t))` (a
+//! record or a pulse, [`super::record`]): after settling under the permanent loads, the ground
+//! motion acts as the equivalent body force `-m a_g(t)` on every seismic mass (the blocks'
+//! equations written in the frame of the moving ground, where the ground stays fixed), which
+//! is the model's seismic load at unit multiplier along the direction `-a_g(t) / g`.
+//!
+//! Sign convention: `a_h > 0` accelerates the ground toward +x (the body force then pushes the
+//! blocks toward -x), `a_v > 0` accelerates it upward (the body force `-m a_v` adds to the
+//! weight: the effective gravity is `g + a_v`). A block of slenderness `alpha` on the ground
+//! therefore uplifts when `|a_h| > (g + a_v) tan(alpha)`, and a vertical motion alone lifts
+//! nothing while `a_v > -g`.
 //!
 //! No artificial damping acts during the motion: Cundall's local damping, used to settle, is
 //! switched off, and energy is lost only where the contact law loses it, in the contact
@@ -29,6 +35,9 @@ pub struct DynamicSettings {
     pub control_block: Option<usize>,
     /// Keep a time history sample every this many seconds; `None` keeps none. Default 0.01 s.
     pub history_every: Option<f64>,
+    /// Keep the placement of every block every this many seconds (frames of an animation);
+    /// `None` keeps none. Default `None`.
+    pub frames_every: Option<f64>,
 }
 
 impl Default for DynamicSettings {
@@ -38,6 +47,7 @@ impl Default for DynamicSettings {
             collapse_share: 0.25,
             control_block: None,
             history_every: Some(0.01),
+            frames_every: None,
         }
     }
 }
@@ -47,11 +57,24 @@ impl Default for DynamicSettings {
 pub struct Sample {
     /// Time since the ground started moving (s).
     pub time: f64,
-    /// Ground acceleration (m/s^2).
+    /// Horizontal ground acceleration (m/s^2, toward +x).
     pub ground_acceleration: f64,
+    /// Vertical ground acceleration (m/s^2, upward).
+    pub ground_acceleration_vertical: f64,
     /// Control block: horizontal displacement of its centroid (m) and rotation (rad).
     pub displacement: f64,
     pub rotation: f64,
+}
+
+/// Every block's placement at one instant of a dynamic run (a frame of an animation).
+#[derive(Debug, Clone)]
+pub struct Frame {
+    /// Time since the ground started moving (s).
+    pub time: f64,
+    /// Ground acceleration (m/s^2): horizontal (toward +x), vertical (upward).
+    pub ground: Vec2,
+    /// Per assembly block: centroid position and rotation (rad) of the simulated body.
+    pub blocks: Vec<(Vec2, f64)>,
 }
 
 /// The outcome of a dynamic run.
@@ -69,6 +92,13 @@ pub struct DynamicResult {
     pub residual_displacement: f64,
     pub residual_rotation: f64,
     pub history: Vec<Sample>,
+    /// Every block's placement, every `frames_every` seconds and at the end (empty unless
+    /// asked), and the simulated polygons (world vertices) and placements the motion started
+    /// from: a frame moves start vertex `v` of block `i` to
+    /// `blocks[i].0 + R(blocks[i].1 - start[i].1) (v - start[i].0)`.
+    pub frames: Vec<Frame>,
+    pub start: Vec<(Vec2, f64)>,
+    pub start_polygons: Vec<Vec<Vec2>>,
     pub steps: u64,
     pub time_step: f64,
     pub wall_time_s: f64,
@@ -80,6 +110,24 @@ pub fn respond(
     model: &Model,
     params: &IntegrationParameters,
     ground: &dyn Fn(f64) -> f64,
+    duration: f64,
+    settings: &DynamicSettings,
+) -> Result<DynamicResult, DemError> {
+    respond_xy(
+        model,
+        params,
+        &|t| Vec2::new(ground(t), 0.0),
+        duration,
+        settings,
+    )
+}
+
+/// Run `model` under the ground acceleration `ground(t) = (a_h, a_v)` (m/s^2; toward +x and
+/// upward, see the module's sign convention) for `duration` seconds plus `settings.tail`.
+pub fn respond_xy(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &dyn Fn(f64) -> Vec2,
     duration: f64,
     settings: &DynamicSettings,
 ) -> Result<DynamicResult, DemError> {
@@ -116,6 +164,9 @@ pub fn respond(
         residual_displacement: 0.0,
         residual_rotation: 0.0,
         history: Vec::new(),
+        frames: Vec::new(),
+        start: Vec::new(),
+        start_polygons: Vec::new(),
         steps: settle.steps,
         time_step: world.dt,
         wall_time_s: 0.0,
@@ -125,30 +176,46 @@ pub fn respond(
         return Ok(result);
     }
     let start: Vec<(Vec2, f64)> = world.bodies.iter().map(|b| (b.pos, b.angle)).collect();
+    result.start = start[..nb].to_vec();
+    result.start_polygons = world.bodies[..nb].iter().map(|b| b.world.clone()).collect();
     let size = model.assembly.size();
     let g = params.gravity;
-    // The ground motion is horizontal: the body force has no vertical part whatever the
-    // scene's vertical seismic ratio (which belongs to the equivalent static load).
-    world.seismic_direction = Vec2::new(1.0, 0.0);
+    // The seismic forces act at unit multiplier along `-a_g / g`, set every step: the body
+    // force follows the ground motion alone, whatever the scene's vertical seismic ratio
+    // (which belongs to the equivalent static load).
+    world.load = Load {
+        gravity: 1.0,
+        lambda: 1.0,
+    };
     world.local_damping = 0.0;
     world.time = 0.0;
     let end = duration + settings.tail;
     let mut moved = vec![0.0_f64; nb];
     let mut next_sample = 0.0;
+    let mut next_frame = 0.0;
     let steps0 = world.steps;
-    let sample = |w: &World, c: usize, t: f64, a: f64| Sample {
+    let sample = |w: &World, c: usize, t: f64, a: Vec2| Sample {
         time: t,
-        ground_acceleration: a,
+        ground_acceleration: a.x,
+        ground_acceleration_vertical: a.y,
         displacement: w.bodies[c].pos.x - start[c].0.x,
         rotation: w.bodies[c].angle - start[c].1,
+    };
+    let frame = |w: &World, t: f64, a: Vec2| Frame {
+        time: t,
+        ground: a,
+        blocks: w.bodies[..nb].iter().map(|b| (b.pos, b.angle)).collect(),
     };
     while world.time < end {
         let t = world.time;
         let a = ground(t);
-        world.load = Load {
-            gravity: 1.0,
-            lambda: -a / g,
-        };
+        world.seismic_direction = -a / g;
+        if let Some(every) = settings.frames_every {
+            if t >= next_frame {
+                result.frames.push(frame(&world, t, a));
+                next_frame += every;
+            }
+        }
         if let Some(every) = settings.history_every {
             if t >= next_sample {
                 let c = settings.control_block.unwrap_or_else(|| argmax(&moved));
@@ -185,6 +252,11 @@ pub fn respond(
     result.residual_rotation = last.rotation;
     if settings.history_every.is_some() {
         result.history.push(last);
+    }
+    if settings.frames_every.is_some() {
+        result
+            .frames
+            .push(frame(&world, world.time, ground(world.time)));
     }
     result.steps += world.steps - steps0;
     result.wall_time_s = clock.elapsed().as_secs_f64();
@@ -228,6 +300,28 @@ pub fn ida(
     tolerance: f64,
     max_scale: f64,
 ) -> Result<IdaResult, DemError> {
+    ida_xy(
+        model,
+        params,
+        &|t| Vec2::new(ground(t), 0.0),
+        duration,
+        settings,
+        tolerance,
+        max_scale,
+    )
+}
+
+/// [`ida`] of a ground motion with horizontal and vertical components `(a_h, a_v)`, both
+/// scaled alike.
+pub fn ida_xy(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &dyn Fn(f64) -> Vec2,
+    duration: f64,
+    settings: &DynamicSettings,
+    tolerance: f64,
+    max_scale: f64,
+) -> Result<IdaResult, DemError> {
     let clock = Instant::now();
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
         return Err(DemError::Settings(format!(
@@ -236,6 +330,7 @@ pub fn ida(
     }
     let quiet = DynamicSettings {
         history_every: None,
+        frames_every: None,
         ..settings.clone()
     };
     let mut out = IdaResult {
@@ -255,7 +350,7 @@ pub fn ida(
         } else if scale > max_scale {
             break;
         }
-        let r = respond(model, params, &|t| scale * ground(t), duration, &quiet)?;
+        let r = respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)?;
         out.steps += r.steps;
         if r.cannot_stand {
             return Err(DemError::Settings(
@@ -273,5 +368,95 @@ pub fn ida(
         }
     }
     out.wall_time_s = clock.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The smallest amplitude of a pulse that brings the structure down, bracketed.
+#[derive(Debug, Clone)]
+pub struct AmplitudeBracket {
+    /// Largest amplitude a run survived (0: none tried) and smallest one that collapsed
+    /// (`None`: none up to the largest amplitude tried), m/s^2.
+    pub survives: f64,
+    pub collapses: Option<f64>,
+    /// Amplitudes run, with whether each collapsed.
+    pub runs: Vec<(f64, bool)>,
+    pub steps: u64,
+}
+
+/// The minimum collapse amplitude of the pulse `pulse(a, t)` (the ground acceleration at time
+/// `t` of the pulse of amplitude `a`, horizontal), lasting `duration` s: from `start`, the
+/// amplitude is doubled until a run collapses or halved until one survives, then bisected
+/// until `collapses - survives <= tolerance * collapses`; it gives up above `max_amplitude`.
+/// As with [`ida`], collapse need not be monotonic in the amplitude: this is the first
+/// bracket found.
+#[allow(clippy::too_many_arguments)]
+pub fn minimum_amplitude(
+    model: &Model,
+    params: &IntegrationParameters,
+    pulse: &dyn Fn(f64, f64) -> f64,
+    duration: f64,
+    settings: &DynamicSettings,
+    start: f64,
+    tolerance: f64,
+    max_amplitude: f64,
+) -> Result<AmplitudeBracket, DemError> {
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+        return Err(DemError::Settings(format!(
+            "amplitude tolerance = {tolerance}: must be > 0 and < 1"
+        )));
+    }
+    if !(start.is_finite() && start > 0.0 && max_amplitude >= start) {
+        return Err(DemError::Settings(format!(
+            "starting amplitude {start} m/s^2: must be > 0 and at most {max_amplitude}"
+        )));
+    }
+    let quiet = DynamicSettings {
+        history_every: None,
+        frames_every: None,
+        ..settings.clone()
+    };
+    let mut out = AmplitudeBracket {
+        survives: 0.0,
+        collapses: None,
+        runs: Vec::new(),
+        steps: 0,
+    };
+    let mut a = start;
+    // Doubling up from `start` to `max_amplitude`, or halving down to 2^-30 start, then
+    // bisection to `tolerance`: the loop ends long before this bound.
+    for _ in 0..100 {
+        match out.collapses {
+            Some(hi) => {
+                if hi - out.survives <= tolerance * hi {
+                    break;
+                }
+                if out.survives > 0.0 {
+                    a = 0.5 * (out.survives + hi);
+                } else if hi < start * 2f64.powi(-30) {
+                    break;
+                } else {
+                    a = 0.5 * hi;
+                }
+            }
+            None if a > max_amplitude => break,
+            None => {}
+        }
+        let r = respond(model, params, &|t| pulse(a, t), duration, &quiet)?;
+        out.steps += r.steps;
+        if r.cannot_stand {
+            return Err(DemError::Settings(
+                "the structure does not stand under its permanent loads".to_string(),
+            ));
+        }
+        out.runs.push((a, r.collapsed));
+        if r.collapsed {
+            out.collapses = Some(a);
+        } else {
+            out.survives = a;
+            if out.collapses.is_none() {
+                a *= 2.0;
+            }
+        }
+    }
     Ok(out)
 }

@@ -1,6 +1,8 @@
 //! Ground-motion input for dynamic DEM runs: acceleration records read from files and
-//! analytic pulses, as one [`GroundMotion`] (horizontal ground acceleration in m/s^2 against
-//! time, linearly interpolated between samples, zero before the start and after the end).
+//! analytic pulses, as one [`GroundMotion`] (ground acceleration in m/s^2 against time,
+//! linearly interpolated between samples, zero before the start and after the end), and the
+//! direction they act in ([`GroundInput`]: one motion along x or y, and optionally a
+//! vertical one with a horizontal one; positive toward +x and upward).
 //!
 //! Formats read:
 //! - PEER NGA `.AT2` files (PEER Ground Motion Database; Ancheta et al. 2014, "NGA-West2
@@ -20,55 +22,12 @@
 //! Every error names the file and the line ([`RecordError`]). A record in g is converted with
 //! the standard gravity 9.80665 m/s^2.
 
-use std::path::{Path, PathBuf};
-use thiserror::Error;
+use std::path::Path;
 
 /// Standard gravity (m/s^2), the g of records given in g.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
-/// What is wrong with a ground-motion input, and where.
-#[derive(Debug, Error, PartialEq)]
-pub enum RecordError {
-    #[error("{path}: cannot read the record: {message}")]
-    Io { path: PathBuf, message: String },
-    #[error("{path}, line {line}: {message}")]
-    Header {
-        path: PathBuf,
-        line: usize,
-        message: String,
-    },
-    #[error("{path}, line {line}: `{token}` is not a finite number")]
-    NotANumber {
-        path: PathBuf,
-        line: usize,
-        token: String,
-    },
-    #[error("{path}, line {line}: the time step DT = {value} must be a finite number > 0")]
-    TimeStep {
-        path: PathBuf,
-        line: usize,
-        value: String,
-    },
-    #[error("{path}, line {line}: NPTS = {declared}, but the data (lines {first_data_line}-{last_data_line}) hold {found} values")]
-    Count {
-        path: PathBuf,
-        line: usize,
-        declared: usize,
-        found: usize,
-        first_data_line: usize,
-        last_data_line: usize,
-    },
-    #[error("{path}, line {line}: {message}")]
-    Data {
-        path: PathBuf,
-        line: usize,
-        message: String,
-    },
-    #[error("{path}: {message}")]
-    Empty { path: PathBuf, message: String },
-    #[error("pulse: {0}")]
-    Pulse(String),
-}
+pub use crate::error::RecordError;
 
 /// Unit of the accelerations of a text record.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -512,6 +471,114 @@ impl Excitation {
                 },
                 p.period
             ),
+        }
+    }
+}
+
+/// The direction a ground motion acts in (`--component`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Component {
+    /// Horizontal, toward +x for a positive acceleration.
+    #[default]
+    X,
+    /// Vertical, upward for a positive acceleration.
+    Y,
+}
+
+impl Component {
+    /// `x` or `y`, as the command line and the JSON say it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Component::X => "x",
+            Component::Y => "y",
+        }
+    }
+}
+
+/// The ground motion of a dynamic run: one motion along `component`, and optionally a
+/// vertical one acting together with a horizontal main motion. Accelerations are toward +x
+/// and upward (see [`super::dynamic`] for what they do to the blocks).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundInput {
+    pub main: Excitation,
+    pub component: Component,
+    /// A simultaneous vertical motion (only with a horizontal `main`).
+    pub vertical: Option<Excitation>,
+}
+
+impl From<Excitation> for GroundInput {
+    /// A horizontal motion alone.
+    fn from(main: Excitation) -> Self {
+        GroundInput {
+            main,
+            component: Component::X,
+            vertical: None,
+        }
+    }
+}
+
+impl GroundInput {
+    /// A motion along `component`, with an optional simultaneous vertical one; refused when
+    /// the main motion is itself vertical and a second vertical one is given.
+    pub fn new(
+        main: Excitation,
+        component: Component,
+        vertical: Option<Excitation>,
+    ) -> Result<GroundInput, RecordError> {
+        if component == Component::Y && vertical.is_some() {
+            return Err(RecordError::Flag {
+                flag: "--component".to_string(),
+                value: "y".to_string(),
+                message:
+                    "the motion already acts vertically: a second vertical motion cannot be added"
+                        .to_string(),
+            });
+        }
+        Ok(GroundInput {
+            main,
+            component,
+            vertical,
+        })
+    }
+
+    /// The ground acceleration (m/s^2) at time `t` (s): horizontal (toward +x), vertical
+    /// (upward).
+    pub fn at(&self, t: f64) -> crate::geometry::Vec2 {
+        let a = self.main.at(t);
+        match self.component {
+            Component::X => {
+                crate::geometry::Vec2::new(a, self.vertical.as_ref().map_or(0.0, |v| v.at(t)))
+            }
+            Component::Y => crate::geometry::Vec2::new(0.0, a),
+        }
+    }
+
+    /// How long the ground moves (s): the longer of the two motions.
+    pub fn duration(&self) -> f64 {
+        self.vertical
+            .as_ref()
+            .map_or(0.0, Excitation::duration)
+            .max(self.main.duration())
+    }
+
+    /// Both motions times `s`.
+    pub fn scaled(&self, s: f64) -> GroundInput {
+        GroundInput {
+            main: self.main.scaled(s),
+            component: self.component,
+            vertical: self.vertical.as_ref().map(|v| v.scaled(s)),
+        }
+    }
+
+    /// Peak acceleration (m/s^2) of the horizontal and of the vertical motion (0 when
+    /// there is none).
+    pub fn pga_xy(&self) -> (f64, f64) {
+        match self.component {
+            Component::X => (
+                self.main.pga(),
+                self.vertical.as_ref().map_or(0.0, Excitation::pga),
+            ),
+            Component::Y => (0.0, self.main.pga()),
         }
     }
 }

@@ -693,6 +693,13 @@ pub struct DynamicReport {
     pub time_step: f64,
     pub wall_time_s: f64,
     pub scene: SceneReport,
+    /// The direction the motion of `excitation` acts in: `x` (horizontal, toward +x for a
+    /// positive acceleration) or `y` (vertical, upward).
+    pub component: &'static str,
+    /// A simultaneous vertical motion (`--record-vertical`) and its peak (m/s^2); null
+    /// without one.
+    pub vertical_excitation: Option<String>,
+    pub pga_vertical: Option<f64>,
 }
 
 impl DynamicReport {
@@ -706,9 +713,9 @@ impl DynamicReport {
             } else {
                 "survives"
             },
-            excitation: d.excitation.describe(),
-            pga: d.excitation.pga(),
-            duration: d.excitation.duration(),
+            excitation: d.ground.main.describe(),
+            pga: d.ground.main.pga(),
+            duration: d.ground.duration(),
             collapse_time: r.collapse_time,
             control_block: r.control_block,
             peak_displacement: r.peak_displacement,
@@ -719,6 +726,9 @@ impl DynamicReport {
             time_step: r.time_step,
             wall_time_s: r.wall_time_s,
             scene: SceneReport::new(scene, &d.model),
+            component: d.ground.component.name(),
+            vertical_excitation: d.ground.vertical.as_ref().map(|v| v.describe()),
+            pga_vertical: d.ground.vertical.as_ref().map(|v| v.pga()),
         }
     }
 }
@@ -739,22 +749,94 @@ pub struct IdaReport {
     pub runs: Vec<(f64, bool)>,
     pub steps: u64,
     pub wall_time_s: f64,
+    /// The relative bracket width asked for (`--tolerance`) and the one reached,
+    /// `(scale_collapses - scale_survives) / scale_collapses` (null without a collapse).
+    pub tolerance: f64,
+    pub bracket_width: Option<f64>,
+    /// As in the dynamic run's report: the direction of `excitation`, and a simultaneous
+    /// vertical motion with its unscaled peak and its peak at the collapse scale (m/s^2).
+    pub component: &'static str,
+    pub vertical_excitation: Option<String>,
+    pub pga_vertical: Option<f64>,
+    pub collapse_pga_vertical: Option<f64>,
 }
 
 impl IdaReport {
     pub fn new(
-        excitation: &crate::dem::record::Excitation,
+        ground: &crate::dem::record::GroundInput,
         r: &crate::dem::dynamic::IdaResult,
+        tolerance: f64,
     ) -> Self {
+        let pga = ground.main.pga();
+        let pga_vertical = ground.vertical.as_ref().map(|v| v.pga());
         IdaReport {
-            excitation: excitation.describe(),
-            pga: excitation.pga(),
+            excitation: ground.main.describe(),
+            pga,
             scale_survives: r.scale_survives,
             scale_collapses: r.scale_collapses,
-            collapse_pga: r.scale_collapses.map(|s| s * excitation.pga()),
+            collapse_pga: r.scale_collapses.map(|s| s * pga),
             runs: r.runs.clone(),
             steps: r.steps,
             wall_time_s: r.wall_time_s,
+            tolerance,
+            bracket_width: r.scale_collapses.map(|hi| (hi - r.scale_survives) / hi),
+            component: ground.component.name(),
+            vertical_excitation: ground.vertical.as_ref().map(|v| v.describe()),
+            pga_vertical,
+            collapse_pga_vertical: r.scale_collapses.zip(pga_vertical).map(|(s, p)| s * p),
+        }
+    }
+}
+
+/// `dem --pulse-curve FILE.svg --json`: the minimum collapse amplitude of pulses against their
+/// period.
+#[derive(Debug, Serialize)]
+pub struct PulseCurveReport {
+    /// The static collapse multiplier the amplitude searches start from (times g), and that
+    /// start (m/s^2).
+    pub lambda_lower: Option<f64>,
+    pub start_amplitude: f64,
+    /// Relative bracket width asked for.
+    pub tolerance: f64,
+    pub points: Vec<PulseCurvePointReport>,
+    pub wall_time_s: f64,
+}
+
+/// One point of a pulse curve.
+#[derive(Debug, Serialize)]
+pub struct PulseCurvePointReport {
+    /// `sine` (one full cycle `A sin(2 pi t / T)`) or `rect` (`A` for `T` seconds).
+    pub shape: &'static str,
+    pub period: f64,
+    /// Largest amplitude survived and smallest that collapsed (m/s^2; null: none up to
+    /// `analysis::PULSE_CURVE_MAX_G` g), and the runs it took.
+    pub amplitude_survives: f64,
+    pub amplitude_collapses: Option<f64>,
+    pub runs: usize,
+}
+
+impl PulseCurveReport {
+    pub fn new(c: &crate::analysis::PulseCurve) -> Self {
+        use crate::dem::record::PulseShape;
+        PulseCurveReport {
+            lambda_lower: c.lambda_lower,
+            start_amplitude: c.start_amplitude,
+            tolerance: c.tolerance,
+            points: c
+                .points
+                .iter()
+                .map(|p| PulseCurvePointReport {
+                    shape: match p.shape {
+                        PulseShape::Sine => "sine",
+                        PulseShape::Rect => "rect",
+                    },
+                    period: p.period,
+                    amplitude_survives: p.bracket.survives,
+                    amplitude_collapses: p.bracket.collapses,
+                    runs: p.bracket.runs.len(),
+                })
+                .collect(),
+            wall_time_s: c.wall_time_s,
         }
     }
 }

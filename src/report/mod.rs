@@ -1,6 +1,8 @@
 //! What the CLI prints, one file per format: the JSON contract ([`json`]), the thrust-line
-//! CSV ([`csv`]) and the human summaries and titles ([`summary`]).
+//! CSV ([`csv`]), the human summaries and titles ([`summary`]) and the animation of a dynamic
+//! run ([`animation`]).
 
+pub mod animation;
 pub mod assessment;
 pub mod csv;
 pub mod json;

@@ -821,12 +821,20 @@ pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::Dynami
     let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
     let _ = writeln!(
         s,
-        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g, {:.3} s)",
+        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g, {:.3} s){}",
         rep.excitation,
         rep.pga,
         rep.pga / crate::dem::record::STANDARD_GRAVITY,
-        rep.duration
+        rep.duration,
+        component_words(rep.component)
     );
+    if let (Some(v), Some(pga)) = (&rep.vertical_excitation, rep.pga_vertical) {
+        let _ = writeln!(
+            s,
+            "  with the vertical {v} (PGA {pga:.4} m/s^2 = {:.4} g, upward positive)",
+            pga / crate::dem::record::STANDARD_GRAVITY
+        );
+    }
     match rep.status {
         "cannot_stand" => {
             let _ = writeln!(
@@ -865,17 +873,108 @@ pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::Dynami
     s
 }
 
+/// How a motion along `component` acts, for the summaries.
+fn component_words(component: &str) -> &'static str {
+    if component == "y" {
+        ", acting vertically (upward positive)"
+    } else {
+        ", horizontal (toward +x positive)"
+    }
+}
+
+/// One line saying what a dynamic run did (the title of its animation).
+pub fn dynamic_headline(rep: &crate::report::DynamicReport) -> String {
+    let g = crate::dem::record::STANDARD_GRAVITY;
+    let what = match rep.status {
+        "cannot_stand" => "cannot stand".to_string(),
+        "collapse" => format!(
+            "collapses at t = {:.3} s",
+            rep.collapse_time.unwrap_or(f64::NAN)
+        ),
+        _ => "survives".to_string(),
+    };
+    let vertical = rep
+        .pga_vertical
+        .map_or(String::new(), |p| format!(", vertical PGA {:.3} g", p / g));
+    format!(
+        "{} (PGA {:.3} g{}{}): {what}",
+        rep.excitation,
+        rep.pga / g,
+        if rep.component == "y" {
+            ", vertical"
+        } else {
+            ""
+        },
+        vertical
+    )
+}
+
+/// The text summary of a pulse curve.
+pub fn pulse_curve_summary(
+    scene: &Scene,
+    model: &Model,
+    rep: &crate::report::PulseCurveReport,
+) -> String {
+    let g = crate::dem::record::STANDARD_GRAVITY;
+    let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
+    let _ = writeln!(
+        s,
+        "minimum collapse amplitude of one pulse, bracketed to {:.1}% (searches start at {:.4} m/s^2 = {:.4} g{})",
+        100.0 * rep.tolerance,
+        rep.start_amplitude,
+        rep.start_amplitude / g,
+        if rep.lambda_lower.is_some() {
+            ", the static multiplier times g"
+        } else {
+            ""
+        }
+    );
+    let _ = writeln!(
+        s,
+        "  {:<6} {:>9} {:>14} {:>14} {:>9} {:>5}",
+        "shape", "T (s)", "survives", "collapses", "(g)", "runs"
+    );
+    for p in &rep.points {
+        let (hi, hi_g) = p.amplitude_collapses.map_or(
+            (
+                format!("none <= {:.0} g", crate::analysis::PULSE_CURVE_MAX_G),
+                String::new(),
+            ),
+            |a| (format!("{a:.4}"), format!("{:.4}", a / g)),
+        );
+        let _ = writeln!(
+            s,
+            "  {:<6} {:>9.4} {:>14.4} {:>14} {:>9} {:>5}",
+            p.shape, p.period, p.amplitude_survives, hi, hi_g, p.runs
+        );
+    }
+    let _ = writeln!(
+        s,
+        "  amplitudes in m/s^2; {:.2} s wall time (the first bracket from below: dynamic collapse need not be monotonic in the amplitude)",
+        rep.wall_time_s
+    );
+    s
+}
+
 /// The text summary of an incremental dynamic analysis.
 pub fn ida_summary(scene: &Scene, model: &Model, rep: &crate::report::IdaReport) -> String {
     let mut s = format!("{}\n  {}\n\n", scene.origin, describe_scene(scene, model));
     let g = crate::dem::record::STANDARD_GRAVITY;
     let _ = writeln!(
         s,
-        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g)",
+        "ground motion: {} (PGA {:.4} m/s^2 = {:.4} g){}",
         rep.excitation,
         rep.pga,
-        rep.pga / g
+        rep.pga / g,
+        component_words(rep.component)
     );
+    if let (Some(v), Some(pga)) = (&rep.vertical_excitation, rep.pga_vertical) {
+        let _ = writeln!(
+            s,
+            "  with the vertical {v} (PGA {pga:.4} m/s^2 = {:.4} g, scaled alike)",
+            pga / g
+        );
+    }
     match (rep.scale_collapses, rep.collapse_pga) {
         (Some(hi), Some(pga)) => {
             let _ = writeln!(

@@ -310,8 +310,8 @@ fn pulse_curve_follows_housner() {
     assert!(svg.contains("<svg") && svg.contains("rect pulse"), "{svg}");
 }
 
-/// `--animation`: a self-contained page whose frames are the run's: 25 per simulated second
-/// from t = 0 plus the final state, the last at the history's last time, and the control
+/// `--animation`: a self-contained page whose frames are the run's: evenly spaced from t = 0
+/// (25 per simulated second, more over a short run) plus the final state, the last at the history's last time, and the control
 /// block's last placement equal to the history CSV's last row.
 #[test]
 fn animation_frames_match_the_history() {
@@ -359,9 +359,13 @@ fn animation_frames_match_the_history() {
         .collect();
     let t_end = last[0];
     let dt = num(&v, "time_step");
-    // A frame at the first step at or after each multiple of 0.04 s before the last step,
-    // and the final state.
-    let expected = ((t_end - dt) / 0.04).floor() as usize + 2;
+    // The interval for the planned run (the 0.8 s pulse and the default 2 s tail): 25 frames
+    // per second, or more for a short run (at least MIN_FRAMES over it).
+    let every = voussoir::report::animation::frame_interval(0.8 + 2.0, 1500);
+    assert!(every <= 0.04 && every * voussoir::report::animation::MIN_FRAMES as f64 <= 2.8 + 1e-12);
+    // A frame at the first step at or after each multiple of the interval before the last
+    // step, and the final state.
+    let expected = ((t_end - dt) / every).floor() as usize + 2;
     eprintln!(
         "{} frames, expected {expected}, end {t_end} s, status {}",
         frames.len(),
@@ -371,7 +375,7 @@ fn animation_frames_match_the_history() {
     for (k, f) in frames[..frames.len() - 1].iter().enumerate() {
         let t = num(f, "t");
         assert!(
-            t >= 0.04 * k as f64 - 1e-9 && t < 0.04 * k as f64 + dt + 1e-6,
+            t >= every * k as f64 - 1e-9 && t < every * k as f64 + dt + 1e-6,
             "{k}: {t}"
         );
     }

@@ -184,7 +184,8 @@ fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
     })
 }
 
-/// The most frames an animation holds (25 per second of simulated time up to this).
+/// The most frames an animation holds (25 per second of simulated time up to this; at least
+/// `report::animation::MIN_FRAMES` over a short run).
 const MAX_FRAMES: usize = 1500;
 
 fn run_pulse_curve(

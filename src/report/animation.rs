@@ -331,8 +331,14 @@ fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// The fewest frames over a run's planned duration: a pulse of a fraction of a second at 25
+/// frames per second would be a handful of pictures.
+pub const MIN_FRAMES: usize = 250;
+
 /// The frame interval for a run of `duration` seconds: 25 frames per second of simulated
-/// time, fewer for long runs so a page holds at most `max_frames` frames.
+/// time, more for a short run (at least [`MIN_FRAMES`] over it), fewer for a long one so a
+/// page holds at most `max_frames` frames.
 pub fn frame_interval(duration: f64, max_frames: usize) -> f64 {
-    (1.0 / 25.0_f64).max(duration / max_frames.max(1) as f64)
+    let fine = (1.0 / 25.0_f64).min(duration / MIN_FRAMES as f64);
+    fine.max(duration / max_frames.max(1) as f64)
 }

@@ -114,6 +114,7 @@ fn analysis_error(py: Python<'_>, e: &LibAnalysisError) -> PyErr {
         LibAnalysisError::SolverSetup(_) => "solver_setup",
         LibAnalysisError::SolverFailed { .. } => "solver_failed",
         LibAnalysisError::Assembly(_) => "assembly",
+        LibAnalysisError::Record(_) => "record",
         LibAnalysisError::Other(_) => "other",
     };
     let err = AnalysisError::new_err(e.to_string());

@@ -29,7 +29,7 @@ class AnalysisError(VoussoirError):
     """A failure of an analysis that is not a physical answer."""
 
     kind: str
-    """solver_setup, solver_failed, assembly or other."""
+    """solver_setup, solver_failed, assembly, record (a ground-motion record) or other."""
 
 class Scene:
     """A validated scene (the TOML format of docs/geometry.md). Immutable; pickles."""

@@ -1203,3 +1203,58 @@ fn loads_that_miss_or_overflow_are_refused() {
         assert_eq!(e.key(), Some(key), "{e}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// An entry of [[loads]] set by `--set loads[N].KEY=VALUE` (and so by sweeps, the Python
+// package and the page): the same scene as the file written with that value.
+
+#[test]
+fn set_reaches_an_entry_of_loads() {
+    let base = arch(SEMICIRCLE, 0.3, 16, false)
+        + &"[material]\nunit_weight = 20000.0\ndepth = 1.0\n"
+        + &point_load(Vec2::new(0.9, 1.9), Vec2::new(0.0, -3000.0), true)
+        + &line_load(-1.0, 1.0, 2000.0, false);
+    let s = scene(&base);
+    let lambda = |s: &Scene| lambda_static(&voussoir::scene::build(s).expect("builds"));
+    // A new intensity, by override and by file.
+    let by_set = s
+        .with_override("loads[1].intensity=5000")
+        .expect("override");
+    let by_file = scene(&base.replace("intensity = 2000.0", "intensity = 5000.0"));
+    assert_eq!(lambda(&by_set), lambda(&by_file));
+    assert!(
+        lambda(&by_set) < lambda(&s),
+        "a heavier deck load lowers lambda here"
+    );
+    // A line load of intensity 0 is no load: the scene without that entry.
+    let zero = s.with_override("loads[1].intensity=0").expect("override");
+    let without = scene(
+        &(arch(SEMICIRCLE, 0.3, 16, false)
+            + "[material]\nunit_weight = 20000.0\ndepth = 1.0\n"
+            + &point_load(Vec2::new(0.9, 1.9), Vec2::new(0.0, -3000.0), true)),
+    );
+    assert!(rel(lambda(&zero), lambda(&without)) <= 1e-12);
+    // A pair, whole.
+    let moved = s
+        .with_override("loads[0].force=[0.0, -6000.0]")
+        .expect("override");
+    let by_file = scene(&base.replace("force = [0.0, -3000.0]", "force = [0.0, -6000.0]"));
+    assert_eq!(lambda(&moved), lambda(&by_file));
+    // Errors name the entry.
+    let err = s
+        .with_override("loads[2].intensity=1")
+        .expect_err("no third load");
+    assert!(err.to_string().contains("has 2 [[loads]]"), "{err}");
+    let err = s
+        .with_override("loads[x].intensity=1")
+        .expect_err("bad index");
+    assert!(err.to_string().contains("loads[N].KEY"), "{err}");
+    let err = s
+        .with_override("loads[1].colour=1")
+        .expect_err("unknown key");
+    assert_eq!(err.key(), Some("loads[1].colour"), "{err}");
+    let err = s
+        .with_override("loads[1].intensity=-5")
+        .expect_err("negative");
+    assert_eq!(err.key(), Some("loads[1].intensity"), "{err}");
+}

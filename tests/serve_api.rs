@@ -253,8 +253,16 @@ fn parameters_name_real_scene_keys_with_sane_ranges() {
                 .as_array()
                 .and_then(|ps| ps.iter().find(|q| q["name"] == *name))
                 .expect("listed preset");
-            let (section, k) = key.split_once('.').expect("dotted");
-            let has = preset["scene"][section][k] != Value::Null;
+            let p_scene = parameters::PRESETS
+                .iter()
+                .find(|q| q.name == *name)
+                .expect("preset")
+                .toml
+                .parse::<toml::Table>()
+                .expect("preset TOML");
+            assert_eq!(preset["scene"], serve::api::table_json(&p_scene));
+            let section = key.split(['.', '[']).next().expect("section");
+            let has = parameters::lookup(&p_scene, key).is_some();
             assert!(
                 has || !p["absent"].is_null() || section == "seismic",
                 "{key} in {name}"

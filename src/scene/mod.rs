@@ -340,6 +340,10 @@ impl Scene {
 pub use crate::overrides::parse_assignment;
 
 fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
+    // One entry of `[[loads]]`, as the scene's errors name it: `loads[1].intensity`.
+    if let Some(rest) = key.strip_prefix("loads[") {
+        return set_load(table, key, rest, value);
+    }
     let parts: Vec<&str> = key.split('.').collect();
     // One pier of a portal is set with three parts: `piers.left.height`.
     let pier_side =
@@ -375,6 +379,36 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
         t.insert(parts[1].to_string(), value);
     }
     Ok(())
+}
+
+/// Set `loads[N].KEY` (`rest` is `N].KEY`) in the `[[loads]]` entry N (counted from 0).
+fn set_load(table: &mut Table, key: &str, rest: &str, value: Value) -> Result<(), String> {
+    let form = || {
+        format!("key `{key}` must be loads[N].KEY, e.g. loads[0].intensity (N counts the [[loads]] from 0)")
+    };
+    let (index, name) = rest.split_once("].").ok_or_else(form)?;
+    let index: usize = index.trim().parse().map_err(|_| form())?;
+    if name.is_empty() || name.contains('.') {
+        return Err(form());
+    }
+    let count = match table.get("loads") {
+        Some(Value::Array(items)) => items.len(),
+        _ => 0,
+    };
+    let Some(Value::Array(items)) = table.get_mut("loads") else {
+        return Err(format!("`{key}`: the scene has no [[loads]]"));
+    };
+    match items.get_mut(index) {
+        Some(Value::Table(t)) => {
+            t.insert(name.to_string(), value);
+            Ok(())
+        }
+        Some(_) => Err(format!("`loads[{index}]` is not a table in the scene")),
+        None => Err(format!(
+            "`{key}`: the scene has {count} [[loads]] (loads[0] to loads[{}])",
+            count.saturating_sub(1)
+        )),
+    }
 }
 
 const SECTIONS: &[&str] = &[

@@ -468,10 +468,7 @@ pub async fn analyze(
 /// The values of a sweep from `from` to `to` in `points` steps; whole numbers, without
 /// repeats, for a whole-number key (voussoirs, courses).
 fn sweep_values(scene: &Scene, key: &str, from: f64, to: f64, points: usize) -> Vec<Toml> {
-    let mut current: Option<&Toml> = None;
-    if let Some((section, name)) = key.split_once('.') {
-        current = scene.table().get(section).and_then(|s| s.get(name));
-    }
+    let current = parameters::lookup(scene.table(), key);
     let at = |i: usize| {
         if points == 1 {
             from

@@ -14,7 +14,8 @@ pub const DEFAULT_SCENE: &str = include_str!("../../data/semicircular.toml");
 /// One slider: a scene key, how to label it, and its practical range.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Slider {
-    /// The dotted scene key, e.g. `arch.thickness`.
+    /// The dotted scene key, e.g. `arch.thickness`; an entry of `[[loads]]` is written as
+    /// the scene's errors write it, `loads[1].intensity`.
     pub key: &'static str,
     pub label: &'static str,
     /// SI unit, or `deg` for keys ending in `_deg`; empty when dimensionless.
@@ -284,6 +285,32 @@ pub const SLIDERS: &[Slider] = &[
         help: "Vertical ground acceleration as a share of the horizontal one (positive upward).",
     },
     Slider {
+        key: "loads[0].intensity",
+        label: "Line load (loads[0])",
+        unit: "N/m",
+        min: 0.0,
+        max: 30000.0,
+        step: 250.0,
+        integer: false,
+        section: "loads",
+        arch_shapes: &[],
+        absent: None,
+        help: "Intensity of the first [[loads]] entry, when it is a line load (downward).",
+    },
+    Slider {
+        key: "loads[1].intensity",
+        label: "Line load (loads[1])",
+        unit: "N/m",
+        min: 0.0,
+        max: 30000.0,
+        step: 250.0,
+        integer: false,
+        section: "loads",
+        arch_shapes: &[],
+        absent: None,
+        help: "Intensity of the second [[loads]] entry, when it is a line load (downward).",
+    },
+    Slider {
         key: "material.friction",
         label: "Friction coefficient",
         unit: "",
@@ -324,17 +351,35 @@ pub const SLIDERS: &[Slider] = &[
     },
 ];
 
+/// The value at a dotted scene key (`arch.thickness`, `piers.left.height`,
+/// `loads[1].intensity`) in a scene table, when it is there.
+pub fn lookup<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let mut parts = key.split('.');
+    let first = parts.next()?;
+    let mut value = match first.split_once('[') {
+        Some((list, index)) => table
+            .get(list)?
+            .as_array()?
+            .get(index.strip_suffix(']')?.parse::<usize>().ok()?)?,
+        None => table.get(first)?,
+    };
+    for part in parts {
+        value = value.get(part)?;
+    }
+    Some(value)
+}
+
 /// Whether a preset's scene has the slider's key, or may take it (a key whose absence means
 /// something, such as infinite friction, or the optional vertical component).
 fn preset_has(preset: &Preset, slider: &Slider) -> bool {
     let Ok(table) = preset.toml.parse::<toml::Table>() else {
         return false;
     };
-    let (section, name) = slider.key.split_once('.').unwrap_or((slider.key, ""));
-    match table.get(section) {
-        Some(sec) => sec.get(name).is_some() || slider.absent.is_some(),
-        None => slider.absent.is_some() && section == "seismic",
+    if lookup(&table, slider.key).is_some() {
+        return true;
     }
+    let has_section = table.contains_key(slider.section);
+    slider.absent.is_some() && (has_section || slider.section == "seismic")
 }
 
 /// Every slider, with the presets whose scenes have its key.

@@ -60,7 +60,10 @@
   // JSON text with object keys sorted, to compare two scenes.
   const canonical = (x) => JSON.stringify(x, (k, v) => (v && typeof v === 'object' && !Array.isArray(v)
     ? Object.fromEntries(Object.keys(v).sort().map((key) => [key, v[key]])) : v));
-  const segments = (key) => key.split('.').map((s) => (/^\d+$/.test(s) ? Number(s) : s));
+  // A dotted scene key as path segments; an entry of a list is written as the scene's errors
+  // write it, `loads[1].intensity` (-> ['loads', 1, 'intensity']).
+  const segments = (key) => key.replace(/\[(\d+)\]/g, '.$1').split('.')
+    .map((s) => (/^\d+$/.test(s) ? Number(s) : s));
 
   function getKey(obj, key) {
     let cur = obj;

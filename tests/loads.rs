@@ -1211,7 +1211,7 @@ fn loads_that_miss_or_overflow_are_refused() {
 #[test]
 fn set_reaches_an_entry_of_loads() {
     let base = arch(SEMICIRCLE, 0.3, 16, false)
-        + &"[material]\nunit_weight = 20000.0\ndepth = 1.0\n"
+        + "[material]\nunit_weight = 20000.0\ndepth = 1.0\n"
         + &point_load(Vec2::new(0.9, 1.9), Vec2::new(0.0, -3000.0), true)
         + &line_load(-1.0, 1.0, 2000.0, false);
     let s = scene(&base);

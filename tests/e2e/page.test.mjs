@@ -267,6 +267,32 @@ test('a preset and the direction toggle give the CLI\'s values for that scene', 
   }
 });
 
+test('the line-load slider of the loaded portal gives the CLI\'s values for that load', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    await page.click('#v-shapes button[data-preset="loaded_portal"]');
+    await settled(page);
+    // loads[0] is a point load (no intensity): only the line load, loads[1], has a slider.
+    assert.equal(await field(page, 'loads[0].intensity').row.count(), 0);
+    const q = field(page, 'loads[1].intensity');
+    assert.equal(await q.row.count(), 1);
+    const before = await shown(page);
+    await q.slider.focus();
+    for (let i = 0; i < 4; i++) await page.keyboard.press('ArrowRight');
+    await settled(page);
+    const value = Number(await q.number.inputValue());
+    assert.ok(value > 6000, `the intensity moved up from 6000 N/m: ${value}`);
+    const cli = analyze(scenePath('loaded_portal.toml'), { 'loads[1].intensity': value });
+    const after = await shown(page);
+    assertShows(after, cli, `loads[1].intensity = ${value}`);
+    assert.ok(Number(after.lambda) < Number(before.lambda), 'a heavier deck load lowers lambda here');
+    sameAnalysis(JSON.parse((await download(page, '#v-dl-json')).text), cli, 'line load');
+    assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+  }
+});
+
 test('an update takes under 50 ms (median) for 200 voussoirs', async (t) => {
   const { page, context } = await openPage(browser, server.url);
   try {

@@ -128,6 +128,9 @@
     const has = state.scene[section] !== undefined && state.scene[section] !== null;
     if (!has && !(section === 'material' || absentValue(p) !== undefined)) return false;
     if (getKey(state.scene, p.key) !== undefined) return true;
+    // An entry of a list (`loads[1].intensity`) is shown only when the scene has that entry
+    // with that key: the second load may be a point load, which has no intensity.
+    if (/\[\d+\]/.test(p.key)) return false;
     if (section === 'arch') {
       const archShape = state.scene.arch && state.scene.arch.shape;
       const shapes = p.arch_shapes || p.shapes || [];

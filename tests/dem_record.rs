@@ -287,3 +287,44 @@ fn record_errors_stay_typed_in_the_analysis_error() {
         other => panic!("not a typed record error: {other:?}"),
     }
 }
+
+/// The bundled synthetic record (data/records/synthetic_10s.AT2, written by
+/// examples/synthetic_record.py) is the recipe its header says: 1001 samples every 0.01 s, a
+/// peak of 0.1 g, silent at both ends of its envelope, and sample i is the formula's value.
+#[test]
+fn the_bundled_synthetic_record_is_its_recipe() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/records/synthetic_10s.AT2");
+    let m = record::read(&path, AccelUnit::G, None).expect("bundled record reads");
+    assert_eq!(m.time.len(), 1001);
+    assert!((m.duration() - 10.0).abs() < 1e-9);
+    assert!(
+        (m.pga() / STANDARD_GRAVITY - 0.1).abs() < 1e-7,
+        "{}",
+        m.pga()
+    );
+    let freqs = [1.1, 1.9, 2.7, 3.6, 5.2, 7.9];
+    let raw = |t: f64| {
+        let envelope = (t / 1.0).min(1.0).min((10.0 - t) / 3.0).max(0.0);
+        envelope
+            * freqs
+                .iter()
+                .enumerate()
+                .map(|(k, f)| {
+                    (2.0 * std::f64::consts::PI * f * t + k as f64).sin() / (1.0 + k as f64)
+                })
+                .sum::<f64>()
+    };
+    let peak = (0..=1000)
+        .map(|i| raw(i as f64 * 0.01).abs())
+        .fold(0.0, f64::max);
+    for (i, a) in m.accel.iter().enumerate() {
+        let expected = 0.1 * STANDARD_GRAVITY * raw(i as f64 * 0.01) / peak;
+        // 8 significant digits in the file.
+        assert!(
+            (a - expected).abs() <= 1e-7 * STANDARD_GRAVITY,
+            "sample {i}: {a} vs {expected}"
+        );
+    }
+    assert_eq!(m.accel[0], 0.0);
+    assert!(m.accel[1000].abs() < 1e-12);
+}

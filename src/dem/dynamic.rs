@@ -333,42 +333,16 @@ pub fn ida_xy(
         frames_every: None,
         ..settings.clone()
     };
-    let mut out = IdaResult {
-        scale_survives: 0.0,
-        scale_collapses: None,
-        runs: Vec::new(),
-        steps: 0,
-        wall_time_s: 0.0,
-    };
-    let mut scale = 1.0;
-    for _ in 0..60 {
-        if let Some(hi) = out.scale_collapses {
-            if hi - out.scale_survives <= tolerance * hi {
-                break;
-            }
-            scale = 0.5 * (out.scale_survives + hi);
-        } else if scale > max_scale {
-            break;
-        }
-        let r = respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)?;
-        out.steps += r.steps;
-        if r.cannot_stand {
-            return Err(DemError::Settings(
-                "the structure does not stand under its permanent loads".to_string(),
-            ));
-        }
-        out.runs.push((scale, r.collapsed));
-        if r.collapsed {
-            out.scale_collapses = Some(scale);
-        } else {
-            out.scale_survives = scale;
-            if out.scale_collapses.is_none() {
-                scale *= 2.0;
-            }
-        }
-    }
-    out.wall_time_s = clock.elapsed().as_secs_f64();
-    Ok(out)
+    let found = first_collapse_bracket(1.0, tolerance, max_scale, |scale| {
+        respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)
+    })?;
+    Ok(IdaResult {
+        scale_survives: found.survives,
+        scale_collapses: found.collapses,
+        runs: found.runs,
+        steps: found.steps,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    })
 }
 
 /// The smallest amplitude of a pulse that brings the structure down, bracketed.
@@ -415,15 +389,31 @@ pub fn minimum_amplitude(
         frames_every: None,
         ..settings.clone()
     };
+    first_collapse_bracket(start, tolerance, max_amplitude, |a| {
+        respond(model, params, &|t| pulse(a, t), duration, &quiet)
+    })
+}
+
+/// The first bracket of the size `x` of a motion (a record's scale, a pulse's amplitude) at
+/// which `run(x)` collapses the structure: from `start`, `x` is doubled until a run collapses
+/// (giving up above `max`) or halved until one survives (giving up below `start / 2^30`), then
+/// bisected until `collapses - survives <= tolerance * collapses`. The IDA and the pulse
+/// curve both search this way.
+fn first_collapse_bracket(
+    start: f64,
+    tolerance: f64,
+    max: f64,
+    mut run: impl FnMut(f64) -> Result<DynamicResult, DemError>,
+) -> Result<AmplitudeBracket, DemError> {
     let mut out = AmplitudeBracket {
         survives: 0.0,
         collapses: None,
         runs: Vec::new(),
         steps: 0,
     };
-    let mut a = start;
-    // Doubling up from `start` to `max_amplitude`, or halving down to 2^-30 start, then
-    // bisection to `tolerance`: the loop ends long before this bound.
+    let mut x = start;
+    // Doubling up to `max` or halving down to 2^-30 start, then bisection to `tolerance`:
+    // the loop ends long before this bound.
     for _ in 0..100 {
         match out.collapses {
             Some(hi) => {
@@ -431,30 +421,30 @@ pub fn minimum_amplitude(
                     break;
                 }
                 if out.survives > 0.0 {
-                    a = 0.5 * (out.survives + hi);
+                    x = 0.5 * (out.survives + hi);
                 } else if hi < start * 2f64.powi(-30) {
                     break;
                 } else {
-                    a = 0.5 * hi;
+                    x = 0.5 * hi;
                 }
             }
-            None if a > max_amplitude => break,
+            None if x > max => break,
             None => {}
         }
-        let r = respond(model, params, &|t| pulse(a, t), duration, &quiet)?;
+        let r = run(x)?;
         out.steps += r.steps;
         if r.cannot_stand {
             return Err(DemError::Settings(
                 "the structure does not stand under its permanent loads".to_string(),
             ));
         }
-        out.runs.push((a, r.collapsed));
+        out.runs.push((x, r.collapsed));
         if r.collapsed {
-            out.collapses = Some(a);
+            out.collapses = Some(x);
         } else {
-            out.survives = a;
+            out.survives = x;
             if out.collapses.is_none() {
-                a *= 2.0;
+                x *= 2.0;
             }
         }
     }

@@ -507,6 +507,10 @@ pub struct PulseCurve {
 /// The largest pulse amplitude a curve tries, in multiples of g.
 pub const PULSE_CURVE_MAX_G: f64 = 50.0;
 
+/// The pulse periods (s) of a pulse curve when none are given: from short pulses, which need
+/// many times the static multiplier, to long ones, which tend to it.
+pub const PULSE_CURVE_PERIODS: &[f64] = &[0.1, 0.15, 0.25, 0.4, 0.6, 1.0, 1.5, 2.5];
+
 /// The minimum amplitude of one-cycle sine and rectangular pulses (`shapes`) that brings the
 /// scene's blocks down, at each of `periods` (s), to a relative `tolerance`, with
 /// [`crate::dem::dynamic::minimum_amplitude`]. Every search starts at the static collapse

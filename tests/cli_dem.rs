@@ -412,3 +412,39 @@ fn animation_frames_match_the_history() {
         .failure();
     assert!(String::from_utf8_lossy(&out.get_output().stderr).contains("--animation"));
 }
+
+/// A pulse curve's options without the curve, or a vertical pulse curve, are refused rather
+/// than ignored.
+#[test]
+fn pulse_curve_options_alone_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = block_scene(dir.path());
+    let pulse = [
+        "dem",
+        "--pulse",
+        "sine",
+        "--amplitude",
+        "0.3",
+        "--period",
+        "0.5",
+    ];
+    for extra in [&["--periods", "0.1"][..], &["--shapes", "rect"][..]] {
+        let out = common::voussoir()
+            .args(pulse)
+            .args(extra)
+            .arg(&scene)
+            .assert()
+            .failure();
+        let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+        assert!(err.contains("--pulse-curve"), "{err}");
+    }
+    let out = common::voussoir()
+        .args(["dem", "--pulse-curve"])
+        .arg(dir.path().join("c.svg"))
+        .args(["--component", "y"])
+        .arg(&scene)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(err.contains("--component"), "{err}");
+}

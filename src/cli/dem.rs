@@ -64,7 +64,7 @@ pub struct Args {
     history: Option<std::path::PathBuf>,
     /// Direction the --record or --pulse motion acts in: x (horizontal, toward +x for a
     /// positive acceleration) or y (vertical, upward)
-    #[arg(long, value_enum, default_value = "x")]
+    #[arg(long, value_enum, default_value = "x", conflicts_with = "pulse_curve")]
     component: ComponentArg,
     /// A vertical ground-acceleration record acting together with the horizontal --record or
     /// --pulse (upward positive; same --units, --dt and --scale)
@@ -82,15 +82,11 @@ pub struct Args {
     /// of the same name)
     #[arg(long, value_name = "FILE.svg", conflicts_with_all = ["record", "pulse", "ida", "animation"])]
     pulse_curve: Option<std::path::PathBuf>,
-    /// Pulse periods (s) of --pulse-curve, comma-separated
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "0.1,0.15,0.25,0.4,0.6,1,1.5,2.5"
-    )]
+    /// Pulse periods (s) of --pulse-curve, comma-separated [default: 0.1,0.15,0.25,0.4,0.6,1,1.5,2.5]
+    #[arg(long, value_delimiter = ',', requires = "pulse_curve")]
     periods: Vec<f64>,
-    /// Pulse shapes of --pulse-curve
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "sine,rect")]
+    /// Pulse shapes of --pulse-curve (horizontal pulses) [default: sine,rect]
+    #[arg(long, value_enum, value_delimiter = ',', requires = "pulse_curve")]
     shapes: Vec<PulseArg>,
 }
 
@@ -193,13 +189,23 @@ fn run_pulse_curve(
     scene: &voussoir::scene::Scene,
     path: &std::path::Path,
 ) -> Result<String, Error> {
-    let shapes: Vec<PulseShape> = args.shapes.iter().map(|&p| shape(p)).collect();
-    let total = shapes.len() * args.periods.len();
+    let pulses: &[PulseArg] = if args.shapes.is_empty() {
+        &[PulseArg::Sine, PulseArg::Rect]
+    } else {
+        &args.shapes
+    };
+    let periods: &[f64] = if args.periods.is_empty() {
+        analysis::PULSE_CURVE_PERIODS
+    } else {
+        &args.periods
+    };
+    let shapes: Vec<PulseShape> = pulses.iter().map(|&p| shape(p)).collect();
+    let total = shapes.len() * periods.len();
     let bar = progress_bar(total as u64, "pulse curve");
     let curve = analysis::dem_pulse_curve(
         scene,
         &shapes,
-        &args.periods,
+        periods,
         &settings(args)?,
         args.tolerance,
         &mut |f| bar.set_position((f * total as f64).round() as u64),
@@ -236,8 +242,7 @@ fn run_pulse_curve(
         .map_err(|e| err(&e))?;
     }
     w.flush().map_err(|e| err(&e))?;
-    let series = args
-        .shapes
+    let series = pulses
         .iter()
         .map(|&p| {
             let name = match p {
@@ -342,6 +347,13 @@ fn run_dynamic(
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
+    // clap lets `--periods` through beside `--pulse` (which excludes `--pulse-curve`): a
+    // curve's option without the curve would be ignored, so it is refused.
+    if args.pulse_curve.is_none() && !(args.periods.is_empty() && args.shapes.is_empty()) {
+        return Err(Error::Scene(voussoir::error::SceneError::Usage(
+            "--periods and --shapes set the pulses of --pulse-curve FILE.svg; without it they would be ignored".into(),
+        )));
+    }
     if let Some(path) = &args.pulse_curve {
         super::check_output_paths([Some(path)])?;
         return run_pulse_curve(&args, &scene, path);

@@ -46,8 +46,8 @@
     lastOk: false,        // whether the drawing shows the current scene
     lastKey: null,        // the parameter moved last
     // Slider ranges widened to take a value typed beyond them: key -> {min, max, value,
-    // confirmed}. Dropped when the server refuses the value typed, kept once it accepts it,
-    // all forgotten when another structure is picked.
+    // confirmed, previous}. Back to `previous` (the last one accepted) when the server refuses
+    // the value typed, kept once it accepts it, all forgotten when another structure is picked.
     widened: new Map(),
   };
 
@@ -375,9 +375,12 @@
       if (v < r.min || v > r.max) {
         const step = r.step > 0 ? r.step : 0;
         const out = (x, round) => (step ? onGrid(round(x / step), step) : x);
+        // The widening the server accepted before, to go back to if it refuses this one.
+        const before = state.widened.get(p.key);
         state.widened.set(p.key, {
           min: Math.min(r.min, out(v, Math.floor)), max: Math.max(r.max, out(v, Math.ceil)),
           value: v, confirmed: false,
+          previous: before && (before.confirmed ? before : before.previous),
         });
         applyRange();
       }
@@ -463,7 +466,8 @@
     // A slider widened to a typed value the server refuses goes back to its range.
     const wide = err.key ? state.widened.get(err.key) : undefined;
     if (wide && !wide.confirmed && sent && getKey(sent, err.key) === wide.value) {
-      state.widened.delete(err.key);
+      if (wide.previous) state.widened.set(err.key, wide.previous);
+      else state.widened.delete(err.key);
       const row = fieldRow(err.key);
       if (row) {
         row._applyRange();

@@ -358,6 +358,8 @@
       const t = eventTime(ev);
       const v = Number(slider.value);
       number.value = slider.value;
+      number.placeholder = '';
+      row.classList.remove('unset');
       setKey(state.scene, p.key, v);
       changed(p.key, t, ev);
     });
@@ -385,6 +387,7 @@
         applyRange();
       }
       slider.value = String(v);
+      row.classList.remove('unset');
       setKey(state.scene, p.key, v);
       changed(p.key, t, ev);
     });
@@ -393,6 +396,8 @@
     row._sync = () => {
       const v = shownValue(p);
       const inf = isInfinite(v);
+      // A slider whose key the scene does not have sits where it may, faded.
+      row.classList.toggle('unset', v === undefined);
       if (infinite) infinite.checked = inf;
       number.disabled = inf;
       slider.disabled = inf;

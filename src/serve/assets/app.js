@@ -723,7 +723,7 @@
       const steps = Math.round((max - min) / step);
       const every = Math.max(1, Math.ceil(steps / Math.max(1, points - 1)));
       points = Math.max(2, Math.floor(steps / every) + 1);
-      to = min + (points - 1) * every * step;
+      to = Math.min(max, min + (points - 1) * every * step);
     } else if (p.integer) {
       points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
     }

@@ -545,6 +545,13 @@ test('accessibility: labels, descriptions, live errors, readable faint text, qui
       assert.ok(texts.some((x) => x.text === thickness.help), 'described by its help');
       assert.ok(texts.some((x) => x.cls === 'field-error' && x.live === 'polite'), 'and by its live error');
     }
+    // The help is shown (not only read) while the field or its slider has the focus.
+    const help = t.row.locator('.field-help');
+    const width = async () => (await help.boundingBox()).width;
+    assert.ok(await width() <= 1, 'the help takes no room without focus');
+    await t.slider.focus();
+    assert.ok(await width() > 100, 'the help is shown while the slider has focus');
+    await t.slider.blur();
     await t.number.fill('0');
     await t.number.press('Enter');
     await settled(page);

@@ -276,12 +276,13 @@
     number.id = id + '-number';
     number.inputMode = p.integer ? 'numeric' : 'decimal';
     // The help (a tooltip for the mouse) is also a description a screen reader reads with
-    // the field, and so is the field's error when it has one.
+    // the field, shown under it while the field or its slider has the keyboard's focus; so
+    // is the field's error when it has one.
     const described = [id + '-error'];
     let help = null;
     if (p.help) {
       help = document.createElement('span');
-      help.className = 'visually-hidden';
+      help.className = 'field-help visually-hidden';
       help.id = id + '-help';
       help.textContent = p.help;
       described.push(help.id);

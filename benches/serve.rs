@@ -62,12 +62,17 @@ fn main() {
                 let r = serve::router(state.clone())
                     .oneshot(
                         Request::post("/api/analyze")
+                            .header("content-type", "application/json")
                             .body(Body::from(body))
                             .unwrap_or_default(),
                     )
                     .await;
                 match r {
-                    Ok(r) => r.into_body().collect().await.map(|b| b.to_bytes().len()),
+                    Ok(r) => {
+                        // Time answers, not refusals.
+                        assert!(r.status().is_success(), "{}", r.status());
+                        r.into_body().collect().await.map(|b| b.to_bytes().len())
+                    }
                     Err(e) => match e {},
                 }
             })

@@ -53,6 +53,12 @@ fn each_invalid_scene_names_its_key() {
         (&format!("{GOOD}[material]\nfriction = 1e12\n"), "material.friction", "1000000000000"),
         (&format!("{GOOD}[material]\nunit_weight = 0\n"), "material.unit_weight", "0"),
         (&format!("{GOOD}[material]\ndepth = true\n"), "material.depth", "true"),
+        // Values whose blocks would weigh 0 or inf (the value is written as 1e300, not in
+        // 301 digits).
+        (&format!("{GOOD}[material]\ndepth = 1e300\n"), "material.depth", "1e300"),
+        (&format!("{GOOD}[material]\ndepth = 1e-300\n"), "material.depth", "1e-300"),
+        (&format!("{GOOD}[material]\nunit_weight = 1e300\n"), "material.unit_weight", "1e300"),
+        ("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.1\nvoussoirs = 8\nembrace_deg = 1e-300\n", "arch.embrace_deg", "1e-300"),
         (&format!("{GOOD}[materials]\ndepth = 1.0\n"), "materials", ""),
         ("arch = 3\n", "arch", "3"),
         ("[piers]\nheight = 1.0\nwidth = 0.3\n", "arch", ""),

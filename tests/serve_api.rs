@@ -35,13 +35,29 @@ fn call(
     path: &str,
     body: Vec<u8>,
 ) -> (StatusCode, String, Vec<u8>) {
+    call_with(
+        state,
+        method,
+        path,
+        &[("content-type", "application/json")],
+        body,
+    )
+}
+
+/// One request with the given headers.
+fn call_with(
+    state: &Arc<ServerState>,
+    method: &str,
+    path: &str,
+    headers: &[(&str, &str)],
+    body: Vec<u8>,
+) -> (StatusCode, String, Vec<u8>) {
     runtime().block_on(async {
-        let request = Request::builder()
-            .method(method)
-            .uri(path)
-            .header("content-type", "application/json")
-            .body(Body::from(body))
-            .expect("request");
+        let mut request = Request::builder().method(method).uri(path);
+        for (name, value) in headers {
+            request = request.header(*name, *value);
+        }
+        let request = request.body(Body::from(body)).expect("request");
         let response = serve::router(state.clone())
             .oneshot(request)
             .await
@@ -343,19 +359,86 @@ fn bad_requests_are_refused_with_the_key_they_are_about() {
         "wrong_type",
         Some("arch.thickness"),
     );
-    let (status, answer) = post(&s, "/api/analyze", &with("arch", "thicknes", json!(0.2)));
-    assert_eq!(status, StatusCode::BAD_REQUEST);
-    assert_eq!(answer["kind"], "unknown_key");
+    let answer = post(&s, "/api/analyze", &with("arch", "thicknes", json!(0.2)));
+    refused(
+        &answer,
+        StatusCode::BAD_REQUEST,
+        "unknown_key",
+        Some("arch.thicknes"),
+    );
     assert!(
-        answer["error"].as_str().unwrap_or("").contains("thickness"),
+        answer.1["error"]
+            .as_str()
+            .unwrap_or("")
+            .contains("`thickness`"),
+        "{}",
+        answer.1
+    );
+    // A misspelt option is refused, not ignored (the arch would be analysed to the right).
+    let answer = post(
+        &s,
+        "/api/analyze",
+        &json!({"scene": good, "directon": "left"}),
+    );
+    refused(
+        &answer,
+        StatusCode::BAD_REQUEST,
+        "unknown_field",
+        Some("directon"),
+    );
+    assert!(
+        answer.1["error"]
+            .as_str()
+            .unwrap_or("")
+            .contains("`direction`"),
+        "{}",
+        answer.1
+    );
+    let (status, _, bytes) = call(
+        &s,
+        "POST",
+        "/api/analyze?directon=left",
+        json!({ "scene": good }).to_string().into_bytes(),
+    );
+    let answer: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{answer}");
+    assert!(
+        answer["error"].as_str().unwrap_or("").contains("directon"),
         "{answer}"
     );
-    // Limits: the voussoir count, and files.
+    // Limits: the block counts however they are written, and files.
+    for count in [json!(5000), json!(20000.0), json!(1e300)] {
+        refused(
+            &post(&s, "/api/analyze", &with("arch", "voussoirs", count)),
+            StatusCode::BAD_REQUEST,
+            "limit",
+            Some("arch.voussoirs"),
+        );
+    }
+    let portal = scene_json("portal.toml");
+    let mut tall = portal.clone();
+    tall["piers"]["courses"] = json!(20000.0);
     refused(
-        &post(&s, "/api/analyze", &with("arch", "voussoirs", json!(5000))),
+        &post(&s, "/api/analyze", &tall),
         StatusCode::BAD_REQUEST,
         "limit",
-        Some("arch.voussoirs"),
+        Some("piers.courses"),
+    );
+    let mut one_side = portal.clone();
+    one_side["piers"]["left"] = json!({"courses": 5000});
+    refused(
+        &post(&s, "/api/analyze", &one_side),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("piers.left.courses"),
+    );
+    let mut stepped = portal.clone();
+    stepped["piers"] = json!({"shape": "stepped", "height": 1.0, "widths": vec![0.5; 5000]});
+    refused(
+        &post(&s, "/api/analyze", &stepped),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("piers.widths"),
     );
     let mut blocks = json!({"blocks": {"file": "/etc/passwd"}, "material": good["material"]});
     refused(
@@ -529,6 +612,36 @@ fn sweep_rows_are_the_analyses_of_each_value() {
             .contains("arch.colour"),
         "{answer}"
     );
+    refused(
+        &sweep(json!({"key": "arch.voussoirs", "from": 19900, "to": 20000})),
+        StatusCode::BAD_REQUEST,
+        "limit",
+        Some("to"),
+    );
+    refused(
+        &sweep(json!({"point": 5})),
+        StatusCode::BAD_REQUEST,
+        "unknown_field",
+        Some("point"),
+    );
+    let (status, answer) = sweep(json!({"key": "arch.shape", "from": 0.1, "to": 0.2}));
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{answer}");
+    assert_eq!(
+        answer["key"], "key",
+        "a bad variation is about the sweep's key: {answer}"
+    );
+    // A sweep to the left is the library's leftward analysis (the loaded portal is not
+    // symmetric).
+    let loaded = scene_json("loaded_portal.toml");
+    let base = Scene::from_file(std::path::Path::new(&data("loaded_portal.toml"))).expect("scene");
+    let ask = json!({"scene": loaded, "key": "arch.thickness", "from": 0.4, "to": 0.5, "points": 3, "direction": "left"});
+    let (status, answer) = post(&s, "/api/sweep", &ask);
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    for row in answer["rows"].as_array().expect("rows") {
+        let t = row["value"].as_f64().expect("value");
+        let a = library_lambda(&base.with_thickness(t).expect("scene"), Direction::Left);
+        assert_eq!(row["lambda_lower"].as_f64(), a.lower.lambda, "t = {t}");
+    }
     let (status, answer) = post(&s, "/api/sweep", &json!({"key": "arch.thickness"}));
     refused(
         &(status, answer),
@@ -593,4 +706,177 @@ fn the_binary_serves_on_loopback() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("no/such/scene.toml"), "{err}");
+}
+
+/// Only this machine's own page is answered: another Host (DNS rebinding) or Origin (another
+/// web site in the user's browser) is refused with 403, a POST not declared JSON with 415, and
+/// a method a path does not take with a JSON 405.
+#[test]
+fn requests_from_elsewhere_are_refused() {
+    let s = state();
+    let body = json!({ "scene": scene_json("semicircular.toml") }).to_string();
+    let json_type = ("content-type", "application/json");
+    let kind_of = |(status, _, bytes): (StatusCode, String, Vec<u8>)| {
+        let v: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+        assert!(v["error"].as_str().is_some_and(|m| m.len() > 10), "{v}");
+        (status, v["kind"].as_str().unwrap_or("").to_string())
+    };
+    for host in [
+        "evil.example",
+        "evil.example:8080",
+        "127.0.0.1.evil.example",
+        "10.0.0.1:80",
+    ] {
+        let answer = call_with(&s, "GET", "/api/scene", &[("host", host)], Vec::new());
+        assert_eq!(
+            kind_of(answer),
+            (StatusCode::FORBIDDEN, "forbidden".into()),
+            "{host}"
+        );
+    }
+    for host in [
+        "127.0.0.1:8080",
+        "localhost:41000",
+        "[::1]:8080",
+        "localhost",
+    ] {
+        let (status, _, _) = call_with(&s, "GET", "/api/scene", &[("host", host)], Vec::new());
+        assert_eq!(status, StatusCode::OK, "{host}");
+    }
+    for origin in [
+        "http://evil.example",
+        "null",
+        "http://127.0.0.1.evil.example:80",
+    ] {
+        let answer = call_with(
+            &s,
+            "POST",
+            "/api/analyze",
+            &[json_type, ("origin", origin)],
+            body.clone().into_bytes(),
+        );
+        assert_eq!(
+            kind_of(answer),
+            (StatusCode::FORBIDDEN, "forbidden".into()),
+            "{origin}"
+        );
+    }
+    let (status, _, _) = call_with(
+        &s,
+        "POST",
+        "/api/analyze",
+        &[json_type, ("origin", "http://127.0.0.1:8080")],
+        body.clone().into_bytes(),
+    );
+    assert_eq!(status, StatusCode::OK);
+    for content_type in ["text/plain", "application/x-www-form-urlencoded", ""] {
+        let headers: Vec<(&str, &str)> = if content_type.is_empty() {
+            Vec::new()
+        } else {
+            vec![("content-type", content_type)]
+        };
+        let answer = call_with(
+            &s,
+            "POST",
+            "/api/analyze",
+            &headers,
+            body.clone().into_bytes(),
+        );
+        assert_eq!(
+            kind_of(answer),
+            (
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                "unsupported_media_type".into()
+            ),
+            "{content_type}"
+        );
+    }
+    let (status, _, _) = call_with(
+        &s,
+        "POST",
+        "/api/analyze",
+        &[("content-type", "application/json; charset=utf-8")],
+        body.into_bytes(),
+    );
+    assert_eq!(status, StatusCode::OK);
+    for (method, path) in [
+        ("GET", "/api/sweep"),
+        ("OPTIONS", "/api/analyze"),
+        ("POST", "/api/scene"),
+    ] {
+        let answer = call(&s, method, path, b"{}".to_vec());
+        assert_eq!(
+            kind_of(answer),
+            (StatusCode::METHOD_NOT_ALLOWED, "method_not_allowed".into()),
+            "{method} {path}"
+        );
+    }
+}
+
+/// The TOML to download analyses to the page's multiplier wherever it is saved: a leftward
+/// analysis says so in its first line, and a start scene's relative blocks file becomes an
+/// absolute path, the only file a request may name.
+#[test]
+fn the_downloaded_toml_stands_on_its_own() {
+    let s = state();
+    let loaded = scene_json("loaded_portal.toml");
+    let (status, answer) = post(
+        &s,
+        "/api/analyze",
+        &json!({"scene": loaded, "direction": "left"}),
+    );
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let text = answer["toml"].as_str().expect("toml");
+    assert!(
+        text.starts_with(
+            "# analysed with the earthquake to the left: voussoir analyze FILE --direction left\n"
+        ),
+        "{text}"
+    );
+    let again = Scene::from_toml_str(text, "downloaded").expect("valid TOML");
+    assert_eq!(
+        library_lambda(&again, Direction::Left).lower.lambda,
+        answer["lambda_lower"].as_f64()
+    );
+    let (_, right) = post(&s, "/api/analyze", &json!({ "scene": loaded }));
+    assert!(!right["toml"].as_str().unwrap_or("#").starts_with('#'));
+    assert_ne!(
+        right["lambda_lower"], answer["lambda_lower"],
+        "the portal is not symmetric"
+    );
+
+    // A block-file start scene: its own file may be named, and is written absolute.
+    let path = std::path::PathBuf::from(data("blocks_dxf_arch.toml"));
+    let start = Scene::from_file(&path).expect("bundled block scene");
+    let s = Arc::new(ServerState::new(start.clone(), Limits::default()));
+    let scene = get_json(&s, "/api/scene")["scene"].clone();
+    let file = scene["blocks"]["file"]
+        .as_str()
+        .expect("a blocks file")
+        .to_string();
+    assert!(std::path::Path::new(&file).is_relative(), "{file}");
+    let (status, answer) = post(&s, "/api/analyze", &json!({ "scene": scene }));
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(
+        answer["lambda_lower"].as_f64(),
+        library_lambda(&start, Direction::Right).lower.lambda
+    );
+    let text = answer["toml"].as_str().expect("toml");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let saved = dir.path().join("downloaded.toml");
+    std::fs::write(&saved, text).expect("write");
+    let again = Scene::from_file(&saved).expect("the download reads from anywhere");
+    assert_eq!(
+        library_lambda(&again, Direction::Right).lower.lambda,
+        answer["lambda_lower"].as_f64()
+    );
+    // Any other file is refused, relative or absolute.
+    let mut other = scene.clone();
+    other["blocks"]["file"] = json!("blocks/../../Cargo.toml");
+    refused(
+        &post(&s, "/api/analyze", &other),
+        StatusCode::BAD_REQUEST,
+        "file_refused",
+        Some("blocks.file"),
+    );
 }

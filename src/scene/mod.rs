@@ -34,6 +34,8 @@ pub const MAX_FRICTION: f64 = 1e8;
 pub const MAX_FORCE: f64 = 1e15;
 /// Largest unit weight of a fill (N/m^3): a hundred times that of lead.
 pub const MAX_UNIT_WEIGHT: f64 = 1e7;
+/// Smallest `arch.embrace_deg` (degrees): below it a voussoir's area underflows.
+pub const MIN_EMBRACE_DEG: f64 = 0.01;
 
 /// Smallest length a scene may give (m): a micrometre.
 pub const MIN_LENGTH: f64 = 1e-6;
@@ -502,10 +504,17 @@ impl<'a> Section<'a> {
     }
 
     fn out_of_range(&self, key: &str, value: impl ToString, allowed: &str) -> SceneError {
+        let mut value = value.to_string();
+        // A float far from 1 prints every digit (1e300 as 301 of them): say it as 1e300.
+        if value.len() > 24 {
+            if let Ok(x) = value.parse::<f64>() {
+                value = format!("{x:e}");
+            }
+        }
         SceneError::OutOfRange {
             origin: self.origin.to_string(),
             key: self.key(key),
-            value: value.to_string(),
+            value,
             allowed: allowed.to_string(),
         }
     }
@@ -836,11 +845,12 @@ fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {
         "circular" => {
             let radius = s.length("radius", "centreline radius R in metres")?;
             let embrace_deg = s.positive("embrace_deg", Some(180.0), "")?;
-            if embrace_deg >= 360.0 {
+            // Below MIN_EMBRACE_DEG the voussoirs' areas underflow to zero weight.
+            if !(MIN_EMBRACE_DEG..360.0).contains(&embrace_deg) {
                 return Err(s.out_of_range(
                     "embrace_deg",
                     embrace_deg,
-                    "must be > 0 and < 360 (degrees)",
+                    &format!("must be from {MIN_EMBRACE_DEG} to less than 360 (degrees)"),
                 ));
             }
             if thickness >= 2.0 * radius {
@@ -1236,7 +1246,22 @@ fn parse_seismic(mut s: Section) -> Result<SeismicSpec, SceneError> {
 fn parse_material(mut s: Section) -> Result<Material, SceneError> {
     s.check_known(MATERIAL_KEYS, "")?;
     let unit_weight = s.positive("unit_weight", Some(20000.0), "")?;
+    // Bounded so that every block's weight is a finite, nonzero number.
+    if unit_weight > MAX_UNIT_WEIGHT {
+        return Err(s.out_of_range(
+            "unit_weight",
+            unit_weight,
+            &format!("must be a number > 0 and at most {MAX_UNIT_WEIGHT:e} (N/m^3)"),
+        ));
+    }
     let depth = s.positive("depth", Some(1.0), "")?;
+    if !(MIN_LENGTH..=MAX_LENGTH).contains(&depth) {
+        return Err(s.out_of_range(
+            "depth",
+            depth,
+            &format!("must be a length from {MIN_LENGTH:e} to {MAX_LENGTH:e} m"),
+        ));
+    }
     let friction = s.opt_f64("friction")?.unwrap_or(f64::INFINITY);
     if friction.is_nan() || friction < 0.0 || (friction.is_finite() && friction > MAX_FRICTION) {
         return Err(s.out_of_range(

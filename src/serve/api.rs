@@ -27,6 +27,8 @@ use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde::Deserialize;
 use serde_json::{json, Map, Value as JsonValue};
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
 use toml::Value as Toml;
@@ -49,6 +51,17 @@ impl ApiError {
             key: key.map(str::to_string),
             kind,
         }
+    }
+}
+
+impl ApiError {
+    /// The same refusal, about `key` when it names none (a sweep's bad variation is about
+    /// its `key`).
+    fn about(mut self, key: &str) -> Self {
+        if self.key.is_none() {
+            self.key = Some(key.to_string());
+        }
+        self
     }
 }
 
@@ -88,6 +101,13 @@ impl From<AnalysisError> for ApiError {
     fn from(e: AnalysisError) -> Self {
         match e {
             AnalysisError::Scene(e) => e.into(),
+            // The request's scene made blocks the analysis cannot take (e.g. of no weight).
+            AnalysisError::Assembly(message) => ApiError {
+                status: StatusCode::BAD_REQUEST,
+                message: format!("invalid assembly: {message}"),
+                key: None,
+                kind: "invalid_assembly",
+            },
             other => ApiError {
                 status: StatusCode::INTERNAL_SERVER_ERROR,
                 message: other.to_string(),
@@ -123,6 +143,7 @@ fn body_error(e: BytesRejection, limits: &Limits) -> ApiError {
 
 /// The query string's options (`?direction=left`).
 #[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct QueryOptions {
     pub direction: Option<String>,
 }
@@ -246,55 +267,27 @@ pub fn table_json(t: &toml::Table) -> JsonValue {
 /// server was not started with.
 fn check_limits(table: &toml::Table, state: &ServerState) -> Result<(), ApiError> {
     let limits = &state.limits;
-    let count =
-        |section: Option<&Toml>, key: &str| -> Option<i64> { section?.get(key)?.as_integer() };
-    let too_many = |key: &str, n: i64, max: usize, what: &str| {
-        ApiError::bad(
-            "limit",
-            Some(key),
-            format!(
-                "`{key}` = {n}: the server takes at most {max} {what} (the CLI takes more: `voussoir analyze`)"
-            ),
-        )
-    };
-    if let Some(n) = count(table.get("arch"), "voussoirs") {
-        if n > limits.max_voussoirs as i64 {
-            return Err(too_many(
-                "arch.voussoirs",
-                n,
-                limits.max_voussoirs,
-                "voussoirs",
+    // Every count, wherever it is written (`arch.voussoirs`, `piers.courses`,
+    // `piers.left.courses`, ...) and however (8 or 8.0), and every list of pier steps.
+    let mut counts = Vec::new();
+    counted_values("", table, &mut counts);
+    for (key, n) in counts {
+        let (max, what) = match key.rsplit('.').next() {
+            Some("polygons") => (limits.max_blocks, "blocks"),
+            Some("voussoirs") => (limits.max_voussoirs, "voussoirs"),
+            _ => (limits.max_voussoirs, "courses per pier"),
+        };
+        if n.is_nan() || n > max as f64 {
+            return Err(ApiError::bad(
+                "limit",
+                Some(&key),
+                format!(
+                    "`{key}` = {n}: the server takes at most {max} {what} (the CLI takes more: `voussoir analyze`)"
+                ),
             ));
         }
     }
-    let piers = table.get("piers");
-    let sides = [
-        ("piers.courses", count(piers, "courses")),
-        (
-            "piers.left.courses",
-            count(piers.and_then(|p| p.get("left")), "courses"),
-        ),
-        (
-            "piers.right.courses",
-            count(piers.and_then(|p| p.get("right")), "courses"),
-        ),
-    ];
-    for (key, n) in sides {
-        if let Some(n) = n.filter(|&n| n > limits.max_voussoirs as i64) {
-            return Err(too_many(key, n, limits.max_voussoirs, "courses per pier"));
-        }
-    }
     if let Some(blocks) = table.get("blocks") {
-        if let Some(polygons) = blocks.get("polygons").and_then(|p| p.as_array()) {
-            if polygons.len() > limits.max_blocks {
-                return Err(too_many(
-                    "blocks.polygons",
-                    polygons.len() as i64,
-                    limits.max_blocks,
-                    "blocks",
-                ));
-            }
-        }
         if let Some(file) = blocks.get("file") {
             let allowed = state.blocks_file.as_deref();
             if file.as_str() != allowed {
@@ -312,13 +305,50 @@ fn check_limits(table: &toml::Table, state: &ServerState) -> Result<(), ApiError
     Ok(())
 }
 
+/// The keys that count blocks: `voussoirs` and `courses` (their value), and `widths` (a
+/// stepped pier's courses) and `polygons` (the user's blocks) by their length.
+const COUNTED: &[&str] = &["voussoirs", "courses", "widths", "polygons"];
+
+/// Every counted key below `table` (dotted from `path`) with its count.
+fn counted_values(path: &str, table: &toml::Table, out: &mut Vec<(String, f64)>) {
+    for (k, v) in table {
+        let key = if path.is_empty() {
+            k.clone()
+        } else {
+            format!("{path}.{k}")
+        };
+        match v {
+            Toml::Table(t) => counted_values(&key, t, out),
+            Toml::Integer(n) if COUNTED.contains(&k.as_str()) => out.push((key, *n as f64)),
+            Toml::Float(x) if COUNTED.contains(&k.as_str()) => out.push((key, *x)),
+            Toml::Array(items) if COUNTED.contains(&k.as_str()) => {
+                out.push((key, items.len() as f64))
+            }
+            _ => {}
+        }
+    }
+}
+
 /// The scene of a request: the whole body, or its `scene` member.
 fn request_scene(
     body: &Map<String, JsonValue>,
     state: &ServerState,
+    fields: &[&str],
 ) -> Result<(Scene, Option<String>), ApiError> {
     let (scene, direction) = match body.get("scene") {
         Some(JsonValue::Object(scene)) => {
+            // A misspelt option (`directon`) must not be ignored silently.
+            if let Some(unknown) = body.keys().find(|k| !fields.contains(&k.as_str())) {
+                return Err(ApiError::bad(
+                    "unknown_field",
+                    Some(unknown),
+                    format!(
+                        "unknown field `{unknown}`{} (this request takes: {})",
+                        crate::error::did_you_mean(unknown, fields),
+                        fields.join(", ")
+                    ),
+                ));
+            }
             let direction = match body.get("direction") {
                 None => None,
                 Some(JsonValue::String(d)) => Some(d.clone()),
@@ -353,6 +383,46 @@ fn request_scene(
     Ok((scene, direction))
 }
 
+/// The direction given in the query string (`?direction=left`), if any.
+fn query_direction(
+    query: Result<Query<QueryOptions>, QueryRejection>,
+) -> Result<Option<String>, ApiError> {
+    let query = query.map_err(|e| {
+        ApiError::bad(
+            "bad_option",
+            None,
+            format!("bad query string: {}", e.body_text()),
+        )
+    })?;
+    Ok(query.0.direction)
+}
+
+/// The scene as a TOML file to download: it analyses to the same multiplier wherever it is
+/// saved. The direction, which the scene format does not hold, is said in a first comment
+/// line, and a relative `blocks.file` becomes absolute (it was relative to the start scene).
+fn scene_toml(scene: &Scene, dir: Direction, base_dir: Option<&Path>) -> Result<String, ApiError> {
+    let mut table = scene.table().clone();
+    if let (Some(base), Some(Toml::Table(blocks))) = (base_dir, table.get_mut("blocks")) {
+        if let Some(Toml::String(file)) = blocks.get_mut("file") {
+            if Path::new(file.as_str()).is_relative() {
+                *file = base.join(&*file).display().to_string();
+            }
+        }
+    }
+    let text = toml::to_string(&table).map_err(|e| ApiError {
+        status: StatusCode::INTERNAL_SERVER_ERROR,
+        message: format!("cannot write the scene as TOML: {e}"),
+        key: None,
+        kind: "internal",
+    })?;
+    Ok(match dir {
+        Direction::Right => text,
+        Direction::Left => format!(
+            "# analysed with the earthquake to the left: voussoir analyze FILE --direction left\n{text}"
+        ),
+    })
+}
+
 /// Run `work` off the async threads; a panic in it becomes a 500, not a dead server.
 async fn blocking<T, F>(work: F) -> Result<T, ApiError>
 where
@@ -377,14 +447,15 @@ fn options(direction: Direction) -> Options {
 }
 
 /// `GET /api/scene`.
-pub async fn scene(State(state): State<Arc<ServerState>>) -> Response {
+pub async fn scene(State(state): State<Arc<ServerState>>) -> Result<Response, ApiError> {
     let table = state.scene.table();
-    Json(json!({
+    let toml = scene_toml(&state.scene, Direction::Right, None)?;
+    Ok(Json(json!({
         "scene": table_json(table),
-        "toml": toml::to_string(table).unwrap_or_default(),
+        "toml": toml,
         "origin": state.scene.origin,
     }))
-    .into_response()
+    .into_response())
 }
 
 /// `GET /api/parameters`.
@@ -428,16 +499,9 @@ pub async fn analyze(
     let start = Instant::now();
     let body = body.map_err(|e| body_error(e, &state.limits))?;
     let body = json_object(&body)?;
-    let (scene, in_body) = request_scene(&body, &state)?;
-    let query = query.map_err(|e| {
-        ApiError::bad(
-            "bad_option",
-            None,
-            format!("bad query string: {}", e.body_text()),
-        )
-    })?;
-    let dir_text = query.0.direction.or(in_body);
-    let dir = direction(dir_text.as_deref())?;
+    let (scene, in_body) = request_scene(&body, &state, &["scene", "direction"])?;
+    let dir = direction(query_direction(query)?.or(in_body).as_deref())?;
+    let base_dir = state.base_dir.clone();
     let mut out = blocking(move || {
         let a = analysis::analyse(&scene, &options(dir))?;
         let svg = report::analysis_svg(&scene, &a, dir).map_err(|e| ApiError {
@@ -451,10 +515,8 @@ pub async fn analyze(
             _ => Map::new(),
         };
         out.insert("svg".into(), JsonValue::String(svg));
-        out.insert(
-            "toml".into(),
-            JsonValue::String(toml::to_string(scene.table()).unwrap_or_default()),
-        );
+        let text = scene_toml(&scene, dir, base_dir.as_deref())?;
+        out.insert("toml".into(), JsonValue::String(text));
         Ok(out)
     })
     .await?;
@@ -465,10 +527,24 @@ pub async fn analyze(
     Ok(Json(JsonValue::Object(out)).into_response())
 }
 
+/// Whether a scene key is a count (`arch.voussoirs`, `piers.courses`, `piers.left.courses`).
+fn is_count(key: &str) -> bool {
+    matches!(key.rsplit('.').next(), Some("voussoirs" | "courses"))
+}
+
+/// Sets its flag when dropped: the handler of a request whose client has gone is dropped.
+#[derive(Default)]
+struct CancelOnDrop(Arc<AtomicBool>);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
 /// The values of a sweep from `from` to `to` in `points` steps; whole numbers, without
-/// repeats, for a whole-number key (voussoirs, courses).
-fn sweep_values(scene: &Scene, key: &str, from: f64, to: f64, points: usize) -> Vec<Toml> {
-    let current = parameters::lookup(scene.table(), key);
+/// repeats, for a count (voussoirs, courses).
+fn sweep_values(key: &str, from: f64, to: f64, points: usize) -> Vec<Toml> {
     let at = |i: usize| {
         if points == 1 {
             from
@@ -476,14 +552,9 @@ fn sweep_values(scene: &Scene, key: &str, from: f64, to: f64, points: usize) -> 
             from + (to - from) * i as f64 / (points - 1) as f64
         }
     };
-    // A key a slider describes says itself whether it is whole (JSON writes 1.0 as 1, so the
-    // scene's value alone cannot tell a pier height of 1 m from a count); any other key
-    // follows the type of its value in the scene.
-    let whole = match parameters::SLIDERS.iter().find(|p| p.key == key) {
-        Some(p) => p.integer,
-        None => matches!(current, Some(Toml::Integer(_))),
-    };
-    if whole {
+    // Whole numbers for counts only: JSON writes 1.0 as 1, so the scene's value cannot tell
+    // a pier height of 1 m from a count.
+    if is_count(key) {
         let mut values: Vec<i64> = (0..points).map(|i| at(i).round() as i64).collect();
         values.dedup();
         values.into_iter().map(Toml::Integer).collect()
@@ -519,6 +590,7 @@ fn number(body: &Map<String, JsonValue>, name: &str) -> Result<f64, ApiError> {
 /// `POST /api/sweep`.
 pub async fn sweep(
     State(state): State<Arc<ServerState>>,
+    query: Result<Query<QueryOptions>, QueryRejection>,
     body: Result<Bytes, BytesRejection>,
 ) -> Result<Response, ApiError> {
     let start = Instant::now();
@@ -531,8 +603,12 @@ pub async fn sweep(
             "missing `scene`: the sweep's body is {\"scene\": {...}, \"key\": ..., \"from\": ..., \"to\": ..., \"points\": ...}",
         ));
     }
-    let (scene, in_body) = request_scene(&body, &state)?;
-    let dir = direction(in_body.as_deref())?;
+    let (scene, in_body) = request_scene(
+        &body,
+        &state,
+        &["scene", "direction", "key", "from", "to", "points"],
+    )?;
+    let dir = direction(query_direction(query)?.or(in_body).as_deref())?;
     let key = match body.get("key") {
         Some(JsonValue::String(k)) if !k.trim().is_empty() => k.trim().to_string(),
         _ => {
@@ -565,15 +641,45 @@ pub async fn sweep(
             format!("`points` must be a whole number from 1 to {max}"),
         )
     })? as usize;
-    let values = sweep_values(&scene, &key, from, to, points);
+    let values = sweep_values(&key, from, to, points);
+    // A count swept past the limit is refused like a scene that asks for it.
+    if is_count(&key) && to > state.limits.max_voussoirs as f64 {
+        let max = state.limits.max_voussoirs;
+        return Err(ApiError::bad(
+            "limit",
+            Some("to"),
+            format!("`to` = {to}: `{key}` goes up to {max} in the server (the CLI takes more: `voussoir sweep`)"),
+        ));
+    }
     let label = sweep::key_label(&key);
+    // At most a few sweeps at once, and a sweep whose client has gone (the page aborts one
+    // when the user moves to another parameter) stops before its next case.
+    let _permit = state.sweeps.acquire().await.map_err(|e| ApiError {
+        status: StatusCode::INTERNAL_SERVER_ERROR,
+        message: format!("the server is shutting down: {e}"),
+        key: None,
+        kind: "internal",
+    })?;
+    let cancel = CancelOnDrop::default();
+    let cancelled = cancel.0.clone();
     let rows = blocking(move || {
-        let sweep = Sweep::new(&scene, vec![Variation { key, values }])?;
-        Ok(sweep.run(&options(dir), false, &|| {}))
+        let sweep = Sweep::new(&scene, vec![Variation { key, values }])
+            .map_err(|e| ApiError::from(e).about("key"))?;
+        let options = options(dir);
+        Ok(sweep::run(
+            sweep.cases(),
+            |values, case| {
+                (!cancelled.load(Ordering::Relaxed))
+                    .then(|| sweep::case(values, case, &options, false))
+            },
+            &|| {},
+        ))
     })
     .await?;
+    drop(cancel);
     let rows: Vec<JsonValue> = rows
         .iter()
+        .flatten()
         .map(|r| {
             json!({
                 "value": r.values.first().map_or(JsonValue::Null, to_json),
@@ -592,6 +698,94 @@ pub async fn sweep(
         "elapsed_ms": start.elapsed().as_secs_f64() * 1e3,
     }))
     .into_response())
+}
+
+/// Whether a `Host` header (or an origin's host) names this machine's loopback: `127.0.0.1`,
+/// `localhost` or `[::1]`, with any port.
+fn loopback_host(host: &str) -> bool {
+    let name = if let Some(rest) = host.strip_prefix('[') {
+        rest.split(']').next().unwrap_or("")
+    } else {
+        host.rsplit_once(':').map_or(host, |(name, _port)| name)
+    };
+    matches!(
+        name.to_ascii_lowercase().as_str(),
+        "127.0.0.1" | "localhost" | "::1"
+    )
+}
+
+/// Refuse what does not come from this machine's own page: a `Host` other than loopback (a
+/// web site that re-points its name at 127.0.0.1, "DNS rebinding", would send its own name),
+/// an `Origin` other than loopback (another site's page in the user's browser), and a POST
+/// whose body is not declared JSON (a browser sends `text/plain` from any site without
+/// asking; `application/json` from another origin needs a preflight, which is refused).
+pub async fn same_machine_only(
+    request: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    use axum::http::{header, Method};
+    let headers = request.headers();
+    let text = |name| headers.get(name).map(|v| v.to_str().unwrap_or("\u{fffd}"));
+    let forbidden = |message: String| {
+        ApiError {
+            status: StatusCode::FORBIDDEN,
+            message,
+            key: None,
+            kind: "forbidden",
+        }
+        .into_response()
+    };
+    if let Some(host) = text(header::HOST) {
+        if !loopback_host(host) {
+            return forbidden(format!(
+                "Host `{host}`: this server answers only requests to 127.0.0.1, localhost or [::1]"
+            ));
+        }
+    }
+    if let Some(origin) = text(header::ORIGIN) {
+        let host = origin
+            .strip_prefix("http://")
+            .or_else(|| origin.strip_prefix("https://"))
+            .unwrap_or("");
+        if !loopback_host(host) {
+            return forbidden(format!(
+                "Origin `{origin}`: this server answers only its own page"
+            ));
+        }
+    }
+    if request.method() == Method::POST {
+        let json = text(header::CONTENT_TYPE).is_some_and(|t| {
+            t.split(';')
+                .next()
+                .is_some_and(|m| m.trim().eq_ignore_ascii_case("application/json"))
+        });
+        if !json {
+            return ApiError {
+                status: StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                message: "the body must be JSON, sent with `Content-Type: application/json`".into(),
+                key: None,
+                kind: "unsupported_media_type",
+            }
+            .into_response();
+        }
+    }
+    next.run(request).await
+}
+
+/// A known path asked with a method it does not take.
+pub async fn method_not_allowed(method: axum::http::Method, uri: Uri) -> ApiError {
+    let allowed = if uri.path().starts_with("/api/analyze") || uri.path().starts_with("/api/sweep")
+    {
+        "POST"
+    } else {
+        "GET"
+    };
+    ApiError {
+        status: StatusCode::METHOD_NOT_ALLOWED,
+        message: format!("{method} {}: this path takes {allowed}", uri.path()),
+        key: None,
+        kind: "method_not_allowed",
+    }
 }
 
 /// Any other path.

@@ -7,8 +7,11 @@
 //! policy of its own beyond its [`Limits`]: scenes are validated by [`crate::scene`], and the
 //! slider ranges the page shows come from [`parameters`].
 //!
-//! Safety: the server binds to loopback ([`DEFAULT_ADDR`]); request bodies, voussoir counts
-//! and sweep sizes are limited; a request that cannot be analysed is answered with a 400 and
+//! Safety: the server binds to loopback ([`DEFAULT_ADDR`]) and answers only requests that say
+//! they are for this machine and come from its own page ([`api::same_machine_only`]: the
+//! `Host`, the `Origin`, and JSON bodies, so that no other web site open in the user's browser
+//! can use it); request bodies, block counts and sweep sizes are limited, and sweeps run a few
+//! at a time and stop when their client has gone; a request that cannot be analysed is answered with a 400 and
 //! the message (naming the scene key when there is one), and a panic in an analysis is caught
 //! and answered with a 500, never a crash. The server reads no files on request: a scene's
 //! `blocks.file` is accepted only when it is the file of the scene the server was started
@@ -62,7 +65,12 @@ pub struct ServerState {
     pub(crate) blocks_file: Option<String>,
     pub(crate) base_dir: Option<PathBuf>,
     pub limits: Limits,
+    /// Sweeps running at once (each is parallel already): more wait their turn.
+    pub(crate) sweeps: tokio::sync::Semaphore,
 }
+
+/// Sweeps that may run at once.
+const CONCURRENT_SWEEPS: usize = 2;
 
 impl ServerState {
     /// The state of a server opening with `scene`.
@@ -79,6 +87,7 @@ impl ServerState {
             blocks_file,
             base_dir,
             limits,
+            sweeps: tokio::sync::Semaphore::new(CONCURRENT_SWEEPS),
         }
     }
 
@@ -102,6 +111,8 @@ pub fn router(state: Arc<ServerState>) -> axum::Router {
         .route("/api/analyze", post(api::analyze))
         .route("/api/sweep", post(api::sweep))
         .fallback(api::not_found)
+        .method_not_allowed_fallback(api::method_not_allowed)
+        .layer(axum::middleware::from_fn(api::same_machine_only))
         .layer(axum::extract::DefaultBodyLimit::max(limit))
         .with_state(state)
 }

@@ -32,6 +32,24 @@ pub struct Slider {
     /// What an absent key means, for keys that may be left out (e.g. friction: infinite).
     pub absent: Option<&'static str>,
     pub help: &'static str,
+    /// A step of its own for some `arch.shape` values (a pointed arch has an even number of
+    /// voussoirs), as `{"pointed": 2}`.
+    #[serde(serialize_with = "as_map")]
+    pub shape_steps: &'static [(&'static str, f64)],
+    /// Sections in whose presence the key does not apply (a portal's arch embraces 180 deg).
+    pub not_with: &'static [&'static str],
+}
+
+fn as_map<S: serde::Serializer>(
+    pairs: &&'static [(&'static str, f64)],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut map = serializer.serialize_map(Some(pairs.len()))?;
+    for (k, v) in pairs.iter() {
+        map.serialize_entry(k, v)?;
+    }
+    map.end()
 }
 
 /// A slider and the presets whose scenes have its key (`GET /api/parameters`).
@@ -114,6 +132,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: ALL_SHAPES,
         absent: None,
         help: "Thickness of the arch ring, measured radially.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.radius",
@@ -127,6 +147,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["circular", "pointed"],
         absent: None,
         help: "Centreline radius (of each arc of a pointed arch).",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.embrace_deg",
@@ -140,6 +162,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["circular"],
         absent: None,
         help: "Angle the arch spans at its centre (180 for a semicircle; a portal needs 180).",
+        shape_steps: &[],
+        not_with: &["piers"],
     },
     Slider {
         key: "arch.eccentricity",
@@ -153,6 +177,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["pointed"],
         absent: None,
         help: "Distance of each arc's centre from the axis: 0 is a semicircle.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.span",
@@ -166,6 +192,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["basket"],
         absent: None,
         help: "Centreline span of the basket-handle arch.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.rise",
@@ -179,6 +207,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["basket"],
         absent: None,
         help: "Centreline rise: at most half the span.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.side_angle_deg",
@@ -192,6 +222,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &["basket"],
         absent: None,
         help: "Angle subtended by each side arc of the three-centred arch.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "arch.voussoirs",
@@ -205,6 +237,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: ALL_SHAPES,
         absent: None,
         help: "Number of voussoirs (even for a pointed arch).",
+        shape_steps: &[("pointed", 2.0)],
+        not_with: &[],
     },
     Slider {
         key: "piers.height",
@@ -218,6 +252,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Height of the piers below the springings.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "piers.width",
@@ -231,6 +267,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Width of each pier.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "piers.courses",
@@ -244,6 +282,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Number of blocks stacked in each pier.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "fill.level",
@@ -257,6 +297,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Height of the fill's top surface (y = 0 at the springings).",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "fill.unit_weight",
@@ -270,6 +312,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Unit weight of the fill, which loads the extrados vertically.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "seismic.vertical_ratio",
@@ -283,6 +327,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: Some("0 (no vertical acceleration)"),
         help: "Vertical ground acceleration as a share of the horizontal one (positive upward).",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "loads[0].intensity",
@@ -296,6 +342,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Intensity of the first [[loads]] entry, when it is a line load (downward).",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "loads[1].intensity",
@@ -309,6 +357,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Intensity of the second [[loads]] entry, when it is a line load (downward).",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "material.friction",
@@ -322,6 +372,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: Some("inf (joints cannot slide)"),
         help: "Coulomb friction coefficient of the joints.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "material.unit_weight",
@@ -335,6 +387,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Unit weight of the masonry.",
+        shape_steps: &[],
+        not_with: &[],
     },
     Slider {
         key: "material.compressive_strength",
@@ -348,6 +402,8 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: Some("inf (joints cannot crush)"),
         help: "Masonry compressive strength: hinges move inward by half the compressed zone.",
+        shape_steps: &[],
+        not_with: &[],
     },
 ];
 
@@ -375,6 +431,9 @@ fn preset_has(preset: &Preset, slider: &Slider) -> bool {
     let Ok(table) = preset.toml.parse::<toml::Table>() else {
         return false;
     };
+    if slider.not_with.iter().any(|sec| table.contains_key(*sec)) {
+        return false;
+    }
     if lookup(&table, slider.key).is_some() {
         return true;
     }

@@ -476,6 +476,13 @@ test('a scene of user blocks opens with the CLI\'s lambda and no chart error', a
     assertShows(await shown(page), analyze(blocks, { 'loads[0].intensity': value }), `q = ${value}`);
     assert.ok(await page.locator('#v-chart svg polyline.series').count() >= 1, 'the chart of the line load');
     assert.doesNotMatch(await page.locator('#v-chart').textContent(), /refused|could not/);
+    // The TOML names its blocks file by an absolute path: saved elsewhere, it analyses to the
+    // page's multiplier.
+    const toml = await download(page, '#v-dl-toml');
+    const file = path.join(mkdtempSync(path.join(os.tmpdir(), 'voussoir-e2e-')), toml.name);
+    writeFileSync(file, toml.text);
+    const json = JSON.parse((await download(page, '#v-dl-json')).text);
+    assert.equal(analyze(file).lambda_lower, json.lambda_lower, 'the TOML saved elsewhere: the same lambda_lower');
     assert.deepEqual(problems, []);
   } finally {
     await context.close();

@@ -797,3 +797,47 @@ pub async fn not_found(uri: Uri) -> ApiError {
         kind: "not_found",
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A panic inside an analysis is answered with a 500 and a message; the server goes on.
+    #[test]
+    fn a_panicking_analysis_is_a_500_not_a_dead_server() {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .build()
+            .expect("runtime");
+        let answer: Result<(), ApiError> =
+            runtime.block_on(blocking(|| panic!("a bug in an analysis")));
+        let e = answer.expect_err("the panic is an error");
+        assert_eq!(e.status, StatusCode::INTERNAL_SERVER_ERROR);
+        assert_eq!(e.kind, "internal");
+        assert!(e.message.contains("report the scene"), "{}", e.message);
+        let after: Result<u8, ApiError> = runtime.block_on(blocking(|| Ok(7)));
+        assert_eq!(after.ok(), Some(7));
+    }
+
+    #[test]
+    fn loopback_hosts_are_recognised() {
+        for ok in [
+            "127.0.0.1",
+            "127.0.0.1:80",
+            "localhost:8080",
+            "LOCALHOST",
+            "[::1]:9",
+        ] {
+            assert!(loopback_host(ok), "{ok}");
+        }
+        for bad in [
+            "",
+            "evil.example",
+            "127.0.0.2",
+            "localhost.evil",
+            "[::2]:80",
+            "::1",
+        ] {
+            assert!(!loopback_host(bad), "{bad}");
+        }
+    }
+}

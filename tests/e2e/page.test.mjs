@@ -41,6 +41,10 @@ async function shown(page) {
   }));
 }
 
+// The page's console errors, less the browser's note of each 400 answer (a refusal the
+// test asked for).
+const unexpected = (problems) => problems.filter((p) => !/status of 400 \(Bad Request\)/.test(p));
+
 // The page writes a missing multiplier (null) as a dash.
 const digits = (x, d) => (typeof x === 'number' ? x.toFixed(d) : '—');
 
@@ -129,14 +133,21 @@ test('a burst of slider events ends on the last value (the drawing never lags be
     page.on('requestfinished', done);
     page.on('requestfailed', done);
     const t = field(page, 'arch.thickness');
-    await t.slider.focus();
+    // Twelve input events in one task, as a fast drag delivers them: the first is sent, the
+    // other eleven arrive while it is in flight and are merged into one request.
     const events = 12;
-    for (let i = 0; i < events; i++) await page.keyboard.press('ArrowRight');
+    await t.slider.evaluate((slider, n) => {
+      for (let i = 0; i < n; i++) {
+        slider.stepUp();
+        slider.dispatchEvent(new Event('input', { bubbles: true }));
+      }
+    }, events);
     await settled(page);
     const value = await t.slider.inputValue();
     assert.equal(Number(value), 0.21, 'twelve steps of 0.005 from 0.15');
     assert.equal(most, 1, 'at most one analysis request in flight');
-    assert.ok(sent >= 1 && sent <= events, `${sent} requests for ${events} events`);
+    assert.ok(sent >= 1 && sent < events, `events were merged: ${sent} requests for ${events} events`);
+    assert.equal(sent, 2, 'the first event\'s scene, then the last one\'s');
     assertShows(await shown(page), analyze(SCENE, { 'arch.thickness': value }), `t = ${value}`);
   } finally {
     await context.close();
@@ -223,44 +234,56 @@ test('the downloaded TOML re-analyses with the CLI to the same lambda', async ()
 test('a preset and the direction toggle give the CLI\'s values for that scene', async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   try {
+    // A portal's arch must embrace 180 degrees: no Embrace field (`not_with: ["piers"]`).
     await page.click('#v-shapes button[data-preset="portal"]');
     await settled(page);
     assert.equal(await field(page, 'piers.height').row.count(), 1, 'the piers\' fields appear');
+    assert.equal(await field(page, 'arch.embrace_deg').row.count(), 0, 'no Embrace field on a portal');
+    // The loaded portal is not symmetric (a point load on its right haunch): the direction
+    // changes lambda, so a TOML read back in the wrong direction would be caught.
+    await page.click('#v-shapes button[data-preset="loaded_portal"]');
+    await settled(page);
+    assert.equal(await field(page, 'arch.embrace_deg').row.count(), 0, 'no Embrace field on a portal');
     await page.click('#v-direction button[data-direction="left"]');
     await settled(page);
+    const toml = await download(page, '#v-dl-toml');
+    assert.match(toml.name, /-left\.toml$/, `the file name says left: ${toml.name}`);
+    const first = toml.text.split('\n')[0];
+    assert.match(first, /^# analysed with the earthquake to the left: voussoir analyze FILE --direction left\s*$/,
+      `the TOML's first line tells the direction: ${first}`);
     const dir = mkdtempSync(path.join(os.tmpdir(), 'voussoir-e2e-'));
-    const file = path.join(dir, 'portal.toml');
-    writeFileSync(file, (await download(page, '#v-dl-toml')).text);
+    const file = path.join(dir, toml.name);
+    writeFileSync(file, toml.text);
     const cli = analyze(file, {}, 'left');
     assert.equal(cli.scene.portal, true);
-    assertShows(await shown(page), cli, 'portal, leftward');
+    assertShows(await shown(page), cli, 'loaded portal, leftward');
     const json = JSON.parse((await download(page, '#v-dl-json')).text);
     assert.equal(json.direction, 'left');
-    sameAnalysis(json, cli, 'portal, leftward');
-    // The portal is symmetric: to the left it fails at the multiplier it has to the right,
-    // with the mirror image of its hinges (joint j of J + 1 joints becomes J - j).
+    assert.equal(cli.lambda_lower, json.lambda_lower, 'the CLI to the left on the TOML: the page\'s lambda_lower exactly');
+    sameAnalysis(json, cli, 'loaded portal, leftward');
     const right = analyze(file, {}, 'right');
-    assert.ok(Math.abs(json.lambda_lower - right.lambda_lower) <= 1e-9 * right.lambda_lower,
-      `left ${json.lambda_lower}, right ${right.lambda_lower}`);
-    const last = json.joints.length - 1;
-    assert.deepEqual(json.hinges.map((h) => last - h.joint).sort((a, b) => a - b),
-      right.hinges.map((h) => h.joint).sort((a, b) => a - b));
-    // The chart of the pier height (1 m, a whole number in JSON) runs over real values.
+    assert.ok(Math.abs(json.lambda_lower - right.lambda_lower) > 1e-3 * right.lambda_lower,
+      `the direction matters here: left ${json.lambda_lower}, right ${right.lambda_lower}`);
+    assert.equal(right.lambda_lower, analyze(scenePath('loaded_portal.toml')).lambda_lower,
+      'to the right, the TOML is the bundled scene');
+    // The chart of the pier height (a whole number in JSON) runs over real values.
     const swept = page.waitForResponse((r) => r.url().endsWith('/api/sweep'));
     const h = field(page, 'piers.height');
     await h.slider.focus();
     await page.keyboard.press('ArrowRight');
     const rows = (await (await swept).json()).rows;
-    const asked = JSON.parse((await swept).request().postData()).points;
-    assert.equal(rows.length, asked, 'one row per point asked for');
+    const asked = JSON.parse((await swept).request().postData());
+    assert.equal(asked.direction, 'left', 'the chart is of the leftward multiplier');
+    assert.equal(rows.length, asked.points, 'one row per point asked for');
     assert.ok(rows.some((r) => !Number.isInteger(r.value)), 'pier heights between whole metres');
     await settled(page);
     await chartSettled(page);
     assert.match(await page.locator('#v-chart-title').textContent(), /pier height/i);
-    // Back to a plain arch: the piers' fields go away.
+    // Back to a plain arch: the piers' fields go away, the Embrace field comes back.
     await page.click('#v-shapes button[data-preset="circular"]');
     await settled(page);
     assert.equal(await field(page, 'piers.height').row.count(), 0);
+    assert.equal(await field(page, 'arch.embrace_deg').row.count(), 1);
     assert.deepEqual(problems, []);
   } finally {
     await context.close();
@@ -288,6 +311,292 @@ test('the line-load slider of the loaded portal gives the CLI\'s values for that
     assert.ok(Number(after.lambda) < Number(before.lambda), 'a heavier deck load lowers lambda here');
     sameAnalysis(JSON.parse((await download(page, '#v-dl-json')).text), cli, 'line load');
     assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+  }
+});
+
+test('the chart recovers once a refused value is corrected', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    await chartSettled(page);
+    const n = field(page, 'arch.voussoirs');
+    // 12.5 voussoirs: the server refuses the analysis and the chart's sweep (wrong type).
+    const refused = analyzeFails(SCENE, { 'arch.voussoirs': '12.5' });
+    assert.notEqual(refused.status, 0);
+    await n.number.fill('12.5');
+    await n.number.press('Enter');
+    await settled(page);
+    await chartSettled(page);
+    await n.error.waitFor({ state: 'visible' });
+    assert.equal(await page.locator('#v-chart svg').count(), 0, 'no chart for a refused scene');
+    assert.match(await page.locator('#v-chart').textContent(), /voussoirs/, 'the chart says why');
+    // A valid value: the chart of the voussoirs is drawn (the failed sweep is not remembered).
+    await n.number.fill('24');
+    await n.number.press('Enter');
+    await settled(page);
+    await chartSettled(page);
+    await n.error.waitFor({ state: 'hidden' });
+    assert.match(await page.locator('#v-chart-title').textContent(), /voussoirs/i);
+    assert.ok(await page.locator('#v-chart svg polyline.series').count() >= 1, 'the chart has its line');
+    assert.equal(await page.locator('#v-chart svg circle.marker').count(), 1, 'and its marker');
+    assert.equal(await page.locator('#v-chart .placeholder').count(), 0, 'and no message');
+    assertShows(await shown(page), analyze(SCENE, { 'arch.voussoirs': 24 }), 'n = 24');
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+  }
+});
+
+test('a value typed beyond the slider widens it, and the slider steps on from there', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    const t = field(page, 'arch.thickness');
+    const [lo, hi] = await t.row.locator('.bound').allTextContents();
+    assert.ok(Number(hi) < 0.7, `0.7 is beyond the slider (${lo} to ${hi})`);
+    await t.number.fill('0.7');
+    await t.number.press('Enter');
+    await settled(page);
+    assert.equal(await t.slider.inputValue(), '0.7', 'the slider holds the value typed');
+    assert.equal(await t.slider.getAttribute('max'), '0.7');
+    assert.deepEqual(await t.row.locator('.bound').allTextContents(), [lo, '0.7'], 'the new end is shown');
+    await t.slider.focus();
+    await page.keyboard.press('ArrowLeft');
+    await settled(page);
+    assert.equal(await t.slider.inputValue(), '0.695', 'one step down from 0.7');
+    assert.equal(await t.number.inputValue(), '0.695');
+    assertShows(await shown(page), analyze(SCENE, { 'arch.thickness': 0.695 }), 't = 0.695');
+    // A value the server refuses does not widen the slider: 0 goes back to the range.
+    await t.number.fill('0');
+    await t.number.press('Enter');
+    await settled(page);
+    await t.error.waitFor({ state: 'visible' });
+    assert.equal(await t.slider.getAttribute('min'), lo, 'the refused 0 leaves the range as it was');
+    assert.deepEqual(await t.row.locator('.bound').allTextContents(), [lo, '0.7']);
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+  }
+});
+
+test('a pointed arch\'s voussoir slider takes even numbers only, and its chart refuses none for parity', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    await page.click('#v-shapes button[data-preset="pointed"]');
+    await settled(page);
+    const n = field(page, 'arch.voussoirs');
+    assert.equal(await n.slider.getAttribute('step'), '2');
+    assert.equal(await n.number.getAttribute('step'), '2');
+    const seen = [];
+    await n.slider.focus();
+    const swept = page.waitForResponse((r) => r.url().endsWith('/api/sweep')
+      && JSON.parse(r.request().postData()).key === 'arch.voussoirs');
+    // End reaches the slider's top (more voussoirs than this arch's geometry takes: refused,
+    // as the CLI refuses it); the last value, a page up from the bottom, is valid.
+    for (const key of ['ArrowRight', 'ArrowRight', 'ArrowLeft', 'End', 'ArrowLeft', 'Home', 'ArrowRight', 'PageUp']) {
+      await page.keyboard.press(key);
+      seen.push(Number(await n.slider.inputValue()));
+    }
+    await settled(page);
+    assert.ok(seen.every((v) => Number.isInteger(v) && v % 2 === 0), `even values only: ${seen}`);
+    assert.equal(seen[1], 36, 'two steps of 2 from 32');
+    // The page shows the CLI's values for the slider's last value.
+    const last = seen[seen.length - 1];
+    assertShows(await shown(page), analyze(scenePath('pointed.toml'), { 'arch.voussoirs': last }), `n = ${last}`);
+    // The chart asks for even counts only: none is refused for being odd. (A count the
+    // geometry cannot take, the CLI refuses too.)
+    const response = await swept;
+    const rows = (await response.json()).rows;
+    const body = JSON.parse(response.request().postData());
+    assert.equal(body.key, 'arch.voussoirs');
+    assert.ok(rows.length >= 2);
+    assert.ok(rows.every((r) => r.value % 2 === 0), `even values: ${rows.map((r) => r.value)}`);
+    assert.deepEqual(rows.filter((r) => r.error && /even/.test(r.error)), [], 'none refused as odd');
+    for (const r of rows.filter((x) => x.error)) {
+      const cli = analyzeFails(scenePath('pointed.toml'), { 'arch.voussoirs': r.value });
+      assert.notEqual(cli.status, 0, `the CLI refuses n = ${r.value} too`);
+    }
+    await chartSettled(page);
+    assert.ok(await page.locator('#v-chart svg polyline.series').count() >= 1);
+    const refusedRows = rows.filter((r) => r.error).length;
+    const legend = await page.locator('#v-chart').textContent();
+    if (refusedRows === 0) assert.doesNotMatch(legend, /refused/);
+    else assert.match(legend, new RegExp(`${refusedRows} of ${rows.length} values refused`));
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+  }
+});
+
+// A shown field holds the scene's value, what leaving the key out means, or nothing.
+async function noMadeUpValues(page) {
+  const bad = await page.evaluate(() => {
+    const { state } = window.voussoir;
+    const get = (obj, key) => key.replace(/\[(\d+)\]/g, '.$1').split('.')
+      .reduce((o, k) => (o !== null && typeof o === 'object' && k in o ? o[k] : undefined), obj);
+    const out = [];
+    for (const row of document.querySelectorAll('.field')) {
+      const p = state.byKey.get(row.dataset.key);
+      const number = row.querySelector('input[type="number"]');
+      const v = get(state.scene, p.key);
+      const absent = typeof p.absent === 'string' ? p.absent.split(/\s+/)[0] : undefined;
+      const ok = v !== undefined ? Number(number.value) === v
+        : absent === 'inf' ? number.value === '' && number.placeholder === '∞'
+          : absent !== undefined ? Number(number.value) === Number(absent) : number.value === '';
+      if (!ok) out.push(`${p.key}: "${number.value}" (scene: ${v}, absent: ${p.absent})`);
+    }
+    return out;
+  });
+  assert.deepEqual(bad, [], 'fields show only the scene\'s values or what leaving them out means');
+}
+
+test('a scene of user blocks opens with the CLI\'s lambda and no chart error', async () => {
+  const blocks = scenePath('blocks_dxf_arch.toml');
+  const other = await startServer(blocks);
+  const { page, context, problems } = await openPage(browser, other.url);
+  try {
+    await chartSettled(page);
+    const cli = analyze(blocks);
+    assertShows(await shown(page), cli, 'blocks from a DXF');
+    // No arch keys: nothing to chart until a slider is moved, and no refusal shown.
+    assert.equal(await field(page, 'arch.thickness').row.count(), 0);
+    assert.equal(await page.locator('#v-chart svg').count(), 0);
+    assert.match(await page.locator('#v-chart').textContent(), /^Move a slider to chart λ/);
+    assert.ok(await page.locator('#v-message').isHidden(), 'no banner');
+    assert.equal(await page.locator('.field-error:visible').count(), 0, 'no field error');
+    await noMadeUpValues(page);
+    // Its line load's slider: the CLI's value, and a chart with no refusal.
+    const q = field(page, 'loads[0].intensity');
+    await q.slider.focus();
+    await page.keyboard.press('ArrowRight');
+    await settled(page);
+    await chartSettled(page);
+    const value = Number(await q.number.inputValue());
+    assert.ok(value > 20000, `the line load moved up: ${value}`);
+    assertShows(await shown(page), analyze(blocks, { 'loads[0].intensity': value }), `q = ${value}`);
+    assert.ok(await page.locator('#v-chart svg polyline.series').count() >= 1, 'the chart of the line load');
+    assert.doesNotMatch(await page.locator('#v-chart').textContent(), /refused|could not/);
+    // The TOML names its blocks file by an absolute path: saved elsewhere, it analyses to the
+    // page's multiplier.
+    const toml = await download(page, '#v-dl-toml');
+    const file = path.join(mkdtempSync(path.join(os.tmpdir(), 'voussoir-e2e-')), toml.name);
+    writeFileSync(file, toml.text);
+    const json = JSON.parse((await download(page, '#v-dl-json')).text);
+    assert.equal(analyze(file).lambda_lower, json.lambda_lower, 'the TOML saved elsewhere: the same lambda_lower');
+    assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+    await other.stop();
+  }
+});
+
+test('piers given side by side ([piers.left], [piers.right]) have no common pier sliders', async () => {
+  const dir = mkdtempSync(path.join(os.tmpdir(), 'voussoir-e2e-'));
+  const file = path.join(dir, 'unequal_piers.toml');
+  writeFileSync(file, [
+    '[arch]', 'shape = "circular"', 'radius = 1.0', 'thickness = 0.2', 'voussoirs = 32', '',
+    '[piers]', 'height = 1.2', 'width = 0.4', 'courses = 3', '',
+    '[piers.right]', 'height = 0.8', '',
+    '[material]', 'unit_weight = 20000.0', 'depth = 1.0', '',
+  ].join('\n'));
+  const other = await startServer(file);
+  const { page, context, problems } = await openPage(browser, other.url);
+  try {
+    for (const key of ['piers.height', 'piers.width', 'piers.courses', 'arch.embrace_deg']) {
+      assert.equal(await field(page, key).row.count(), 0, `no ${key} field`);
+    }
+    assert.equal(await field(page, 'arch.thickness').row.count(), 1);
+    await noMadeUpValues(page);
+    for (const direction of ['right', 'left']) {
+      await page.click(`#v-direction button[data-direction="${direction}"]`);
+      await settled(page);
+      assertShows(await shown(page), analyze(file, {}, direction), `unequal piers, ${direction}`);
+    }
+    assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+    await other.stop();
+  }
+});
+
+// WCAG contrast of two CSS colours (rgb()/rgba() as getComputedStyle writes them).
+function contrast(fg, bg) {
+  const lum = (c) => {
+    const [r, g, b] = c.match(/[\d.]+/g).slice(0, 3).map(Number).map((v) => {
+      const x = v / 255;
+      return x <= 0.03928 ? x / 12.92 : ((x + 0.055) / 1.055) ** 2.4;
+    });
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+  };
+  const [a, b] = [lum(fg), lum(bg)].sort((x, y) => y - x);
+  return (a + 0.05) / (b + 0.05);
+}
+
+test('accessibility: labels, descriptions, live errors, readable faint text, quiet results', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    const params = await page.evaluate(async () => (await (await fetch('/api/parameters')).json()).parameters);
+    const friction = params.find((p) => p.key === 'material.friction');
+    const box = field(page, 'material.friction').row.locator('input[type="checkbox"]');
+    assert.equal(await box.getAttribute('aria-label'), `${friction.label}: infinite`);
+    assert.equal(friction.label, 'Friction coefficient');
+    // Each number field and slider is described by its error and its help; the help is in the
+    // page (for a screen reader) though not shown, the error is a polite live region.
+    const t = field(page, 'arch.thickness');
+    const thickness = params.find((p) => p.key === 'arch.thickness');
+    for (const input of [t.number, t.slider]) {
+      const ids = (await input.getAttribute('aria-describedby')).split(/\s+/);
+      const texts = await Promise.all(ids.map((id) => page.locator(`[id="${id}"]`).evaluate((e) => ({
+        text: e.textContent, live: e.getAttribute('aria-live'), cls: e.className,
+      }))));
+      assert.ok(texts.some((x) => x.text === thickness.help), 'described by its help');
+      assert.ok(texts.some((x) => x.cls === 'field-error' && x.live === 'polite'), 'and by its live error');
+    }
+    // The help is shown (not only read) while the field or its slider has the focus.
+    const help = t.row.locator('.field-help');
+    const width = async () => (await help.boundingBox()).width;
+    assert.ok(await width() <= 1, 'the help takes no room without focus');
+    await t.slider.focus();
+    assert.ok(await width() > 100, 'the help is shown while the slider has focus');
+    await t.slider.blur();
+    await t.number.fill('0');
+    await t.number.press('Enter');
+    await settled(page);
+    await t.error.waitFor({ state: 'visible' });
+    assert.equal(await t.error.getAttribute('aria-live'), 'polite');
+    assert.match(await t.error.textContent(), /thickness/);
+    await t.number.fill('0.15');
+    await t.number.press('Enter');
+    await settled(page);
+    // Faint text (range ends, the update time) reaches 4.5:1 on its background.
+    for (const [sel, bgSel] of [['.field .bound', '.panel'], ['#v-timing', 'body']]) {
+      const fg = await page.locator(sel).first().evaluate((e) => getComputedStyle(e).color);
+      const bg = await page.locator(bgSel).first().evaluate((e) => getComputedStyle(e).backgroundColor);
+      const c = contrast(fg, bg);
+      assert.ok(c >= 4.5, `${sel} ${fg} on ${bg}: ${c.toFixed(2)}:1`);
+    }
+    // The results panel is not a live region; the status and lambda are announced once the
+    // values have settled, not at every step of a drag.
+    assert.equal(await page.locator('#v-result').getAttribute('aria-live'), null);
+    assert.equal(await page.locator('[aria-live]:not(.field-error)').count(), 1, 'one announcement region');
+    assert.equal(await page.locator('#v-announce').getAttribute('aria-live'), 'polite');
+    await page.evaluate(() => {
+      window.announced = [];
+      new MutationObserver(() => window.announced.push(document.getElementById('v-announce').textContent))
+        .observe(document.getElementById('v-announce'), { childList: true, characterData: true, subtree: true });
+    });
+    await t.slider.focus();
+    const steps = 8;
+    for (let i = 0; i < steps; i++) {
+      await page.keyboard.press('ArrowRight');
+      await settled(page);
+    }
+    const lambda = await page.locator('#v-lambda').textContent();
+    await page.waitForFunction((l) => document.getElementById('v-announce').textContent.endsWith('lambda ' + l), lambda);
+    const announced = await page.evaluate(() => window.announced);
+    assert.ok(announced.length < steps, `${announced.length} announcements for ${steps} steps: ${announced}`);
+    assert.match(announced[announced.length - 1], /^Collapse mechanism, lambda \d\.\d{4}$/);
+    assert.deepEqual(unexpected(problems), []);
   } finally {
     await context.close();
   }

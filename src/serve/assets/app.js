@@ -45,6 +45,10 @@
     last: null,           // last successful analysis (the server's object)
     lastOk: false,        // whether the drawing shows the current scene
     lastKey: null,        // the parameter moved last
+    // Slider ranges widened to take a value typed beyond them: key -> {min, max, value,
+    // confirmed, previous}. Back to `previous` (the last one accepted) when the server refuses
+    // the value typed, kept once it accepts it, all forgotten when another structure is picked.
+    widened: new Map(),
   };
 
   // Live analysis: one request in flight, the latest state sent next.
@@ -96,16 +100,6 @@
     if (cur !== null && typeof cur === 'object') delete cur[segs[segs.length - 1]];
   }
 
-  // The preset a scene looks like (for a scene that does not say, the values it leaves out).
-  function presetOf(scene) {
-    const names = new Set(state.shapes.map((s) => s.name));
-    const hasLoads = Array.isArray(scene.loads) && scene.loads.length > 0;
-    const guess = scene.piers
-      ? (hasLoads && names.has('loaded_portal') ? 'loaded_portal' : 'portal')
-      : scene.fill && names.has('filled_arch') ? 'filled_arch' : scene.arch && scene.arch.shape;
-    return guess || 'circular';
-  }
-
   const sectionOf = (p) => p.section || segments(p.key)[0];
 
   // What an absent key means, from the parameter's `absent` ("inf (joints cannot slide)",
@@ -123,9 +117,23 @@
   // A parameter is shown when the scene has its section (a section whose keys may all be
   // left out, such as [material] or [seismic], counts as there) and, for an arch key, when
   // the scene's arch shape is one of the parameter's `arch_shapes`.
+  // A parameter with `not_with` is hidden when the scene has any of those sections (a portal's
+  // arch must embrace 180 degrees, so `arch.embrace_deg` is `not_with: ["piers"]`), and the
+  // common pier keys are hidden when the scene gives each pier its own table
+  // (`[piers.left]`, `[piers.right]`): one slider could not say which pier it moves.
+  const hasSection = (name) => state.scene[name] !== undefined && state.scene[name] !== null;
+
+  function perSidePiers() {
+    const piers = state.scene.piers;
+    return !!piers && typeof piers === 'object'
+      && ['left', 'right'].some((side) => piers[side] && typeof piers[side] === 'object');
+  }
+
   function visible(p) {
     const section = sectionOf(p);
-    const has = state.scene[section] !== undefined && state.scene[section] !== null;
+    if (Array.isArray(p.not_with) && p.not_with.some(hasSection)) return false;
+    if (section === 'piers' && segments(p.key).length === 2 && perSidePiers()) return false;
+    const has = hasSection(section);
     if (!has && !(section === 'material' || absentValue(p) !== undefined)) return false;
     if (getKey(state.scene, p.key) !== undefined) return true;
     // An entry of a list (`loads[1].intensity`) is shown only when the scene has that entry
@@ -143,31 +151,49 @@
     return v === 'inf' || v === Infinity || v === '+inf';
   }
 
-  // The slider's range: the preset's own when it narrows it, else the parameter's.
+  // A multiple of a step, written without binary noise (0.7, not 0.7000000000000001).
+  const onGrid = (k, step) => Number((k * step).toFixed(10));
+
+  // The step of a parameter's slider and number field: its `shape_steps` entry for the
+  // scene's arch shape (a pointed arch needs an even number of voussoirs: 2), else its own
+  // (at least 1 for a whole number); 0 when it has none.
+  function stepOf(p) {
+    const shape = state.scene && state.scene.arch && state.scene.arch.shape;
+    const own = p.shape_steps && typeof shape === 'string' ? p.shape_steps[shape] : undefined;
+    if (typeof own === 'number' && own > 0) return own;
+    if (p.integer) return Math.max(1, p.step || 1);
+    return p.step > 0 ? p.step : 0;
+  }
+
+  // The slider's range: the preset's own when it narrows it, else the parameter's; widened
+  // to a value typed beyond it; for a whole number, its ends on the step's multiples (a
+  // pointed arch's voussoir slider runs over even numbers only).
   function rangeOf(p) {
     const name = state.preset || state.startPreset;
     const preset = name && state.shapes.find((s) => s.name === name);
     const r = preset && preset.ranges && preset.ranges[p.key];
-    if (Array.isArray(r) && r.length === 2 && r[0] < r[1]) return { min: r[0], max: r[1] };
-    return { min: p.min, max: p.max };
+    let min = p.min;
+    let max = p.max;
+    if (Array.isArray(r) && r.length === 2 && r[0] < r[1]) [min, max] = r;
+    const wide = state.widened.get(p.key);
+    if (wide) {
+      min = Math.min(min, wide.min);
+      max = Math.max(max, wide.max);
+    }
+    const step = stepOf(p);
+    if (p.integer && step > 0) {
+      min = onGrid(Math.ceil(min / step - 1e-9), step);
+      max = Math.max(min, onGrid(Math.floor(max / step + 1e-9), step));
+    }
+    return { min, max, step };
   }
 
-  // The value a field shows: the scene's, else what leaving it out means, else the one of the
-  // preset the scene looks like, else any preset's, else the middle of its range.
+  // The value a field shows: the scene's, else what leaving it out means (`absent`), else
+  // nothing (an empty field: the page does not make up a value the scene does not have).
   function shownValue(p) {
     const v = getKey(state.scene, p.key);
     if (v !== undefined) return v;
-    const absent = absentValue(p);
-    if (absent !== undefined) return absent;
-    const preset = state.shapes.find((s) => s.name === (state.preset || presetOf(state.scene)));
-    const fromPreset = preset && getKey(preset.scene, p.key);
-    if (typeof fromPreset === 'number') return fromPreset;
-    for (const s of state.shapes) {
-      const x = getKey(s.scene, p.key);
-      if (typeof x === 'number') return x;
-    }
-    const { min, max } = rangeOf(p);
-    return p.integer ? Math.round((min + max) / 2) : (min + max) / 2;
+    return absentValue(p);
   }
 
   // ---- formatting ---------------------------------------------------------------------------
@@ -248,9 +274,20 @@
     const number = document.createElement('input');
     number.type = 'number';
     number.id = id + '-number';
-    number.step = 'any';
     number.inputMode = p.integer ? 'numeric' : 'decimal';
-    number.setAttribute('aria-describedby', id + '-error');
+    // The help (a tooltip for the mouse) is also a description a screen reader reads with
+    // the field, shown under it while the field or its slider has the keyboard's focus; so
+    // is the field's error when it has one.
+    const described = [id + '-error'];
+    let help = null;
+    if (p.help) {
+      help = document.createElement('span');
+      help.className = 'field-help visually-hidden';
+      help.id = id + '-help';
+      help.textContent = p.help;
+      described.push(help.id);
+    }
+    number.setAttribute('aria-describedby', described.join(' '));
     const unit = document.createElement('span');
     unit.className = 'unit';
     unit.textContent = prettyUnit(p.unit);
@@ -260,28 +297,40 @@
     const slider = document.createElement('input');
     slider.type = 'range';
     slider.id = id + '-range';
-    const { min, max } = rangeOf(p);
-    slider.min = String(min);
-    slider.max = String(max);
-    slider.step = String(p.integer ? Math.max(1, p.step || 1) : p.step || (max - min) / 200);
     slider.setAttribute('aria-label', p.label + (p.unit ? ' (' + prettyUnit(p.unit) + ')' : ''));
+    slider.setAttribute('aria-describedby', described.join(' '));
 
     const range = document.createElement('div');
     range.className = 'range';
     const lo = document.createElement('span');
     lo.className = 'bound';
-    lo.textContent = compact(min);
+    lo.setAttribute('aria-hidden', 'true');
     const hi = document.createElement('span');
     hi.className = 'bound';
-    hi.textContent = compact(max);
+    hi.setAttribute('aria-hidden', 'true');
     range.append(lo, slider, hi);
 
+    // The slider's range and step, and the number field's step (set again when a typed
+    // value widens the range).
+    const applyRange = () => {
+      const r = rangeOf(p);
+      slider.min = String(r.min);
+      slider.max = String(r.max);
+      slider.step = String(r.step > 0 ? r.step : (r.max - r.min) / 200);
+      number.step = p.integer && r.step > 0 ? String(r.step) : 'any';
+      lo.textContent = compact(r.min);
+      hi.textContent = compact(r.max);
+    };
+    applyRange();
+
+    // Announced when it appears (a polite live region); empty, it takes no room.
     const error = document.createElement('p');
     error.className = 'field-error';
     error.id = id + '-error';
-    error.hidden = true;
+    error.setAttribute('aria-live', 'polite');
 
     row.append(head, range);
+    if (help) row.append(help);
 
     let infinite = null;
     if (mayBeInfinite(p)) {
@@ -290,6 +339,7 @@
       infinite = document.createElement('input');
       infinite.type = 'checkbox';
       infinite.id = id + '-inf';
+      infinite.setAttribute('aria-label', p.label + ': infinite');
       box.append(infinite, document.createTextNode(' ∞'));
       box.title = 'Infinite (' + p.label + ' left out of the scene)';
       range.append(box);
@@ -309,6 +359,8 @@
       const t = eventTime(ev);
       const v = Number(slider.value);
       number.value = slider.value;
+      number.placeholder = '';
+      row.classList.remove('unset');
       setKey(state.scene, p.key, v);
       changed(p.key, t, ev);
     });
@@ -320,21 +372,44 @@
         showFieldError(p.key, 'Enter a number' + (p.unit ? ' in ' + prettyUnit(p.unit) : '') + '.');
         return;
       }
+      // A value beyond the slider's range widens it, so that the slider holds the value
+      // and its next step starts from there (not from the end it was clamped to).
+      const r = rangeOf(p);
+      if (v < r.min || v > r.max) {
+        const step = r.step > 0 ? r.step : 0;
+        const out = (x, round) => (step ? onGrid(round(x / step), step) : x);
+        // The widening the server accepted before, to go back to if it refuses this one.
+        const before = state.widened.get(p.key);
+        state.widened.set(p.key, {
+          min: Math.min(r.min, out(v, Math.floor)), max: Math.max(r.max, out(v, Math.ceil)),
+          value: v, confirmed: false,
+          previous: before && (before.confirmed ? before : before.previous),
+        });
+        applyRange();
+      }
       slider.value = String(v);
+      row.classList.remove('unset');
       setKey(state.scene, p.key, v);
       changed(p.key, t, ev);
     });
 
+    row._applyRange = applyRange;
     row._sync = () => {
       const v = shownValue(p);
       const inf = isInfinite(v);
+      // A slider whose key the scene does not have sits where it may, faded.
+      row.classList.toggle('unset', v === undefined);
       if (infinite) infinite.checked = inf;
       number.disabled = inf;
       slider.disabled = inf;
       if (inf) {
         number.value = '';
         number.placeholder = '∞';
-        slider.value = String(max);
+        slider.value = slider.max;
+      } else if (v === undefined) {
+        // Not in the scene and no meaning for leaving it out: nothing to show.
+        number.value = '';
+        number.placeholder = 'not set';
       } else {
         number.placeholder = '';
         number.value = String(v);
@@ -373,9 +448,7 @@
   function clearErrors() {
     for (const row of $('v-params').querySelectorAll('.field.has-error')) {
       row.classList.remove('has-error');
-      const e = row.querySelector('.field-error');
-      e.hidden = true;
-      e.textContent = '';
+      row.querySelector('.field-error').textContent = '';
     }
     showMessage(null);
   }
@@ -384,9 +457,7 @@
     const row = key ? fieldRow(key) : null;
     if (!row) return false;
     row.classList.add('has-error');
-    const e = row.querySelector('.field-error');
-    e.textContent = message;
-    e.hidden = false;
+    row.querySelector('.field-error').textContent = message;
     return true;
   }
 
@@ -396,8 +467,19 @@
     box.textContent = message || '';
   }
 
-  function showError(err) {
+  function showError(err, sent) {
     clearErrors();
+    // A slider widened to a typed value the server refuses goes back to its range.
+    const wide = err.key ? state.widened.get(err.key) : undefined;
+    if (wide && !wide.confirmed && sent && getKey(sent, err.key) === wide.value) {
+      if (wide.previous) state.widened.set(err.key, wide.previous);
+      else state.widened.delete(err.key);
+      const row = fieldRow(err.key);
+      if (row) {
+        row._applyRange();
+        row._sync();
+      }
+    }
     const text = err.error || 'The server refused the scene.';
     if (!showFieldError(err.key, text)) {
       showMessage(err.key && !text.includes(err.key) ? text + ' (' + err.key + ')' : text);
@@ -406,6 +488,19 @@
     document.body.classList.add('stale');
     $('v-note').textContent = 'The scene has an error: the last valid result is shown, dimmed.';
     setDownloads(false);
+    announce('The scene has an error: ' + text);
+  }
+
+  // Screen readers hear the status and lambda (a polite live region apart from the
+  // results), once the values have stopped changing: not at every step of a drag.
+  let announceTimer = null;
+  const ANNOUNCE_AFTER_MS = 700;
+  function announce(text) {
+    clearTimeout(announceTimer);
+    announceTimer = setTimeout(() => {
+      if (live.inFlight || live.dirty) return announce(text);
+      $('v-announce').textContent = text;
+    }, ANNOUNCE_AFTER_MS);
   }
 
   // ---- live analysis ------------------------------------------------------------------------
@@ -436,7 +531,8 @@
     const since = live.since;
     live.since = null;
     live.inFlight = true;
-    const body = JSON.stringify({ scene: state.scene, direction: state.direction });
+    const sent = clone(state.scene);
+    const body = JSON.stringify({ scene: sent, direction: state.direction });
     markBusy();
     let outcome;
     try {
@@ -448,8 +544,8 @@
       outcome = { ok: false, body: { error: 'The server did not answer (' + e.message + '). Is `voussoir serve` still running?', key: null } };
     }
     try {
-      if (outcome.ok) render(outcome.body, since);
-      else showError(outcome.body);
+      if (outcome.ok) render(outcome.body, since, sent);
+      else showError(outcome.body, sent);
     } catch (e) {
       showMessage('The page could not show the answer: ' + e.message);
     } finally {
@@ -476,8 +572,12 @@
     return { ok: false, status: response.status, body };
   }
 
-  function render(result, since) {
+  function render(result, since, sent) {
     clearErrors();
+    // A typed value that widened its slider stands: the range keeps it.
+    for (const [key, wide] of state.widened) {
+      if (sent && getKey(sent, key) === wide.value) wide.confirmed = true;
+    }
     const drawing = $('v-drawing');
     const svg = parseSvg(result.svg);
     if (svg) drawing.replaceChildren(svg);
@@ -498,6 +598,8 @@
       $('v-timing').textContent = 'updated in ' + ms.toFixed(0) + ' ms' + server;
     }
     drawChart();
+    announce((STATUS_WORDS[result.status] || String(result.status || '')) + ', lambda '
+      + fmt(result.lambda_lower, 4));
   }
 
   function parseSvg(text) {
@@ -562,7 +664,9 @@
     const name = state.preset || (state.initial && state.initial.origin
       ? state.initial.origin.split(/[\\/]/).pop().replace(/\.toml$/i, '') : 'scene');
     const t = typeof read.thickness === 'number' ? '-t' + read.thickness : '';
-    return (name || 'scene').replace(/[^A-Za-z0-9_.-]+/g, '_') + t;
+    // The TOML holds no direction (its first line says it): the name tells it too.
+    const left = state.last && state.last.direction === 'left' ? '-left' : '';
+    return (name || 'scene').replace(/[^A-Za-z0-9_.-]+/g, '_') + t + left;
   }
 
   function download(text, type, filename) {
@@ -598,6 +702,8 @@
   async function startSweep(key) {
     const p = state.byKey.get(key);
     if (!p) return;
+    // The same sweep is not asked twice (the signature leaves out the charted key's own
+    // value); a sweep that failed leaves no signature, so the next event tries again.
     const sig = sweepSignature(key);
     if (chart.sig === sig) return;
     if (chart.controller) chart.controller.abort();
@@ -610,10 +716,20 @@
     document.body.dataset.sweeping = 'true';
     const maxPoints = state.limits.max_sweep_points || SWEEP_POINTS;
     let points = Math.min(SWEEP_POINTS, maxPoints);
-    const { min, max } = rangeOf(p);
-    if (p.integer) points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
+    const { min, max, step } = rangeOf(p);
+    let to = max;
+    if (p.integer && step > 1) {
+      // Only the step's multiples are valid (even voussoir counts for a pointed arch): the
+      // points are a whole number of steps apart, the last at or below the range's end.
+      const steps = Math.round((max - min) / step);
+      const every = Math.max(1, Math.ceil(steps / Math.max(1, points - 1)));
+      points = Math.max(2, Math.floor(steps / every) + 1);
+      to = Math.min(max, min + (points - 1) * every * step);
+    } else if (p.integer) {
+      points = Math.max(2, Math.min(points, Math.floor(max - min) + 1));
+    }
     const body = {
-      scene: state.scene, key, from: min, to: max, points, direction: state.direction,
+      scene: state.scene, key, from: min, to, points, direction: state.direction,
     };
     drawChart();
     try {
@@ -624,14 +740,36 @@
       const outcome = await readJson(response);
       if (chart.controller !== controller) return;
       if (outcome.ok) chart.rows = outcome.body.rows || [];
-      else chart.error = outcome.body.error || 'The sweep failed.';
+      else {
+        chart.error = outcome.body.error || 'The sweep failed.';
+        chart.sig = null;
+      }
     } catch (e) {
       if (e.name === 'AbortError' || chart.controller !== controller) return;
       chart.error = 'The sweep failed (' + e.message + ').';
+      chart.sig = null;
     }
     chart.controller = null;
     document.body.dataset.sweeping = 'false';
     drawChart();
+  }
+
+  // No chart: no parameter moved yet that the page shows (a scene of user blocks has no
+  // thickness to chart).
+  function resetChart() {
+    if (chart.controller) chart.controller.abort();
+    Object.assign(chart, { sig: null, key: null, rows: null, controller: null, error: null });
+    document.body.dataset.sweeping = 'false';
+    $('v-chart-title').textContent = 'λ against a parameter';
+    $('v-chart').replaceChildren(placeholder('Move a slider to chart λ over its range.'));
+    for (const row of $('v-params').querySelectorAll('.field.charted')) row.classList.remove('charted');
+  }
+
+  // The first chart: of the parameter moved last, else the thickness, if the page shows it.
+  function firstSweep() {
+    const key = [state.lastKey, 'arch.thickness'].find((k) => k && state.byKey.has(k) && fieldRow(k));
+    if (key) startSweep(key);
+    else resetChart();
   }
 
   const SVG_NS = 'http://www.w3.org/2000/svg';
@@ -798,12 +936,11 @@
     const preset = state.shapes.find((s) => s.name === name);
     state.preset = preset ? name : null;
     state.scene = clone(preset ? preset.scene : state.initial.scene);
+    state.widened.clear();
     markPreset();
     buildForm();
     requestAnalysis(null);
-    const key = state.lastKey && state.byKey.has(state.lastKey) && fieldRow(state.lastKey)
-      ? state.lastKey : 'arch.thickness';
-    startSweep(key);
+    firstSweep();
   }
 
   function setDirection(direction) {
@@ -812,7 +949,7 @@
       b.setAttribute('aria-pressed', b.dataset.direction === direction ? 'true' : 'false');
     }
     requestAnalysis(null);
-    if (chart.key) startSweep(chart.key);
+    if (chart.key && fieldRow(chart.key)) startSweep(chart.key);
   }
 
   // ---- start --------------------------------------------------------------------------------
@@ -855,7 +992,7 @@
       if (state.last) download(analysisJson(state.last), 'application/json', baseName() + '.json');
     });
     requestAnalysis(null);
-    if (state.byKey.has('arch.thickness')) startSweep('arch.thickness');
+    firstSweep();
   }
 
   // Exposed for the end-to-end tests and the curious: the scene being edited.

@@ -86,7 +86,12 @@ pub const PRESETS: &[Preset] = &[
         name: "pointed",
         label: "Pointed arch",
         toml: include_str!("../../data/pointed.toml"),
-        ranges: &[("arch.thickness", 0.05, 0.5), ("arch.radius", 0.5, 10.0)],
+        // At e = 0.2 the joint next to the crown crosses the axis above 164 voussoirs.
+        ranges: &[
+            ("arch.thickness", 0.05, 0.5),
+            ("arch.radius", 0.5, 10.0),
+            ("arch.voussoirs", 4.0, 164.0),
+        ],
     },
     Preset {
         name: "basket",
@@ -385,7 +390,7 @@ pub const SLIDERS: &[Slider] = &[
         integer: false,
         section: "material",
         arch_shapes: &[],
-        absent: None,
+        absent: Some("20000 (the default)"),
         help: "Unit weight of the masonry.",
         shape_steps: &[],
         not_with: &[],

@@ -306,7 +306,7 @@
     lo.className = 'bound';
     lo.setAttribute('aria-hidden', 'true');
     const hi = document.createElement('span');
-    hi.className = 'bound';
+    hi.className = 'bound bound-hi';
     hi.setAttribute('aria-hidden', 'true');
     range.append(lo, slider, hi);
 

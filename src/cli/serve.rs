@@ -31,14 +31,12 @@ pub fn run(args: Args) -> Result<String, Error> {
         max_voussoirs: args.max_voussoirs,
         ..Limits::default()
     };
-    let state = match &args.scene {
-        Some(path) => ServerState::new(Scene::from_file_with_overrides(path, &args.set)?, limits),
-        None if args.set.is_empty() => ServerState::with_default_scene(limits)?,
-        None => ServerState::with_default_scene(limits)?
-            .scene
-            .with_overrides(&args.set)
-            .map(|s| ServerState::new(s, limits))?,
+    let scene = match &args.scene {
+        Some(path) => Scene::from_file_with_overrides(path, &args.set)?,
+        None => Scene::from_toml_str(serve::parameters::DEFAULT_SCENE, serve::DEFAULT_ORIGIN)?
+            .with_overrides(&args.set)?,
     };
+    let state = ServerState::new(scene, limits);
     // Loopback only: the page is for the person at this machine.
     let addr = SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), args.port);
     let runtime = tokio::runtime::Builder::new_multi_thread()

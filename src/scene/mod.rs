@@ -263,11 +263,12 @@ impl Scene {
     /// `arch.shape=pointed` and `arch.eccentricity=0.2` can be given in either order).
     pub fn with_overrides<S: AsRef<str>>(&self, assignments: &[S]) -> Result<Scene, SceneError> {
         let (table, sets) = overridden(self.table.clone(), assignments)?;
-        parse(
-            table,
-            &format!("{} (with{sets})", self.origin),
-            self.base_dir.as_deref(),
-        )
+        let origin = if sets.is_empty() {
+            self.origin.clone()
+        } else {
+            format!("{} (with{sets})", self.origin)
+        };
+        parse(table, &origin, self.base_dir.as_deref())
     }
 
     /// A copy of the scene with several `(key, value)` pairs set together, validated once.

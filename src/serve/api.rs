@@ -289,7 +289,7 @@ fn check_limits(table: &toml::Table, state: &ServerState) -> Result<(), ApiError
     }
     if let Some(blocks) = table.get("blocks") {
         if let Some(file) = blocks.get("file") {
-            let allowed = state.blocks_file.as_deref();
+            let allowed = state.blocks_file();
             if file.as_str() != allowed {
                 return Err(ApiError::bad(
                     "file_refused",
@@ -379,7 +379,7 @@ fn request_scene(
     };
     let table = to_table("", scene)?;
     check_limits(&table, state)?;
-    let scene = Scene::from_table_in(table, "scene", state.base_dir.as_deref())?;
+    let scene = Scene::from_table_in(table, "scene", state.scene.base_dir())?;
     Ok((scene, direction))
 }
 
@@ -501,7 +501,6 @@ pub async fn analyze(
     let body = json_object(&body)?;
     let (scene, in_body) = request_scene(&body, &state, &["scene", "direction"])?;
     let dir = direction(query_direction(query)?.or(in_body).as_deref())?;
-    let base_dir = state.base_dir.clone();
     let mut out = blocking(move || {
         let a = analysis::analyse(&scene, &options(dir))?;
         let svg = report::analysis_svg(&scene, &a, dir).map_err(|e| ApiError {
@@ -515,7 +514,7 @@ pub async fn analyze(
             _ => Map::new(),
         };
         out.insert("svg".into(), JsonValue::String(svg));
-        let text = scene_toml(&scene, dir, base_dir.as_deref())?;
+        let text = scene_toml(&scene, dir, scene.base_dir())?;
         out.insert("toml".into(), JsonValue::String(text));
         Ok(out)
     })

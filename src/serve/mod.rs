@@ -23,7 +23,6 @@ pub mod parameters;
 
 use crate::scene::Scene;
 use std::net::{Ipv4Addr, SocketAddr};
-use std::path::PathBuf;
 use std::sync::Arc;
 
 /// Where `voussoir serve` listens unless told otherwise: loopback only, port 8080.
@@ -58,16 +57,16 @@ impl Default for Limits {
 /// What the server knows: the scene it was started with and its limits.
 #[derive(Debug)]
 pub struct ServerState {
-    /// The scene the page opens with (`GET /api/scene`).
+    /// The scene the page opens with (`GET /api/scene`). Request scenes are read relative
+    /// to its directory.
     pub scene: Scene,
-    /// Its `blocks.file`, as written in the scene, when it has one: the only file a request
-    /// may name (resolved against the start scene's directory).
-    pub(crate) blocks_file: Option<String>,
-    pub(crate) base_dir: Option<PathBuf>,
     pub limits: Limits,
     /// Sweeps running at once (each is parallel already): more wait their turn.
     pub(crate) sweeps: tokio::sync::Semaphore,
 }
+
+/// How the bundled start scene is named (`GET /api/scene`'s `origin`, and in messages).
+pub const DEFAULT_ORIGIN: &str = "bundled semicircular arch";
 
 /// Sweeps that may run at once.
 const CONCURRENT_SWEEPS: usize = 2;
@@ -75,25 +74,22 @@ const CONCURRENT_SWEEPS: usize = 2;
 impl ServerState {
     /// The state of a server opening with `scene`.
     pub fn new(scene: Scene, limits: Limits) -> Self {
-        let blocks_file = scene
-            .table()
-            .get("blocks")
-            .and_then(|b| b.get("file"))
-            .and_then(|f| f.as_str())
-            .map(str::to_string);
-        let base_dir = scene.base_dir().map(|p| p.to_path_buf());
         ServerState {
             scene,
-            blocks_file,
-            base_dir,
             limits,
             sweeps: tokio::sync::Semaphore::new(CONCURRENT_SWEEPS),
         }
     }
 
+    /// The start scene's `blocks.file`, as written in it, when it has one: the only file a
+    /// request may name (resolved against the start scene's directory).
+    pub(crate) fn blocks_file(&self) -> Option<&str> {
+        self.scene.table().get("blocks")?.get("file")?.as_str()
+    }
+
     /// The state of a server opening with the bundled semicircular arch.
     pub fn with_default_scene(limits: Limits) -> Result<Self, crate::error::SceneError> {
-        let scene = Scene::from_toml_str(parameters::DEFAULT_SCENE, "bundled semicircular arch")?;
+        let scene = Scene::from_toml_str(parameters::DEFAULT_SCENE, DEFAULT_ORIGIN)?;
         Ok(ServerState::new(scene, limits))
     }
 }

@@ -430,16 +430,13 @@ pub fn lookup<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> 
     Some(value)
 }
 
-/// Whether a preset's scene has the slider's key, or may take it (a key whose absence means
-/// something, such as infinite friction, or the optional vertical component).
-fn preset_has(preset: &Preset, slider: &Slider) -> bool {
-    let Ok(table) = preset.toml.parse::<toml::Table>() else {
-        return false;
-    };
+/// Whether a preset's scene (`table`) has the slider's key, or may take it (a key whose
+/// absence means something, such as infinite friction, or the optional vertical component).
+fn preset_has(table: &toml::Table, slider: &Slider) -> bool {
     if slider.not_with.iter().any(|sec| table.contains_key(*sec)) {
         return false;
     }
-    if lookup(&table, slider.key).is_some() {
+    if lookup(table, slider.key).is_some() {
         return true;
     }
     let has_section = table.contains_key(slider.section);
@@ -448,14 +445,19 @@ fn preset_has(preset: &Preset, slider: &Slider) -> bool {
 
 /// Every slider, with the presets whose scenes have its key.
 pub fn parameters() -> Vec<Parameter> {
+    // Each preset's scene read once (a bundled scene that did not read would list no key).
+    let presets: Vec<(&str, Option<toml::Table>)> = PRESETS
+        .iter()
+        .map(|p| (p.name, p.toml.parse().ok()))
+        .collect();
     SLIDERS
         .iter()
         .map(|&slider| Parameter {
             slider,
-            shapes: PRESETS
+            shapes: presets
                 .iter()
-                .filter(|p| preset_has(p, &slider))
-                .map(|p| p.name)
+                .filter(|(_, table)| table.as_ref().is_some_and(|t| preset_has(t, &slider)))
+                .map(|(name, _)| *name)
                 .collect(),
         })
         .collect()

@@ -3,23 +3,12 @@
 //! curve of 200 points, verdict with both bisections for the largest passing ag) and its parts.
 //! Run with `cargo bench --bench assess`. Target: the whole assessment well under a second.
 
-use std::time::Instant;
+mod common;
+use common::time;
 use voussoir::analysis::{self, AssessOptions, Options};
 use voussoir::assess::{self, CapacitySettings};
 use voussoir::outcome::Direction;
 use voussoir::scene::Scene;
-
-/// Best of `reps` wall times (s) and the last result of `f`.
-fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = f();
-    for _ in 0..reps {
-        let t = Instant::now();
-        out = f();
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    (best, out)
-}
 
 fn main() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/portal.toml");

@@ -4,22 +4,11 @@
 //! `cargo bench --bench blocks`. Targets: detection of 10,000 blocks under 1 s; the user chain
 //! within 2x of the parametric one.
 
-use std::time::Instant;
+mod common;
+use common::time;
 use voussoir::analysis::{self, Options};
 use voussoir::blocks::{self, Polygons, Units};
 use voussoir::scene::Scene;
-
-/// Best of `reps` wall times (s) and the last result of `f`.
-fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = f();
-    for _ in 0..reps {
-        let t = Instant::now();
-        out = f();
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    (best, out)
-}
 
 fn scene(text: &str) -> Scene {
     match Scene::from_toml_str(text, "bench") {

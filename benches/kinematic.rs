@@ -2,7 +2,8 @@
 //! 128; a 4-course portal) and the continuous model per geometry. Prints a table; run with
 //! `cargo bench --bench kinematic`. Targets: n = 128 under 0.2 s, continuous under 1 ms.
 
-use std::time::Instant;
+mod common;
+use common::time;
 use voussoir::kinematic::{self, KinematicSettings};
 use voussoir::scene::Scene;
 
@@ -11,18 +12,6 @@ fn scene(text: &str) -> Scene {
         Ok(s) => s,
         Err(e) => panic!("bench scene: {e}"),
     }
-}
-
-/// Best of `reps` wall times (s) and the last result of `f`.
-fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = f();
-    for _ in 0..reps {
-        let t = Instant::now();
-        out = f();
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    (best, out)
 }
 
 fn main() {

@@ -533,36 +533,26 @@ fn sweep_rows_are_the_analyses_of_each_value() {
         .collect();
     assert!(lambdas.windows(2).all(|w| w[1] > w[0]), "{lambdas:?}");
 
-    let (status, answer) = post(
-        &s,
-        "/api/sweep",
-        &json!({"scene": scene, "key": "arch.voussoirs", "from": 8, "to": 10, "points": 9}),
-    );
-    assert_eq!(status, StatusCode::OK, "{answer}");
-    let values: Vec<Value> = answer["rows"]
-        .as_array()
-        .expect("rows")
-        .iter()
-        .map(|r| r["value"].clone())
-        .collect();
+    // The values a sweep ran at.
+    let swept = |body: Value| -> Vec<Value> {
+        let (status, answer) = post(&s, "/api/sweep", &body);
+        assert_eq!(status, StatusCode::OK, "{answer}");
+        let rows = answer["rows"].as_array().expect("rows");
+        rows.iter().map(|r| r["value"].clone()).collect()
+    };
+    let values =
+        swept(json!({"scene": scene, "key": "arch.voussoirs", "from": 8, "to": 10, "points": 9}));
     assert_eq!(values, vec![json!(8), json!(9), json!(10)]);
 
     // A real-valued key whose value is a whole number (JSON writes 1.0 as 1) stays real.
     let portal = scene_json("portal.toml");
     let mut one = portal.clone();
     one["piers"]["height"] = json!(1);
-    let (status, answer) = post(
-        &s,
-        "/api/sweep",
-        &json!({"scene": one, "key": "piers.height", "from": 1, "to": 2, "points": 5}),
-    );
-    assert_eq!(status, StatusCode::OK, "{answer}");
-    let heights: Vec<f64> = answer["rows"]
-        .as_array()
-        .expect("rows")
-        .iter()
-        .map(|r| r["value"].as_f64().expect("height"))
-        .collect();
+    let heights: Vec<f64> =
+        swept(json!({"scene": one, "key": "piers.height", "from": 1, "to": 2, "points": 5}))
+            .iter()
+            .map(|v| v.as_f64().expect("height"))
+            .collect();
     assert_eq!(heights, vec![1.0, 1.25, 1.5, 1.75, 2.0]);
 
     let sweep = |extra: Value| {

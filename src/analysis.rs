@@ -9,7 +9,7 @@ use crate::kinematic::{
     self, ContinuousResult, KinematicError, KinematicResult, KinematicSettings, Search,
 };
 use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
-use crate::model::Model;
+use crate::model::{Action, Model};
 use crate::scene::Scene;
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
@@ -126,8 +126,42 @@ impl SceneAnalysis {
     }
 }
 
+/// Refuse `what` unless the scene's action is seismic: the methods and options that need a
+/// ground motion (its direction, a site's spectrum, a time history) have no meaning when
+/// lambda multiplies live loads.
+pub fn seismic_only(scene: &Scene, what: &str) -> Result<(), AnalysisError> {
+    match scene.action {
+        Action::Seismic => Ok(()),
+        Action::Live => Err(AnalysisError::NotForAction {
+            origin: scene.origin.clone(),
+            what: what.to_string(),
+            action: scene.action.to_string(),
+            why: "lambda multiplies the live loads, not a ground motion (the adequacy factor)"
+                .to_string(),
+        }),
+    }
+}
+
+/// The direction to analyse `scene` in: `asked` (a front end's `--direction`), or toward +x
+/// when none was asked. A live action has no direction, so asking for one is refused.
+pub fn direction_for(scene: &Scene, asked: Option<Direction>) -> Result<Direction, AnalysisError> {
+    match asked {
+        Some(d) => {
+            seismic_only(scene, "--direction (the direction of the ground motion)")?;
+            Ok(d)
+        }
+        None => Ok(Direction::Right),
+    }
+}
+
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
+    if options.direction() == Direction::Left {
+        seismic_only(
+            scene,
+            "direction = left (the direction of the ground motion)",
+        )?;
+    }
     let model = crate::scene::build(scene)?;
     let lower = lp::analyse(&model, &options.static_settings)?;
     let (mut upper, kinematic_search) = upper_bound(&model, &lower, options);
@@ -442,6 +476,7 @@ pub fn dem_dynamic(
     ground: &crate::dem::record::GroundInput,
     settings: &crate::dem::dynamic::DynamicSettings,
 ) -> Result<DynamicAnalysis, AnalysisError> {
+    seismic_only(scene, "a ground motion (dem --record / --pulse)")?;
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
     let result = crate::dem::dynamic::respond_xy(
@@ -467,6 +502,7 @@ pub fn dem_ida(
     settings: &crate::dem::dynamic::DynamicSettings,
     tolerance: f64,
 ) -> Result<(Model, crate::dem::dynamic::IdaResult), AnalysisError> {
+    seismic_only(scene, "an incremental dynamic analysis (dem --ida)")?;
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
     let r = crate::dem::dynamic::ida_xy(
@@ -528,6 +564,7 @@ pub fn dem_pulse_curve(
     progress: &mut dyn FnMut(f64),
 ) -> Result<PulseCurve, AnalysisError> {
     use crate::dem::record::Pulse;
+    seismic_only(scene, "a pulse curve (dem --pulse-curve)")?;
     let clock = std::time::Instant::now();
     if let Some(t) = periods.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
         return Err(crate::error::RecordError::Flag {
@@ -628,6 +665,7 @@ pub fn assess(
     options: &Options,
     assess: &AssessOptions,
 ) -> Result<SiteAssessment, AnalysisError> {
+    seismic_only(scene, "a seismic assessment (assess)")?;
     let site = scene.site.clone().ok_or_else(|| {
         AnalysisError::Other(format!(
             "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3",

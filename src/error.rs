@@ -212,6 +212,16 @@ pub enum AnalysisError {
     /// A ground-motion record or pulse that cannot be read or used.
     #[error(transparent)]
     Record(#[from] RecordError),
+    /// A method or option that has no meaning for the scene's action (`[action] kind`):
+    /// e.g. a ground motion's direction, a site assessment or a time history with a live
+    /// action.
+    #[error("{origin}: {what} does not apply to [action] kind = \"{action}\": {why}")]
+    NotForAction {
+        origin: String,
+        what: String,
+        action: String,
+        why: String,
+    },
     #[error("{0}")]
     Other(String),
 }

@@ -136,6 +136,12 @@ pub fn min_thickness(
     scene: &Scene,
     settings: &StaticSettings,
 ) -> Result<MinThickness, AnalysisError> {
+    // At lambda = 0 a live action's loads are absent: the minimum thickness would silently
+    // be that of the structure without them. Say so instead.
+    crate::analysis::seismic_only(
+        scene,
+        "the minimum thickness (it is found at lambda = 0, where live loads would be absent; give them as permanent loads with kind = \"seismic\" to include them)",
+    )?;
     let search = search(scene, DEFAULT_REL_TOL, |s| stands_static(s, settings))?;
     let mut hinges = Vec::new();
     let mut at_minimum = None;

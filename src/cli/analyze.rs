@@ -19,9 +19,10 @@ pub struct Args {
     /// Draw the blocks, thrust line, hinges and mechanism to this SVG file
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
-    /// Direction of the horizontal acceleration
-    #[arg(long, value_enum, default_value = "right")]
-    direction: Dir,
+    /// Direction of the horizontal acceleration (default right; refused with a live action,
+    /// which has none)
+    #[arg(long, value_enum)]
+    direction: Option<Dir>,
     /// Conic solver tolerance (gap and feasibility, dimensionless; 1e-14..1e-6). Looser
     /// tolerances would let lambda exceed the true multiplier
     #[arg(long, default_value_t = 1e-10)]
@@ -48,9 +49,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             "--tolerance {tolerance}: must be from 1e-14 to 1e-6 (looser solutions are not safe: lambda may exceed the collapse multiplier)"
         ))));
     }
+    let direction = analysis::direction_for(&scene, args.direction.map(Into::into))?;
     let options = analysis::Options {
         static_settings: StaticSettings::default()
-            .direction(args.direction.into())
+            .direction(direction)
             .tolerance(tolerance),
         kinematic_max_joints: args.kinematic_max_joints,
         kinematic: args.kinematic.into(),

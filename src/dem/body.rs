@@ -38,6 +38,12 @@ pub(crate) struct ExtraLoads {
     /// rotation 0.
     pub seismic_weight: f64,
     pub seismic_offset: Vec2,
+    /// The forces lambda multiplies (live loads under a live action,
+    /// `crate::model::Action::Live`), reduced like the permanent ones: resultant, and the
+    /// two scalars of their moment.
+    pub live_force: Vec2,
+    pub live_a: f64,
+    pub live_b: f64,
 }
 
 impl ExtraLoads {
@@ -51,6 +57,26 @@ impl ExtraLoads {
             self.seismic_offset = (self.seismic_weight * self.seismic_offset + seismic * r) / w;
             self.seismic_weight = w;
         }
+    }
+
+    /// Add a force `force` at offset `r` that lambda multiplies (a live load).
+    pub fn add_live(&mut self, r: Vec2, force: Vec2) {
+        self.live_force += force;
+        self.live_a += cross(r, force);
+        self.live_b -= r.dot(&force);
+    }
+
+    /// Moment (N m) of the forces lambda multiplies, at unit lambda, about the centroid with
+    /// the body turned by `(sin, cos)` of its rotation.
+    #[inline]
+    pub fn live_moment(&self, sin: f64, cos: f64) -> f64 {
+        cos * self.live_a + sin * self.live_b
+    }
+
+    /// `sum F_k . (R r_k)` (N m) of the forces lambda multiplies, at unit lambda.
+    #[inline]
+    pub fn live_lever(&self, sin: f64, cos: f64) -> f64 {
+        sin * self.live_a - cos * self.live_b
     }
 
     /// Moment (N m) of the permanent forces about the centroid with the body turned by

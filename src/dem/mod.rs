@@ -324,7 +324,8 @@ pub fn simulated_model(model: &Model) -> Option<Model> {
         joints: assembly.joints.clone(),
     };
     let mut loads = crate::model::LoadCase::self_weight(&polygons)
-        .with_vertical_ratio(model.loads.vertical_ratio());
+        .with_vertical_ratio(model.loads.vertical_ratio())
+        .with_action(model.loads.action());
     for l in model.loads.applied() {
         if l.source != crate::model::LoadSource::SelfWeight {
             loads.add(l.clone());

@@ -155,9 +155,13 @@ impl World {
             };
             let r = load.point - body.home;
             let l = &mut body.loads;
-            l.extra
-                .get_or_insert_with(ExtraLoads::default)
-                .add(r, load.force, load.seismic_weight);
+            let extra = l.extra.get_or_insert_with(ExtraLoads::default);
+            if model.loads.is_variable(load) {
+                // A live load under a live action: lambda multiplies it, gravity does not.
+                extra.add_live(r, load.force);
+            } else {
+                extra.add(r, load.force, load.seismic_weight);
+            }
             l.scale += load.force.norm().max(load.seismic_weight);
             body.add_mass(load.seismic_weight / g);
         }
@@ -202,7 +206,8 @@ impl World {
             time: 0.0,
             steps: 0,
             load: Load::default(),
-            seismic_direction: model.loads.seismic_direction(1.0),
+            // Zero under a live action: no mass is shaken, the live loads are the action.
+            seismic_direction: model.loads.variable_direction(1.0),
             local_damping: params.local_damping,
             mu,
             margin: (0.01 * size).max(4.0 * params.contact_tolerance),
@@ -408,9 +413,11 @@ impl World {
             if let Some(e) = &l.extra {
                 let (sin, cos) = body.angle.sin_cos();
                 let se = self.load.lambda * e.seismic_weight;
-                f += self.load.gravity * e.force + se * d;
+                let lambda = self.load.lambda;
+                f += self.load.gravity * e.force + se * d + lambda * e.live_force;
                 m += self.load.gravity * e.moment(sin, cos)
-                    + se * cross(body.rotate(e.seismic_offset), d);
+                    + se * cross(body.rotate(e.seismic_offset), d)
+                    + lambda * e.live_moment(sin, cos);
             }
             unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / l.scale);
             // Cundall's local damping opposes the motion of each degree of freedom with a
@@ -458,7 +465,9 @@ impl World {
                 let extra = l.extra.as_ref().map_or(0.0, |e| {
                     let (sin, cos) = b.angle.sin_cos();
                     let permanent = e.force.dot(&b.pos) + e.lever(sin, cos);
-                    let seismic = e.seismic_weight * d.dot(&(b.pos + b.rotate(e.seismic_offset)));
+                    let seismic = e.seismic_weight * d.dot(&(b.pos + b.rotate(e.seismic_offset)))
+                        + e.live_force.dot(&b.pos)
+                        + e.live_lever(sin, cos);
                     -self.load.gravity * permanent - self.load.lambda * seismic
                 });
                 own + extra

@@ -213,7 +213,18 @@ fn point_sums(point: Vec2, force: Vec2, seismic_weight: f64, seismic: Vec2) -> S
 /// the same weight. The arc is cut where x turns back (`sin = 0`) and where a line load starts
 /// or ends, and each piece is integrated by Gauss-Legendre quadrature in the angle, exact to
 /// round-off for these smooth integrands.
-fn spread_sums(c: Vec2, r: f64, a: f64, b: f64, loads: &[SpreadLoad], seismic: Vec2) -> Sums {
+///
+/// Under a live action (`live`), a live load's weight is the action (lambda multiplies it)
+/// instead of a permanent force.
+fn spread_sums(
+    c: Vec2,
+    r: f64,
+    a: f64,
+    b: f64,
+    loads: &[SpreadLoad],
+    seismic: Vec2,
+    live: bool,
+) -> Sums {
     let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
     if hi <= lo {
         return Sums::default();
@@ -283,7 +294,9 @@ fn spread_sums(c: Vec2, r: f64, a: f64, b: f64, loads: &[SpreadLoad], seismic: V
         }
         let mass = Sums::of_mass(w, wx, wy, seismic);
         total = total
-            + if load.seismic {
+            + if live && load.live {
+                mass.as_action()
+            } else if load.seismic {
                 mass
             } else {
                 Sums {
@@ -342,8 +355,10 @@ struct Structure {
     spread: Vec<SpreadLoad>,
     /// Point loads on the ring, per item: `(u, resultant)`, in no order.
     points: Vec<Vec<(f64, Sums)>>,
-    /// Seismic force per unit lambda and unit weight (`(d, r)`).
+    /// Seismic force per unit lambda and unit weight (`(d, r)`; zero under a live action).
     seismic: Vec2,
+    /// Whether lambda multiplies the live loads (a live action).
+    live: bool,
 }
 
 impl Structure {
@@ -368,7 +383,10 @@ impl Structure {
         let first = &asm.blocks[k];
         let gamma = first.weight / first.area;
         let sign = direction.sign();
-        let seismic = model.loads.seismic_direction(sign);
+        // The force per unit lambda and unit seismic weight: zero under a live action (no
+        // mass is shaken; the live loads are the action instead).
+        let seismic = model.loads.variable_direction(sign);
+        let live = model.loads.action() == crate::model::Action::Live;
         // The ring is a continuum: its own weight and the loads spread along its extrados are
         // integrated exactly between any two sections, and a point load belongs to the side of
         // a section its polar angle lies on. The piers keep the loads of their blocks.
@@ -389,7 +407,7 @@ impl Structure {
                 seismic,
             );
             if let Some((a, b)) = l.extrados {
-                s = s + spread_sums(centre, re, a, b, &spread, seismic);
+                s = s + spread_sums(centre, re, a, b, &spread, seismic, live);
             }
             s
         };
@@ -465,7 +483,11 @@ impl Structure {
             };
             let d = l.point - a.centre;
             let u = (a.theta0 - d.y.atan2(d.x)).rem_euclid(2.0 * PI);
-            let sums = point_sums(l.point, l.force, l.seismic_weight, seismic);
+            let sums = if live && l.live {
+                point_sums(l.point, l.force, 0.0, seismic).as_action()
+            } else {
+                point_sums(l.point, l.force, l.seismic_weight, seismic)
+            };
             if u <= a.len {
                 points[i].push((u, sums));
             } else if u <= a.len + 0.5 * (2.0 * PI - a.len) {
@@ -481,6 +503,7 @@ impl Structure {
             spread,
             points,
             seismic,
+            live,
         };
         st.full = (0..st.items.len())
             .map(|i| match &st.items[i] {
@@ -511,6 +534,7 @@ impl Structure {
                 a.theta0 + a.dir * u1,
                 &self.spread,
                 self.seismic,
+                self.live,
             );
         }
         for &(u, p) in &self.points[item] {

@@ -1317,7 +1317,7 @@ pub fn certify_crushing(
         let g = model.loads.reference(b);
         let power = |w: crate::model::Wrench| w.force.dot(&velocity(g)) + w.moment * t[0];
         p_perm += power(model.loads.permanent(b));
-        p_seis += power(model.loads.seismic(b, sign));
+        p_seis += power(model.loads.variable(b, sign));
         twists.push(t);
     }
     let scale_ref = model.loads.force_scale() * model.assembly.size();

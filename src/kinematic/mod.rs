@@ -303,11 +303,20 @@ impl Sums {
         }
     }
 
+    /// The permanent part of these sums moved into the action: a load that lambda multiplies
+    /// (a live load under a live action), with no permanent part left.
+    pub fn as_action(self) -> Sums {
+        Sums {
+            p: [0.0; 3],
+            s: self.p,
+        }
+    }
+
     /// The loads of block `i` of a load case, seismic forces toward `sign`.
     pub fn of_block(loads: &crate::model::LoadCase, i: usize, sign: f64) -> Sums {
         let g = loads.reference(i);
         let p = loads.permanent(i).moved(g, Vec2::zeros());
-        let s = loads.seismic(i, sign).moved(g, Vec2::zeros());
+        let s = loads.variable(i, sign).moved(g, Vec2::zeros());
         Sums {
             p: [p.force.x, p.force.y, p.moment],
             s: [s.force.x, s.force.y, s.moment],

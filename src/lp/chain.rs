@@ -115,7 +115,7 @@ impl ChainProgram {
             if k < assembly.blocks.len() {
                 let g = loads.reference(k);
                 let p = loads.permanent(k).moved(g, reference);
-                let s = loads.seismic(k, sign).moved(g, reference);
+                let s = loads.variable(k, sign).moved(g, reference);
                 for (c, v) in [p.force.x, p.force.y, p.moment].into_iter().enumerate() {
                     acc.base[c] += v;
                 }
@@ -597,14 +597,14 @@ impl ChainProgram {
                 twist[0],
             ]);
         }
-        // Orientation: the seismic forces do positive work.
+        // Orientation: the action (what lambda multiplies) does positive work. Its wrench is
+        // reduced to the block's load reference point, the centroid of `v`.
         let power: f64 = (0..v.len())
             .map(|i| {
-                let s = loads.seismic_mass(i);
-                let d = loads.seismic_direction(sign) * s.weight;
-                let r = s.centre - assembly.blocks[i].centroid;
-                let vel = Vec2::new(v[i][0] - v[i][2] * r.y, v[i][1] + v[i][2] * r.x);
-                d.dot(&vel)
+                let w = loads
+                    .variable(i, sign)
+                    .moved(loads.reference(i), assembly.blocks[i].centroid);
+                w.force.dot(&Vec2::new(v[i][0], v[i][1])) + w.moment * v[i][2]
             })
             .sum();
         let vmax = v

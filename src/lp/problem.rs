@@ -111,7 +111,7 @@ impl StaticProblem {
         let mut b = vec![0.0; 3 * nb];
         for i in 0..nb {
             if !relax {
-                let s = loads.seismic(i, sign);
+                let s = loads.variable(i, sign);
                 for (k, v) in [s.force.x / fs, s.force.y / fs, s.moment / (fs * ls)]
                     .into_iter()
                     .enumerate()

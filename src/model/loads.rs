@@ -9,13 +9,21 @@
 //!   direction of the ground motion, r the vertical ratio). All seismic forces are parallel,
 //!   so a block's seismic masses act as one weight at their centre ([`SeismicMass`]).
 //!
-//! The collapse multiplier `lambda` multiplies the seismic forces only; the permanent forces
-//! stay as they are. With self-weight alone (r = 0) this is the load model of the seed paper:
-//! `W` down and `lambda W` across at every centroid.
+//! - **live loads** (`live = true`): kept apart per block, so that the [`Action`] decides what
+//!   they are.
+//!
+//! What the collapse multiplier `lambda` multiplies is the load case's [`Action`]: under
+//! [`Action::Seismic`] (the default) the seismic forces only, the live loads then being
+//! permanent ones; under [`Action::Live`] the live loads only, with no seismic force at all.
+//! The permanent forces stay as they are. With self-weight alone (r = 0) and a seismic action
+//! this is the load model of the seed paper: `W` down and `lambda W` across at every centroid.
+//! Methods read [`LoadCase::permanent`] and [`LoadCase::variable`] (what lambda multiplies),
+//! never the seismic masses directly, so a new action is one more arm there.
 //!
 //! Every analysis (static program, kinematic searches, DEM, drawings) reads its loads from a
 //! [`LoadCase`] and from nowhere else.
 
+use super::Action;
 use crate::assembly::Assembly;
 use crate::geometry::{cross, Vec2};
 
@@ -97,6 +105,11 @@ pub struct AppliedLoad {
     pub force: Vec2,
     /// Weight (N) of the seismic mass attached to this load (0 when not seismic).
     pub seismic_weight: f64,
+    /// Whether the load is live (`live = true` in the scene): under a live action
+    /// ([`Action::Live`]) lambda multiplies it and it is not a permanent load; under a
+    /// seismic action it is a permanent load like any other. A live load carries no seismic
+    /// mass.
+    pub live: bool,
     pub source: LoadSource,
     /// For fill: the outline of the filled region over the block (for drawings).
     pub region: Option<Vec<Vec2>>,
@@ -111,9 +124,19 @@ impl AppliedLoad {
             point,
             force,
             seismic_weight: if seismic { force.y.abs() } else { 0.0 },
+            live: false,
             source: LoadSource::Load(k),
             region: None,
         }
+    }
+
+    /// The same load marked live (see [`AppliedLoad::live`]): it then carries no seismic mass.
+    pub fn live(mut self, live: bool) -> Self {
+        self.live = live;
+        if live {
+            self.seismic_weight = 0.0;
+        }
+        self
     }
 }
 
@@ -128,8 +151,18 @@ impl SpreadLoad {
                 intensity,
             },
             seismic,
+            live: false,
             source: LoadSource::Load(k),
         }
+    }
+
+    /// The same load marked live (see [`AppliedLoad::live`]): it then is no seismic mass.
+    pub fn live(mut self, live: bool) -> Self {
+        self.live = live;
+        if live {
+            self.seismic = false;
+        }
+        self
     }
 }
 
@@ -141,6 +174,8 @@ pub struct SpreadLoad {
     pub kind: Spread,
     /// Whether the load is also a seismic mass.
     pub seismic: bool,
+    /// Whether the load is live (multiplied by lambda under [`Action::Live`]).
+    pub live: bool,
     pub source: LoadSource,
 }
 
@@ -158,11 +193,16 @@ pub enum Spread {
     Fill { level: f64, density: f64 },
 }
 
-/// The loads of every block of an assembly, and the direction of the seismic forces.
+/// The loads of every block of an assembly, and what lambda multiplies.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadCase {
-    /// Resultant permanent force of each block, about its centroid.
+    /// What lambda multiplies (see [`Action`]).
+    action: Action,
+    /// Resultant permanent force of each block, about its centroid, live loads aside.
     permanent: Vec<Wrench>,
+    /// Resultant of the live loads of each block, about its centroid: the action under
+    /// [`Action::Live`], permanent forces under [`Action::Seismic`].
+    live: Vec<Wrench>,
     /// Seismic masses of each block.
     seismic: Vec<SeismicMass>,
     /// Block centroids (the reference points of `permanent`).
@@ -206,11 +246,14 @@ impl LoadCase {
                 point: b.centroid,
                 force: Vec2::new(0.0, -b.weight),
                 seismic_weight: b.weight,
+                live: false,
                 source: LoadSource::SelfWeight,
                 region: None,
             })
             .collect();
         LoadCase {
+            action: Action::Seismic,
+            live: vec![Wrench::default(); assembly.blocks.len()],
             permanent,
             seismic,
             centroids,
@@ -218,6 +261,22 @@ impl LoadCase {
             applied,
             spread: Vec::new(),
         }
+    }
+
+    /// The same load case with lambda multiplying `action`.
+    pub fn with_action(mut self, action: Action) -> LoadCase {
+        self.action = action;
+        self
+    }
+
+    /// What lambda multiplies.
+    pub fn action(&self) -> Action {
+        self.action
+    }
+
+    /// Whether any load is live.
+    pub fn has_live(&self) -> bool {
+        self.applied.iter().any(|a| a.live)
     }
 
     /// Record a load spread along the ring's extrados (its resultants are added per block
@@ -239,7 +298,12 @@ impl LoadCase {
     pub fn add(&mut self, load: AppliedLoad) {
         let i = load.block;
         let g = self.centroids[i];
-        self.permanent[i] = self.permanent[i] + Wrench::of_force(load.force, load.point, g);
+        let w = Wrench::of_force(load.force, load.point, g);
+        if load.live {
+            self.live[i] = self.live[i] + w;
+        } else {
+            self.permanent[i] = self.permanent[i] + w;
+        }
         let s = &mut self.seismic[i];
         let w = s.weight + load.seismic_weight;
         if w > 0.0 && load.seismic_weight > 0.0 {
@@ -269,9 +333,41 @@ impl LoadCase {
         self.permanent.is_empty()
     }
 
-    /// Resultant permanent force of block `i`, about its centroid.
+    /// Resultant permanent force of block `i`, about its centroid: every load lambda does
+    /// not multiply (the live loads too under a seismic action).
     pub fn permanent(&self, i: usize) -> Wrench {
-        self.permanent[i]
+        match self.action {
+            Action::Seismic => self.permanent[i] + self.live[i],
+            Action::Live => self.permanent[i],
+        }
+    }
+
+    /// The action on block `i` per unit lambda, about its centroid: the seismic force toward
+    /// `sign` (+1 for ground motion toward +x, -1 toward -x) under [`Action::Seismic`], the
+    /// live loads under [`Action::Live`] (`sign` has no meaning for them and is ignored).
+    /// Every method reads what lambda multiplies from here.
+    pub fn variable(&self, i: usize, sign: f64) -> Wrench {
+        match self.action {
+            Action::Seismic => self.seismic(i, sign),
+            Action::Live => self.live[i],
+        }
+    }
+
+    /// Whether an applied load is multiplied by lambda under this load case's action, as a
+    /// force (live loads under [`Action::Live`]); seismic masses are multiplied through
+    /// [`LoadCase::variable_direction`] instead.
+    pub fn is_variable(&self, load: &AppliedLoad) -> bool {
+        self.action == Action::Live && load.live
+    }
+
+    /// The force per unit lambda and unit seismic weight: the seismic direction
+    /// ([`LoadCase::seismic_direction`]) under [`Action::Seismic`], zero under
+    /// [`Action::Live`] (no mass is shaken).
+    pub fn variable_direction(&self, sign: f64) -> Vec2 {
+        match self.action {
+            Action::Seismic => self.seismic_direction(sign),
+            Action::Live => Vec2::zeros(),
+        }
     }
 
     /// Seismic masses of block `i`.
@@ -309,7 +405,19 @@ impl LoadCase {
     /// Total downward permanent force (N): the sum of the vertical components, sign
     /// reversed.
     pub fn permanent_weight(&self) -> f64 {
-        -self.permanent.iter().map(|w| w.force.y).sum::<f64>()
+        -(0..self.len())
+            .map(|i| self.permanent(i).force.y)
+            .sum::<f64>()
+    }
+
+    /// Sum of the magnitudes of the live loads (N): what lambda multiplies under a live
+    /// action.
+    pub fn live_magnitude(&self) -> f64 {
+        self.applied
+            .iter()
+            .filter(|a| a.live)
+            .map(|a| a.force.norm())
+            .sum()
     }
 
     /// Total weight of the seismic masses (N).
@@ -321,12 +429,14 @@ impl LoadCase {
     /// the permanent forces and the seismic weight. For self-weight alone, the total weight.
     pub fn force_scale(&self) -> f64 {
         let p: f64 = self.permanent.iter().map(|w| w.force.norm()).sum();
-        p.max(self.seismic_weight())
+        let l: f64 = self.live.iter().map(|w| w.force.norm()).sum();
+        (p + l).max(self.seismic_weight())
     }
 
     /// Whether the loads are self-weight alone with no vertical seismic component.
     pub fn is_self_weight_only(&self) -> bool {
-        self.vertical_ratio == 0.0
+        self.action == Action::Seismic
+            && self.vertical_ratio == 0.0
             && self
                 .applied
                 .iter()
@@ -338,16 +448,19 @@ impl LoadCase {
     pub fn mirrored(&self) -> LoadCase {
         let nb = self.len();
         let m = crate::geometry::mirror;
-        LoadCase {
-            permanent: self
-                .permanent
-                .iter()
+        let flip = |ws: &[Wrench]| -> Vec<Wrench> {
+            ws.iter()
                 .rev()
                 .map(|w| Wrench {
                     force: m(w.force),
                     moment: -w.moment,
                 })
-                .collect(),
+                .collect()
+        };
+        LoadCase {
+            action: self.action,
+            permanent: flip(&self.permanent),
+            live: flip(&self.live),
             seismic: self
                 .seismic
                 .iter()
@@ -429,6 +542,7 @@ impl LoadCase {
             })
             .collect();
         let mut permanent = vec![Wrench::default(); self.len()];
+        let mut live = vec![Wrench::default(); self.len()];
         let mut seismic: Vec<SeismicMass> = centroids
             .iter()
             .map(|c| SeismicMass {
@@ -439,7 +553,12 @@ impl LoadCase {
         let mut moment = vec![Vec2::zeros(); self.len()];
         for a in &applied {
             let i = a.block;
-            permanent[i] = permanent[i] + Wrench::of_force(a.force, a.point, centroids[i]);
+            let w = Wrench::of_force(a.force, a.point, centroids[i]);
+            if a.live {
+                live[i] = live[i] + w;
+            } else {
+                permanent[i] = permanent[i] + w;
+            }
             seismic[i].weight += a.seismic_weight;
             moment[i] += a.seismic_weight * a.point;
         }
@@ -449,7 +568,9 @@ impl LoadCase {
             }
         }
         LoadCase {
+            action: self.action,
             permanent,
+            live,
             seismic,
             centroids,
             vertical_ratio: self.vertical_ratio,
@@ -476,7 +597,7 @@ impl LoadCase {
             )));
         }
         for i in 0..self.len() {
-            let p = self.permanent[i];
+            let p = self.permanent[i] + self.live[i];
             let s = self.seismic[i];
             if !(p.force.x.is_finite() && p.force.y.is_finite() && p.moment.is_finite()) {
                 return Err(AnalysisError::Assembly(format!(

@@ -5,8 +5,10 @@
 //! Data flows one way: scene -> `scene::build` -> [`Model`] -> static / kinematic / DEM
 //! analyses -> reports. The analyses never read a scene.
 
+pub mod action;
 pub mod loads;
 
+pub use action::Action;
 pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
@@ -113,7 +115,7 @@ impl Model {
 }
 
 /// Largest out-of-balance force (N) of any block under joint forces `forces` and the loads
-/// of `loads` with the seismic forces times `lambda` in direction `sign` (moments divided by
+/// of `loads` with the action times `lambda` (seismic forces in direction `sign`) (moments divided by
 /// the structure's size so they are forces too).
 pub fn equilibrium_residual(
     assembly: &Assembly,
@@ -126,7 +128,7 @@ pub fn equilibrium_residual(
     let mut res: Vec<[f64; 3]> = (0..assembly.blocks.len())
         .map(|i| {
             let p = loads.permanent(i);
-            let s = loads.seismic(i, sign);
+            let s = loads.variable(i, sign);
             [
                 p.force.x + lambda * s.force.x,
                 p.force.y + lambda * s.force.y,

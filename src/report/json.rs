@@ -201,11 +201,24 @@ pub struct LoadsReport {
     /// Total weight of the seismic masses (N): the horizontal seismic force is lambda times
     /// this.
     pub seismic_weight: f64,
+    /// What lambda multiplies (`[action] kind`): `seismic` (the collapse acceleration in g)
+    /// or `live` (the adequacy factor of the live loads).
+    pub action: crate::model::Action,
+    /// Sum of the magnitudes of the live loads (N); 0 when none is live.
+    pub live_weight: f64,
+    /// Under a seismic action whose every load is a seismic mass and with no vertical
+    /// component, the tilt of a tilting table that loads the blocks as lambda does,
+    /// `atan(lambda)` in degrees, from `lambda_lower`; null otherwise (and with no
+    /// `lambda_lower`).
+    pub tilt_deg: Option<f64>,
 }
 
 impl LoadsReport {
     pub fn new(scene: &Scene, model: &Model) -> Self {
         LoadsReport {
+            action: scene.action,
+            live_weight: model.loads.live_magnitude(),
+            tilt_deg: None,
             loads: scene.loads.clone(),
             fill: scene.fill.clone(),
             vertical_ratio: scene.seismic.vertical_ratio,
@@ -265,6 +278,22 @@ pub struct AnalysisReport {
     pub continuous_hinges: Option<Vec<ContinuousHinge>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous_note: Option<String>,
+}
+
+/// The tilting table's angle (degrees) that loads the blocks as `lambda` does: `atan(lambda)`,
+/// when the action is seismic, every load is a seismic mass and there is no vertical
+/// component (then gravity and lambda g act on every mass alike, as the tilted weight's two
+/// components do, up to the factor cos of the tilt that does not change a mechanism's
+/// multiplier); None otherwise.
+pub fn tilt_deg(scene: &Scene, lambda: Option<f64>) -> Option<f64> {
+    let every_load_seismic =
+        scene.loads.iter().all(LoadSpec::seismic) && scene.fill.as_ref().is_none_or(|f| f.seismic);
+    (scene.action == crate::model::Action::Seismic
+        && scene.seismic.vertical_ratio == 0.0
+        && every_load_seismic)
+        .then_some(lambda)
+        .flatten()
+        .map(|l| l.atan().to_degrees())
 }
 
 fn xy(p: crate::geometry::Vec2) -> [f64; 2] {
@@ -378,6 +407,8 @@ impl AnalysisReport {
 
     /// The static part alone.
     pub fn new_static(scene: &Scene, model: &Model, r: &StaticResult) -> Self {
+        let mut loads = LoadsReport::new(scene, model);
+        loads.tilt_deg = tilt_deg(scene, r.lambda);
         let assembly = &model.assembly;
         let points = r.thrust_points(assembly);
         let joints = assembly
@@ -414,7 +445,7 @@ impl AnalysisReport {
             iterations: r.iterations,
             model: r.model,
             scene: SceneReport::new(scene, model),
-            loads: LoadsReport::new(scene, model),
+            loads,
             lambda_upper: None,
             kinematic_status: None,
             gap: None,

@@ -272,12 +272,24 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
     if r != 0.0 {
         parts.push(format!("vertical seismic ratio {}", num(r)));
     }
-    format!(
-        "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",
-        parts.join(", "),
-        model.loads.permanent_weight() / 1000.0,
-        model.loads.seismic_weight() / 1000.0
-    )
+    let live = scene.loads.iter().filter(|l| l.live()).count() as u64;
+    if live > 0 {
+        parts.push(format!("{live} of them live"));
+    }
+    match model.loads.action() {
+        crate::model::Action::Seismic => format!(
+            "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",
+            parts.join(", "),
+            model.loads.permanent_weight() / 1000.0,
+            model.loads.seismic_weight() / 1000.0
+        ),
+        crate::model::Action::Live => format!(
+            "loads: {}\n  permanent loads {:.6} kN down, live loads {:.6} kN (lambda multiplies the live loads: the adequacy factor; no seismic force)",
+            parts.join(", "),
+            model.loads.permanent_weight() / 1000.0,
+            model.loads.live_magnitude() / 1000.0
+        ),
+    }
 }
 
 /// How far the static bound `lower` sits below the rotational upper bound `upper`, as a
@@ -453,6 +465,7 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
         Direction::Right => "toward +x (right)",
         Direction::Left => "toward -x (left)",
     };
+    let live = model.loads.action() == crate::model::Action::Live;
     match (r.status, r.lambda) {
         (Status::Collapse, Some(l)) => {
             let moving = r
@@ -471,11 +484,19 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
             } else {
                 String::new()
             };
-            let _ = writeln!(
-                s,
-                "Static (lower bound): collapse multiplier lambda = {l:.6}\n  {} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}{vertical}",
-                what_moves(assembly, moving)
-            );
+            if live {
+                let _ = writeln!(
+                    s,
+                    "Static (lower bound): adequacy factor lambda = {l:.6}\n  {} becomes a mechanism when the live loads are {l:.4} times as given",
+                    what_moves(assembly, moving)
+                );
+            } else {
+                let _ = writeln!(
+                    s,
+                    "Static (lower bound): collapse multiplier lambda = {l:.6}\n  {} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}{vertical}",
+                    what_moves(assembly, moving)
+                );
+            }
             let _ = writeln!(s, "  hinges of the thrust line:");
             s.push_str(&hinge_lines(assembly, &r.hinges));
             if !r.sliding.is_empty() {
@@ -489,6 +510,12 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
                 sci(r.equilibrium_residual / model.loads.force_scale(), 1)
             );
         }
+        (Status::NoCollapse, _) if live => {
+            let _ = writeln!(
+                s,
+                "Static (lower bound): NO COLLAPSE — a thrust line fits inside the structure for any multiple of the live loads"
+            );
+        }
         (Status::NoCollapse, _) => {
             let _ = writeln!(
                 s,
@@ -496,9 +523,14 @@ pub fn static_summary(scene: &Scene, model: &Model, r: &StaticResult) -> String 
             );
         }
         _ => {
+            let without = if live {
+                "without the live loads"
+            } else {
+                "without horizontal load"
+            };
             let _ = writeln!(
                 s,
-                "Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even without horizontal load\n  (thinner than its minimum thickness, loads too heavy or too one-sided, piers too slender, or too little friction)"
+                "Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even {without}\n  (thinner than its minimum thickness, loads too heavy or too one-sided, piers too slender, or too little friction)"
             );
         }
     }

@@ -33,13 +33,15 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
     let a = match (&scene.arch, &scene.blocks) {
         (Some(a), _) => a,
         (None, Some(b)) => {
-            return super::user_blocks::build_model(
+            let mut model = super::user_blocks::build_model(
                 b,
                 &scene.loads,
                 scene.seismic.vertical_ratio,
                 strength,
                 &scene.origin,
-            )
+            )?;
+            model.loads = model.loads.with_action(scene.action);
+            return Ok(model);
         }
         (None, None) => {
             return Err(SceneError::MissingKey {
@@ -193,12 +195,18 @@ fn build_loads(
     assembly: &Assembly,
     arch: &ArchPlacement,
 ) -> Result<LoadCase, SceneError> {
-    let mut case =
-        LoadCase::self_weight(assembly).with_vertical_ratio(scene.seismic.vertical_ratio);
+    let mut case = LoadCase::self_weight(assembly)
+        .with_vertical_ratio(scene.seismic.vertical_ratio)
+        .with_action(scene.action);
     let size = assembly.size();
     for (k, spec) in scene.loads.iter().enumerate() {
         match *spec {
-            LoadSpec::Point { at, force, seismic } => {
+            LoadSpec::Point {
+                at,
+                force,
+                seismic,
+                live,
+            } => {
                 let p = Vec2::new(at[0], at[1]);
                 let block = containing_block(assembly, arch, p, 1e-9 * size).ok_or_else(|| {
                     let (b, d) = nearest_block(assembly, p);
@@ -213,15 +221,16 @@ fn build_loads(
                     }
                 })?;
                 let force = Vec2::new(force[0], force[1]);
-                case.add(AppliedLoad::point(k, block, p, force, seismic));
+                case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
             }
             LoadSpec::Line {
                 from_x,
                 to_x,
                 intensity,
                 seismic,
+                live,
             } => {
-                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic));
+                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic).live(live));
                 let mut carried = false;
                 for LoadedEdge { block, a, b, arc } in loaded_edges(arch) {
                     // The edges run left to right (a.x < b.x).
@@ -237,6 +246,7 @@ fn build_loads(
                         point: edge_point(a, b, arc, x),
                         force: Vec2::new(0.0, -w),
                         seismic_weight: if seismic { w } else { 0.0 },
+                        live,
                         source: LoadSource::Load(k),
                         region: None,
                     });
@@ -261,6 +271,7 @@ fn build_loads(
                 density: gamma,
             },
             seismic: fill.seismic,
+            live: false,
             source: LoadSource::Fill,
         });
         let g = &arch.geometry;
@@ -282,6 +293,7 @@ fn build_loads(
                 point: centroid,
                 force: Vec2::new(0.0, -w),
                 seismic_weight: if fill.seismic { w } else { 0.0 },
+                live: false,
                 source: LoadSource::Fill,
                 region: Some(region),
             });

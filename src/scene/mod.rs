@@ -107,6 +107,8 @@ pub enum LoadSpec {
         force: [f64; 2],
         /// Whether the load is a seismic mass `|force_y| / g`.
         seismic: bool,
+        /// Whether the load is live: multiplied by lambda under `[action] kind = "live"`.
+        live: bool,
     },
     /// A vertical load per metre of horizontal length on the extrados, downward.
     Line {
@@ -115,6 +117,8 @@ pub enum LoadSpec {
         /// N/m, downward.
         intensity: f64,
         seismic: bool,
+        /// Whether the load is live: multiplied by lambda under `[action] kind = "live"`.
+        live: bool,
     },
 }
 
@@ -122,6 +126,13 @@ impl LoadSpec {
     pub fn seismic(&self) -> bool {
         match self {
             LoadSpec::Point { seismic, .. } | LoadSpec::Line { seismic, .. } => *seismic,
+        }
+    }
+
+    /// Whether the load is live (`live = true`).
+    pub fn live(&self) -> bool {
+        match self {
+            LoadSpec::Point { live, .. } | LoadSpec::Line { live, .. } => *live,
         }
     }
 }
@@ -158,6 +169,8 @@ pub struct Scene {
     pub fill: Option<FillSpec>,
     /// `[seismic]` (defaults: horizontal ground motion only).
     pub seismic: SeismicSpec,
+    /// `[action] kind`: what lambda multiplies (default seismic).
+    pub action: crate::model::Action,
     /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem`; empty when
     /// the scene has none.
     pub dem: Table,
@@ -415,7 +428,7 @@ fn set_load(table: &mut Table, key: &str, rest: &str, value: Value) -> Result<()
 }
 
 const SECTIONS: &[&str] = &[
-    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site", "blocks",
+    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site", "blocks", "action",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -434,10 +447,11 @@ const SHAPE_KEYS: &[(&str, &[&str])] = &[
     ("basket", &["span", "rise", "side_angle_deg"]),
 ];
 const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction", "compressive_strength"];
-const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic"];
+const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic", "live"];
+const ACTION_KEYS: &[&str] = &["kind"];
 const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
 /// The keys of a `[[loads]]` entry every type takes, and those each type adds.
-const LOAD_KEYS: &[&str] = &["type", "seismic"];
+const LOAD_KEYS: &[&str] = &["type", "seismic", "live"];
 const LOAD_TYPE_KEYS: &[(&str, &[&str])] = &[
     ("point", &["at", "force"]),
     ("line", &["from_x", "to_x", "intensity"]),
@@ -800,6 +814,15 @@ fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, S
     let site = section(&table, "site", origin)?
         .map(|t| crate::spectrum::Site::from_table(t, origin))
         .transpose()?;
+    let action = parse_action(
+        Section::new(
+            "action",
+            section(&table, "action", origin)?.unwrap_or(&empty),
+            origin,
+        ),
+        &table,
+        &loads,
+    )?;
     let scene = Scene {
         arch,
         blocks,
@@ -808,6 +831,7 @@ fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, S
         loads,
         fill,
         seismic,
+        action,
         dem,
         site,
         origin: origin.to_string(),
@@ -1113,7 +1137,16 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
         let (allowed, context) = keys_of_kind(t, "type", LOAD_KEYS, LOAD_TYPE_KEYS);
         s.check_known(&allowed, &context)?;
         let kind = s.string("type", None)?;
-        let seismic = s.boolean("seismic", true)?;
+        let live = s.boolean("live", false)?;
+        // A live load carries no seismic mass: its default is then false, and true is refused.
+        let seismic = s.boolean("seismic", !live)?;
+        if live && seismic {
+            return Err(s.out_of_range(
+                "seismic",
+                "true",
+                "a live load (live = true) carries no seismic mass: leave seismic out or set it to false",
+            ));
+        }
         let load = match kind.as_str() {
             "point" => {
                 let at = s.pair("at", "point of application [x, y] in metres")?;
@@ -1132,7 +1165,12 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
                         &format!("components must lie within +-{MAX_FORCE:e} N"),
                     ));
                 }
-                LoadSpec::Point { at, force, seismic }
+                LoadSpec::Point {
+                    at,
+                    force,
+                    seismic,
+                    live,
+                }
             }
             "line" => {
                 let from_x = s.finite("from_x", "start x of the loaded length in metres")?;
@@ -1173,6 +1211,7 @@ fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError>
                     to_x,
                     intensity,
                     seismic,
+                    live,
                 }
             }
             other => {
@@ -1218,6 +1257,13 @@ fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
         ));
     }
     let seismic = s.boolean("seismic", true)?;
+    if s.boolean("live", false)? {
+        return Err(s.out_of_range(
+            "live",
+            "true",
+            "a fill is a permanent load and cannot be live: give a live load as [[loads]] with live = true",
+        ));
+    }
     s.finish("")?;
     let crown = arch.shape.crown_extrados(arch.thickness);
     if level < crown {
@@ -1232,6 +1278,39 @@ fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
         unit_weight,
         seismic,
     })
+}
+
+/// `[action]`: what lambda multiplies. A live action needs live loads, and takes no
+/// `[seismic]` table (its vertical ratio would multiply nothing).
+fn parse_action(
+    mut s: Section,
+    table: &Table,
+    loads: &[LoadSpec],
+) -> Result<crate::model::Action, SceneError> {
+    use crate::model::Action;
+    s.check_known(ACTION_KEYS, "")?;
+    let word = s.string("kind", Some("seismic"))?;
+    let action: Action = word
+        .parse()
+        .map_err(|why: String| s.out_of_range("kind", format!("\"{word}\""), &why))?;
+    s.finish("")?;
+    if action == Action::Live {
+        if table.contains_key("seismic") {
+            return Err(s.out_of_range(
+                "kind",
+                "\"live\"",
+                "a live action takes no [seismic] table: lambda multiplies the live loads, not a ground motion (remove [seismic], or use kind = \"seismic\")",
+            ));
+        }
+        if !loads.iter().any(LoadSpec::live) {
+            return Err(s.out_of_range(
+                "kind",
+                "\"live\"",
+                "a live action needs at least one [[loads]] entry with live = true (lambda multiplies those loads and nothing else)",
+            ));
+        }
+    }
+    Ok(action)
 }
 
 fn parse_seismic(mut s: Section) -> Result<SeismicSpec, SceneError> {

@@ -253,7 +253,12 @@ pub(super) fn build_model(
     let tol = spec.detected.tolerance;
     for (k, load) in loads.iter().enumerate() {
         match *load {
-            LoadSpec::Point { at, force, seismic } => {
+            LoadSpec::Point {
+                at,
+                force,
+                seismic,
+                live,
+            } => {
                 let p = Vec2::new(at[0], at[1]);
                 let block =
                     first_containing(&assembly, p, tol).ok_or_else(|| SceneError::OutOfRange {
@@ -263,15 +268,16 @@ pub(super) fn build_model(
                         allowed: "the point lies outside every block".into(),
                     })?;
                 let force = Vec2::new(force[0], force[1]);
-                case.add(AppliedLoad::point(k, block, p, force, seismic));
+                case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
             }
             LoadSpec::Line {
                 from_x,
                 to_x,
                 intensity,
                 seismic,
+                live,
             } => {
-                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic));
+                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic).live(live));
                 let pieces = roof_pieces(&assembly, from_x, to_x, tol);
                 if pieces.is_empty() {
                     return Err(SceneError::OutOfRange {
@@ -288,6 +294,7 @@ pub(super) fn build_model(
                         point,
                         force: Vec2::new(0.0, -w),
                         seismic_weight: if seismic { w } else { 0.0 },
+                        live,
                         source: LoadSource::Load(k),
                         region: None,
                     });

@@ -153,6 +153,37 @@ fn parametric_structures_written_as_blocks_give_the_same_answers() {
     same_as_parametric("loaded portal", &loaded, -2.5);
 }
 
+/// `[fill]` over the user's blocks: the bundled filled arch written as blocks gives the
+/// parametric scene's answers (both bounds, hinges, mechanism, both directions). With polygon
+/// voussoirs: the blocks' extrados is the chord, so the parametric scene's curved extrados
+/// (its fill follows the arc) is not what the blocks describe.
+#[test]
+fn fill_over_blocks_is_the_parametric_fill() {
+    let filled = std::fs::read_to_string(data("filled_arch.toml")).expect("bundled scene");
+    let polygon = filled.replace(
+        "voussoir_shape = \"curved\"",
+        "voussoir_shape = \"polygon\"",
+    );
+    assert_ne!(
+        polygon, filled,
+        "the bundled filled arch has curved voussoirs"
+    );
+    same_as_parametric("filled arch (polygon voussoirs)", &polygon, 0.0);
+    // A single block under a fill up to 0.5 m above its top: the fill is a block of the same
+    // width on it, so b/h of the combined weight about the toe: lambda = b / (h + 0.5) for the
+    // same unit weight, both seismic masses.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let s = scene_in(
+        dir.path(),
+        "[blocks]\npolygons = [[[0, 0], [0.4, 0], [0.4, 1.0], [0, 1.0]]]\n[material]\nunit_weight = 18000\n[fill]\nlevel = 1.5\nunit_weight = 18000\n",
+        &[],
+    )
+    .expect("scene");
+    let a = analysis::analyse(&s, &options(Direction::Right)).expect("analysis");
+    let l = a.lower.lambda.expect("lambda");
+    assert!((l - 0.4 / 1.5).abs() < 1e-9, "block under fill: {l}");
+}
+
 #[test]
 fn a_single_rectangular_block_rocks_at_b_over_h() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -547,10 +578,10 @@ fn bad_block_files_get_clear_errors() {
             &["extension must be .json, .csv or .dxf"],
         ),
         (
-            "fill",
-            format!("{}[fill]\nlevel = 2.0\n", scene("b.json")),
+            "fill below every block top",
+            format!("{}[fill]\nlevel = -2.0\n", scene("b.json")),
             vec![("b.json", json(&[sq(0.0, 0.0)]).into_bytes())],
-            &["[fill]", "model the fill as blocks or as [[loads]]"],
+            &["fill.level", "above the top of some block"],
         ),
         (
             "both file and polygons",

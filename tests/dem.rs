@@ -518,6 +518,7 @@ fn single_block_with_a_point_load_rocks_at_the_hand_value() {
             point: Vec2::new(x, y),
             force: Vec2::new(0.0, -load),
             seismic_weight: if seismic { load } else { 0.0 },
+            live: false,
             source: LoadSource::Load(0),
             region: None,
         });

@@ -198,8 +198,12 @@ pub enum Spread {
 pub struct LoadCase {
     /// What lambda multiplies (see [`Action`]).
     action: Action,
-    /// Resultant permanent force of each block, about its centroid, live loads aside.
+    /// Resultant of every load of each block (live ones too), about its centroid: the
+    /// permanent forces under [`Action::Seismic`], accumulated in the order the loads were
+    /// added.
     permanent: Vec<Wrench>,
+    /// The same, live loads aside: the permanent forces under [`Action::Live`].
+    fixed: Vec<Wrench>,
     /// Resultant of the live loads of each block, about its centroid: the action under
     /// [`Action::Live`], permanent forces under [`Action::Seismic`].
     live: Vec<Wrench>,
@@ -221,7 +225,7 @@ impl LoadCase {
     /// weight `W` there (the seed paper's load model).
     pub fn self_weight(assembly: &Assembly) -> LoadCase {
         let centroids: Vec<Vec2> = assembly.blocks.iter().map(|b| b.centroid).collect();
-        let permanent = assembly
+        let permanent: Vec<Wrench> = assembly
             .blocks
             .iter()
             .map(|b| Wrench {
@@ -254,6 +258,7 @@ impl LoadCase {
         LoadCase {
             action: Action::Seismic,
             live: vec![Wrench::default(); assembly.blocks.len()],
+            fixed: permanent.clone(),
             permanent,
             seismic,
             centroids,
@@ -299,10 +304,11 @@ impl LoadCase {
         let i = load.block;
         let g = self.centroids[i];
         let w = Wrench::of_force(load.force, load.point, g);
+        self.permanent[i] = self.permanent[i] + w;
         if load.live {
             self.live[i] = self.live[i] + w;
         } else {
-            self.permanent[i] = self.permanent[i] + w;
+            self.fixed[i] = self.fixed[i] + w;
         }
         let s = &mut self.seismic[i];
         let w = s.weight + load.seismic_weight;
@@ -337,8 +343,8 @@ impl LoadCase {
     /// not multiply (the live loads too under a seismic action).
     pub fn permanent(&self, i: usize) -> Wrench {
         match self.action {
-            Action::Seismic => self.permanent[i] + self.live[i],
-            Action::Live => self.permanent[i],
+            Action::Seismic => self.permanent[i],
+            Action::Live => self.fixed[i],
         }
     }
 
@@ -428,8 +434,13 @@ impl LoadCase {
     /// A force scale (N) for dimensionless programs: the larger of the summed magnitudes of
     /// the permanent forces and the seismic weight. For self-weight alone, the total weight.
     pub fn force_scale(&self) -> f64 {
-        let p: f64 = self.permanent.iter().map(|w| w.force.norm()).sum();
-        let l: f64 = self.live.iter().map(|w| w.force.norm()).sum();
+        let (p, l): (f64, f64) = match self.action {
+            Action::Seismic => (self.permanent.iter().map(|w| w.force.norm()).sum(), 0.0),
+            Action::Live => (
+                self.fixed.iter().map(|w| w.force.norm()).sum(),
+                self.live.iter().map(|w| w.force.norm()).sum(),
+            ),
+        };
         (p + l).max(self.seismic_weight())
     }
 
@@ -460,6 +471,7 @@ impl LoadCase {
         LoadCase {
             action: self.action,
             permanent: flip(&self.permanent),
+            fixed: flip(&self.fixed),
             live: flip(&self.live),
             seismic: self
                 .seismic
@@ -542,6 +554,7 @@ impl LoadCase {
             })
             .collect();
         let mut permanent = vec![Wrench::default(); self.len()];
+        let mut fixed = vec![Wrench::default(); self.len()];
         let mut live = vec![Wrench::default(); self.len()];
         let mut seismic: Vec<SeismicMass> = centroids
             .iter()
@@ -554,10 +567,11 @@ impl LoadCase {
         for a in &applied {
             let i = a.block;
             let w = Wrench::of_force(a.force, a.point, centroids[i]);
+            permanent[i] = permanent[i] + w;
             if a.live {
                 live[i] = live[i] + w;
             } else {
-                permanent[i] = permanent[i] + w;
+                fixed[i] = fixed[i] + w;
             }
             seismic[i].weight += a.seismic_weight;
             moment[i] += a.seismic_weight * a.point;
@@ -570,6 +584,7 @@ impl LoadCase {
         LoadCase {
             action: self.action,
             permanent,
+            fixed,
             live,
             seismic,
             centroids,
@@ -597,7 +612,7 @@ impl LoadCase {
             )));
         }
         for i in 0..self.len() {
-            let p = self.permanent[i] + self.live[i];
+            let p = self.permanent[i];
             let s = self.seismic[i];
             if !(p.force.x.is_finite() && p.force.y.is_finite() && p.moment.is_finite()) {
                 return Err(AnalysisError::Assembly(format!(

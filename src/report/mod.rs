@@ -32,7 +32,8 @@ pub fn analysis_svg(
             velocities: &result.mechanism,
             amplification: None,
         }),
-        load: Some(direction),
+        // A live action shakes nothing: no seismic arrow; its loads are labelled as multiplied.
+        load: (a.model.loads.action() == crate::model::Action::Seismic).then_some(direction),
         loads: Some(&a.model.loads),
         ..Default::default()
     };

@@ -36,6 +36,8 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
             let mut model = super::user_blocks::build_model(
                 b,
                 &scene.loads,
+                scene.fill.as_ref(),
+                scene.material.depth,
                 scene.seismic.vertical_ratio,
                 strength,
                 &scene.origin,
@@ -365,7 +367,7 @@ fn edge_point(a: Vec2, b: Vec2, arc: Option<(Vec2, f64)>, x: f64) -> Vec2 {
 /// Area, centroid and outline of the region above the extrados edge from `a` to `b` (chord,
 /// or arc when `arc` is given), below `y = level`, between the verticals through `a` and `b`.
 /// None when the region is empty (a vertical edge).
-fn fill_region(
+pub(super) fn fill_region(
     a: Vec2,
     b: Vec2,
     level: f64,

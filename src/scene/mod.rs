@@ -769,7 +769,6 @@ fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, S
             for (name, instead) in [
                 ("arch", "the blocks are the structure"),
                 ("piers", "model piers as blocks"),
-                ("fill", "model the fill as blocks or as [[loads]]"),
             ] {
                 if table.contains_key(name) {
                     return Err(SceneError::OutOfRange {
@@ -802,9 +801,9 @@ fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, S
     };
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
     let loads = parse_loads(&table, origin)?;
-    let fill = match (section(&table, "fill", origin)?, &arch) {
-        (Some(t), Some(arch)) => Some(parse_fill(Section::new("fill", t, origin), arch)?),
-        _ => None,
+    let fill = match section(&table, "fill", origin)? {
+        Some(t) => Some(parse_fill(Section::new("fill", t, origin), arch.as_ref())?),
+        None => None,
     };
     let seismic = parse_seismic(Section::new(
         "seismic",
@@ -1238,7 +1237,9 @@ fn short(x: f64) -> String {
     }
 }
 
-fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
+/// `[fill]`. Over a parametric arch its level must not be below the crown extrados; over the
+/// user's blocks, that it lies above some block top is checked where it is placed.
+fn parse_fill(mut s: Section, arch: Option<&ArchSpec>) -> Result<FillSpec, SceneError> {
     s.check_known(FILL_KEYS, "")?;
     let level = s.finite("level", "y of the fill's top surface in metres")?;
     if level.abs() > MAX_LENGTH {
@@ -1265,13 +1266,15 @@ fn parse_fill(mut s: Section, arch: &ArchSpec) -> Result<FillSpec, SceneError> {
         ));
     }
     s.finish("")?;
-    let crown = arch.shape.crown_extrados(arch.thickness);
-    if level < crown {
-        return Err(s.out_of_range(
-            "level",
-            level,
-            &format!("must not be below the crown extrados, y = {crown}"),
-        ));
+    if let Some(arch) = arch {
+        let crown = arch.shape.crown_extrados(arch.thickness);
+        if level < crown {
+            return Err(s.out_of_range(
+                "level",
+                level,
+                &format!("must not be below the crown extrados, y = {crown}"),
+            ));
+        }
     }
     Ok(FillSpec {
         level,

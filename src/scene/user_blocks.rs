@@ -9,14 +9,20 @@
 //!   range is cut at the ends of the upward-facing edges, and each piece's load `q * length`
 //!   acts on the highest upward-facing edge above it, at that edge's point over the piece's
 //!   mid x (an edge hidden under another block carries nothing, as the top edge above it is
-//!   higher).
+//!   higher);
+//! - a fill up to `level` rests on the same top: over each piece between consecutive ends of
+//!   the upward-facing edges, the region between the highest edge and `level` (where the edge
+//!   lies below it) weighs `unit_weight * depth * area` at its centroid, carried by that
+//!   edge's block. Over an arch written as blocks the pieces are its extrados chords, so the
+//!   fill is the parametric arch's (`scene::build`); unlike there, a pier top or any other
+//!   block top under the level is filled too.
 
-use super::{LoadSpec, Material, Section};
+use super::{FillSpec, LoadSpec, Material, Section};
 use crate::assembly::{Assembly, BlockKind};
 use crate::blocks::{self, BlockError, Detected, Polygons, Units};
 use crate::error::SceneError;
 use crate::geometry::{cross, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, SpreadLoad};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
 use std::path::{Path, PathBuf};
 use toml::Value;
 
@@ -241,9 +247,12 @@ fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
 }
 
 /// The model of a block scene: the assembly found, and the loads placed on it.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn build_model(
     spec: &BlocksSpec,
     loads: &[LoadSpec],
+    fill: Option<&FillSpec>,
+    depth: f64,
     vertical_ratio: f64,
     strength: crate::model::Strength,
     origin: &str,
@@ -302,11 +311,110 @@ pub(super) fn build_model(
             }
         }
     }
+    if let Some(fill) = fill {
+        let gamma = fill.unit_weight * depth;
+        case.add_spread(SpreadLoad {
+            kind: Spread::Fill {
+                level: fill.level,
+                density: gamma,
+            },
+            seismic: fill.seismic,
+            live: false,
+            source: LoadSource::Fill,
+        });
+        let regions = fill_regions(&assembly, fill.level, tol);
+        if regions.is_empty() {
+            return Err(SceneError::OutOfRange {
+                origin: origin.to_string(),
+                key: "fill.level".to_string(),
+                value: fill.level.to_string(),
+                allowed: "the fill's top must lie above the top of some block".into(),
+            });
+        }
+        for (block, area, centroid, region) in regions {
+            let w = gamma * area;
+            case.add(AppliedLoad {
+                block,
+                point: centroid,
+                force: Vec2::new(0.0, -w),
+                seismic_weight: if fill.seismic { w } else { 0.0 },
+                live: false,
+                source: LoadSource::Fill,
+                region: Some(region),
+            });
+        }
+    }
     Ok(Model {
         assembly,
         loads: case,
         strength,
     })
+}
+
+/// Upward-facing edges of counter-clockwise outlines, which run toward -x:
+/// `(block, left end, right end)`.
+fn roof_edges(assembly: &Assembly, tol: f64) -> Vec<(usize, Vec2, Vec2)> {
+    let mut edges = Vec::new();
+    for (i, b) in assembly.blocks.iter().enumerate() {
+        let m = b.polygon.len();
+        for k in 0..m {
+            let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+            if a.x - c.x > tol {
+                edges.push((i, c, a));
+            }
+        }
+    }
+    edges
+}
+
+/// The highest roof edge over `x`, and its point there.
+fn top_at(edges: &[(usize, Vec2, Vec2)], x: f64) -> Option<(usize, Vec2, Vec2)> {
+    edges
+        .iter()
+        .filter(|(_, l, r)| l.x <= x && x <= r.x)
+        .map(|&(i, l, r)| (i, l, r))
+        .max_by(|a, b| {
+            let y = |(_, l, r): &(usize, Vec2, Vec2)| l.y + (x - l.x) / (r.x - l.x) * (r.y - l.y);
+            y(a).total_cmp(&y(b))
+        })
+}
+
+/// The fill regions over the roof of an assembly up to `level`: `(block, area, centroid,
+/// outline)` for each piece between consecutive ends of the upward-facing edges where the
+/// highest edge lies below the level (see the module docs).
+fn fill_regions(assembly: &Assembly, level: f64, tol: f64) -> Vec<(usize, f64, Vec2, Vec<Vec2>)> {
+    let edges = roof_edges(assembly, tol);
+    let mut cuts: Vec<f64> = edges.iter().flat_map(|(_, l, r)| [l.x, r.x]).collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut regions = Vec::new();
+    for w in cuts.windows(2) {
+        let (x0, x1) = (w[0], w[1]);
+        if x1 - x0 <= 0.0 {
+            continue;
+        }
+        let Some((i, l, r)) = top_at(&edges, 0.5 * (x0 + x1)) else {
+            continue;
+        };
+        let on = |x: f64| l + (x - l.x) / (r.x - l.x) * (r - l);
+        let (mut a, mut b) = (on(x0), on(x1));
+        // Keep the part of the edge below the level.
+        if a.y >= level && b.y >= level {
+            continue;
+        }
+        if a.y > level || b.y > level {
+            let x = a.x + (level - a.y) / (b.y - a.y) * (b.x - a.x);
+            if a.y > level {
+                a = on(x);
+            } else {
+                b = on(x);
+            }
+        }
+        if let Some((area, centroid, outline)) = super::build::fill_region(a, b, level, None) {
+            regions.push((i, area, centroid, outline));
+        }
+    }
+    regions
 }
 
 /// The first block in source order whose (convex, counter-clockwise) outline holds `p`.
@@ -330,17 +438,7 @@ fn first_containing(assembly: &Assembly, p: Vec2, tol: f64) -> Option<usize> {
 /// The pieces of `[from_x, to_x]` under a line load: `(block, point, length)` for each piece
 /// between consecutive ends of upward-facing edges, on the highest such edge above it.
 fn roof_pieces(assembly: &Assembly, from_x: f64, to_x: f64, tol: f64) -> Vec<(usize, Vec2, f64)> {
-    // Upward-facing edges of counter-clockwise outlines run toward -x: (block, left, right).
-    let mut edges = Vec::new();
-    for (i, b) in assembly.blocks.iter().enumerate() {
-        let m = b.polygon.len();
-        for k in 0..m {
-            let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
-            if a.x - c.x > tol {
-                edges.push((i, c, a));
-            }
-        }
-    }
+    let edges = roof_edges(assembly, tol);
     let mut cuts: Vec<f64> = vec![from_x, to_x];
     for (_, l, r) in &edges {
         for x in [l.x, r.x] {
@@ -358,11 +456,7 @@ fn roof_pieces(assembly: &Assembly, from_x: f64, to_x: f64, tol: f64) -> Vec<(us
             continue;
         }
         let x = 0.5 * (x0 + x1);
-        let top = edges
-            .iter()
-            .filter(|(_, l, r)| l.x <= x && x <= r.x)
-            .map(|&(i, l, r)| (i, l + (x - l.x) / (r.x - l.x) * (r - l)))
-            .max_by(|a, b| a.1.y.total_cmp(&b.1.y));
+        let top = top_at(&edges, x).map(|(i, l, r)| (i, l + (x - l.x) / (r.x - l.x) * (r - l)));
         if let Some((i, p)) = top {
             pieces.push((i, p, x1 - x0));
         }

@@ -359,7 +359,13 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         legend.push((Glyph::Moved, pl.label.clone()));
     }
     if let Some(mk) = &marks {
-        if !mk.points.is_empty() {
+        if mk.live {
+            legend.push((
+                Glyph::Arrow(LOAD, false),
+                "live load, \u{3bb} \u{d7} as given (\u{3bb}: the adequacy factor)".into(),
+            ));
+        }
+        if mk.points.iter().any(|p| !p.live) {
             legend.push((Glyph::Arrow(LOAD, false), "point load".into()));
         }
         if !mk.lines.is_empty() {
@@ -1046,6 +1052,8 @@ struct PointMark {
     tail: Vec2,
     tip: Vec2,
     label: String,
+    /// Whether lambda multiplies it (a live load under a live action).
+    live: bool,
 }
 
 /// A line load as drawn: a row of arrows of length `len` ending on the extrados.
@@ -1064,6 +1072,8 @@ struct LoadMarks {
     fill: Vec<Vec<Vec2>>,
     points: Vec<PointMark>,
     lines: Vec<LineMark>,
+    /// Whether any load drawn is multiplied by lambda (labelled `λ × ...`).
+    live: bool,
 }
 
 /// A text label: centre and half extent in world coordinates.
@@ -1110,7 +1120,15 @@ impl LoadMarks {
             .fold(0.0, f64::max);
         let mut points = Vec::new();
         let mut lines = Vec::new();
+        let mut live = false;
         for g in groups.values() {
+            // A live load under a live action is what lambda multiplies: its label says so.
+            let times = if g.iter().any(|a| loads.is_variable(a)) {
+                live = true;
+                "\u{3bb} \u{d7} "
+            } else {
+                ""
+            };
             if let [a] = g.as_slice() {
                 let f = a.force.norm();
                 if f > 0.0 {
@@ -1118,10 +1136,12 @@ impl LoadMarks {
                     points.push(PointMark {
                         tail: a.point - a.force * (len / f),
                         tip: a.point,
-                        label: format!("{} kN", sig(f / 1000.0)),
+                        label: format!("{times}{} kN", sig(f / 1000.0)),
+                        live: !times.is_empty(),
                     });
                 }
-            } else if let Some(l) = LineMark::new(g, size) {
+            } else if let Some(mut l) = LineMark::new(g, size) {
+                l.label = format!("{times}{}", l.label);
                 lines.push(l);
             }
         }
@@ -1129,6 +1149,7 @@ impl LoadMarks {
             fill,
             points,
             lines,
+            live,
         }
     }
 

@@ -212,6 +212,13 @@ pub enum AnalysisError {
     /// A ground-motion record or pulse that cannot be read or used.
     #[error(transparent)]
     Record(#[from] RecordError),
+    /// A method's setting out of its range (`crate::lp::StaticSettings::validate`).
+    #[error("{setting} = {value}: must be {allowed}")]
+    Settings {
+        setting: String,
+        value: String,
+        allowed: String,
+    },
     /// A method or option that has no meaning for the scene's action (`[action] kind`):
     /// e.g. a ground motion's direction, a site assessment or a time history with a live
     /// action.

@@ -2,7 +2,7 @@
 
 use super::{json, write_atomically, Dir, SceneArgs};
 use voussoir::analysis;
-use voussoir::error::{AnalysisError, Error};
+use voussoir::error::Error;
 use voussoir::lp::StaticSettings;
 use voussoir::report;
 
@@ -43,12 +43,9 @@ pub struct Args {
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
     super::check_output_paths([args.thrust_csv.as_ref(), args.svg.as_ref()])?;
+    // The range of --tolerance is the library's to check (StaticSettings::validate), so
+    // Python and the page's server refuse the same values.
     let tolerance = args.tolerance;
-    if !(tolerance.is_finite() && (1e-14..=1e-6).contains(&tolerance)) {
-        return Err(Error::Analysis(AnalysisError::Other(format!(
-            "--tolerance {tolerance}: must be from 1e-14 to 1e-6 (looser solutions are not safe: lambda may exceed the collapse multiplier)"
-        ))));
-    }
     let direction = analysis::direction_for(&scene, args.direction.map(Into::into))?;
     let options = analysis::Options {
         static_settings: StaticSettings::default()

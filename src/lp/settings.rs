@@ -1,6 +1,14 @@
-//! Settings of the static analysis, gathered in one struct with documented defaults.
+//! Settings of the static analysis, gathered in one struct with documented defaults and
+//! checked by [`StaticSettings::validate`] wherever an analysis starts (CLI, Python, the
+//! page's server and the library alike: [`crate::lp::analyse`] calls it).
 
+use crate::error::AnalysisError;
 pub use crate::outcome::Direction;
+
+/// The range of the solver tolerances (`tol_gap`, `tol_feas`): looser solutions are not safe
+/// (lambda may exceed the collapse multiplier), tighter ones are below what double precision
+/// gives the interior point.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-6);
 
 /// Settings of the static (lower-bound) conic program.
 #[derive(Debug, Clone)]
@@ -81,5 +89,88 @@ impl StaticSettings {
     pub fn hinge_tolerance(mut self, tol: f64) -> Self {
         self.hinge_tolerance = tol;
         self
+    }
+
+    /// Check every setting, naming the one out of range and what it may be.
+    pub fn validate(&self) -> Result<(), AnalysisError> {
+        let bad = |setting: &str, value: String, allowed: &str| {
+            Err(AnalysisError::Settings {
+                setting: setting.to_string(),
+                value,
+                allowed: allowed.to_string(),
+            })
+        };
+        let (lo, hi) = TOLERANCE_RANGE;
+        for (name, tol) in [("tol_gap", self.tol_gap), ("tol_feas", self.tol_feas)] {
+            if !(tol.is_finite() && (lo..=hi).contains(&tol)) {
+                return bad(
+                    &format!("tolerance (the static program's {name})"),
+                    tol.to_string(),
+                    "from 1e-14 to 1e-6 (looser solutions are not safe: lambda may exceed the collapse multiplier)",
+                );
+            }
+        }
+        if self.max_iter == 0 {
+            return bad("static max_iter", "0".into(), "at least 1");
+        }
+        if !(self.hinge_tolerance.is_finite()
+            && self.hinge_tolerance > 0.0
+            && self.hinge_tolerance <= 0.1)
+        {
+            return bad(
+                "static hinge_tolerance",
+                self.hinge_tolerance.to_string(),
+                "a number > 0 and at most 0.1 (a fraction of the joint length)",
+            );
+        }
+        if !matches!(self.linear_solver.as_str(), "qdldl" | "faer") {
+            return bad(
+                "static linear_solver",
+                format!("\"{}\"", self.linear_solver),
+                "\"qdldl\" or \"faer\"",
+            );
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_validate_and_out_of_range_settings_are_named() {
+        assert!(StaticSettings::default().validate().is_ok());
+        assert!(StaticSettings::default()
+            .tolerance(1e-14)
+            .validate()
+            .is_ok());
+        assert!(StaticSettings::default().tolerance(1e-6).validate().is_ok());
+        for tol in [1e-5, 1e-15, f64::NAN, f64::INFINITY, 0.0, -1e-10] {
+            let e = StaticSettings::default()
+                .tolerance(tol)
+                .validate()
+                .expect_err("refused")
+                .to_string();
+            assert!(
+                e.contains("tolerance") && e.contains("1e-14 to 1e-6"),
+                "{e}"
+            );
+        }
+        let s = StaticSettings {
+            linear_solver: "mumps".into(),
+            ..StaticSettings::default()
+        };
+        let e = s.validate().expect_err("refused").to_string();
+        assert!(
+            e.contains("linear_solver") && e.contains("\"mumps\""),
+            "{e}"
+        );
+        let e = StaticSettings::default()
+            .hinge_tolerance(0.5)
+            .validate()
+            .expect_err("refused")
+            .to_string();
+        assert!(e.contains("hinge_tolerance"), "{e}");
     }
 }

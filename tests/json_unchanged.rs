@@ -1,0 +1,338 @@
+//! Behaviour unchanged by the model redesign (issue 22): the `analyze --json` object of every
+//! bundled scene and of 200 random scenes (loads, fill, piers, user blocks, crushing, finite
+//! friction, vertical component, both directions) is, field for field and bit for bit, the
+//! one the code gave before the redesign (commit 4dff1e0), fields added since aside (they are
+//! listed in `ADDED`) and the wall times.
+//!
+//! The baseline, `tests/data/json_baseline.txt`, holds one line per case: its name and a
+//! 64-bit FNV-1a hash of the canonical JSON (keys sorted, floats in Rust's shortest
+//! round-trip form). It was written by this very file run against 4dff1e0 with
+//! `VOUSSOIR_WRITE_BASELINE=tests/data/json_baseline.txt cargo test --release --test
+//! json_unchanged`; on a mismatch the test prints the case's scene and JSON to compare by
+//! hand.
+
+use serde_json::Value;
+use voussoir::analysis::{self, Options};
+use voussoir::lp::{Direction, StaticSettings};
+use voussoir::scene::Scene;
+
+/// Fields added to the JSON contract since the baseline, ignored in the comparison, and
+/// `file` (a block file's path, which depends on where the checkout is).
+const ADDED: &[&str] = &["action", "live_weight", "tilt_deg", "live", "file"];
+
+/// Strip the added fields and the wall times, recursively.
+fn strip(v: &mut Value) {
+    match v {
+        Value::Object(map) => {
+            map.retain(|k, _| !ADDED.contains(&k.as_str()) && !k.ends_with("_time_s"));
+            for x in map.values_mut() {
+                strip(x);
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(strip),
+        _ => {}
+    }
+}
+
+/// Canonical text: keys sorted (serde_json's map is ordered), floats as Rust writes them.
+fn canonical(v: &Value, out: &mut String) {
+    match v {
+        Value::Object(map) => {
+            let mut keys: Vec<&String> = map.keys().collect();
+            keys.sort();
+            out.push('{');
+            for k in keys {
+                out.push_str(k);
+                out.push(':');
+                canonical(&map[k], out);
+                out.push(',');
+            }
+            out.push('}');
+        }
+        Value::Array(a) => {
+            out.push('[');
+            for x in a {
+                canonical(x, out);
+                out.push(',');
+            }
+            out.push(']');
+        }
+        Value::Number(n) => match n.as_f64() {
+            Some(x) if n.is_f64() => out.push_str(&format!("{:?}", x.to_bits())),
+            _ => out.push_str(&n.to_string()),
+        },
+        other => out.push_str(&other.to_string()),
+    }
+}
+
+fn fnv1a(text: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// A small deterministic generator (SplitMix64).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn pick(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+    fn chance(&mut self, p: f64) -> bool {
+        self.uniform(0.0, 1.0) < p
+    }
+}
+
+/// Three decimals: the scenes are written as text, so every value is what the file says.
+fn r3(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+/// A random scene as TOML, and the direction to analyse it in.
+fn random_scene(rng: &mut Rng) -> (String, Direction) {
+    let mut text = String::new();
+    let (rise, half_span);
+    match rng.pick(3) {
+        0 => {
+            let embrace = [180.0, 150.0, 120.0, 200.0][rng.pick(4)];
+            let t = r3(rng.uniform(0.12, 0.3));
+            let n = 6 + rng.pick(20);
+            text += &format!(
+                "[arch]\nshape = \"circular\"\nradius = 1.0\nembrace_deg = {embrace}\nthickness = {t}\nvoussoirs = {n}\n"
+            );
+            half_span = 1.0;
+            rise = 1.0 + t / 2.0;
+        }
+        1 => {
+            let e = r3(rng.uniform(0.05, 0.3));
+            let t = r3(rng.uniform(0.1, 0.3));
+            let n = 2 * (4 + rng.pick(10));
+            text += &format!(
+                "[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = {e}\nthickness = {t}\nvoussoirs = {n}\n"
+            );
+            half_span = 1.0 - e;
+            rise = 0.9;
+        }
+        _ => {
+            let f = r3(rng.uniform(0.5, 0.9));
+            let t = r3(rng.uniform(0.12, 0.3));
+            let n = 7 + rng.pick(18);
+            text += &format!(
+                "[arch]\nshape = \"basket\"\nspan = 2.0\nrise = {f}\nthickness = {t}\nvoussoirs = {n}\n"
+            );
+            half_span = 1.0;
+            rise = f;
+        }
+    }
+    if rng.chance(0.3) {
+        let h = r3(rng.uniform(0.5, 1.5));
+        let b = r3(rng.uniform(0.3, 0.6));
+        let k = 1 + rng.pick(4);
+        text += &format!("[piers]\nheight = {h}\nwidth = {b}\ncourses = {k}\n");
+    }
+    let friction = if rng.chance(0.3) {
+        format!("{}", r3(rng.uniform(0.4, 1.0)))
+    } else {
+        "inf".to_string()
+    };
+    text += &format!("[material]\nfriction = {friction}\n");
+    if rng.chance(0.15) {
+        let fc = [2e6, 5e6, 1e7][rng.pick(3)];
+        text += &format!("compressive_strength = {fc:e}\n");
+    }
+    if rng.chance(0.4) {
+        let from = r3(rng.uniform(-half_span, 0.0));
+        let to = r3(from + rng.uniform(0.1, half_span));
+        let q = r3(rng.uniform(500.0, 5000.0));
+        let seismic = rng.chance(0.5);
+        text += &format!(
+            "[[loads]]\ntype = \"line\"\nfrom_x = {from}\nto_x = {to}\nintensity = {q}\nseismic = {seismic}\n"
+        );
+    }
+    if rng.chance(0.3) {
+        // On the crown voussoir: just below the crown's extrados, at x = 0 or beside it.
+        let x = if rng.chance(0.5) { 0.0 } else { 0.01 };
+        let fy = -r3(rng.uniform(500.0, 4000.0));
+        let seismic = rng.chance(0.5);
+        text += &format!(
+            "[[loads]]\ntype = \"point\"\nat = [{x}, {}]\nforce = [0.0, {fy}]\nseismic = {seismic}\n",
+            r3(rise - 0.06)
+        );
+    }
+    if rng.chance(0.2) {
+        let level = r3(rise + rng.uniform(0.25, 0.6));
+        text += &format!("[fill]\nlevel = {level}\nunit_weight = 18000.0\n");
+    }
+    if rng.chance(0.2) {
+        let r = r3(rng.uniform(-0.3, 0.3));
+        text += &format!("[seismic]\nvertical_ratio = {r}\n");
+    }
+    let direction = if rng.chance(0.5) {
+        Direction::Right
+    } else {
+        Direction::Left
+    };
+    (text, direction)
+}
+
+/// The same structure as inline user blocks (the parametric scene's polygons), with its
+/// material, loads and vertical component, when it has no fill (fill over user blocks is
+/// newer than the baseline).
+fn as_blocks(text: &str) -> Option<String> {
+    let scene = Scene::from_toml_str(text, "random").ok()?;
+    if scene.fill.is_some() {
+        return None;
+    }
+    let model = voussoir::scene::build(&scene).ok()?;
+    let polygons: Vec<String> = model
+        .assembly
+        .blocks
+        .iter()
+        .map(|b| {
+            let pts: Vec<String> = b
+                .polygon
+                .iter()
+                .map(|p| format!("[{:?}, {:?}]", p.x, p.y))
+                .collect();
+            format!("[{}]", pts.join(", "))
+        })
+        .collect();
+    let ground = model
+        .assembly
+        .blocks
+        .iter()
+        .flat_map(|b| b.polygon.iter().map(|p| p.y))
+        .fold(f64::INFINITY, f64::min);
+    let mut rest: toml::Table = text.parse().ok()?;
+    rest.remove("arch");
+    rest.remove("piers");
+    Some(format!(
+        "[blocks]\npolygons = [{}]\nground_y = {ground:?}\n{rest}",
+        polygons.join(", ")
+    ))
+}
+
+/// Every case: `(name, scene text, direction)`.
+fn cases() -> Vec<(String, String, Direction)> {
+    let mut out = Vec::new();
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let mut bundled: Vec<_> = std::fs::read_dir(&data)
+        .expect("data/")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    bundled.sort();
+    for path in bundled {
+        let name = path
+            .file_name()
+            .expect("name")
+            .to_string_lossy()
+            .to_string();
+        let text = std::fs::read_to_string(&path).expect("bundled scene");
+        for d in [Direction::Right, Direction::Left] {
+            out.push((format!("{name} {d:?}"), text.clone(), d));
+        }
+    }
+    let mut rng = Rng(22);
+    let mut k = 0;
+    while k < 200 {
+        let (text, d) = random_scene(&mut rng);
+        if Scene::from_toml_str(&text, "random").is_err() {
+            continue;
+        }
+        if k % 5 == 4 {
+            if let Some(blocks) = as_blocks(&text) {
+                out.push((format!("random {k} blocks {d:?}"), blocks, d));
+                k += 1;
+                continue;
+            }
+        }
+        out.push((format!("random {k} {d:?}"), text, d));
+        k += 1;
+    }
+    out
+}
+
+/// The canonical JSON of one case, or the error's text.
+fn json_of(text: &str, direction: Direction) -> String {
+    // Relative block files resolve from data/.
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let table: toml::Table = match text.parse() {
+        Ok(t) => t,
+        Err(e) => return format!("TOML error: {e}"),
+    };
+    let scene = match Scene::from_table_in(table, "case", Some(&data)) {
+        Ok(s) => s,
+        Err(e) => return format!("scene error: {e}"),
+    };
+    let options = Options {
+        static_settings: StaticSettings::default().direction(direction),
+        ..Options::default()
+    };
+    match analysis::analyse(&scene, &options) {
+        Ok(a) => {
+            let mut v = serde_json::to_value(voussoir::report::AnalysisReport::new(&scene, &a))
+                .expect("JSON");
+            strip(&mut v);
+            let mut out = String::new();
+            canonical(&v, &mut out);
+            out
+        }
+        Err(e) => format!("analysis error: {e}"),
+    }
+}
+
+#[test]
+fn analyze_json_is_unchanged_for_bundled_and_random_scenes() {
+    let cases = cases();
+    assert!(cases.len() >= 220, "{} cases", cases.len());
+    let jsons: Vec<String> = cases.iter().map(|(_, text, d)| json_of(text, *d)).collect();
+    // The comparison is of analyses, not of error messages.
+    let errors: Vec<&String> = jsons.iter().filter(|j| !j.starts_with('{')).collect();
+    assert!(
+        errors.len() * 20 <= cases.len(),
+        "{} of {} cases are errors: {errors:?}",
+        errors.len(),
+        cases.len()
+    );
+    let lines: Vec<String> = cases
+        .iter()
+        .zip(&jsons)
+        .map(|((name, _, _), json)| format!("{name}\t{:016x}", fnv1a(json)))
+        .collect();
+    if let Ok(path) = std::env::var("VOUSSOIR_WRITE_BASELINE") {
+        std::fs::write(&path, lines.join("\n") + "\n").expect("write the baseline");
+        return;
+    }
+    let baseline = include_str!("data/json_baseline.txt");
+    let expected: Vec<&str> = baseline.lines().collect();
+    assert_eq!(expected.len(), lines.len(), "number of cases");
+    let mut differ = Vec::new();
+    for ((line, want), (name, text, d)) in lines.iter().zip(&expected).zip(&cases) {
+        if line != want {
+            differ.push(format!(
+                "{name}: {line} against {want}\n{text}\n{}",
+                json_of(text, *d)
+            ));
+        }
+    }
+    assert!(
+        differ.is_empty(),
+        "{} of {} cases differ from the baseline:\n{}",
+        differ.len(),
+        lines.len(),
+        differ.join("\n\n")
+    );
+}

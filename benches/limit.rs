@@ -3,7 +3,8 @@
 //! cross-check, and the paper-style sweep with both bounds. Plain `harness = false` program
 //! printing Markdown tables; run with `cargo bench --bench limit`. Targets: static + certified
 //! n = 64 <= 0.05 ms and n = 1000 <= 0.5 ms (one thread, growth ~ n^1); min-thickness of a
-//! 100-joint chain <= 50 ms; the 2,040-case sweep >= 20,000 cases/s on two threads.
+//! 100-joint chain <= 50 ms; the 2,040-case sweep >= 20,000 cases/s on two threads; a live
+//! action (the adequacy factor) at n = 64 and 1000 costs about what a seismic one does.
 
 use std::time::Instant;
 
@@ -70,6 +71,41 @@ fn main() {
         "\nfitted exponent (n >= 64): total ~ n^{}\n",
         loglog_slope(&pts).map_or("-".into(), |e| format!("{e:.2}"))
     );
+
+    // 1b. A live action costs what a seismic one does: the same semicircle with a point load
+    //     near quarter span, as a live load (the adequacy factor) and as a permanent load
+    //     under the seismic action.
+    println!("Live against seismic action (`analysis::analyse`, defaults), semicircle t/R = 0.15 with a 5 kN point load near quarter span, one thread, median\n");
+    println!("| n | action | lambda_lower | lambda_upper | upper bound | total ms |");
+    println!("|---:|---|---:|---:|---|---:|");
+    for n in [64usize, 1000] {
+        let bare = voussoir::scene::build(&semicircle(n)).expect("model");
+        let at = bare
+            .assembly
+            .blocks
+            .iter()
+            .map(|b| b.centroid)
+            .min_by(|p, q| (p.x + 0.5).abs().total_cmp(&(q.x + 0.5).abs()))
+            .expect("a voussoir");
+        let reps = (20_000 / n).clamp(5, 2000);
+        for (action, flag) in [("seismic", "seismic = false"), ("live", "live = true")] {
+            let text = format!(
+                "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = {n}\n[action]\nkind = \"{action}\"\n[[loads]]\ntype = \"point\"\nat = [{:?}, {:?}]\nforce = [0.0, -5000.0]\n{flag}\n",
+                at.x, at.y
+            );
+            let scene = Scene::from_toml_str(&text, "bench").expect("valid scene");
+            let (ta, a) = one.install(|| time(reps, || analysis::analyse(&scene, &options)));
+            let a = a.expect("analysis");
+            println!(
+                "| {n} | {action} | {:.9} | {:.9} | {} | {:.4} |",
+                a.lower.lambda.unwrap_or(f64::NAN),
+                a.lambda_upper().unwrap_or(f64::NAN),
+                a.kinematic_search.map_or("none", |k| k.as_str()),
+                ta * 1e3
+            );
+        }
+    }
+    println!();
 
     // 2. Minimum thickness with its kinematic cross-check.
     println!("Minimum thickness with the kinematic cross-check (`thickness::analyse`, defaults), one thread, median\n");

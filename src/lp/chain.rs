@@ -690,7 +690,7 @@ fn active_set_result(
     }
     let forces = program.forces(assembly, &x);
     let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-    let result = StaticResult::unsolved(
+    let mut result = StaticResult::unsolved(
         settings,
         pivots,
         "active set; exact vertex".to_string(),
@@ -706,6 +706,7 @@ fn active_set_result(
         true,
         || program.mechanism(assembly, loads, sign, &z),
     );
+    result.exact_vertex = true;
     Some(result)
 }
 
@@ -775,6 +776,7 @@ pub fn analyse_chain(
             {
                 sol.x = v;
                 result.solver_status.push_str("; exact vertex");
+                result.exact_vertex = true;
             }
             let lambda = sol.x[0];
             let forces = program.forces(assembly, &sol.x);

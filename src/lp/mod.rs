@@ -67,6 +67,10 @@ pub struct StaticResult {
     pub iterations: u32,
     /// Clarabel's status word, for the record.
     pub solver_status: String,
+    /// Whether the multiplier is an exact vertex of the chain program (its active-set method,
+    /// or the interior point's solution moved onto the vertex): the dispatcher of
+    /// [`analyse`] trusts such a collapse and sends the others to the full program.
+    pub exact_vertex: bool,
     pub model: ModelSize,
 }
 
@@ -81,13 +85,7 @@ pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult,
         // its interior-point solution is the answer, as the full program's is.
         let conic = model.strength.is_finite();
         match analyse_chain(model, settings) {
-            Ok(r)
-                if conic
-                    || r.status != Status::Collapse
-                    || r.solver_status.contains("exact vertex") =>
-            {
-                return Ok(r)
-            }
+            Ok(r) if conic || r.status != Status::Collapse || r.exact_vertex => return Ok(r),
             Ok(_) | Err(AnalysisError::SolverFailed { .. }) => {}
             Err(e) => return Err(e),
         }
@@ -251,6 +249,7 @@ impl StaticResult {
             solve_time_s: 0.0,
             iterations,
             solver_status,
+            exact_vertex: false,
             model,
         }
     }

@@ -25,6 +25,23 @@ pub const DERIVED_KEYS: &[&str] = &[
     "sigma",
 ];
 
+/// Largest number of cases in one sweep (the product of the varied keys' value counts):
+/// checked before any case is built, so three long lists are refused at once rather than
+/// allocated (each case holds its scene). A case takes about a millisecond for a small arch,
+/// so this is minutes on a few cores; split a larger study into several sweeps.
+pub const MAX_CASES: usize = 100_000;
+
+/// Largest number of values of one `START:STOP:STEP` range.
+pub const MAX_RANGE_VALUES: usize = 100_000;
+
+/// The number of cases of `variations` (the product of their value counts), or None when it
+/// overflows.
+pub fn case_count(variations: &[Variation]) -> Option<usize> {
+    variations
+        .iter()
+        .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
+}
+
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variation {
@@ -69,9 +86,9 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
         }
         let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
         let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
-        if count > 100_000 {
+        if count > MAX_RANGE_VALUES {
             return Err(bad(format!(
-                "`{spec}` gives {count} values; at most 100000"
+                "`{spec}` gives {count} values; at most {MAX_RANGE_VALUES}"
             )));
         }
         (0..count)
@@ -121,6 +138,7 @@ fn value_text(v: &Value) -> String {
 /// not solved as a row with status `error`). Values out of range are the cases' own business:
 /// they stay in the sweep as rows with status `error`.
 pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), SceneError> {
+    check_case_count(variations)?;
     let mut set: Vec<(&str, &str)> = Vec::new();
     for v in variations {
         if v.key.contains('/') && !DERIVED_KEYS.contains(&v.key.as_str()) {
@@ -168,6 +186,34 @@ pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), Sc
         }
     }
     Ok(())
+}
+
+/// Refuse a sweep of more than [`MAX_CASES`] cases, naming the keys and their counts.
+pub fn check_case_count(variations: &[Variation]) -> Result<(), SceneError> {
+    let count = case_count(variations);
+    if count.is_some_and(|n| n <= MAX_CASES) {
+        return Ok(());
+    }
+    let keys: Vec<&str> = variations.iter().map(|v| v.key.as_str()).collect();
+    let counts: Vec<String> = variations
+        .iter()
+        .map(|v| v.values.len().to_string())
+        .collect();
+    let total = count.map_or_else(
+        || {
+            // Beyond usize: say it in floating point.
+            let x: f64 = variations.iter().map(|v| v.values.len() as f64).product();
+            format!("{x:e}")
+        },
+        |n| n.to_string(),
+    );
+    Err(SceneError::BadVariation {
+        text: keys.join(", "),
+        message: format!(
+            "{} values make {total} cases; a sweep may have at most {MAX_CASES} (voussoir::sweep::MAX_CASES): vary fewer values, or split the sweep",
+            counts.join(" x ")
+        ),
+    })
 }
 
 /// Refuse a varied value the key cannot take at all (unknown key, wrong type, a ratio that

@@ -1,6 +1,6 @@
 //! `voussoir analyze`: the collapse multiplier of a scene by both bounds.
 
-use super::{json, write_atomically, Dir, SceneArgs};
+use super::{json, write_atomically, Dir, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
 use voussoir::lp::StaticSettings;
@@ -41,7 +41,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
-    super::check_output_paths([args.thrust_csv.as_ref(), args.svg.as_ref()])?;
+    args.scene
+        .outputs(&scene)
+        .output("--thrust-csv", args.thrust_csv.as_deref(), Format::Csv)
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .check()?;
     let tolerance = args.tolerance;
     if !(tolerance.is_finite() && (1e-14..=1e-6).contains(&tolerance)) {
         return Err(Error::Analysis(AnalysisError::Other(format!(

@@ -721,12 +721,46 @@ fn overridden<S: AsRef<str>>(
     Ok((table, sets))
 }
 
-fn parse_toml(text: &str, origin: &str) -> Result<Table, SceneError> {
+/// Parse TOML text (a scene or a study file). A UTF-8 byte-order mark, which some editors
+/// write, is skipped as TOML allows. A syntax error says the line and column and quotes the
+/// line there, cut around the column when it is long ([`crate::error::excerpt_around`]): a
+/// malformed 10 MB line gives a message of a few lines, not of 10 MB.
+pub fn parse_toml(text: &str, origin: &str) -> Result<Table, SceneError> {
+    let text = strip_bom(text);
     text.parse()
-        .map_err(|e: toml::de::Error| SceneError::Syntax {
-            origin: origin.to_string(),
-            message: e.to_string().trim().replace('\n', " "),
-        })
+        .map_err(|e: toml::de::Error| syntax_error(text, origin, &e))
+}
+
+/// `text` without a leading UTF-8 byte-order mark (U+FEFF).
+pub fn strip_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// The message of a TOML syntax error: line, column, what is wrong, and the line quoted.
+fn syntax_error(text: &str, origin: &str, e: &toml::de::Error) -> SceneError {
+    let what = e.message().trim().replace('\n', " ");
+    let message = match e.span() {
+        Some(span) => {
+            let mut at = span.start.min(text.len());
+            while !text.is_char_boundary(at) {
+                at -= 1;
+            }
+            let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+            let line_end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+            let line = text[line_start..line_end].trim_end_matches('\r');
+            let number = text[..line_start].matches('\n').count() + 1;
+            let column = text[line_start..at].chars().count() + 1;
+            format!(
+                "line {number}, column {column}: {what}: `{}`",
+                crate::error::excerpt_around(line, at - line_start)
+            )
+        }
+        None => crate::error::excerpt(&what),
+    };
+    SceneError::Syntax {
+        origin: origin.to_string(),
+        message,
+    }
 }
 
 fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {

@@ -84,22 +84,35 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
                 "`{spec}`: need finite START <= STOP and STEP > 0"
             )));
         }
-        let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
-        let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
-        if count > MAX_RANGE_VALUES {
+        // Counted in floating point, so a range of 2^70 values is refused rather than wrapped.
+        let intervals = ((stop - start) / step + 1e-9).floor();
+        if intervals + 1.0 > MAX_RANGE_VALUES as f64 {
             return Err(bad(format!(
-                "`{spec}` gives {count} values; at most {MAX_RANGE_VALUES}"
+                "`{spec}` gives {} values; at most {MAX_RANGE_VALUES}",
+                short_count(intervals + 1.0)
             )));
         }
+        let count = intervals as usize + 1;
+        let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
+        // The decimals the user wrote in START and STEP: every value start + i * step is
+        // rounded to them, so 1.8:2:0.025 gives 1.825, not 1.8250000000000002.
+        let places = match (decimals(parts[0]), decimals(parts[2])) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        };
         (0..count)
-            // Whole-number ranges (voussoirs, courses) stay integers; others are rounded to
-            // 12 significant digits so 0.1 + 0.05 * 1 prints as 0.15.
             .map(|i| {
+                // Whole-number ranges (voussoirs, courses) stay integers.
                 if let [Some(a), Some(_), Some(st)] = whole[..] {
-                    return Value::Integer(a + st * i as i64);
+                    if let Some(v) = i64::try_from(i)
+                        .ok()
+                        .and_then(|i| st.checked_mul(i))
+                        .and_then(|d| a.checked_add(d))
+                    {
+                        return Value::Integer(v);
+                    }
                 }
-                let x = start + step * i as f64;
-                Value::Float(format!("{x:.11e}").parse().unwrap_or(x))
+                Value::Float(rounded(start + step * i as f64, places))
             })
             .collect()
     } else {
@@ -108,6 +121,45 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
             .collect::<Result<Vec<_>, _>>()?
     };
     Ok(Variation { key, values })
+}
+
+/// The number of decimal places written in a number (`0.025`: 3, `2`: 0); None in exponent
+/// form (`1e-3`), where the places are not what was written.
+fn decimals(text: &str) -> Option<usize> {
+    let t = text.trim();
+    if t.contains(['e', 'E']) {
+        return None;
+    }
+    Some(t.split_once('.').map_or(0, |(_, frac)| frac.len()))
+}
+
+/// `x` rounded to `places` decimals when known (and at most 15), else to 12 significant
+/// digits: the value of a range as the user meant it, without the noise of `start + i * step`.
+fn rounded(x: f64, places: Option<usize>) -> f64 {
+    match places {
+        Some(p) if p <= 15 => format!("{x:.p$}").parse().unwrap_or(x),
+        _ => tidy(x),
+    }
+}
+
+/// `x` to 12 significant digits: a number computed from the user's inputs (a ratio times a
+/// radius, a ratio of two lengths) without the last bits of round-off, so it prints as the
+/// user would write it (`1.825`, not `1.8250000000000002`). 12 digits is far beyond any
+/// input's precision and far above the round-off of a few operations.
+pub fn tidy(x: f64) -> f64 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
+    }
+    format!("{x:.11e}").parse().unwrap_or(x)
+}
+
+/// A count that may exceed any integer type, in words (`1180591620717411303424` as `1.2e21`).
+fn short_count(n: f64) -> String {
+    if n < 1e15 {
+        format!("{n}")
+    } else {
+        format!("{n:.1e}")
+    }
 }
 
 /// The scene keys a varied key sets (a ratio sets its underlying key).
@@ -354,8 +406,8 @@ fn derived_target(
             let sp = span(scene);
             let e = v * sp;
             return Ok(vec![
-                ("arch.eccentricity", Value::Float(e)),
-                ("arch.radius", Value::Float(0.5 * sp + e)),
+                ("arch.eccentricity", Value::Float(tidy(e))),
+                ("arch.radius", Value::Float(tidy(0.5 * sp + e))),
             ]);
         }
         _ => {
@@ -368,7 +420,9 @@ fn derived_target(
             ("arch.rise", v * span(scene))
         }
     };
-    Ok(vec![(target, Value::Float(x))])
+    // Without round-off noise: t/R = 0.1825 at R = 10 sets the thickness 1.825 (not
+    // 1.8250000000000002), as a message or the scene's JSON then shows it.
+    Ok(vec![(target, Value::Float(tidy(x)))])
 }
 
 /// Centreline span of the arch.
@@ -401,7 +455,9 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         (p.left.height, p.left.base_width())
     });
     let t = arch.thickness;
-    vec![
+    // Ratios of the user's inputs, to 12 significant digits ([`tidy`]): a semicircle's
+    // rise/span is 0.5, not 0.49999999999999994.
+    [
         ("t/R", t / radius),
         ("t/span", t / span(scene)),
         ("e/R", e / radius),
@@ -411,6 +467,9 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         ("e/span", e / span(scene)),
         ("sigma", sigma(scene).unwrap_or(f64::NAN)),
     ]
+    .into_iter()
+    .map(|(k, v)| (k, tidy(v)))
+    .collect()
 }
 
 /// How charts name a key: a readable name with its unit (`thickness t (m)`, `embrace
@@ -778,9 +837,21 @@ pub fn case(
     row
 }
 
+/// A result in a CSV cell: every digit (the shortest text that reads back as the same
+/// number), in exponent form when tiny or huge (`1.6653345369377348e-16`, not 33 characters
+/// of zeros); empty when there is none.
 fn opt(x: Option<f64>) -> String {
-    x.filter(|v| v.is_finite())
-        .map_or(String::new(), |v| v.to_string())
+    x.filter(|v| v.is_finite()).map_or(String::new(), number)
+}
+
+/// `x` in the shortest text that reads back as `x`: positional from 1e-4 to 1e15, exponent
+/// form outside.
+pub fn number(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e15).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
 }
 
 /// Write the rows as CSV: the varied keys, then `status, lambda_lower, lambda_upper, gap,
@@ -854,7 +925,7 @@ pub fn write_csv_with<W: std::io::Write>(
         rec.push(opt(r.gap()));
         rec.push(hinge_string(&r.hinges));
         if timings {
-            rec.push(r.solve_time_s.to_string());
+            rec.push(number(r.solve_time_s));
         }
         for name in &extra {
             rec.push(opt(r

@@ -580,27 +580,26 @@ impl<'a> Section<'a> {
         what: &str,
     ) -> Result<usize, SceneError> {
         self.used.insert(key);
-        let v = match (self.table.get(key), default) {
-            (Some(Value::Integer(i)), _) => *i,
-            (Some(v @ Value::Float(x)), _) => {
-                if x.fract() == 0.0 && x.is_finite() {
-                    *x as i64
+        let allowed = format!("must be a whole number from {min} to {MAX_VOUSSOIRS}");
+        let in_range = |v: f64| (min as f64..=MAX_VOUSSOIRS as f64).contains(&v);
+        match (self.table.get(key), default) {
+            (Some(Value::Integer(i)), _) => match usize::try_from(*i) {
+                Ok(n) if in_range(n as f64) => Ok(n),
+                _ => Err(self.out_of_range(key, i, &allowed)),
+            },
+            // A whole number written as a float (`16.0`, `1e21`): checked as the float it is,
+            // so a huge one is echoed as written, not as the largest integer.
+            (Some(Value::Float(x)), _) if x.fract() == 0.0 && x.is_finite() => {
+                if in_range(*x) {
+                    Ok(*x as usize)
                 } else {
-                    return Err(self.wrong_type(key, v, "a whole number"));
+                    Err(self.out_of_range(key, short(*x), &allowed))
                 }
             }
-            (Some(v), _) => return Err(self.wrong_type(key, v, "a whole number")),
-            (None, Some(d)) => return Ok(d),
-            (None, None) => return Err(self.missing(key, what)),
-        };
-        if v < min as i64 || v > MAX_VOUSSOIRS as i64 {
-            return Err(self.out_of_range(
-                key,
-                v,
-                &format!("must be a whole number from {min} to {MAX_VOUSSOIRS}"),
-            ));
+            (Some(v), _) => Err(self.wrong_type(key, v, "a whole number")),
+            (None, Some(d)) => Ok(d),
+            (None, None) => Err(self.missing(key, what)),
         }
-        Ok(v as usize)
     }
 
     /// A finite number, required.

@@ -13,7 +13,7 @@
 //!
 //! ```toml
 //! title = "Pointed vs semicircular arches at equal span and thickness"
-//! output = "pointed_equal_span"       # docs/figures/<output>.csv and .svg
+//! output = "pointed_equal_span"       # <output>.csv and .svg in --out DIR
 //! vary = ["e/span=0:0.2:0.05", "t/span=0.05:0.2:0.01"]
 //! x = "t/span"
 //! series = "e/span"

@@ -7,6 +7,7 @@
 
 mod build;
 mod piers;
+pub mod units;
 mod user_blocks;
 pub use build::build;
 pub use piers::{Pier, PierProfile, Piers};
@@ -537,7 +538,7 @@ impl<'a> Section<'a> {
             Some(Value::String(s)) if s.trim().eq_ignore_ascii_case("inf") => {
                 Ok(Some(f64::INFINITY))
             }
-            Some(v) => Err(self.wrong_type(key, v, "a number")),
+            Some(v) => Err(self.wrong_type(key, v, &units::expected(key))),
         }
     }
 
@@ -762,7 +763,9 @@ fn syntax_error(text: &str, origin: &str, e: &toml::de::Error) -> SceneError {
     }
 }
 
-fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+    // "150 mm", "5 MPa": to SI numbers before anything reads them.
+    units::to_si(&mut table);
     for key in table.keys() {
         if !SECTIONS.contains(&key.as_str()) {
             return Err(SceneError::UnknownKey {

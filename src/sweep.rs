@@ -255,7 +255,7 @@ pub fn check_case_count(variations: &[Variation]) -> Result<(), SceneError> {
         || {
             // Beyond usize: say it in floating point.
             let x: f64 = variations.iter().map(|v| v.values.len() as f64).product();
-            format!("{x:e}")
+            format!("{x:.1e}")
         },
         |n| n.to_string(),
     );

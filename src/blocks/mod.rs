@@ -106,7 +106,7 @@ pub enum BlockError {
     #[error("block {block}: {message}")]
     Block { block: usize, message: String },
     /// A problem between two blocks (they overlap).
-    #[error("blocks {} and {}: {message}", .blocks[0], .blocks[1])]
+    #[error("blocks {} and {} {message}", .blocks[0], .blocks[1])]
     Pair { blocks: [usize; 2], message: String },
     /// A problem between blocks, or of the structure as a whole.
     #[error("{0}")]
@@ -279,7 +279,9 @@ fn read_csv(bytes: &[u8], name: &str) -> Result<(Vec<Vec<[f64; 2]>>, Places), Bl
         let record =
             record.map_err(|e| BlockError::Format(format!("{name}: row {}: {e}", row + 1)))?;
         // Rows are counted without comments and blank lines; lines are the file's own.
-        let line = record.position().map_or(row as u64 + 1, |p| p.line());
+        let line = record
+            .position()
+            .map_or(row as u64 + 1, |p| first_data_line(bytes, p));
         let at = |row: usize| format!("row {} (line {line})", row + 1);
         if record.len() != 3 {
             return Err(BlockError::Format(format!(
@@ -329,6 +331,25 @@ fn read_csv(bytes: &[u8], name: &str) -> Result<(Vec<Vec<[f64; 2]>>, Places), Bl
         .map(|(label, (first, last))| format!("lines {first}-{last}, label `{}`", excerpt(label)))
         .collect();
     Ok((blocks, places))
+}
+
+/// The line a CSV record starts on: the reader's position may be that of the comment or
+/// blank lines it skipped before the record, so those are stepped over here.
+fn first_data_line(bytes: &[u8], at: &csv::Position) -> u64 {
+    let mut line = at.line();
+    let mut rest = bytes.get(at.byte() as usize..).unwrap_or_default();
+    loop {
+        let end = rest.iter().position(|&b| b == b'\n');
+        let text = &rest[..end.unwrap_or(rest.len())];
+        let trimmed = text.trim_ascii();
+        match end {
+            Some(e) if trimmed.is_empty() || trimmed.starts_with(b"#") => {
+                rest = &rest[e + 1..];
+                line += 1;
+            }
+            _ => return line,
+        }
+    }
 }
 
 fn read_dxf(

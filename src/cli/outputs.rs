@@ -129,8 +129,8 @@ impl Outputs {
         self
     }
 
-    /// Check every output: that it is no input and no other output, its extension, and that
-    /// it can be written ([`check_output_path`]). Nothing is written.
+    /// Check every output: that it is no input and no other output, that it can be written
+    /// ([`check_output_path`]), and its extension. Nothing is written.
     pub fn check(&self) -> Result<(), Error> {
         let resolved: Vec<PathBuf> = self.outputs.iter().map(|o| resolve(&o.path)).collect();
         for (k, o) in self.outputs.iter().enumerate() {
@@ -154,8 +154,14 @@ impl Outputs {
                     self.outputs[first].what, o.what
                 )));
             }
-            check_extension(&o.path, o.format).map_err(|m| fail(format!("{} {m}", o.what)))?;
+        }
+        // Then each on its own (after the clashes, which are the graver mistakes).
+        for o in &self.outputs {
             check_output_path(&o.path)?;
+            check_extension(&o.path, o.format).map_err(|m| Error::Output {
+                path: o.path.clone(),
+                message: format!("{} {m}", o.what),
+            })?;
         }
         Ok(())
     }
@@ -184,8 +190,8 @@ pub fn check_extension(path: &Path, format: Format) -> Result<(), String> {
 }
 
 /// The absolute path a file name stands for, symbolic links resolved as far as the file
-/// exists: the file itself when it exists, else its directory joined with its name (and the
-/// path made absolute when even the directory does not exist).
+/// exists: the file itself when it exists, else its directory joined with its name, else
+/// (no such directory) the path made absolute with `.` and `..` folded away.
 pub fn resolve(path: &Path) -> PathBuf {
     if let Ok(p) = std::fs::canonicalize(path) {
         return p;
@@ -196,7 +202,20 @@ pub fn resolve(path: &Path) -> PathBuf {
     };
     match (std::fs::canonicalize(dir), path.file_name()) {
         (Ok(d), Some(name)) => d.join(name),
-        _ => std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()),
+        _ => {
+            let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+            let mut folded = PathBuf::new();
+            for part in absolute.components() {
+                match part {
+                    std::path::Component::ParentDir => {
+                        folded.pop();
+                    }
+                    std::path::Component::CurDir => {}
+                    other => folded.push(other),
+                }
+            }
+            folded
+        }
     }
 }
 
@@ -365,7 +384,7 @@ mod tests {
 
     #[cfg(unix)]
     #[test]
-    fn a_new_file_gets_the_usual_permissions_not_a_private_temporary_s() {
+    fn a_new_file_gets_the_usual_permissions() {
         use std::os::unix::fs::PermissionsExt;
         let dir = tempfile::tempdir().expect("tempdir");
         let path = dir.path().join("out.svg");

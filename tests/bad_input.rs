@@ -228,8 +228,8 @@ fn a_byte_order_mark_is_accepted_in_toml() {
 fn a_number_too_large_is_echoed_as_written_not_as_the_largest_integer() {
     // 2^70 as a float, in a file and as an override.
     for text in [
-        format!("{GOOD}").replace("voussoirs = 16", "voussoirs = 1.180591620717411303424e21"),
-        format!("{GOOD}").replace("voussoirs = 16", "voussoirs = 1e21"),
+        GOOD.replace("voussoirs = 16", "voussoirs = 1.180591620717411303424e21"),
+        GOOD.replace("voussoirs = 16", "voussoirs = 1e21"),
     ] {
         let e = err(&text);
         let msg = e.to_string();

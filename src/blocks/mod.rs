@@ -263,7 +263,10 @@ fn read_json(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError>
     Ok(file.polygons)
 }
 
-fn read_csv(bytes: &[u8], name: &str) -> Result<(Vec<Vec<[f64; 2]>>, Places), BlockError> {
+/// Outlines as read (in the source's units) and where each is in its source.
+type Outlines = (Vec<Vec<[f64; 2]>>, Places);
+
+fn read_csv(bytes: &[u8], name: &str) -> Result<Outlines, BlockError> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(csv::Trim::All)
@@ -352,11 +355,7 @@ fn first_data_line(bytes: &[u8], at: &csv::Position) -> u64 {
     }
 }
 
-fn read_dxf(
-    bytes: &[u8],
-    name: &str,
-    layer: Option<&str>,
-) -> Result<(Vec<Vec<[f64; 2]>>, Places), BlockError> {
+fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, BlockError> {
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
         .map_err(|e| BlockError::Format(format!("{name}: not a readable DXF file: {e}")))?;
     let mut blocks = Vec::new();

@@ -142,15 +142,28 @@ fn rounded(x: f64, places: Option<usize>) -> f64 {
     }
 }
 
-/// `x` to 12 significant digits: a number computed from the user's inputs (a ratio times a
-/// radius, a ratio of two lengths) without the last bits of round-off, so it prints as the
-/// user would write it (`1.825`, not `1.8250000000000002`). 12 digits is far beyond any
-/// input's precision and far above the round-off of a few operations.
+/// `x` to 12 significant digits: a ratio of the user's inputs (a ratio of two lengths) as it
+/// is reported, without the last bits of round-off, so it prints as the user would write it
+/// (0.5, not 0.49999999999999994). 12 digits is far beyond any input's precision and far
+/// above the round-off of a few operations.
 pub fn tidy(x: f64) -> f64 {
-    if !x.is_finite() || x == 0.0 {
+    significant(x, 12)
+}
+
+/// `x` rounded to `digits` significant digits.
+fn significant(x: f64, digits: usize) -> f64 {
+    if !x.is_finite() || x == 0.0 || digits == 0 {
         return x;
     }
-    format!("{x:.11e}").parse().unwrap_or(x)
+    let p = digits - 1;
+    format!("{x:.p$e}").parse().unwrap_or(x)
+}
+
+/// A scene value set from a ratio (`t/R` times R) to 15 significant digits: the round-off of
+/// the product goes (t/R = 0.1825 at R = 10 sets 1.825, not 1.8250000000000002) and the
+/// ratio reads back from the scene to 5e-15.
+fn set_value(x: f64) -> f64 {
+    significant(x, 15)
 }
 
 /// A count that may exceed any integer type, in words (`1180591620717411303424` as `1.2e21`).
@@ -406,8 +419,8 @@ fn derived_target(
             let sp = span(scene);
             let e = v * sp;
             return Ok(vec![
-                ("arch.eccentricity", Value::Float(tidy(e))),
-                ("arch.radius", Value::Float(tidy(0.5 * sp + e))),
+                ("arch.eccentricity", Value::Float(set_value(e))),
+                ("arch.radius", Value::Float(set_value(0.5 * sp + e))),
             ]);
         }
         _ => {
@@ -422,7 +435,7 @@ fn derived_target(
     };
     // Without round-off noise: t/R = 0.1825 at R = 10 sets the thickness 1.825 (not
     // 1.8250000000000002), as a message or the scene's JSON then shows it.
-    Ok(vec![(target, Value::Float(tidy(x)))])
+    Ok(vec![(target, Value::Float(set_value(x)))])
 }
 
 /// Centreline span of the arch.

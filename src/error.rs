@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// A problem with a scene: its file, a key in it, or a `--set` override.
+/// A problem with a scene: its file, a key in it, or a `--set` override. The user's own text
+/// quoted in a message (a key, a value, an override) is cut to [`MAX_QUOTED_CHARS`] characters
+/// ([`excerpt`]); the fields keep it whole.
 #[derive(Debug, Error)]
 pub enum SceneError {
     #[error("cannot read scene file {path}: {source}")]
@@ -14,7 +16,7 @@ pub enum SceneError {
     },
     #[error("{origin}: malformed TOML: {message}")]
     Syntax { origin: String, message: String },
-    #[error("{origin}: unknown key `{key}`{hint}")]
+    #[error("{origin}: unknown key `{}`{hint}", excerpt(.key))]
     UnknownKey {
         origin: String,
         key: String,
@@ -26,26 +28,26 @@ pub enum SceneError {
         key: String,
         what: String,
     },
-    #[error("{origin}: `{key}` = {value}: wrong type, expected {expected}")]
+    #[error("{origin}: `{}` = {}: wrong type, expected {expected}", excerpt(.key), excerpt(.value))]
     WrongType {
         origin: String,
         key: String,
         value: String,
         expected: String,
     },
-    #[error("{origin}: `{key}` = {value}: {allowed}")]
+    #[error("{origin}: `{}` = {}: {allowed}", excerpt(.key), excerpt(.value))]
     OutOfRange {
         origin: String,
         key: String,
         value: String,
         allowed: String,
     },
-    #[error("--set {text}: {message}")]
+    #[error("--set {}: {message}", excerpt(.text))]
     BadOverride { text: String, message: String },
-    #[error("--vary {text}: {message}")]
+    #[error("--vary {}: {message}", excerpt(.text))]
     BadVariation { text: String, message: String },
     /// A chart axis that cannot be drawn (`--x`, `--series`; a study's `x`, `series`).
-    #[error("{option} {key}: {message}")]
+    #[error("{option} {}: {message}", excerpt(.key))]
     BadChart {
         /// The option, e.g. `--x`.
         option: String,
@@ -105,6 +107,53 @@ mod tests {
         );
         assert_eq!(did_you_mean("x", &keys), "");
     }
+
+    #[test]
+    fn a_key_in_the_wrong_case_or_without_its_suffix_is_found_first() {
+        let site = [
+            "ag",
+            "soil",
+            "topography",
+            "F0",
+            "Tc_star",
+            "q",
+            "FC",
+            "Z",
+            "H",
+            "T1",
+        ];
+        // `Tc` is one letter from `FC`, but it is `Tc_star` without its suffix.
+        assert_eq!(closest("Tc", &site), Some("Tc_star"));
+        assert_eq!(closest("tc_STAR", &site), Some("Tc_star"));
+        assert_eq!(closest("fc", &site), Some("FC"));
+        assert_eq!(
+            did_you_mean("fc", &site),
+            " (did you mean `FC`? keys are case-sensitive)"
+        );
+        assert_eq!(did_you_mean("Tc", &site), " (did you mean `Tc_star`?)");
+        assert_eq!(
+            closest("embrace", &["radius", "embrace_deg"]),
+            Some("embrace_deg")
+        );
+        // An edit-distance tie goes to the candidate in the user's case.
+        assert_eq!(closest("ab", &["AC", "ac"]), Some("ac"));
+    }
+
+    #[test]
+    fn long_text_is_quoted_in_part() {
+        assert_eq!(excerpt("short"), "short");
+        let long = "é".repeat(10_000_000);
+        let e = excerpt(&long);
+        assert!(e.chars().count() < 2 * MAX_QUOTED_CHARS, "{}", e.len());
+        assert!(e.contains("(10000000 characters)"), "{e}");
+        let line = format!("{}X{}", "a".repeat(5000), "b".repeat(5000));
+        let e = excerpt_around(&line, 5000);
+        assert!(
+            e.contains('X') && e.starts_with("... ") && e.ends_with(" ..."),
+            "{e}"
+        );
+        assert!(e.chars().count() <= MAX_QUOTED_CHARS + 8, "{e}");
+    }
 }
 
 /// Edit distance between two words (Levenshtein: insertions, deletions and substitutions
@@ -124,26 +173,96 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
-/// The candidate closest to `word` (case-insensitively), if it is close enough to be a
-/// likely typo: at most a third of the longer word's characters differ (rounded up, so a
-/// swapped pair of letters in a five-letter word still counts).
-/// Ties go to the first candidate.
+/// The candidate closest to `word`, if it is close enough to be a likely typo. In order of
+/// preference:
+/// 1. the same word in another case (`fc` for `FC`: keys are case-sensitive);
+/// 2. a candidate that is the word with a suffix after `_` (`Tc` for `Tc_star`, `embrace` for
+///    `embrace_deg`: the unit or qualifier left out), compared case-insensitively;
+/// 3. the candidate at the smallest edit distance, case-insensitively, if at most a third of
+///    the longer word's characters differ (rounded up, so a swapped pair of letters in a
+///    five-letter word still counts); a tie goes to the candidate that differs least in case,
+///    then to the first.
 pub fn closest<'a>(word: &str, candidates: &[&'a str]) -> Option<&'a str> {
     let w = word.to_lowercase();
+    if let Some(c) = candidates.iter().find(|c| c.to_lowercase() == w) {
+        return Some(c);
+    }
+    if !w.is_empty() {
+        let with_suffix = |c: &&&str| {
+            c.to_lowercase()
+                .strip_prefix(&w)
+                .is_some_and(|rest| rest.starts_with('_'))
+        };
+        if let Some(c) = candidates.iter().find(with_suffix) {
+            return Some(c);
+        }
+    }
     candidates
         .iter()
-        .map(|c| (edit_distance(&w, &c.to_lowercase()), *c))
-        .filter(|(d, c)| {
+        .map(|c| {
+            (
+                edit_distance(&w, &c.to_lowercase()),
+                edit_distance(word, c),
+                *c,
+            )
+        })
+        .filter(|(d, _, c)| {
             let longest = w.chars().count().max(c.chars().count());
             *d <= longest.div_ceil(3)
         })
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, c)| c)
+        .min_by_key(|(d, exact, _)| (*d, *exact))
+        .map(|(_, _, c)| c)
 }
 
-/// ` (did you mean `KEY`?)` for the closest candidate, or nothing.
+/// ` (did you mean `KEY`?)` for the closest candidate ([`closest`]), adding that keys are
+/// case-sensitive when the candidate differs from the word only in case; or nothing.
 pub fn did_you_mean(word: &str, candidates: &[&str]) -> String {
-    closest(word, candidates).map_or(String::new(), |c| format!(" (did you mean `{c}`?)"))
+    match closest(word, candidates) {
+        Some(c) if c != word && c.to_lowercase() == word.to_lowercase() => {
+            format!(" (did you mean `{c}`? keys are case-sensitive)")
+        }
+        Some(c) => format!(" (did you mean `{c}`?)"),
+        None => String::new(),
+    }
+}
+
+/// Longest piece of the user's own text (a value, a line of a file) quoted in a message:
+/// enough to recognise it, and a 10 MB line is not printed whole.
+pub const MAX_QUOTED_CHARS: usize = 120;
+
+/// `text` as a message quotes it: whole when at most [`MAX_QUOTED_CHARS`] characters, else
+/// its start and end around `... (N characters) ...`. Cut at character boundaries.
+pub fn excerpt(text: &str) -> String {
+    excerpt_around(text, 0)
+}
+
+/// [`excerpt`] of `text` keeping the characters around the byte offset `at` (where a parser
+/// stopped), with `...` where the text was cut.
+pub fn excerpt_around(text: &str, at: usize) -> String {
+    let count = text.chars().count();
+    if count <= MAX_QUOTED_CHARS {
+        return text.to_string();
+    }
+    // The character index of `at`, and a window of MAX_QUOTED_CHARS characters around it.
+    let at_char = text
+        .char_indices()
+        .take_while(|(i, _)| *i < at.min(text.len()))
+        .count();
+    let half = MAX_QUOTED_CHARS / 2;
+    if at_char <= half {
+        // The start and the end, as for a value.
+        let head: String = text.chars().take(half).collect();
+        let tail: String = text.chars().skip(count - half / 2).collect();
+        return format!("{head} ... ({count} characters) ... {tail}");
+    }
+    let start = (at_char - half).min(count - MAX_QUOTED_CHARS);
+    let window: String = text.chars().skip(start).take(MAX_QUOTED_CHARS).collect();
+    let end = if start + MAX_QUOTED_CHARS < count {
+        " ..."
+    } else {
+        ""
+    };
+    format!("... {window}{end}")
 }
 
 /// What is wrong with a ground-motion input (`dem::record`), and where: the file, the line

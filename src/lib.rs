@@ -1,3 +1,10 @@
+//! voussoir: the seismic collapse multiplier of masonry arches and portals (static lower
+//! bound, kinematic upper bound, DEM), the library behind the `voussoir` command line, the
+//! Python package and the page of `voussoir serve` (docs/architecture.md).
+
+// No unsafe code anywhere in the crate, and none can be added without removing this line.
+#![forbid(unsafe_code)]
+
 pub mod analysis;
 pub mod assembly;
 pub mod assess;

@@ -1,6 +1,8 @@
 //! The `voussoir` command line: parses arguments, calls the library, prints. Each command is
 //! one file under `src/cli/`.
 
+#![forbid(unsafe_code)]
+
 mod cli;
 
 use clap::{Parser, Subcommand};

@@ -24,6 +24,18 @@ pub fn parse_assignment(text: &str) -> Result<(String, Value), SceneError> {
         .parse::<Table>()
         .ok()
         .and_then(|mut t| t.remove("v"))
+        .or_else(|| too_large_integer(raw))
         .unwrap_or_else(|| Value::String(raw.to_string()));
     Ok((key.to_string(), value))
+}
+
+/// An integer literal too large for TOML's 64-bit integers (`1180591620717411303424`) as the
+/// float it is, so the key's range check reports it as written rather than as a string of
+/// the wrong type.
+fn too_large_integer(raw: &str) -> Option<Value> {
+    let digits = raw.strip_prefix(['+', '-']).unwrap_or(raw).replace('_', "");
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    raw.replace('_', "").parse::<f64>().ok().map(Value::Float)
 }

@@ -13,7 +13,7 @@
 //!
 //! ```toml
 //! title = "Pointed vs semicircular arches at equal span and thickness"
-//! output = "pointed_equal_span"       # docs/figures/<output>.csv and .svg
+//! output = "pointed_equal_span"       # <output>.csv and .svg in --out DIR
 //! vary = ["e/span=0:0.2:0.05", "t/span=0.05:0.2:0.01"]
 //! x = "t/span"
 //! series = "e/span"
@@ -97,12 +97,7 @@ impl Study {
             path: path.to_path_buf(),
             source,
         })?;
-        let mut table: Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| SceneError::Syntax {
-                origin: origin.clone(),
-                message: e.to_string().trim().replace('\n', " "),
-            })?;
+        let mut table = crate::scene::parse_toml(&text, &origin)?;
         let string =
             |t: &mut Table, key: &str, required: bool| -> Result<Option<String>, SceneError> {
                 match t.remove(key) {
@@ -228,6 +223,12 @@ impl Study {
             scene,
             origin,
         })
+    }
+
+    /// The number of cases (the product of the varied keys' value counts; saturating, and
+    /// bounded by [`sweep::MAX_CASES`] when the study runs).
+    pub fn cases(&self) -> usize {
+        sweep::case_count(&self.variations).unwrap_or(usize::MAX)
     }
 
     /// Thin every range to at most `keep` values (first and last kept): the reduced study

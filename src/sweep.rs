@@ -25,6 +25,23 @@ pub const DERIVED_KEYS: &[&str] = &[
     "sigma",
 ];
 
+/// Largest number of cases in one sweep (the product of the varied keys' value counts):
+/// checked before any case is built, so three long lists are refused at once rather than
+/// allocated (each case holds its scene). A case takes about a millisecond for a small arch,
+/// so this is minutes on a few cores; split a larger study into several sweeps.
+pub const MAX_CASES: usize = 100_000;
+
+/// Largest number of values of one `START:STOP:STEP` range.
+pub const MAX_RANGE_VALUES: usize = 100_000;
+
+/// The number of cases of `variations` (the product of their value counts), or None when it
+/// overflows.
+pub fn case_count(variations: &[Variation]) -> Option<usize> {
+    variations
+        .iter()
+        .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
+}
+
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variation {
@@ -67,22 +84,35 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
                 "`{spec}`: need finite START <= STOP and STEP > 0"
             )));
         }
-        let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
-        let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
-        if count > 100_000 {
+        // Counted in floating point, so a range of 2^70 values is refused rather than wrapped.
+        let intervals = ((stop - start) / step + 1e-9).floor();
+        if intervals + 1.0 > MAX_RANGE_VALUES as f64 {
             return Err(bad(format!(
-                "`{spec}` gives {count} values; at most 100000"
+                "`{spec}` gives {} values; at most {MAX_RANGE_VALUES}",
+                short_count(intervals + 1.0)
             )));
         }
+        let count = intervals as usize + 1;
+        let whole: Vec<Option<i64>> = parts.iter().map(|p| p.trim().parse::<i64>().ok()).collect();
+        // The decimals the user wrote in START and STEP: every value start + i * step is
+        // rounded to them, so 1.8:2:0.025 gives 1.825, not 1.8250000000000002.
+        let places = match (decimals(parts[0]), decimals(parts[2])) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        };
         (0..count)
-            // Whole-number ranges (voussoirs, courses) stay integers; others are rounded to
-            // 12 significant digits so 0.1 + 0.05 * 1 prints as 0.15.
             .map(|i| {
+                // Whole-number ranges (voussoirs, courses) stay integers.
                 if let [Some(a), Some(_), Some(st)] = whole[..] {
-                    return Value::Integer(a + st * i as i64);
+                    if let Some(v) = i64::try_from(i)
+                        .ok()
+                        .and_then(|i| st.checked_mul(i))
+                        .and_then(|d| a.checked_add(d))
+                    {
+                        return Value::Integer(v);
+                    }
                 }
-                let x = start + step * i as f64;
-                Value::Float(format!("{x:.11e}").parse().unwrap_or(x))
+                Value::Float(rounded(start + step * i as f64, places))
             })
             .collect()
     } else {
@@ -91,6 +121,58 @@ pub fn parse_variation(text: &str) -> Result<Variation, SceneError> {
             .collect::<Result<Vec<_>, _>>()?
     };
     Ok(Variation { key, values })
+}
+
+/// The number of decimal places written in a number (`0.025`: 3, `2`: 0); None in exponent
+/// form (`1e-3`), where the places are not what was written.
+fn decimals(text: &str) -> Option<usize> {
+    let t = text.trim();
+    if t.contains(['e', 'E']) {
+        return None;
+    }
+    Some(t.split_once('.').map_or(0, |(_, frac)| frac.len()))
+}
+
+/// `x` rounded to `places` decimals when known (and at most 15), else to 12 significant
+/// digits: the value of a range as the user meant it, without the noise of `start + i * step`.
+fn rounded(x: f64, places: Option<usize>) -> f64 {
+    match places {
+        Some(p) if p <= 15 => format!("{x:.p$}").parse().unwrap_or(x),
+        _ => tidy(x),
+    }
+}
+
+/// `x` to 12 significant digits: a ratio of the user's inputs (a ratio of two lengths) as it
+/// is reported, without the last bits of round-off, so it prints as the user would write it
+/// (0.5, not 0.49999999999999994). 12 digits is far beyond any input's precision and far
+/// above the round-off of a few operations.
+pub fn tidy(x: f64) -> f64 {
+    significant(x, 12)
+}
+
+/// `x` rounded to `digits` significant digits.
+fn significant(x: f64, digits: usize) -> f64 {
+    if !x.is_finite() || x == 0.0 || digits == 0 {
+        return x;
+    }
+    let p = digits - 1;
+    format!("{x:.p$e}").parse().unwrap_or(x)
+}
+
+/// A scene value set from a ratio (`t/R` times R) to 15 significant digits: the round-off of
+/// the product goes (t/R = 0.1825 at R = 10 sets 1.825, not 1.8250000000000002) and the
+/// ratio reads back from the scene to 5e-15.
+fn set_value(x: f64) -> f64 {
+    significant(x, 15)
+}
+
+/// A count that may exceed any integer type, in words (`1180591620717411303424` as `1.2e21`).
+fn short_count(n: f64) -> String {
+    if n < 1e15 {
+        format!("{n}")
+    } else {
+        format!("{n:.1e}")
+    }
 }
 
 /// The scene keys a varied key sets (a ratio sets its underlying key).
@@ -121,6 +203,7 @@ fn value_text(v: &Value) -> String {
 /// not solved as a row with status `error`). Values out of range are the cases' own business:
 /// they stay in the sweep as rows with status `error`.
 pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), SceneError> {
+    check_case_count(variations)?;
     let mut set: Vec<(&str, &str)> = Vec::new();
     for v in variations {
         if v.key.contains('/') && !DERIVED_KEYS.contains(&v.key.as_str()) {
@@ -168,6 +251,34 @@ pub fn check_variations(base: &Scene, variations: &[Variation]) -> Result<(), Sc
         }
     }
     Ok(())
+}
+
+/// Refuse a sweep of more than [`MAX_CASES`] cases, naming the keys and their counts.
+pub fn check_case_count(variations: &[Variation]) -> Result<(), SceneError> {
+    let count = case_count(variations);
+    if count.is_some_and(|n| n <= MAX_CASES) {
+        return Ok(());
+    }
+    let keys: Vec<&str> = variations.iter().map(|v| v.key.as_str()).collect();
+    let counts: Vec<String> = variations
+        .iter()
+        .map(|v| v.values.len().to_string())
+        .collect();
+    let total = count.map_or_else(
+        || {
+            // Beyond usize: say it in floating point.
+            let x: f64 = variations.iter().map(|v| v.values.len() as f64).product();
+            format!("{x:.1e}")
+        },
+        |n| n.to_string(),
+    );
+    Err(SceneError::BadVariation {
+        text: keys.join(", "),
+        message: format!(
+            "{} values make {total} cases; a sweep may have at most {MAX_CASES} (voussoir::sweep::MAX_CASES): vary fewer values, or split the sweep",
+            counts.join(" x ")
+        ),
+    })
 }
 
 /// Refuse a varied value the key cannot take at all (unknown key, wrong type, a ratio that
@@ -308,8 +419,8 @@ fn derived_target(
             let sp = span(scene);
             let e = v * sp;
             return Ok(vec![
-                ("arch.eccentricity", Value::Float(e)),
-                ("arch.radius", Value::Float(0.5 * sp + e)),
+                ("arch.eccentricity", Value::Float(set_value(e))),
+                ("arch.radius", Value::Float(set_value(0.5 * sp + e))),
             ]);
         }
         _ => {
@@ -322,7 +433,9 @@ fn derived_target(
             ("arch.rise", v * span(scene))
         }
     };
-    Ok(vec![(target, Value::Float(x))])
+    // Without round-off noise: t/R = 0.1825 at R = 10 sets the thickness 1.825 (not
+    // 1.8250000000000002), as a message or the scene's JSON then shows it.
+    Ok(vec![(target, Value::Float(set_value(x)))])
 }
 
 /// Centreline span of the arch.
@@ -355,7 +468,9 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         (p.left.height, p.left.base_width())
     });
     let t = arch.thickness;
-    vec![
+    // Ratios of the user's inputs, to 12 significant digits ([`tidy`]): a semicircle's
+    // rise/span is 0.5, not 0.49999999999999994.
+    [
         ("t/R", t / radius),
         ("t/span", t / span(scene)),
         ("e/R", e / radius),
@@ -365,6 +480,9 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
         ("e/span", e / span(scene)),
         ("sigma", sigma(scene).unwrap_or(f64::NAN)),
     ]
+    .into_iter()
+    .map(|(k, v)| (k, tidy(v)))
+    .collect()
 }
 
 /// How charts name a key: a readable name with its unit (`thickness t (m)`, `embrace
@@ -732,9 +850,21 @@ pub fn case(
     row
 }
 
+/// A result in a CSV cell: every digit (the shortest text that reads back as the same
+/// number), in exponent form when tiny or huge (`1.6653345369377348e-16`, not 33 characters
+/// of zeros); empty when there is none.
 fn opt(x: Option<f64>) -> String {
-    x.filter(|v| v.is_finite())
-        .map_or(String::new(), |v| v.to_string())
+    x.filter(|v| v.is_finite()).map_or(String::new(), number)
+}
+
+/// `x` in the shortest text that reads back as `x`: positional from 1e-4 to 1e15, exponent
+/// form outside.
+pub fn number(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e15).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
 }
 
 /// Write the rows as CSV: the varied keys, then `status, lambda_lower, lambda_upper, gap,
@@ -808,7 +938,7 @@ pub fn write_csv_with<W: std::io::Write>(
         rec.push(opt(r.gap()));
         rec.push(hinge_string(&r.hinges));
         if timings {
-            rec.push(r.solve_time_s.to_string());
+            rec.push(number(r.solve_time_s));
         }
         for name in &extra {
             rec.push(opt(r

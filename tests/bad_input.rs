@@ -189,3 +189,130 @@ fn a_typo_names_the_unknown_key_and_suggests_the_closest() {
     let e = s.with_override("arhc.thickness=0.2").expect_err("typo");
     assert!(e.to_string().contains("did you mean `arch`"), "{e}");
 }
+
+#[test]
+fn a_huge_malformed_line_gives_a_short_message_with_its_place() {
+    // A 10 MB line, malformed near its start and near its end.
+    let long = "x".repeat(10_000_000);
+    let e = err(&format!("[arch]\nshape = \"circular\" radius = {long}\n"));
+    let text = e.to_string();
+    assert!(matches!(e, SceneError::Syntax { .. }));
+    assert!(text.len() < 1000, "{} bytes", text.len());
+    assert!(text.contains("line 2, column 20"), "{text}");
+    let e = err(&format!("a = [{}]]\n", "1,".repeat(5_000_000)));
+    let text = e.to_string();
+    assert!(text.len() < 1000, "{} bytes", text.len());
+    assert!(text.contains("line 1, column 10000007"), "{text}");
+    // Where it stopped is quoted: the end of the list.
+    assert!(text.contains("1,1,]]"), "{text}");
+    // A value of the wrong type, 10 MB long, is quoted in part.
+    let e = err(&format!("{GOOD}[material]\ndepth = \"{long}\"\n"));
+    let text = e.to_string();
+    assert!(
+        text.len() < 1000 && text.contains("(10000002 characters)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted_in_toml() {
+    let plain = Scene::from_toml_str(GOOD, "t").expect("valid");
+    let bom = Scene::from_toml_str(&format!("\u{feff}{GOOD}"), "t").expect("a BOM is no error");
+    assert_eq!(
+        plain.arch.as_ref().map(|a| a.thickness),
+        bom.arch.as_ref().map(|a| a.thickness)
+    );
+}
+
+#[test]
+fn a_number_too_large_is_echoed_as_written_not_as_the_largest_integer() {
+    // 2^70 as a float, in a file and as an override.
+    for text in [
+        GOOD.replace("voussoirs = 16", "voussoirs = 1.180591620717411303424e21"),
+        GOOD.replace("voussoirs = 16", "voussoirs = 1e21"),
+    ] {
+        let e = err(&text);
+        let msg = e.to_string();
+        assert!(!msg.contains("9223372036854775807"), "{msg}");
+        assert!(
+            msg.contains("e21: must be a whole number from 1 to"),
+            "{msg}"
+        );
+    }
+    let base = Scene::from_toml_str(GOOD, "t").expect("valid");
+    let e = base
+        .with_override("arch.voussoirs=1180591620717411303424")
+        .expect_err("out of range");
+    let msg = e.to_string();
+    assert!(!msg.contains("9223372036854775807"), "{msg}");
+    assert!(
+        msg.contains("1.1805916207174113e21: must be a whole number"),
+        "{msg}"
+    );
+    // In a file, the integer literal itself is a syntax error that quotes it.
+    let e = err(&GOOD.replace("voussoirs = 16", "voussoirs = 1180591620717411303424"));
+    assert!(
+        e.to_string().contains("voussoirs = 1180591620717411303424"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_key_in_the_wrong_case_is_suggested_in_its_case() {
+    let site = |key: &str| err(&format!("{GOOD}[site]\nag = 0.2\n{key} = 0.4\n")).to_string();
+    // `Tc` is `Tc_star` without its suffix, not `FC`.
+    let e = site("Tc");
+    assert!(e.contains("did you mean `Tc_star`?"), "{e}");
+    let e = site("fc");
+    assert!(
+        e.contains("did you mean `FC`? keys are case-sensitive"),
+        "{e}"
+    );
+    let e = err(&GOOD.replace("thickness", "Thickness"));
+    assert!(
+        e.to_string()
+            .contains("did you mean `thickness`? keys are case-sensitive"),
+        "{e}"
+    );
+}
+
+#[test]
+fn values_with_units_are_read_in_si_and_others_say_how_to_write_them() {
+    let si = Scene::from_toml_str(
+        &format!("{GOOD}[material]\nunit_weight = 18000\ncompressive_strength = 5e6\n[[loads]]\ntype = \"point\"\nat = [0.0, 1.075]\nforce = [0.0, -1000.0]\n"),
+        "t",
+    )
+    .expect("valid");
+    let units = Scene::from_toml_str(
+        &format!("{GOOD}[material]\nunit_weight = \"18 kN/m3\"\ncompressive_strength = \"5 MPa\"\n[[loads]]\ntype = \"point\"\nat = [\"0 mm\", \"1075 mm\"]\nforce = [\"0 kN\", \"-1 kN\"]\n")
+            .replace("thickness = 0.15", "thickness = \"150 mm\""),
+        "t",
+    )
+    .expect("valid with units");
+    assert_eq!(units.material, si.material);
+    assert_eq!(units.loads, si.loads);
+    assert_eq!(
+        units.arch.as_ref().map(|a| a.thickness),
+        si.arch.as_ref().map(|a| a.thickness)
+    );
+    // The same multiplier.
+    let lambda = |s: &Scene| {
+        voussoir::analysis::analyse(s, &voussoir::analysis::Options::default())
+            .expect("analysis")
+            .lower
+            .lambda
+    };
+    assert_eq!(lambda(&units), lambda(&si));
+    // A string that is not a quantity of the key's kind: how to write it.
+    let e = err(&format!(
+        "{GOOD}[material]\ncompressive_strength = \"5 MPa x\"\n"
+    ));
+    let msg = e.to_string();
+    assert_eq!(e.key(), Some("material.compressive_strength"));
+    assert!(
+        msg.contains("a number in Pa (SI), e.g. 5e6") && msg.contains("MPa, GPa, N/mm2"),
+        "{msg}"
+    );
+    let e = err(&GOOD.replace("thickness = 0.15", "thickness = \"15 kN\""));
+    assert!(e.to_string().contains("a number in m (SI)"), "{e}");
+}

@@ -1073,3 +1073,69 @@ fn dxf_polylines_of_both_kinds_on_a_layer_are_blocks() {
     .expect_err("layer on JSON");
     assert!(e.contains("only a .dxf block file has layers"), "{e}");
 }
+
+#[test]
+fn errors_name_the_blocks_file_and_where_the_blocks_lie_in_it() {
+    let scene = |file: &str| format!("[blocks]\nfile = \"{file}\"\n");
+    // CSV: the lines and label of each block named (a comment line counts as a line).
+    let csv = "block,x,y\n# the base\na,0,0\na,1,0\na,1,1\na,0,1\nb,0.5,0.5\nb,1.5,0.5\nb,1.5,1.5\nb,0.5,1.5\n";
+    let e = refused(&scene("walls.csv"), &[("walls.csv", csv.as_bytes())]);
+    assert!(e.contains("walls.csv: blocks 0 and 1 overlap"), "{e}");
+    assert!(
+        e.contains("block 0 is lines 3-6, label `a`; block 1 is lines 7-10, label `b`"),
+        "{e}"
+    );
+    // JSON: the index in the list; the file is named, not only the scene.
+    let json =
+        r#"{"polygons": [[[0,0],[1,0],[1,1],[0,1]], [[0,1],[1,1],[0.5,2],[0.6,1.5],[0.4,1.5]]]}"#;
+    let e = refused(&scene("walls.json"), &[("walls.json", json.as_bytes())]);
+    assert!(e.contains("walls.json: block 1: it is not convex"), "{e}");
+    assert!(e.contains("(block 1 is polygons[1])"), "{e}");
+    // DXF: the entity's handle and layer.
+    let dxf = dxf_of(&[
+        (
+            &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            true,
+            "WALLS",
+        ),
+        (
+            &[[0.5, 0.5], [1.5, 0.5], [1.5, 1.5], [0.5, 1.5]],
+            true,
+            "WALLS",
+        ),
+    ]);
+    let e = refused(&scene("walls.dxf"), &[("walls.dxf", &dxf)]);
+    assert!(e.contains("walls.dxf: blocks 0 and 1 overlap"), "{e}");
+    assert!(
+        e.contains("block 0 is handle") && e.contains("layer `WALLS`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted_in_every_block_format() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let json = br#"{"polygons": [[[0,0],[1,0],[1,1],[0,1]], [[0,1],[1,1],[1,2],[0,2]]]}"#;
+    let csv = b"block,x,y\na,0,0\na,1,0\na,1,1\na,0,1\nb,0,1\nb,1,1\nb,1,2\nb,0,2\n";
+    let bom = |b: &[u8]| [b"\xef\xbb\xbf".as_slice(), b].concat();
+    let lambda = |scene: Scene| {
+        lp::analyse(&scene.model().expect("model"), &StaticSettings::default())
+            .expect("static")
+            .lambda
+    };
+    for (name, bytes) in [("c.json", json.as_slice()), ("c.csv", csv.as_slice())] {
+        let plain = scene_in(
+            dir.path(),
+            &format!("[blocks]\nfile = \"{name}\"\n"),
+            &[(name, bytes)],
+        )
+        .expect("plain file");
+        let with_bom = scene_in(
+            dir.path(),
+            &format!("\u{feff}[blocks]\nfile = \"{name}\"\n"),
+            &[(name, &bom(bytes))],
+        )
+        .unwrap_or_else(|e| panic!("{name} with a BOM: {e}"));
+        assert_eq!(lambda(with_bom), lambda(plain), "{name}");
+    }
+}

@@ -566,7 +566,8 @@ fn unwritable_outputs_are_refused_before_solving() {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/studies/circular_embrace.toml");
     let err = failure(&["study", "--reduced", "--out"], &[&file, &study]);
     assert!(err.contains("cannot write"), "{err}");
-    // A leftover temporary file does not stop a run, and the check leaves no file behind.
+    // A file named as the old fixed temporary file was does not stop a run and is not
+    // touched (it is the user's), and the check leaves no file behind.
     let ok = dir.path().join("ok.csv");
     std::fs::write(dir.path().join("ok.voussoir-tmp"), "old").expect("written");
     voussoir()
@@ -576,7 +577,10 @@ fn unwritable_outputs_are_refused_before_solving() {
         .assert()
         .success();
     assert!(ok.exists());
-    assert!(!dir.path().join("ok.voussoir-tmp").exists());
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("ok.voussoir-tmp")).expect("kept"),
+        "old"
+    );
 }
 
 #[test]
@@ -698,4 +702,245 @@ fn sweep_chart_title_and_legend_read_as_words() {
     let text = std::fs::read_to_string(&svg).expect("written");
     assert!(text.contains("thickness t (m)"), "{text}");
     assert!(text.contains("semicircular arch:"), "{text}");
+}
+
+/// A scene file and a CSV blocks file it reads, copied into a fresh directory.
+fn scene_dir() -> (tempfile::TempDir, std::path::PathBuf, std::path::PathBuf) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("scene.toml");
+    std::fs::copy(data("semicircular.toml"), &scene).expect("copy");
+    let blocks = dir.path().join("column.csv");
+    std::fs::write(
+        &blocks,
+        "block,x,y\na,0,0\na,1,0\na,1,1\na,0,1\nb,0,1\nb,1,1\nb,1,2\nb,0,2\n",
+    )
+    .expect("write");
+    std::fs::write(
+        dir.path().join("blocks.toml"),
+        "[blocks]\nfile = \"column.csv\"\n",
+    )
+    .expect("write");
+    (dir, scene, blocks)
+}
+
+fn stderr_of(out: &assert_cmd::assert::Assert) -> String {
+    String::from_utf8_lossy(&out.get_output().stderr).to_string()
+}
+
+#[test]
+fn an_output_on_an_input_is_refused_and_the_input_kept() {
+    let (dir, scene, blocks) = scene_dir();
+    let before = std::fs::read(&scene).expect("read");
+    let blocks_before = std::fs::read(&blocks).expect("read");
+    let other_spelling = dir.path().join(".").join("scene.toml");
+    for args in [
+        vec![
+            "analyze".into(),
+            scene.clone(),
+            "--svg".into(),
+            scene.clone(),
+        ],
+        vec![
+            "analyze".into(),
+            scene.clone(),
+            "--thrust-csv".into(),
+            other_spelling,
+        ],
+        vec![
+            "sweep".into(),
+            scene.clone(),
+            "--vary".into(),
+            "arch.thickness=0.1,0.2".into(),
+            "--csv".into(),
+            scene.clone(),
+        ],
+        vec![
+            "min-thickness".into(),
+            scene.clone(),
+            "--svg".into(),
+            scene.clone(),
+        ],
+    ] {
+        let out = voussoir().args(&args).assert().failure();
+        let e = stderr_of(&out);
+        assert!(
+            e.contains("would overwrite the scene file") && e.contains("an input"),
+            "{args:?}: {e}"
+        );
+    }
+    // The blocks file the scene reads, written by the name the scene gives it.
+    let blocks_scene = dir.path().join("blocks.toml");
+    let out = voussoir()
+        .arg("analyze")
+        .arg(&blocks_scene)
+        .arg("--thrust-csv")
+        .arg(dir.path().join("column.csv"))
+        .assert()
+        .failure();
+    let e = stderr_of(&out);
+    assert!(e.contains("would overwrite the scene's blocks file"), "{e}");
+    assert_eq!(std::fs::read(&scene).expect("read"), before);
+    assert_eq!(std::fs::read(&blocks).expect("read"), blocks_before);
+}
+
+#[test]
+fn two_outputs_on_one_file_are_refused_before_any_work() {
+    let (dir, scene, _) = scene_dir();
+    std::fs::create_dir(dir.path().join("sub")).expect("dir");
+    let x = dir.path().join("x.svg");
+    let out = voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .arg("--svg")
+        .arg(&x)
+        .arg("--thrust-csv")
+        .arg(dir.path().join("sub/../x.svg"))
+        .assert()
+        .failure();
+    let e = stderr_of(&out);
+    assert!(
+        e.contains("--thrust-csv and --svg both name this file"),
+        "{e}"
+    );
+    assert!(!x.exists());
+}
+
+#[test]
+fn an_output_named_for_another_format_is_refused() {
+    let (dir, scene, _) = scene_dir();
+    let png = dir.path().join("out.png");
+    let out = voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .arg("--svg")
+        .arg(&png)
+        .assert()
+        .failure();
+    let e = stderr_of(&out);
+    assert!(
+        e.contains("--svg writes an SVG drawing, not a .png file") && e.contains(".svg"),
+        "{e}"
+    );
+    assert!(!png.exists());
+    let out = voussoir()
+        .args(["sweep", "--vary", "arch.thickness=0.1,0.2", "--csv"])
+        .arg(dir.path().join("rows.txt"))
+        .arg(&scene)
+        .assert()
+        .failure();
+    assert!(stderr_of(&out).contains("--csv writes a CSV table"));
+    // The extension in any case.
+    let upper = dir.path().join("OUT.SVG");
+    voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .arg("--svg")
+        .arg(&upper)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&upper).expect("written");
+    assert!(text.contains("<svg"), "an SVG drawing");
+}
+
+#[test]
+fn outputs_replace_files_whole_and_touch_no_file_of_the_user() {
+    let (dir, scene, _) = scene_dir();
+    // A file of the user's with the name the old fixed temporary file had.
+    let theirs = dir.path().join("out.voussoir-tmp");
+    std::fs::write(&theirs, "keep me").expect("write");
+    let svg = dir.path().join("out.svg");
+    std::fs::write(&svg, "old").expect("write");
+    voussoir()
+        .arg("analyze")
+        .arg(&scene)
+        .arg("--svg")
+        .arg(&svg)
+        .assert()
+        .success();
+    assert!(std::fs::read_to_string(&svg)
+        .expect("read")
+        .contains("<svg"));
+    assert_eq!(std::fs::read_to_string(&theirs).expect("read"), "keep me");
+    // No temporary file is left beside them.
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "blocks.toml",
+            "column.csv",
+            "out.svg",
+            "out.voussoir-tmp",
+            "scene.toml"
+        ]
+    );
+}
+
+/// A CSV file of `n` unit blocks in courses of 10 (running bond) and a scene reading it.
+fn wall(dir: &std::path::Path, n: usize) -> std::path::PathBuf {
+    let mut csv = String::from("block,x,y\n");
+    let mut b = 0;
+    let mut course = 0;
+    while b < n {
+        let (y0, y1) = (course as f64, course as f64 + 1.0);
+        let mut xs: Vec<f64> = (0..=10).map(|k| k as f64).collect();
+        if course % 2 == 1 {
+            xs = std::iter::once(0.0)
+                .chain((0..10).map(|k| k as f64 + 0.5))
+                .chain(std::iter::once(10.0))
+                .collect();
+            xs.dedup();
+        }
+        for w in xs.windows(2) {
+            if b == n {
+                break;
+            }
+            for (x, y) in [(w[0], y0), (w[1], y0), (w[1], y1), (w[0], y1)] {
+                csv.push_str(&format!("b{b},{x},{y}\n"));
+            }
+            b += 1;
+        }
+        course += 1;
+    }
+    std::fs::write(dir.join(format!("wall{n}.csv")), csv).expect("write");
+    let scene = dir.join(format!("wall{n}.toml"));
+    std::fs::write(&scene, format!("[blocks]\nfile = \"wall{n}.csv\"\n")).expect("write");
+    scene
+}
+
+#[test]
+fn the_number_of_user_blocks_is_bounded_and_the_bound_can_be_lifted() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // One block over the default: refused at once, with the way to lift the limit.
+    let big = wall(dir.path(), 10_001);
+    let out = voussoir().arg("analyze").arg(&big).assert().failure();
+    let e = stderr_of(&out);
+    assert!(
+        e.contains("(10001 blocks)")
+            && e.contains("more than the 10000 blocks a command takes by default")
+            && e.contains("--max-blocks 10001"),
+        "{e}"
+    );
+    // A small wall under a lowered limit, then lifted.
+    let small = wall(dir.path(), 25);
+    let out = voussoir()
+        .args(["analyze", "--max-blocks", "20"])
+        .arg(&small)
+        .assert()
+        .failure();
+    assert!(stderr_of(&out).contains("more than the 20 blocks a command takes;"));
+    voussoir()
+        .args(["analyze", "--max-blocks", "25"])
+        .arg(&small)
+        .assert()
+        .success();
+    let out = voussoir()
+        .args(["analyze", "--max-blocks", "100001"])
+        .arg(&small)
+        .assert()
+        .failure();
+    assert!(stderr_of(&out).contains("at most 100000"));
 }

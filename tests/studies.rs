@@ -396,3 +396,78 @@ fn a_study_run_twice_writes_the_same_bytes() {
     assert!(!header.contains("time_s"), "{header}");
     assert_eq!(csv.lines().count(), 1 + 9);
 }
+
+#[test]
+fn study_writes_only_where_it_is_told() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/studies/portal_courses.toml");
+    // No --out: refused by the command line, before anything is read or written.
+    let out = assert_cmd::Command::cargo_bin("voussoir")
+        .expect("binary")
+        .arg("study")
+        .arg(&file)
+        .assert()
+        .failure();
+    let e = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(e.contains("--out <DIR>"), "{e}");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let target = dir.path().join("figures");
+    assert_cmd::Command::cargo_bin("voussoir")
+        .expect("binary")
+        .arg("study")
+        .arg(&file)
+        .arg("--reduced")
+        .arg("--out")
+        .arg(&target)
+        .assert()
+        .success();
+    let mut names: Vec<String> = std::fs::read_dir(&target)
+        .expect("created")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["portal_courses.csv", "portal_courses.svg"]);
+}
+
+/// The committed figures are what the code computes today: every study run in full, its CSV
+/// read cell by cell against `docs/figures/<output>.csv` (statuses and hinges exactly,
+/// numbers to 1e-9 relative plus 1e-12, so round-off of another platform passes and a stale
+/// figure does not).
+#[test]
+fn the_committed_study_csvs_are_what_the_code_writes() {
+    let figures = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/figures");
+    for path in study_files() {
+        let study = Study::from_file(&path).expect("study");
+        let (rows, _) = run(&study);
+        let mut buf = Vec::new();
+        study.write_csv(&mut buf, &rows).expect("csv");
+        let committed = std::fs::read(figures.join(format!("{}.csv", study.output)))
+            .unwrap_or_else(|e| panic!("{}: {e}", study.output));
+        let read = |bytes: &[u8]| -> Vec<Vec<String>> {
+            csv::ReaderBuilder::new()
+                .has_headers(false)
+                .from_reader(bytes)
+                .records()
+                .map(|r| r.expect("row").iter().map(str::to_string).collect())
+                .collect()
+        };
+        let (now, then) = (read(&buf), read(&committed));
+        assert_eq!(now.len(), then.len(), "{}: rows", study.output);
+        assert_eq!(now[0], then[0], "{}: columns", study.output);
+        for (r, (a, b)) in now.iter().zip(&then).enumerate().skip(1) {
+            for (c, (x, y)) in a.iter().zip(b).enumerate() {
+                let same = match (x.parse::<f64>(), y.parse::<f64>()) {
+                    // `gap` is round-off (1e-15): an absolute floor of 1e-12.
+                    (Ok(x), Ok(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()) + 1e-12,
+                    _ => x == y,
+                };
+                assert!(
+                    same,
+                    "{} row {r} column {}: now {x}, committed {y} (regenerate: voussoir study {} --out docs/figures)",
+                    study.output,
+                    now[0][c],
+                    path.display()
+                );
+            }
+        }
+    }
+}

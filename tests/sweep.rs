@@ -208,3 +208,87 @@ fn csv_without_timings_leaves_out_the_wall_times_only() {
         .contains(",solve_time_s,lambda_dem,dem_time_s,"));
     assert!(!without.contains("_time_s"));
 }
+
+#[test]
+fn a_sweep_of_too_many_cases_is_refused_before_any_case_is_built() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    // Three lists of 2,000 values: 8e9 cases, refused at once (not allocated).
+    let variations = vec![
+        sweep::parse_variation("arch.thickness=0.1:0.2999:0.0001").expect("valid"),
+        sweep::parse_variation("arch.radius=2:3.999:0.001").expect("valid"),
+        sweep::parse_variation("material.unit_weight=1:2000:1").expect("valid"),
+    ];
+    assert!(variations.iter().all(|v| v.values.len() == 2000));
+    let e = sweep::Sweep::new(&base, variations).expect_err("too many cases");
+    let msg = e.to_string();
+    assert!(
+        msg.contains("arch.thickness, arch.radius, material.unit_weight")
+            && msg.contains("2000 x 2000 x 2000 values make 8000000000 cases")
+            && msg.contains(&format!("at most {}", sweep::MAX_CASES)),
+        "{msg}"
+    );
+    // A product beyond any integer is refused as well.
+    let big: Vec<sweep::Variation> = (0..8)
+        .map(|i| sweep::Variation {
+            key: format!("k{i}"),
+            values: vec![toml::Value::Integer(1); 100_000],
+        })
+        .collect();
+    let e = sweep::check_case_count(&big).expect_err("overflow");
+    assert!(e.to_string().contains("1.0e40 cases"), "{e}");
+    // A range of 2^70 values is refused, not wrapped to none.
+    let e = sweep::parse_variation("arch.voussoirs=1:1180591620717411303424:1")
+        .expect_err("too many values");
+    assert!(e.to_string().contains("gives 1.2e21 values"), "{e}");
+}
+
+#[test]
+fn swept_values_and_ratios_print_as_written() {
+    let v = sweep::parse_variation("arch.radius=1.8:1.9:0.025").expect("valid");
+    let texts: Vec<String> = v.values.iter().map(|x| x.to_string()).collect();
+    assert_eq!(texts, ["1.8", "1.825", "1.85", "1.875", "1.9"]);
+    let v = sweep::parse_variation("t/R=0.05:0.2:0.01").expect("valid");
+    assert!(
+        v.values.iter().all(|x| x.to_string().len() <= 4),
+        "{:?}",
+        v.values
+    );
+    // A ratio sets its scene key without noise: t/R = 0.1825 at R = 10 is t = 1.825.
+    let base = Scene::from_toml_str(
+        "[arch]\nshape = \"circular\"\nradius = 10.0\nthickness = 1.0\nvoussoirs = 16\n",
+        "t",
+    )
+    .expect("valid");
+    let s = sweep::apply(&base, &[("t/R", &toml::Value::Float(0.1825))]).expect("valid");
+    assert_eq!(s.arch.as_ref().map(|a| a.thickness), Some(1.825));
+    // The CSV: values as written, ratios tidy (a semicircle's rise/span is 0.5), results
+    // with every digit.
+    let plan = sweep::Sweep::new(
+        &base,
+        vec![sweep::parse_variation("arch.radius=1.8:1.9:0.025").expect("valid")],
+    )
+    .expect("valid");
+    let rows = plan.run(&voussoir::analysis::Options::default(), false, &|| {});
+    let mut buf = Vec::new();
+    sweep::write_csv(&mut buf, plan.variations(), &rows).expect("csv");
+    let csv = String::from_utf8(buf).expect("utf-8");
+    assert!(csv.contains("\n1.825,"), "{csv}");
+    let mut reader = csv::Reader::from_reader(csv.as_bytes());
+    let header = reader.headers().expect("header").clone();
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    for rec in reader.records() {
+        let rec = rec.expect("row");
+        assert_eq!(&rec[col("rise/span")], "0.5");
+        // The keys and ratios derived from the inputs carry no round-off digits.
+        for name in ["arch.radius", "t/R", "t/span"] {
+            assert!(rec[col(name)].len() <= 14, "{name} = {}", &rec[col(name)]);
+        }
+        let lower: f64 = rec[col("lambda_lower")].parse().expect("number");
+        let r = rows
+            .iter()
+            .find(|r| r.values[0].to_string() == rec[0])
+            .expect("row");
+        // Full precision: the CSV reads back as the very number.
+        assert_eq!(Some(lower), r.lambda_lower);
+    }
+}

@@ -7,6 +7,9 @@
 //! the library solves. The pure-Python half (`python/voussoir/__init__.py`) turns the JSON
 //! reports into result objects with numpy arrays and sweeps into pandas frames.
 
+// No unsafe code of ours: PyO3's macros expand to code that passes this lint.
+#![forbid(unsafe_code)]
+
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;

@@ -139,10 +139,13 @@ pub fn detect(
             match contact(&polys[a], &polys[b], tol) {
                 Contact::Apart => {}
                 Contact::Overlap(at, depth) => {
-                    return Err(BlockError::Structure(format!(
-                        "blocks {a} and {b} overlap (by {depth:.3e} m, around ({:.6}, {:.6})); blocks may touch but not overlap",
-                        at.x, at.y
-                    )))
+                    return Err(BlockError::Pair {
+                        blocks: [a, b],
+                        message: format!(
+                            "overlap (by {depth:.3e} m, around ({:.6}, {:.6})); blocks may touch but not overlap",
+                            at.x, at.y
+                        ),
+                    })
                 }
                 Contact::Point(at) => points.push((a, Some(b), at)),
                 Contact::Joint(p, q) => found.push(Found {

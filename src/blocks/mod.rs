@@ -22,6 +22,7 @@ pub mod joints;
 
 pub use joints::{detect, Detected, Topology};
 
+use crate::error::excerpt;
 use crate::geometry::{cross, Vec2};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -104,10 +105,40 @@ pub enum BlockError {
     /// A problem of one block's outline.
     #[error("block {block}: {message}")]
     Block { block: usize, message: String },
+    /// A problem between two blocks (they overlap).
+    #[error("blocks {} and {} {message}", .blocks[0], .blocks[1])]
+    Pair { blocks: [usize; 2], message: String },
     /// A problem between blocks, or of the structure as a whole.
     #[error("{0}")]
     Structure(String),
 }
+
+impl BlockError {
+    /// The blocks the error is about (their indices in the source, from 0).
+    pub fn blocks(&self) -> Vec<usize> {
+        match self {
+            BlockError::Block { block, .. } => vec![*block],
+            BlockError::Pair { blocks, .. } => blocks.to_vec(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Whether the message already names the file it is about.
+    pub fn names_its_file(&self) -> bool {
+        matches!(
+            self,
+            BlockError::Io { .. }
+                | BlockError::TooLarge { .. }
+                | BlockError::Format(_)
+                | BlockError::Empty(_)
+        )
+    }
+}
+
+/// Where each block is in its source, in words a user can search the file with: `lines 7-10,
+/// label `b`` in a CSV file, `polygons[3]` in JSON (and inline), `handle 2A, layer `WALLS``
+/// in a DXF drawing. One entry per block, in source order.
+pub type Places = Vec<String>;
 
 /// The outlines of the blocks, in metres, counter-clockwise, in source order.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,6 +171,15 @@ impl Polygons {
 /// Read the blocks of a file, its format told by its extension; `layer` selects the DXF
 /// layer (ignored by the other formats). Coordinates are multiplied by `units.scale()`.
 pub fn read_file(path: &Path, units: Units, layer: Option<&str>) -> Result<Polygons, BlockError> {
+    read_file_with_places(path, units, layer).map(|(p, _)| p)
+}
+
+/// [`read_file`], with where each block is in the file ([`Places`]), for messages.
+pub fn read_file_with_places(
+    path: &Path,
+    units: Units,
+    layer: Option<&str>,
+) -> Result<(Polygons, Places), BlockError> {
     let format = Format::of_path(path).ok_or_else(|| {
         BlockError::Format(format!(
             "{}: unknown block file type (the extension must be .json, .csv or .dxf)",
@@ -170,12 +210,19 @@ pub fn read_file(path: &Path, units: Units, layer: Option<&str>) -> Result<Polyg
         });
     }
     let name = path.display().to_string();
-    let raw = match format {
-        Format::Json => read_json(&bytes, &name)?,
-        Format::Csv => read_csv(&bytes, &name)?,
-        Format::Dxf => read_dxf(&bytes, &name, layer)?,
+    // A UTF-8 byte-order mark, which some editors and spreadsheets write, is no part of the
+    // data, in any format.
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
+    let (raw, places) = match format {
+        Format::Json => {
+            let raw = read_json(bytes, &name)?;
+            let places = (0..raw.len()).map(|i| format!("polygons[{i}]")).collect();
+            (raw, places)
+        }
+        Format::Csv => read_csv(bytes, &name)?,
+        Format::Dxf => read_dxf(bytes, &name, layer)?,
     };
-    clean(raw, units, &name)
+    Ok((clean(raw, units, &name)?, places))
 }
 
 /// Blocks given inline (`polygons = [[[x, y], ...], ...]`), in `units`.
@@ -216,7 +263,10 @@ fn read_json(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError>
     Ok(file.polygons)
 }
 
-fn read_csv(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> {
+/// Outlines as read (in the source's units) and where each is in its source.
+type Outlines = (Vec<Vec<[f64; 2]>>, Places);
+
+fn read_csv(bytes: &[u8], name: &str) -> Result<Outlines, BlockError> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(csv::Trim::All)
@@ -225,14 +275,21 @@ fn read_csv(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> 
         .from_reader(bytes);
     let mut blocks: Vec<Vec<[f64; 2]>> = Vec::new();
     let mut labels: Vec<String> = Vec::new();
+    // The first and last line of each block.
+    let mut lines: Vec<(u64, u64)> = Vec::new();
     let mut vertices = 0usize;
     for (row, record) in reader.records().enumerate() {
         let record =
             record.map_err(|e| BlockError::Format(format!("{name}: row {}: {e}", row + 1)))?;
+        // Rows are counted without comments and blank lines; lines are the file's own.
+        let line = record
+            .position()
+            .map_or(row as u64 + 1, |p| first_data_line(bytes, p));
+        let at = |row: usize| format!("row {} (line {line})", row + 1);
         if record.len() != 3 {
             return Err(BlockError::Format(format!(
-                "{name}: row {}: {} fields; each row is block,x,y",
-                row + 1,
+                "{name}: {}: {} fields; each row is block,x,y",
+                at(row),
                 record.len()
             )));
         }
@@ -242,10 +299,10 @@ fn read_csv(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> 
             _ if row == 0 => continue, // a header row
             _ => {
                 return Err(BlockError::Format(format!(
-                    "{name}: row {}: `{},{}` are not two numbers x,y",
-                    row + 1,
-                    &record[1],
-                    &record[2]
+                    "{name}: {}: `{},{}` are not two numbers x,y",
+                    at(row),
+                    excerpt(&record[1]),
+                    excerpt(&record[2])
                 )))
             }
         };
@@ -253,30 +310,56 @@ fn read_csv(bytes: &[u8], name: &str) -> Result<Vec<Vec<[f64; 2]>>, BlockError> 
         if labels.last().map(String::as_str) != Some(label) {
             if labels.iter().any(|l| l == label) {
                 return Err(BlockError::Format(format!(
-                    "{name}: row {}: block `{label}` appears again after other blocks; a block's vertices must be on consecutive rows",
-                    row + 1
+                    "{name}: {}: block `{}` appears again after other blocks; a block's vertices must be on consecutive rows",
+                    at(row),
+                    excerpt(label)
                 )));
             }
             labels.push(label.to_string());
             blocks.push(Vec::new());
+            lines.push((line, line));
         }
         vertices += 1;
         count_limits(blocks.len(), vertices)?;
         if let Some(b) = blocks.last_mut() {
             b.push([x, y]);
         }
+        if let Some(l) = lines.last_mut() {
+            l.1 = line;
+        }
     }
-    Ok(blocks)
+    let places = labels
+        .iter()
+        .zip(&lines)
+        .map(|(label, (first, last))| format!("lines {first}-{last}, label `{}`", excerpt(label)))
+        .collect();
+    Ok((blocks, places))
 }
 
-fn read_dxf(
-    bytes: &[u8],
-    name: &str,
-    layer: Option<&str>,
-) -> Result<Vec<Vec<[f64; 2]>>, BlockError> {
+/// The line a CSV record starts on: the reader's position may be that of the comment or
+/// blank lines it skipped before the record, so those are stepped over here.
+fn first_data_line(bytes: &[u8], at: &csv::Position) -> u64 {
+    let mut line = at.line();
+    let mut rest = bytes.get(at.byte() as usize..).unwrap_or_default();
+    loop {
+        let end = rest.iter().position(|&b| b == b'\n');
+        let text = &rest[..end.unwrap_or(rest.len())];
+        let trimmed = text.trim_ascii();
+        match end {
+            Some(e) if trimmed.is_empty() || trimmed.starts_with(b"#") => {
+                rest = &rest[e + 1..];
+                line += 1;
+            }
+            _ => return line,
+        }
+    }
+}
+
+fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, BlockError> {
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
         .map_err(|e| BlockError::Format(format!("{name}: not a readable DXF file: {e}")))?;
     let mut blocks = Vec::new();
+    let mut places = Vec::new();
     let mut vertices = 0usize;
     let mut other_layers = std::collections::BTreeSet::new();
     for entity in drawing.entities() {
@@ -306,7 +389,7 @@ fn read_dxf(
             return Err(BlockError::Block {
                 block: index,
                 message: format!(
-                    "{name}: the polyline{at} (handle {:X}, layer `{}`) is open; each block must be a closed polyline",
+                    "the polyline{at} (handle {:X}, layer `{}`) is open; each block must be a closed polyline",
                     entity.common.handle.0, entity.common.layer
                 ),
             });
@@ -315,7 +398,7 @@ fn read_dxf(
             return Err(BlockError::Block {
                 block: index,
                 message: format!(
-                    "{name}: the polyline{at} (handle {:X}) has arc segments (bulges); draw blocks with straight edges",
+                    "the polyline{at} (handle {:X}) has arc segments (bulges); draw blocks with straight edges",
                     entity.common.handle.0
                 ),
             });
@@ -323,6 +406,10 @@ fn read_dxf(
         vertices += points.len();
         count_limits(index + 1, vertices)?;
         blocks.push(points);
+        places.push(format!(
+            "handle {:X}, layer `{}`",
+            entity.common.handle.0, entity.common.layer
+        ));
     }
     if blocks.is_empty() {
         let hint = match (layer, other_layers.is_empty()) {
@@ -337,7 +424,7 @@ fn read_dxf(
             "{name} has no closed LWPOLYLINE or POLYLINE entity{hint}"
         )));
     }
-    Ok(blocks)
+    Ok((blocks, places))
 }
 
 /// Check the counts and numbers, scale to metres, drop repeated and straight-angle vertices,
@@ -485,9 +572,10 @@ mod tests {
     #[test]
     fn csv_groups_consecutive_rows_and_skips_a_header() {
         let text = b"block,x,y\na,0,0\na,1,0\na,1,1\nb,0,1\nb,1,1\nb,1,2\n";
-        let raw = read_csv(text, "t.csv").unwrap();
+        let (raw, places) = read_csv(text, "t.csv").unwrap();
         assert_eq!(raw.len(), 2);
         assert_eq!(raw[1][2], [1.0, 2.0]);
+        assert_eq!(places, ["lines 2-4, label `a`", "lines 5-7, label `b`"]);
         let again = read_csv(b"a,0,0\nb,1,0\na,1,1\n", "t.csv").unwrap_err();
         assert!(again.to_string().contains("appears again"), "{again}");
     }

@@ -1,6 +1,6 @@
 //! `voussoir analyze`: the collapse multiplier of a scene by both bounds.
 
-use super::{json, write_atomically, Dir, SceneArgs};
+use super::{json, write_atomically, Dir, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::Error;
 use voussoir::lp::StaticSettings;
@@ -42,7 +42,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
-    super::check_output_paths([args.thrust_csv.as_ref(), args.svg.as_ref()])?;
+    args.scene
+        .outputs(&scene)
+        .output("--thrust-csv", args.thrust_csv.as_deref(), Format::Csv)
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .check()?;
     // The range of --tolerance is the library's to check (StaticSettings::validate), so
     // Python and the page's server refuse the same values.
     let tolerance = args.tolerance;

@@ -1,6 +1,6 @@
 //! `voussoir convergence`: speed against accuracy for one scene.
 
-use super::{check_output_paths, json, progress_spinner, write_atomically, write_chart, SceneArgs};
+use super::{json, progress_spinner, write_atomically, write_chart, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
@@ -31,7 +31,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
-    check_output_paths([args.csv.as_ref(), args.svg.as_ref()])?;
+    args.scene
+        .outputs(&scene)
+        .output("--csv", args.csv.as_deref(), Format::Csv)
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .check()?;
     let settings = voussoir::convergence::ConvergenceSettings {
         max_voussoirs: args.max_voussoirs,
         kinematic_max_joints: args.kinematic_max_joints,

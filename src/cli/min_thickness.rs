@@ -1,6 +1,6 @@
 //! `voussoir min-thickness`: the thinnest ring that stands under its permanent loads.
 
-use super::{json, write_svg, SceneArgs};
+use super::{json, write_svg, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::Error;
 use voussoir::lp::StaticSettings;
@@ -33,7 +33,10 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
-    super::check_output_paths([args.svg.as_ref()])?;
+    args.scene
+        .outputs(&scene)
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .check()?;
     let model = voussoir::scene::build(&scene)?;
     let options = analysis::Options {
         static_settings: StaticSettings::default(),

@@ -1,22 +1,24 @@
 //! The commands of the `voussoir` binary, one file each: every command parses its arguments,
 //! calls the library's analysis layer ([`voussoir::analysis`]) and returns what to print.
-//! This module holds what they share: reading the scene, checking output paths before any
-//! work, writing output files whole or not at all, and the progress bar.
+//! This module holds what they share: reading the scene, the output files ([`outputs`]:
+//! checked before any work, written whole or not at all), and the progress bar.
 
 pub mod analyze;
 pub mod assess;
 pub mod convergence;
 pub mod dem;
 pub mod min_thickness;
+pub mod outputs;
 #[cfg(feature = "serve")]
 pub mod serve;
 pub mod study;
 pub mod sweep;
 
+pub use outputs::{check_output_paths, write_atomically, write_text, Format, Outputs};
 use std::path::{Path, PathBuf};
 use voussoir::assembly::Assembly;
-use voussoir::error::Error;
-use voussoir::scene::Scene;
+use voussoir::error::{Error, SceneError};
+use voussoir::scene::{BlockSource, Scene};
 use voussoir::thrustline::svg::{self, Drawing};
 
 /// Direction of the horizontal acceleration, as the command line names it.
@@ -61,104 +63,59 @@ pub struct SceneArgs {
     /// Override a scene value, e.g. --set arch.thickness=0.2 (repeatable)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Most user blocks ([blocks]) a scene may have; up to 100000 (larger structures take
+    /// minutes and gigabytes: a 30,000-block wall took 214 s and 0.6 GB to analyse)
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_BLOCKS)]
+    pub max_blocks: usize,
 }
+
+/// How many user blocks a command takes unless `--max-blocks` says more. Analysing a wall of
+/// blocks (the full conic program) grows faster than the number of blocks: 3,000 blocks took
+/// 3.8 s, 10,000 took 33 s and 30,000 took 214 s (0.6 GB), on two busy cores
+/// (docs/geometry.md). The readers' own bound, [`voussoir::blocks::MAX_BLOCKS`], stays the
+/// ceiling.
+pub const DEFAULT_MAX_BLOCKS: usize = 10_000;
 
 impl SceneArgs {
     /// Read the scene and apply the overrides, validating once (so an override can mend the
     /// file).
     pub fn load(&self) -> Result<Scene, Error> {
-        Ok(Scene::from_file_with_overrides(&self.scene, &self.set)?)
-    }
-}
-
-/// The temporary sibling a file is written to before it is renamed into place.
-fn temp_sibling(path: &Path) -> PathBuf {
-    path.with_extension("voussoir-tmp")
-}
-
-/// Check that `path` can be written, before any work is done (so an unwritable output is
-/// reported at once, not after minutes of solving): it is not a directory, its directory
-/// exists, and the temporary sibling [`write_atomically`] writes first can be created there
-/// (it is created and removed again). Nothing else is touched.
-pub fn check_output_path(path: &Path) -> Result<(), Error> {
-    let fail = |message: String| Error::Output {
-        path: path.to_path_buf(),
-        message,
-    };
-    if path.as_os_str().is_empty() {
-        return Err(fail("empty file name".into()));
-    }
-    if path.is_dir() {
-        return Err(fail("it is a directory; give a file name".into()));
-    }
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        return Err(fail(format!(
-            "the directory {} does not exist",
-            dir.display()
-        )));
-    }
-    let tmp = temp_sibling(path);
-    match std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&tmp)
-    {
-        Ok(file) => {
-            drop(file);
-            std::fs::remove_file(&tmp).map_err(|e| fail(e.to_string()))
+        let limit = self.max_blocks;
+        if limit > voussoir::blocks::MAX_BLOCKS {
+            return Err(SceneError::Usage(format!(
+                "--max-blocks {limit}: at most {} (voussoir::blocks::MAX_BLOCKS)",
+                voussoir::blocks::MAX_BLOCKS
+            ))
+            .into());
         }
-        // A leftover of an interrupted run: writable is all we need to know.
-        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => std::fs::OpenOptions::new()
-            .write(true)
-            .open(&tmp)
-            .map(drop)
-            .map_err(|e| fail(e.to_string())),
-        Err(e) => Err(fail(e.to_string())),
-    }
-}
-
-/// [`check_output_path`] for each path given.
-pub fn check_output_paths<'a>(
-    paths: impl IntoIterator<Item = Option<&'a PathBuf>>,
-) -> Result<(), Error> {
-    paths
-        .into_iter()
-        .flatten()
-        .try_for_each(|p| check_output_path(p))
-}
-
-/// Write a file whole or not at all: to a temporary sibling, then rename.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut Vec<u8>) -> Result<(), String>,
-) -> Result<(), Error> {
-    let mut buf = Vec::new();
-    write(&mut buf).map_err(|message| Error::Output {
-        path: path.to_path_buf(),
-        message,
-    })?;
-    let tmp = temp_sibling(path);
-    std::fs::write(&tmp, &buf)
-        .and_then(|_| std::fs::rename(&tmp, path))
-        .map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            Error::Output {
-                path: path.to_path_buf(),
-                message: e.to_string(),
+        let scene = Scene::from_file_with_overrides(&self.scene, &self.set)?;
+        if let Some(b) = &scene.blocks {
+            let count = b.polygons.len();
+            if count > limit {
+                return Err(SceneError::OutOfRange {
+                    origin: scene.origin.clone(),
+                    key: match b.source {
+                        BlockSource::File { .. } => "blocks.file".into(),
+                        BlockSource::Inline => "blocks.polygons".into(),
+                    },
+                    value: format!("\"{}\" ({count} blocks)", b.source_words()),
+                    allowed: format!(
+                        "more than the {limit} blocks a command takes{}; --max-blocks {count} lifts the limit (up to {}), at the cost of minutes and gigabytes (docs/geometry.md)",
+                        if limit == DEFAULT_MAX_BLOCKS { " by default" } else { "" },
+                        voussoir::blocks::MAX_BLOCKS
+                    ),
+                }
+                .into());
             }
-        })
-}
+        }
+        Ok(scene)
+    }
 
-/// Write text to a file whole or not at all.
-pub fn write_text(path: &Path, text: &str) -> Result<(), Error> {
-    write_atomically(path, |b| {
-        b.extend_from_slice(text.as_bytes());
-        Ok(())
-    })
+    /// The command's files, starting with the inputs of `scene` (the scene file and its
+    /// blocks file), for the command to add its outputs to and [`Outputs::check`].
+    pub fn outputs(&self, scene: &Scene) -> Outputs {
+        Outputs::new().scene(&self.scene, scene)
+    }
 }
 
 /// Draw a chart to an SVG file.
@@ -235,16 +192,5 @@ mod tests {
         bar.set_message("n = 64");
         assert_eq!(bar.message(), "n = 64");
         assert_eq!(bar.prefix(), "convergence");
-    }
-
-    #[test]
-    fn output_paths_are_checked_without_leaving_files() {
-        let dir = tempfile::tempdir().expect("tempdir");
-        let ok = dir.path().join("a.csv");
-        assert!(check_output_path(&ok).is_ok());
-        assert!(std::fs::read_dir(dir.path()).expect("dir").next().is_none());
-        assert!(check_output_path(&dir.path().join("missing/a.csv")).is_err());
-        assert!(check_output_path(dir.path()).is_err());
-        assert!(check_output_paths([Some(&ok), None]).is_ok());
     }
 }

@@ -1,15 +1,16 @@
 //! `voussoir study`: a parametric study file (data/studies/*.toml) to a CSV and a chart.
 
-use super::{check_output_path, progress_bar, write_atomically, write_chart};
+use super::{progress_bar, write_atomically, write_chart, Format, Outputs};
 use voussoir::error::Error;
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Study file (TOML: title, output, vary, x, series, y, baseline, continuous, [scene.*])
     study: std::path::PathBuf,
-    /// Directory for the CSV and SVG (created if missing). The CSV has no wall-time column,
-    /// so regenerating a committed figure with the same code leaves it unchanged
-    #[arg(long, value_name = "DIR", default_value = "docs/figures")]
+    /// Directory for OUTPUT.csv and OUTPUT.svg (created if missing); required, so that no run
+    /// writes where it was not asked to (`--out docs/figures` regenerates the committed
+    /// figures). The CSV has no wall-time column, so the same code writes the same bytes
+    #[arg(long, value_name = "DIR", required = true)]
     out: std::path::PathBuf,
     /// Thin every range to 3 values (a quick check of the study)
     #[arg(long)]
@@ -23,15 +24,25 @@ pub fn run(args: Args) -> Result<String, Error> {
     }
     let out = &args.out;
     // The outputs are checked before anything is solved.
+    if out.exists() && !out.is_dir() {
+        return Err(Error::Output {
+            path: out.clone(),
+            message: "--out takes a directory, and this is a file".into(),
+        });
+    }
     std::fs::create_dir_all(out).map_err(|e| Error::Output {
         path: out.clone(),
         message: e.to_string(),
     })?;
     let csv_path = out.join(format!("{}.csv", st.output));
     let svg_path = out.join(format!("{}.svg", st.output));
-    check_output_path(&csv_path)?;
-    check_output_path(&svg_path)?;
-    let total: usize = st.variations.iter().map(|v| v.values.len()).product();
+    Outputs::new()
+        .input(&args.study, "the study file")
+        .read_by(&st.scene)
+        .output("the study's CSV", Some(&csv_path), Format::Csv)
+        .output("the study's chart", Some(&svg_path), Format::Svg)
+        .check()?;
+    let total = st.cases();
     let bar = progress_bar(total as u64, "study");
     let (rows, chart) = st.run(&|| bar.inc(1))?;
     bar.finish_and_clear();

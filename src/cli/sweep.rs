@@ -1,6 +1,6 @@
 //! `voussoir sweep`: the cartesian product of varied scene keys, solved in parallel.
 
-use super::{check_output_paths, progress_bar, write_atomically, write_chart, SceneArgs};
+use super::{progress_bar, write_atomically, write_chart, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{Error, SceneError};
 use voussoir::report;
@@ -121,7 +121,11 @@ pub fn run(args: Args) -> Result<String, Error> {
     if let Some(x) = &x {
         sweep::check_chart(variations, cases, x, args.series.as_deref())?;
     }
-    check_output_paths([args.csv.as_ref(), args.svg.as_ref()])?;
+    args.scene
+        .outputs(&scene)
+        .output("--csv", args.csv.as_deref(), Format::Csv)
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .check()?;
     let bar = progress_bar(cases.len() as u64, "sweep");
     let options = analysis::Options {
         continuous: args.continuous,

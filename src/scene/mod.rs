@@ -7,6 +7,7 @@
 
 mod build;
 mod piers;
+pub mod units;
 mod user_blocks;
 pub use build::build;
 pub use piers::{Pier, PierProfile, Piers};
@@ -551,7 +552,7 @@ impl<'a> Section<'a> {
             Some(Value::String(s)) if s.trim().eq_ignore_ascii_case("inf") => {
                 Ok(Some(f64::INFINITY))
             }
-            Some(v) => Err(self.wrong_type(key, v, "a number")),
+            Some(v) => Err(self.wrong_type(key, v, &units::expected(key))),
         }
     }
 
@@ -594,27 +595,26 @@ impl<'a> Section<'a> {
         what: &str,
     ) -> Result<usize, SceneError> {
         self.used.insert(key);
-        let v = match (self.table.get(key), default) {
-            (Some(Value::Integer(i)), _) => *i,
-            (Some(v @ Value::Float(x)), _) => {
-                if x.fract() == 0.0 && x.is_finite() {
-                    *x as i64
+        let allowed = format!("must be a whole number from {min} to {MAX_VOUSSOIRS}");
+        let in_range = |v: f64| (min as f64..=MAX_VOUSSOIRS as f64).contains(&v);
+        match (self.table.get(key), default) {
+            (Some(Value::Integer(i)), _) => match usize::try_from(*i) {
+                Ok(n) if in_range(n as f64) => Ok(n),
+                _ => Err(self.out_of_range(key, i, &allowed)),
+            },
+            // A whole number written as a float (`16.0`, `1e21`): checked as the float it is,
+            // so a huge one is echoed as written, not as the largest integer.
+            (Some(Value::Float(x)), _) if x.fract() == 0.0 && x.is_finite() => {
+                if in_range(*x) {
+                    Ok(*x as usize)
                 } else {
-                    return Err(self.wrong_type(key, v, "a whole number"));
+                    Err(self.out_of_range(key, short(*x), &allowed))
                 }
             }
-            (Some(v), _) => return Err(self.wrong_type(key, v, "a whole number")),
-            (None, Some(d)) => return Ok(d),
-            (None, None) => return Err(self.missing(key, what)),
-        };
-        if v < min as i64 || v > MAX_VOUSSOIRS as i64 {
-            return Err(self.out_of_range(
-                key,
-                v,
-                &format!("must be a whole number from {min} to {MAX_VOUSSOIRS}"),
-            ));
+            (Some(v), _) => Err(self.wrong_type(key, v, "a whole number")),
+            (None, Some(d)) => Ok(d),
+            (None, None) => Err(self.missing(key, what)),
         }
-        Ok(v as usize)
     }
 
     /// A finite number, required.
@@ -735,15 +735,51 @@ fn overridden<S: AsRef<str>>(
     Ok((table, sets))
 }
 
-fn parse_toml(text: &str, origin: &str) -> Result<Table, SceneError> {
+/// Parse TOML text (a scene or a study file). A UTF-8 byte-order mark, which some editors
+/// write, is skipped as TOML allows. A syntax error says the line and column and quotes the
+/// line there, cut around the column when it is long ([`crate::error::excerpt_around`]): a
+/// malformed 10 MB line gives a message of a few lines, not of 10 MB.
+pub fn parse_toml(text: &str, origin: &str) -> Result<Table, SceneError> {
+    let text = strip_bom(text);
     text.parse()
-        .map_err(|e: toml::de::Error| SceneError::Syntax {
-            origin: origin.to_string(),
-            message: e.to_string().trim().replace('\n', " "),
-        })
+        .map_err(|e: toml::de::Error| syntax_error(text, origin, &e))
 }
 
-fn parse(table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+/// `text` without a leading UTF-8 byte-order mark (U+FEFF).
+pub fn strip_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// The message of a TOML syntax error: line, column, what is wrong, and the line quoted.
+fn syntax_error(text: &str, origin: &str, e: &toml::de::Error) -> SceneError {
+    let what = e.message().trim().replace('\n', " ");
+    let message = match e.span() {
+        Some(span) => {
+            let mut at = span.start.min(text.len());
+            while !text.is_char_boundary(at) {
+                at -= 1;
+            }
+            let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+            let line_end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+            let line = text[line_start..line_end].trim_end_matches('\r');
+            let number = text[..line_start].matches('\n').count() + 1;
+            let column = text[line_start..at].chars().count() + 1;
+            format!(
+                "line {number}, column {column}: {what}: `{}`",
+                crate::error::excerpt_around(line, at - line_start)
+            )
+        }
+        None => crate::error::excerpt(&what),
+    };
+    SceneError::Syntax {
+        origin: origin.to_string(),
+        message,
+    }
+}
+
+fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+    // "150 mm", "5 MPa": to SI numbers before anything reads them.
+    units::to_si(&mut table);
     for key in table.keys() {
         if !SECTIONS.contains(&key.as_str()) {
             return Err(SceneError::UnknownKey {

@@ -121,46 +121,51 @@ pub(super) fn parse_blocks(
     let file = s.table.get("file").is_some();
     let inline = s.table.get("polygons").is_some();
     s.used.insert("polygons");
-    let (source, polygons) =
-        match (file, inline) {
-            (true, true) => {
-                return Err(s.out_of_range(
-                    "polygons",
-                    "[...]",
-                    "give either `file` or `polygons`, not both",
-                ))
-            }
-            (false, false) => return Err(s.missing(
+    let (source, polygons, places) = match (file, inline) {
+        (true, true) => {
+            return Err(s.out_of_range(
+                "polygons",
+                "[...]",
+                "give either `file` or `polygons`, not both",
+            ))
+        }
+        (false, false) => {
+            return Err(s.missing(
                 "file",
                 "a block file (.json, .csv or .dxf, relative to the scene) or inline `polygons`",
-            )),
-            (true, false) => {
-                let written = s.string("file", None)?;
-                let path = match base {
-                    Some(b) if Path::new(&written).is_relative() => b.join(&written),
-                    _ => PathBuf::from(&written),
-                };
-                if layer.is_some() && blocks::Format::of_path(&path) != Some(blocks::Format::Dxf) {
-                    return Err(s.out_of_range(
-                        "layer",
-                        format!("\"{}\"", layer.as_deref().unwrap_or_default()),
-                        "only a .dxf block file has layers",
-                    ));
-                }
-                let polys = blocks::read_file(&path, units, layer.as_deref())
-                    .map_err(|e| blocks_error(&s, "file", &e))?;
-                (BlockSource::File { written, path }, polys)
+            ))
+        }
+        (true, false) => {
+            let written = s.string("file", None)?;
+            let path = match base {
+                Some(b) if Path::new(&written).is_relative() => b.join(&written),
+                _ => PathBuf::from(&written),
+            };
+            if layer.is_some() && blocks::Format::of_path(&path) != Some(blocks::Format::Dxf) {
+                return Err(s.out_of_range(
+                    "layer",
+                    format!("\"{}\"", layer.as_deref().unwrap_or_default()),
+                    "only a .dxf block file has layers",
+                ));
             }
-            (false, true) => {
-                s.used.insert("file");
-                let raw = inline_polygons(&s)?;
-                let polys = blocks::from_vertices(raw, units)
-                    .map_err(|e| blocks_error(&s, "polygons", &e))?;
-                (BlockSource::Inline, polys)
-            }
-        };
+            let (polys, places) = blocks::read_file_with_places(&path, units, layer.as_deref())
+                .map_err(|e| blocks_error(&s, "file", Some(&path), &[], &e))?;
+            (BlockSource::File { written, path }, polys, places)
+        }
+        (false, true) => {
+            s.used.insert("file");
+            let raw = inline_polygons(&s)?;
+            let places: Vec<String> = (0..raw.len()).map(|i| format!("polygons[{i}]")).collect();
+            let polys = blocks::from_vertices(raw, units)
+                .map_err(|e| blocks_error(&s, "polygons", None, &places, &e))?;
+            (BlockSource::Inline, polys, places)
+        }
+    };
     s.finish("")?;
-    let key = if file { "file" } else { "polygons" };
+    let (key, path) = match &source {
+        BlockSource::File { path, .. } => ("file", Some(path.as_path())),
+        BlockSource::Inline => ("polygons", None),
+    };
     let detected = blocks::detect(
         &polygons,
         ground_y,
@@ -168,7 +173,7 @@ pub(super) fn parse_blocks(
         material.unit_weight * material.depth,
         material.friction,
     )
-    .map_err(|e| blocks_error(&s, key, &e))?;
+    .map_err(|e| blocks_error(&s, key, path, &places, &e))?;
     Ok(BlocksSpec {
         source,
         units,
@@ -180,11 +185,34 @@ pub(super) fn parse_blocks(
     })
 }
 
-fn blocks_error(s: &Section, key: &str, e: &BlockError) -> SceneError {
+/// A block source's error as the scene's: it names the blocks file (unless the message does
+/// already) and where in its source each block it is about lies ([`blocks::Places`]), e.g.
+/// `walls.csv: block 3: it is not convex ... (block 3 is lines 14-17, label `b3`)`.
+fn blocks_error(
+    s: &Section,
+    key: &str,
+    path: Option<&Path>,
+    places: &[String],
+    e: &BlockError,
+) -> SceneError {
+    let file = match path {
+        Some(p) if !e.names_its_file() => format!("{}: ", p.display()),
+        _ => String::new(),
+    };
+    let located: Vec<String> = e
+        .blocks()
+        .into_iter()
+        .filter_map(|b| places.get(b).map(|place| format!("block {b} is {place}")))
+        .collect();
+    let place = if located.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", located.join("; "))
+    };
     SceneError::BadBlocks {
         origin: s.origin.to_string(),
         key: s.key(key),
-        message: e.to_string(),
+        message: format!("{file}{e}{place}"),
     }
 }
 

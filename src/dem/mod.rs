@@ -69,10 +69,10 @@ pub enum DemError {
     #[error("cannot write snapshots to {path}: {message}")]
     Output { path: PathBuf, message: String },
     /// A `[dem]` knob (or a builder setting) outside its range.
-    #[error("{key} = {value:e}: {allowed}")]
+    #[error("{key} = {value}: {allowed}")]
     Knob {
         key: String,
-        value: f64,
+        value: String,
         allowed: String,
     },
     /// A run would plan more time steps than the limit.
@@ -231,13 +231,13 @@ fn check_params(params: &IntegrationParameters, model: &Model) -> Result<(), Dem
         .check()
         .map_err(|(key, value, allowed)| DemError::Knob {
             key,
-            value,
+            value: params::show_value(value),
             allowed: allowed.to_string(),
         })?;
     if let Some(g) = params.initial_guess.filter(|g| *g > params.max_lambda) {
         return Err(DemError::Knob {
             key: "dem.initial_guess".to_string(),
-            value: g,
+            value: params::show_value(g),
             allowed: format!(
                 "must be at most dem.max_lambda = {} (the search never looks above it)",
                 params.max_lambda
@@ -248,7 +248,7 @@ fn check_params(params: &IntegrationParameters, model: &Model) -> Result<(), Dem
     if params.contact_tolerance > 0.1 * joint {
         return Err(DemError::Knob {
             key: "dem.contact_tolerance".to_string(),
-            value: params.contact_tolerance,
+            value: params::show_value(params.contact_tolerance),
             allowed: format!(
                 "must be at most 0.1 of the shortest joint ({joint:.4e} m; the default is 1e-3 of it)"
             ),

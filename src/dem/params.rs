@@ -42,6 +42,16 @@ pub const DEFAULT_MAX_STEPS: u64 = 50_000_000;
 /// 1e8 to 1e11) and their products overflow nothing but make the time step vanish.
 pub const MAX_STIFFNESS: f64 = 1e16;
 
+/// A knob's value as an error shows it: plainly, or in exponent form when very large or
+/// small (so 1e308 is not echoed as 309 digits).
+pub fn show_value(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
 /// The range of each numeric `[dem]` knob, as a test of the value and the words of the error.
 /// The same ranges hold for the `[dem]` table and for the builder setters
 /// ([`IntegrationParameters::check`]), so a value that would overflow a contact force (1e308)
@@ -275,7 +285,7 @@ impl IntegrationParameters {
         let out_of_range = |v: f64, allowed: &str| SceneError::OutOfRange {
             origin: origin.to_string(),
             key: full.clone(),
-            value: v.to_string(),
+            value: show_value(v),
             allowed: allowed.to_string(),
         };
         let checked = |v: f64| allowed_range(key, v).map_err(|words| out_of_range(v, words));

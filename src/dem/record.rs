@@ -46,8 +46,12 @@ fn plausible(value: f64, written: &str, path: &Path, line: usize) -> Result<f64,
             path: path.to_path_buf(),
             line,
             message: format!(
-                "sample `{written}` is {:.4e} g: beyond the {MAX_ACCELERATION_G} g any ground motion stays within (wrong unit, or a corrupt file?)",
-                value / STANDARD_GRAVITY
+                "sample `{written}`{}: beyond the {MAX_ACCELERATION_G} g any ground motion stays within (wrong unit, or a corrupt file?)",
+                if value.is_finite() {
+                    format!(" is {:.4e} g", value / STANDARD_GRAVITY)
+                } else {
+                    String::new()
+                }
             ),
         })
     }

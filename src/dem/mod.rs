@@ -76,7 +76,7 @@ pub enum DemError {
         allowed: String,
     },
     /// A run would plan more time steps than the limit.
-    #[error("{what} would take up to {steps:.3e} time steps of {time_step:.3e} s, above the limit of {limit} (a run that long takes hours: check the settings, or lift the limit with --max-steps N; docs/dem.md)")]
+    #[error("{what} would take up to {steps:.3e} time steps of {time_step:.3e} s, above the limit of {limit} steps a run (check the settings: the default limit is met only by runs of hours; --max-steps N sets it; docs/dem.md)")]
     TooManySteps {
         what: String,
         steps: f64,

@@ -270,7 +270,8 @@ fn shortest_joint(assembly: &Assembly) -> f64 {
 /// `params.max_steps` (`what` says which run, for the error).
 fn check_steps(world: &World, seconds: f64, what: &str) -> Result<u64, DemError> {
     let steps = (seconds / world.dt).ceil();
-    if !(steps <= world.params.max_steps as f64) {
+    // A NaN step count (a NaN time) is refused with the rest.
+    if steps.is_nan() || steps > world.params.max_steps as f64 {
         return Err(DemError::TooManySteps {
             what: what.to_string(),
             steps,

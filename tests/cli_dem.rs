@@ -755,4 +755,12 @@ fn overflowing_knobs_are_refused_by_name() {
             "{err}"
         );
     }
+    // A dynamic criterion without a dynamic run would be ignored: refused.
+    let out = common::voussoir()
+        .args(["dem", "--criterion", "overturning"])
+        .arg(&scene)
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(err.contains("--criterion"), "{err}");
 }

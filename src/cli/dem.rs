@@ -94,9 +94,9 @@ pub struct Args {
     max_steps: Option<u64>,
     /// When a dynamic run (--record, --pulse, --ida, --pulse-curve) has collapsed:
     /// displacement (a block point moved by a quarter of the structure's size) or overturning
-    /// (it fell: run on until at rest or fallen)
-    #[arg(long, value_enum, default_value = "displacement")]
-    criterion: CriterionArg,
+    /// (it fell: run on until at rest or fallen) [default: displacement]
+    #[arg(long, value_enum)]
+    criterion: Option<CriterionArg>,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -194,8 +194,8 @@ fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
     Ok(dem::dynamic::DynamicSettings {
         tail: args.tail,
         criterion: match args.criterion {
-            CriterionArg::Displacement => dem::dynamic::Criterion::Displacement,
-            CriterionArg::Overturning => dem::dynamic::Criterion::Overturning,
+            None | Some(CriterionArg::Displacement) => dem::dynamic::Criterion::Displacement,
+            Some(CriterionArg::Overturning) => dem::dynamic::Criterion::Overturning,
         },
         max_steps: args.max_steps,
         ..Default::default()
@@ -431,6 +431,13 @@ pub fn run(args: Args) -> Result<String, Error> {
         super::check_output_paths([args.history.as_ref(), args.animation.as_ref()])?;
         state_plan(&args, &scene, Some(motion.duration() + args.tail.max(0.0)))?;
         return run_dynamic(&args, &scene, &motion);
+    }
+    if args.criterion.is_some() {
+        // The collapse search has its own test (the displacement `dem.collapse_displacement`
+        // at a constant lambda): a dynamic criterion there would be ignored.
+        return Err(Error::Scene(voussoir::error::SceneError::Usage(
+            "--criterion decides when a dynamic run (--record, --pulse, --ida, --pulse-curve) has collapsed; the lambda search does not use it".into(),
+        )));
     }
     if args.animation.is_some() {
         return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {

@@ -61,6 +61,10 @@ pub const OVERTURNING_SHARE: f64 = 1.0;
 /// criterion's quarter of the size.
 pub const SETTLING_SHARE: f64 = 0.0025;
 
+/// The most animation frames kept while a run goes on past its motion and tail to a decided
+/// end (over `IntegrationParameters::max_time` at most).
+pub const EXTENSION_FRAMES: f64 = 250.0;
+
 /// How a dynamic run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -397,6 +401,13 @@ pub fn respond_xy(
         if let Some(every) = settings.frames_every {
             if t >= next_frame {
                 result.frames.push(frame(&world, t, a));
+                // Past the planned end, at most EXTENSION_FRAMES more: the caller sized the
+                // interval for the planned length, not for the run on to a decided end.
+                let every = if t >= end {
+                    every.max(params.max_time / EXTENSION_FRAMES)
+                } else {
+                    every
+                };
                 next_frame += every;
             }
         }

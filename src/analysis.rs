@@ -393,7 +393,8 @@ pub fn dem(
 /// A warning when the DEM's status contradicts the static program's (`lower`, with the
 /// static bound of the shapes simulated `lambda_lower`): a structure the static program finds
 /// standing that the DEM cannot settle, or the other way round, points at the `[dem]` knobs
-/// (soft contacts, a gravity or time scale the defaults do not fit), not at the structure.
+/// (soft contacts, a gravity or time scale the defaults do not fit), not at the structure;
+/// and when both collapse but the multipliers differ by more than 20%.
 pub fn dem_disagreement(
     d: &crate::dem::DemResult,
     lower: Status,
@@ -422,11 +423,22 @@ pub fn dem_disagreement(
     } else {
         "collapses".to_string()
     };
-    contradiction.then(|| {
-        format!(
+    if contradiction {
+        return Some(format!(
             "the DEM says the structure {dem_words}, the static program that it {static_words}: they contradict each other; check the [dem] knobs (dem.normal_stiffness, dem.gravity, dem.max_time) before trusting either"
-        )
-    })
+        ));
+    }
+    // Both collapse, but far apart: the documented offsets are under 3% on rocking and 12%
+    // where Coulomb sliding mixes with rocking (docs/dem.md).
+    match (d.lambda_dem, lambda_lower, lower) {
+        (Some(dem), Some(l), Status::Collapse) if l > 0.0 && ((dem - l) / l).abs() > 0.2 => {
+            Some(format!(
+                "the DEM's multiplier {dem:.6} differs from the static lower bound {l:.6} by {:+.1}%, far beyond the offsets documented for rigid blocks (docs/dem.md); check the [dem] knobs (dem.normal_stiffness, dem.gravity) before trusting either",
+                100.0 * (dem - l) / l
+            ))
+        }
+        _ => None,
+    }
 }
 
 /// The time step of a scene's DEM (s) and the most time steps one run may take (see

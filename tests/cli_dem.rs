@@ -719,6 +719,14 @@ fn implausible_knobs_are_warned_of() {
     let block = rect_scene(dir.path(), "block.toml", 0.2, 2.0, "");
     let v = dem_json(&block, &[]);
     assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0), "{v}");
+    // Soft contacts on the block: it stands, and rocks at a tenth of b/h.
+    let v = dem_json(&block, &["--set", "dem.normal_stiffness=1e6"]);
+    assert!(
+        v["warnings"].as_array().is_some_and(|w| w.iter().any(|w| w
+            .as_str()
+            .is_some_and(|w| w.contains("differs from the static lower bound")))),
+        "{v}"
+    );
     let v = dem_json(&block, &["--set", "dem.gravity=0.01"]);
     assert!(
         v["warnings"][0]

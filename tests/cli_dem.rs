@@ -568,6 +568,24 @@ fn runs_are_planned_and_refused_above_the_step_limit() {
     .expect("record");
     let err = refused(&["--record", at2.to_str().expect("path")], &scene);
     assert!(err.contains("slow.AT2, line 4"), "{err}");
+    // A scale may not bring back what the readers refuse (samples beyond 100 g).
+    let err = refused(
+        &[
+            "--pulse",
+            "sine",
+            "--amplitude",
+            "0.5",
+            "--period",
+            "0.5",
+            "--scale",
+            "1e300",
+        ],
+        &scene,
+    );
+    assert!(
+        err.contains("--scale 1e300") && err.contains("100 g"),
+        "{err}"
+    );
     // The limit is the flag's: a pulse run of about 1.5e5 steps refused under 1000, run under
     // the default, the plan said first.
     let pulse = ["--pulse", "sine", "--amplitude", "0.05", "--period", "0.5"];

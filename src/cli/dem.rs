@@ -179,8 +179,25 @@ fn excitation(args: &Args) -> Result<Option<GroundInput>, Error> {
         ComponentArg::X => Component::X,
         ComponentArg::Y => Component::Y,
     };
-    let ground = GroundInput::new(motion, component, vertical).map_err(bad)?;
-    Ok(Some(ground.scaled(args.scale)))
+    let ground = GroundInput::new(motion, component, vertical)
+        .map_err(bad)?
+        .scaled(args.scale);
+    // The readers refuse samples beyond 100 g; a scale must not bring them back (1e300 only
+    // made the blocks' positions overflow, reported as a divergence of the integration).
+    let (h, v) = ground.pga_xy();
+    let limit = record::MAX_ACCELERATION_G * record::STANDARD_GRAVITY;
+    if h.max(v) > limit {
+        return Err(bad(RecordError::Flag {
+            flag: "--scale".to_string(),
+            value: dem::show_value(args.scale),
+            message: format!(
+                "the scaled motion peaks at {:.4e} g, beyond the {} g any ground motion stays within",
+                h.max(v) / record::STANDARD_GRAVITY,
+                record::MAX_ACCELERATION_G
+            ),
+        }));
+    }
+    Ok(Some(ground))
 }
 
 fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {

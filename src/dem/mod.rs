@@ -45,7 +45,7 @@ mod protocol;
 pub mod record;
 mod world;
 
-pub use params::{allowed_range, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS};
+pub use params::{allowed_range, show_value, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS};
 pub use protocol::{Onset, Outcome, Run, Snapshot};
 
 use crate::assembly::{Assembly, Hinge};

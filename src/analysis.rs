@@ -370,6 +370,9 @@ pub struct DemOptions {
     /// `dem.initial_guess`, or [`crate::dem::DEFAULT_INITIAL_GUESS`], independent of the
     /// static bound.
     pub from_static: bool,
+    /// The most time steps one run may take, instead of
+    /// [`crate::dem::DEFAULT_MAX_STEPS`]. Default `None`.
+    pub max_steps: Option<u64>,
 }
 
 impl Default for DemOptions {
@@ -378,6 +381,7 @@ impl Default for DemOptions {
             tolerance: 0.01,
             snapshots: false,
             from_static: false,
+            max_steps: None,
         }
     }
 }
@@ -407,7 +411,10 @@ pub fn dem(
     let model = crate::scene::build(scene)?;
     let lower = lp::analyse(&model, &StaticSettings::default())?;
     let (lower_simulated, chord_polygons) = simulated_static(&model, lower.lambda)?;
-    let result = dem_of(scene, &model, lower.lambda, options, progress)?;
+    let mut result = dem_of(scene, &model, lower.lambda, options, progress)?;
+    result
+        .warnings
+        .extend(dem_disagreement(&result, lower.status, lower_simulated));
     Ok(DemAnalysis {
         model,
         lower,
@@ -415,6 +422,73 @@ pub fn dem(
         chord_polygons,
         result,
     })
+}
+
+/// A warning when the DEM's status contradicts the static program's (`lower`, with the
+/// static bound of the shapes simulated `lambda_lower`): a structure the static program finds
+/// standing that the DEM cannot settle, or the other way round, points at the `[dem]` knobs
+/// (soft contacts, a gravity or time scale the defaults do not fit), not at the structure;
+/// and when both collapse but the multipliers differ by more than 20%.
+pub fn dem_disagreement(
+    d: &crate::dem::DemResult,
+    lower: Status,
+    lambda_lower: Option<f64>,
+) -> Option<String> {
+    let static_words = match (lower, lambda_lower) {
+        (Status::Collapse, Some(l)) => format!("collapses at lambda_lower = {l:.6}"),
+        (Status::NoCollapse, _) => "never collapses".to_string(),
+        _ => "cannot stand".to_string(),
+    };
+    let contradiction = if d.cannot_stand {
+        lower != Status::CannotStand
+    } else if d.no_collapse {
+        lower == Status::Collapse && lambda_lower.is_some_and(|l| l <= d.params.max_lambda)
+    } else {
+        lower == Status::CannotStand
+            || (lower == Status::NoCollapse && d.lambda_collapses.is_some())
+    };
+    let dem_words = if d.cannot_stand {
+        "cannot stand".to_string()
+    } else if d.no_collapse {
+        format!(
+            "does not collapse up to dem.max_lambda = {}",
+            d.params.max_lambda
+        )
+    } else {
+        "collapses".to_string()
+    };
+    if contradiction {
+        return Some(format!(
+            "the DEM says the structure {dem_words}, the static program that it {static_words}: they contradict each other; check the [dem] knobs (dem.normal_stiffness, dem.gravity, dem.max_time) before trusting either"
+        ));
+    }
+    // Both collapse, but far apart: the documented offsets are under 3% on rocking and 12%
+    // where Coulomb sliding mixes with rocking (docs/dem.md).
+    match (d.lambda_dem, lambda_lower, lower) {
+        (Some(dem), Some(l), Status::Collapse) if l > 0.0 && ((dem - l) / l).abs() > 0.2 => {
+            Some(format!(
+                "the DEM's multiplier {dem:.6} differs from the static lower bound {l:.6} by {:+.1}%, far beyond the offsets documented for rigid blocks (docs/dem.md); check the [dem] knobs (dem.normal_stiffness, dem.gravity) before trusting either",
+                100.0 * (dem - l) / l
+            ))
+        }
+        _ => None,
+    }
+}
+
+/// The time step of a scene's DEM (s) and the most time steps one run may take (see
+/// [`crate::dem::plan`]; `motion`: seconds of ground motion and tail of a dynamic run),
+/// refused above `max_steps` (default [`crate::dem::DEFAULT_MAX_STEPS`]) before anything runs.
+pub fn dem_plan(
+    scene: &Scene,
+    motion: Option<f64>,
+    max_steps: Option<u64>,
+) -> Result<(f64, u64), AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    let mut params = dem_parameters(scene, &model)?;
+    if let Some(n) = max_steps {
+        params.max_steps = n;
+    }
+    crate::dem::plan(&model, &params, motion).map_err(|e| AnalysisError::Other(e.to_string()))
 }
 
 /// The static lower bound of the shapes the DEM simulates for `model`, whose own static bound
@@ -443,13 +517,17 @@ pub fn dem_of(
     use crate::dem::GuessSource;
     let mut params = dem_parameters(scene, model)?;
     let (guess, source) = match (options.from_static, lambda_lower.filter(|l| *l > 0.0)) {
-        (true, Some(l)) => (l, GuessSource::Static),
+        // The search never looks above max_lambda: a static value beyond it starts there.
+        (true, Some(l)) => (l.min(params.max_lambda), GuessSource::Static),
         _ => match params.initial_guess {
             Some(g) => (g, GuessSource::Given),
             None => (crate::dem::DEFAULT_INITIAL_GUESS, GuessSource::Default),
         },
     };
     params = params.initial_guess(Some(guess));
+    if let Some(n) = options.max_steps {
+        params.max_steps = n;
+    }
     if options.snapshots && params.snapshot_interval.is_none() {
         let every = params.ramp_time / 3.0;
         params = params.snapshot_interval(Some(every));
@@ -538,6 +616,8 @@ pub struct PulseCurve {
     pub tolerance: f64,
     pub points: Vec<PulseCurvePoint>,
     pub wall_time_s: f64,
+    /// The collapse criterion of the runs.
+    pub criterion: crate::dem::dynamic::Criterion,
 }
 
 /// The largest pulse amplitude a curve tries, in multiples of g.
@@ -600,6 +680,7 @@ pub fn dem_pulse_curve(
                 start,
                 tolerance,
                 PULSE_CURVE_MAX_G * g,
+                crate::dem::dynamic::PULSE_SCAN_RATIO,
             )
             .map_err(|e| AnalysisError::Other(e.to_string()))?;
             points.push(PulseCurvePoint {
@@ -617,6 +698,7 @@ pub fn dem_pulse_curve(
         tolerance,
         points,
         wall_time_s: clock.elapsed().as_secs_f64(),
+        criterion: settings.criterion,
     })
 }
 

@@ -328,3 +328,53 @@ fn the_bundled_synthetic_record_is_its_recipe() {
     assert_eq!(m.accel[0], 0.0);
     assert!(m.accel[1000].abs() < 1e-12);
 }
+
+/// Issue 26: an AT2 header is the file's word, not a measure of it. `NPTS = 2^61` panicked
+/// (capacity overflow) and `NPTS = 1e10` aborted (an 80 GB allocation) before a sample was
+/// read; both are now the count mismatch of line 4. A sample of 1e308 g (which reached the
+/// contact law as an infinite force) and a DT of 1e9 s (a run of 3e12 s) are refused with the
+/// file and the line; so is a text sample beyond 100 g in its unit.
+#[test]
+fn absurd_headers_and_samples_are_refused_not_allocated() {
+    let head = "PEER\nEVENT\nACCELERATION TIME HISTORY IN UNITS OF G\n";
+    for npts in ["2305843009213693952", "10000000000", "18446744073709551615"] {
+        let text = format!("{head}NPTS= {npts}, DT= .0100 SEC\n0.1 0.2 0.3\n");
+        match at2(&text) {
+            Err(RecordError::Count {
+                line: 4, found: 3, ..
+            }) => {}
+            other => panic!("NPTS = {npts}: {other:?}"),
+        }
+    }
+    let e = at2(&format!("{head}NPTS= 3, DT= .0100 SEC\n0.1\n-1e308 0.3\n")).expect_err("1e308 g");
+    assert!(
+        matches!(&e, RecordError::Data { line: 6, message, .. } if message.contains("-1e308") && message.contains("100 g")),
+        "{e}"
+    );
+    assert!(e.to_string().starts_with("test.AT2, line 6"), "{e}");
+    let e = at2(&format!("{head}NPTS= 3, DT= 1e9 SEC\n0.1 0.2 0.3\n")).expect_err("DT");
+    assert!(
+        matches!(&e, RecordError::Data { line: 4, message, .. } if message.contains("1000000000 s")),
+        "{e}"
+    );
+    // 150 g in a text record (m/s^2): refused on its line; 50 g is a number a record can hold.
+    let path = Path::new("r.csv");
+    let e = record::parse_text(
+        "0 0\n0.01 1471\n",
+        path,
+        AccelUnit::MetersPerSecondSquared,
+        None,
+    )
+    .expect_err("150 g");
+    assert!(matches!(e, RecordError::Data { line: 2, .. }), "{e}");
+    assert!(record::parse_text(
+        "0 0\n0.01 490\n",
+        path,
+        AccelUnit::MetersPerSecondSquared,
+        None
+    )
+    .is_ok());
+    let e = record::parse_text("0.1\n0.2\n", path, AccelUnit::G, Some(5.0)).expect_err("dt");
+    assert!(matches!(e, RecordError::Data { line: 1, .. }), "{e}");
+    assert!(Pulse::new(PulseShape::Sine, 1e300, 0.5).is_err());
+}

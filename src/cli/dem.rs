@@ -88,6 +88,23 @@ pub struct Args {
     /// Pulse shapes of --pulse-curve (horizontal pulses) [default: sine,rect]
     #[arg(long, value_enum, value_delimiter = ',', requires = "pulse_curve")]
     shapes: Vec<PulseArg>,
+    /// The most time steps one run may take (its longest length over the time step); a run
+    /// planning more is refused before it starts [default: 50000000]
+    #[arg(long, value_name = "N")]
+    max_steps: Option<u64>,
+    /// When a dynamic run (--record, --pulse, --ida, --pulse-curve) has collapsed:
+    /// displacement (a block point moved by a quarter of the structure's size) or overturning
+    /// (it fell: run on until at rest or fallen) [default: displacement]
+    #[arg(long, value_enum)]
+    criterion: Option<CriterionArg>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum CriterionArg {
+    /// A block point moved by a quarter of the structure's size
+    Displacement,
+    /// Loss of stability: at rest (survives) or fallen (a block point moved by the size)
+    Overturning,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -162,8 +179,25 @@ fn excitation(args: &Args) -> Result<Option<GroundInput>, Error> {
         ComponentArg::X => Component::X,
         ComponentArg::Y => Component::Y,
     };
-    let ground = GroundInput::new(motion, component, vertical).map_err(bad)?;
-    Ok(Some(ground.scaled(args.scale)))
+    let ground = GroundInput::new(motion, component, vertical)
+        .map_err(bad)?
+        .scaled(args.scale);
+    // The readers refuse samples beyond 100 g; a scale must not bring them back (1e300 only
+    // made the blocks' positions overflow, reported as a divergence of the integration).
+    let (h, v) = ground.pga_xy();
+    let limit = record::MAX_ACCELERATION_G * record::STANDARD_GRAVITY;
+    if h.max(v) > limit {
+        return Err(bad(RecordError::Flag {
+            flag: "--scale".to_string(),
+            value: dem::show_value(args.scale),
+            message: format!(
+                "the scaled motion peaks at {:.4e} g, beyond the {} g any ground motion stays within",
+                h.max(v) / record::STANDARD_GRAVITY,
+                record::MAX_ACCELERATION_G
+            ),
+        }));
+    }
+    Ok(Some(ground))
 }
 
 fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
@@ -176,6 +210,11 @@ fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
     }
     Ok(dem::dynamic::DynamicSettings {
         tail: args.tail,
+        criterion: match args.criterion {
+            None | Some(CriterionArg::Displacement) => dem::dynamic::Criterion::Displacement,
+            Some(CriterionArg::Overturning) => dem::dynamic::Criterion::Overturning,
+        },
+        max_steps: args.max_steps,
         ..Default::default()
     })
 }
@@ -345,7 +384,36 @@ fn run_dynamic(
     })
 }
 
+/// Let Ctrl-C stop a DEM run cleanly: the first sets the DEM's interrupt flag (the running
+/// search stops at its next check and reports the interruption), a second one exits at once
+/// (for work that does not check the flag, such as a static solve). Without a handler (it
+/// cannot be installed) Ctrl-C keeps its default, which ends the process.
+fn stop_on_ctrl_c() {
+    let _ = ctrlc::set_handler(|| {
+        if dem::interrupt_requested() {
+            std::process::exit(130);
+        }
+        dem::request_interrupt();
+    });
+}
+
+/// Say on stderr, before anything runs, the time step and the most steps a run may take, and
+/// refuse a run planning more than `--max-steps` (`motion`: seconds of ground motion and tail).
+fn state_plan(
+    args: &Args,
+    scene: &voussoir::scene::Scene,
+    motion: Option<f64>,
+) -> Result<(), Error> {
+    let (dt, steps) = analysis::dem_plan(scene, motion, args.max_steps)?;
+    eprintln!(
+        "dem: time step {dt:.3e} s, at most {steps} time steps a run (limit {}; --max-steps lifts it); Ctrl-C stops",
+        args.max_steps.unwrap_or(dem::DEFAULT_MAX_STEPS)
+    );
+    Ok(())
+}
+
 pub fn run(args: Args) -> Result<String, Error> {
+    stop_on_ctrl_c();
     let scene = args.scene.load()?;
     // clap lets `--periods` through beside `--pulse` (which excludes `--pulse-curve`): a
     // curve's option without the curve would be ignored, so it is refused.
@@ -356,6 +424,13 @@ pub fn run(args: Args) -> Result<String, Error> {
     }
     if let Some(path) = &args.pulse_curve {
         super::check_output_paths([Some(path)])?;
+        let periods: &[f64] = if args.periods.is_empty() {
+            analysis::PULSE_CURVE_PERIODS
+        } else {
+            &args.periods
+        };
+        let longest = periods.iter().fold(0.0_f64, |m, t| m.max(*t));
+        state_plan(&args, &scene, Some(longest + args.tail.max(0.0)))?;
         return run_pulse_curve(&args, &scene, path);
     }
     if let Some(path) = args.animation.as_ref().filter(|p| {
@@ -371,7 +446,15 @@ pub fn run(args: Args) -> Result<String, Error> {
     }
     if let Some(motion) = excitation(&args)? {
         super::check_output_paths([args.history.as_ref(), args.animation.as_ref()])?;
+        state_plan(&args, &scene, Some(motion.duration() + args.tail.max(0.0)))?;
         return run_dynamic(&args, &scene, &motion);
+    }
+    if args.criterion.is_some() {
+        // The collapse search has its own test (the displacement `dem.collapse_displacement`
+        // at a constant lambda): a dynamic criterion there would be ignored.
+        return Err(Error::Scene(voussoir::error::SceneError::Usage(
+            "--criterion decides when a dynamic run (--record, --pulse, --ida, --pulse-curve) has collapsed; the lambda search does not use it".into(),
+        )));
     }
     if args.animation.is_some() {
         return Err(Error::Analysis(AnalysisError::Record(RecordError::Flag {
@@ -384,10 +467,12 @@ pub fn run(args: Args) -> Result<String, Error> {
         })));
     }
     super::check_output_paths([args.svg.as_ref()])?;
+    state_plan(&args, &scene, None)?;
     let options = DemOptions {
         tolerance: args.tolerance,
         snapshots: args.snapshots.is_some() || args.svg.is_some(),
         from_static: args.from_static,
+        max_steps: args.max_steps,
     };
     let bar = progress_bar(1000, "dem");
     let d = analysis::dem(&scene, &options, &mut |f| {

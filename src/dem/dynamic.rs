@@ -17,10 +17,82 @@
 //! Housner's (1963) `1 - 1.5 sin^2(alpha)` in `tests/dem_dynamic.rs` and docs/dem.md.
 
 use super::world::{Load, World};
-use super::{check_model, check_time_step, DemError, IntegrationParameters};
+use super::{
+    check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
+    settled_warnings, DemError, IntegrationParameters,
+};
 use crate::geometry::Vec2;
 use crate::model::Model;
 use std::time::Instant;
+
+/// When a dynamic run has collapsed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Criterion {
+    /// A block point has moved farther than `DynamicSettings::collapse_share` of the
+    /// structure's size (a quarter by default): a mechanism that has run well away. Quick to
+    /// decide, and conservative: a block rocking that far during the motion may still have
+    /// come back (on a slender block, 11% below Housner's overturning at omega_p / p = 4).
+    #[default]
+    Displacement,
+    /// Loss of stability: the run goes on, after the motion, until the structure is at rest
+    /// (it survives, however displaced) or has fallen, a block point having moved farther
+    /// than the structure's whole size (a block lying on its side). For a rigid block on the
+    /// ground this is Housner's overturning.
+    Overturning,
+}
+
+impl Criterion {
+    /// `displacement` or `overturning`, as the command line and the JSON say it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Criterion::Displacement => "displacement",
+            Criterion::Overturning => "overturning",
+        }
+    }
+}
+
+/// The displacement of a block point, as a share of the structure's size, that means it has
+/// fallen ([`Criterion::Overturning`]).
+pub const OVERTURNING_SHARE: f64 = 1.0;
+
+/// The largest motion of a block point over a window, as a share of the structure's size,
+/// that counts as settling ([`EndState::Settling`]): a hundredth of the displacement
+/// criterion's quarter of the size.
+pub const SETTLING_SHARE: f64 = 0.0025;
+
+/// The most animation frames kept while a run goes on past its motion and tail to a decided
+/// end (over `IntegrationParameters::max_time` at most).
+pub const EXTENSION_FRAMES: f64 = 250.0;
+
+/// How a dynamic run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EndState {
+    /// The structure did not settle under its permanent loads: no motion was run.
+    CannotStand,
+    /// The collapse criterion was met.
+    Collapsed,
+    /// At rest after the ground stopped (speeds and unbalanced forces below the rest
+    /// thresholds of the `[dem]` table): it survives.
+    AtRest,
+    /// Still moving with the ground still, but no block point has moved by more than
+    /// [`SETTLING_SHARE`] of the structure's size over a window of
+    /// `IntegrationParameters::max_time / 10`: small rocking dying out. Its energy is then far
+    /// below what overturning or a mechanism needs (a rigid block rocking to a tenth of its
+    /// slenderness has a fifth of the energy it needs to pass it), and the ground no longer
+    /// feeds it: it survives.
+    Settling,
+    /// A single block on the ground, still rocking with the ground still, with less energy
+    /// above its settled state (kinetic, potential and elastic) than it needs to tip over a
+    /// corner of its base (its weight times the rise of its centroid to over the corner,
+    /// Housner's unstable equilibrium), less a margin of 5%: energy only leaves once the ground
+    /// is still, so it cannot fall, and it survives.
+    Rocking,
+    /// Still moving `IntegrationParameters::max_time` after the planned end: undecided,
+    /// counted as not surviving by the IDA and the pulse curve.
+    Moving,
+}
 
 /// How a dynamic run is carried out.
 #[derive(Debug, Clone)]
@@ -38,6 +110,10 @@ pub struct DynamicSettings {
     /// Keep the placement of every block every this many seconds (frames of an animation);
     /// `None` keeps none. Default `None`.
     pub frames_every: Option<f64>,
+    /// When the run has collapsed. Default [`Criterion::Displacement`].
+    pub criterion: Criterion,
+    /// The most time steps the run may plan, instead of `IntegrationParameters::max_steps`.
+    pub max_steps: Option<u64>,
 }
 
 impl Default for DynamicSettings {
@@ -48,6 +124,8 @@ impl Default for DynamicSettings {
             control_block: None,
             history_every: Some(0.01),
             frames_every: None,
+            criterion: Criterion::Displacement,
+            max_steps: None,
         }
     }
 }
@@ -102,6 +180,33 @@ pub struct DynamicResult {
     pub steps: u64,
     pub time_step: f64,
     pub wall_time_s: f64,
+    /// How the run ended: the end state is decided, not read off the clock. A run that is
+    /// neither collapsed nor at rest when the motion and its tail are over goes on (the
+    /// ground still) until it is, for up to `IntegrationParameters::max_time` more.
+    pub end_state: EndState,
+    /// The criterion used, and the displacement of a block point (m) it calls collapse.
+    pub criterion: Criterion,
+    pub collapse_displacement: f64,
+    /// Free motion run past the motion and its tail to decide the end state (s).
+    pub extended: f64,
+    /// The most time steps the run could take (settling, motion, tail and the longest
+    /// extension), checked against the limit before it started.
+    pub planned_steps: u64,
+    /// What looked implausible (see `DemResult::warnings`), one sentence each.
+    pub warnings: Vec<String>,
+}
+
+impl DynamicResult {
+    /// `collapse`, `survives`, `cannot_stand`, or `undecided` (still moving when the run
+    /// gave up).
+    pub fn status(&self) -> &'static str {
+        match self.end_state {
+            EndState::CannotStand => "cannot_stand",
+            EndState::Collapsed => "collapse",
+            EndState::AtRest | EndState::Settling | EndState::Rocking => "survives",
+            EndState::Moving => "undecided",
+        }
+    }
 }
 
 /// Run `model` under the horizontal ground acceleration `ground(t)` (m/s^2, toward +x) for
@@ -150,10 +255,31 @@ pub fn respond_xy(
             nb.saturating_sub(1)
         )));
     }
+    check_params(params, model)?;
+    let params = &IntegrationParameters {
+        max_steps: settings.max_steps.unwrap_or(params.max_steps),
+        ..params.clone()
+    };
     let mut world = World::new(model, params);
     check_time_step(&world)?;
+    let settle_steps = check_steps(&world, longest_run(params), "settling")?;
+    let motion_steps = check_steps(
+        &world,
+        duration + settings.tail + params.max_time,
+        &format!(
+            "the dynamic run ({duration:.4e} s of ground motion, {:.4e} s of tail, and up to dem.max_time = {:.4e} s more to decide its end)",
+            settings.tail, params.max_time
+        ),
+    )?;
+    let size = model.assembly.size();
+    let threshold = match settings.criterion {
+        Criterion::Displacement => settings.collapse_share,
+        Criterion::Overturning => OVERTURNING_SHARE,
+    } * size;
     let settle = super::protocol::run(&mut world, &model.assembly, None, &mut |_| {});
+    check_interrupt(settle.steps)?;
     super::check_finite(&settle)?;
+    let cannot_stand = settle.outcome != super::Outcome::Stands;
     let mut result = DynamicResult {
         cannot_stand: settle.outcome != super::Outcome::Stands,
         collapsed: false,
@@ -170,6 +296,16 @@ pub fn respond_xy(
         steps: settle.steps,
         time_step: world.dt,
         wall_time_s: 0.0,
+        end_state: if cannot_stand {
+            EndState::CannotStand
+        } else {
+            EndState::Moving
+        },
+        criterion: settings.criterion,
+        collapse_displacement: threshold,
+        extended: 0.0,
+        planned_steps: settle_steps.saturating_add(motion_steps),
+        warnings: settled_warnings(&world, model),
     };
     if result.cannot_stand {
         result.wall_time_s = clock.elapsed().as_secs_f64();
@@ -178,7 +314,6 @@ pub fn respond_xy(
     let start: Vec<(Vec2, f64)> = world.bodies.iter().map(|b| (b.pos, b.angle)).collect();
     result.start = start[..nb].to_vec();
     result.start_polygons = world.bodies[..nb].iter().map(|b| b.world.clone()).collect();
-    let size = model.assembly.size();
     let g = params.gravity;
     // The seismic forces act at unit multiplier along `-a_g / g`, set every step: the body
     // force follows the ground motion alone, whatever the scene's vertical seismic ratio
@@ -190,6 +325,14 @@ pub fn respond_xy(
     world.local_damping = 0.0;
     world.time = 0.0;
     let end = duration + settings.tail;
+    // Past the planned end the state decides, not the clock: on until at rest or collapsed.
+    let give_up = end + params.max_time;
+    let barrier = tipping_barrier(model, &world, start[0].0);
+    let elastic0 = world.elastic_energy();
+    let window = 0.1 * params.max_time;
+    let mut window_end = end + window;
+    let mut window_ref: Vec<(Vec2, f64)> = Vec::new();
+    let mut window_motion: f64 = 0.0;
     let mut moved = vec![0.0_f64; nb];
     let mut next_sample = 0.0;
     let mut next_frame = 0.0;
@@ -206,13 +349,65 @@ pub fn respond_xy(
         ground: a,
         blocks: w.bodies[..nb].iter().map(|b| (b.pos, b.angle)).collect(),
     };
-    while world.time < end {
+    loop {
         let t = world.time;
+        if t >= end {
+            let at_rest = world.steps > steps0
+                && world.max_speed < params.rest_velocity
+                && world.unbalanced < params.rest_force;
+            if at_rest {
+                result.end_state = EndState::AtRest;
+                break;
+            }
+            if let Some(barrier) = barrier.filter(|_| ground(t) == Vec2::zeros()) {
+                let b = &world.bodies[0];
+                let energy = world.kinetic_energy()
+                    + b.loads.weight * (b.pos.y - start[0].0.y)
+                    + world.elastic_energy()
+                    - elastic0;
+                if energy < 0.95 * barrier {
+                    result.end_state = EndState::Rocking;
+                    break;
+                }
+            }
+            if window_ref.is_empty() {
+                window_ref = world.bodies[..nb]
+                    .iter()
+                    .map(|b| (b.pos, b.angle))
+                    .collect();
+            }
+            for (b, (p0, a0)) in world.bodies[..nb].iter().zip(&window_ref) {
+                window_motion =
+                    window_motion.max((b.pos - p0).norm() + (b.angle - a0).abs() * b.radius);
+            }
+            if t >= window_end {
+                if window_motion <= SETTLING_SHARE * size {
+                    result.end_state = EndState::Settling;
+                    break;
+                }
+                window_ref.clear();
+                window_motion = 0.0;
+                window_end += window;
+            }
+            if t >= give_up {
+                break;
+            }
+        }
+        if (world.steps - steps0).is_multiple_of(16) {
+            check_interrupt(result.steps + world.steps - steps0)?;
+        }
         let a = ground(t);
         world.seismic_direction = -a / g;
         if let Some(every) = settings.frames_every {
             if t >= next_frame {
                 result.frames.push(frame(&world, t, a));
+                // Past the planned end, at most EXTENSION_FRAMES more: the caller sized the
+                // interval for the planned length, not for the run on to a decided end.
+                let every = if t >= end {
+                    every.max(params.max_time / EXTENSION_FRAMES)
+                } else {
+                    every
+                };
                 next_frame += every;
             }
         }
@@ -239,11 +434,19 @@ pub fn respond_xy(
         let b = &world.bodies[c];
         result.peak_displacement = result.peak_displacement.max((b.pos.x - start[c].0.x).abs());
         result.peak_rotation = result.peak_rotation.max((b.angle - start[c].1).abs());
-        if largest > settings.collapse_share * size {
+        if largest > threshold {
             result.collapsed = true;
             result.collapse_time = Some(world.time);
+            result.end_state = EndState::Collapsed;
             break;
         }
+    }
+    result.extended = (world.time - end).max(0.0);
+    if result.end_state == EndState::Moving {
+        result.warnings.push(format!(
+            "still moving {:.3} s after the ground motion and its tail ended (speed {:.3e} m/s): neither at rest nor collapsed, the run is undecided",
+            result.extended, world.max_speed
+        ));
     }
     let c = settings.control_block.unwrap_or_else(|| argmax(&moved));
     result.control_block = c;
@@ -261,6 +464,30 @@ pub fn respond_xy(
     result.steps += world.steps - steps0;
     result.wall_time_s = clock.elapsed().as_secs_f64();
     Ok(result)
+}
+
+/// For one block standing alone on the ground under its own weight only, with no sliding
+/// (Housner's rocking block), the energy (J) it needs above its settled state to tip over a
+/// corner of its base: its weight times the rise of its centroid (settled at `centroid`) to
+/// over the corner. `None` for any other structure, whose barrier is not known in closed form.
+fn tipping_barrier(model: &Model, world: &World, centroid: Vec2) -> Option<f64> {
+    let a = &model.assembly;
+    let [joint] = a.joints.as_slice() else {
+        return None;
+    };
+    let body = world.bodies.first()?;
+    if a.blocks.len() != 1
+        || !joint.is_support()
+        || joint.friction.is_finite()
+        || body.loads.extra.is_some()
+    {
+        return None;
+    }
+    let rise = [joint.p1, joint.p2]
+        .iter()
+        .map(|p| (centroid - p).norm() - (centroid.y - p.y))
+        .fold(f64::INFINITY, f64::min);
+    Some(body.loads.weight * rise)
 }
 
 fn argmax(v: &[f64]) -> usize {
@@ -285,6 +512,8 @@ pub struct IdaResult {
     pub runs: Vec<(f64, bool)>,
     pub steps: u64,
     pub wall_time_s: f64,
+    /// The collapse criterion of the runs.
+    pub criterion: Criterion,
 }
 
 /// Scale `ground` up (doubling from 1) until a run collapses, then bisect until the bracket
@@ -333,7 +562,7 @@ pub fn ida_xy(
         frames_every: None,
         ..settings.clone()
     };
-    let found = first_collapse_bracket(1.0, tolerance, max_scale, |scale| {
+    let found = first_collapse_bracket(1.0, tolerance, max_scale, 2.0, |scale| {
         respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)
     })?;
     Ok(IdaResult {
@@ -342,6 +571,7 @@ pub fn ida_xy(
         runs: found.runs,
         steps: found.steps,
         wall_time_s: clock.elapsed().as_secs_f64(),
+        criterion: settings.criterion,
     })
 }
 
@@ -355,14 +585,24 @@ pub struct AmplitudeBracket {
     /// Amplitudes run, with whether each collapsed.
     pub runs: Vec<(f64, bool)>,
     pub steps: u64,
+    /// The factor between the amplitudes tried before the first collapse (the resolution of
+    /// the scan: a collapse window narrower than it can be stepped over).
+    pub scan_ratio: f64,
 }
+
+/// The factor between the amplitudes a pulse curve tries before bisecting: fine enough to
+/// find collapse windows like the one of a slender block under a sine pulse at
+/// omega_p / p = 8 (collapse from 8.2 to 11.1 m/s^2, survival from 11.2 to 14, collapse
+/// again above), which doubling steps over.
+pub const PULSE_SCAN_RATIO: f64 = 1.2;
 
 /// The minimum collapse amplitude of the pulse `pulse(a, t)` (the ground acceleration at time
 /// `t` of the pulse of amplitude `a`, horizontal), lasting `duration` s: from `start`, the
-/// amplitude is doubled until a run collapses or halved until one survives, then bisected
-/// until `collapses - survives <= tolerance * collapses`; it gives up above `max_amplitude`.
-/// As with [`ida`], collapse need not be monotonic in the amplitude: this is the first
-/// bracket found.
+/// amplitude is scanned up by the factor `scan_ratio` until a run collapses (or down until
+/// one survives), then bisected until `collapses - survives <= tolerance * collapses`; it
+/// gives up above `max_amplitude`. Collapse need not be monotonic in the amplitude (Zhang &
+/// Makris 2001): this is the lowest collapse found on the scan, a first bracket, not a
+/// proven minimum; a collapse window narrower than `scan_ratio` can be missed.
 #[allow(clippy::too_many_arguments)]
 pub fn minimum_amplitude(
     model: &Model,
@@ -373,6 +613,7 @@ pub fn minimum_amplitude(
     start: f64,
     tolerance: f64,
     max_amplitude: f64,
+    scan_ratio: f64,
 ) -> Result<AmplitudeBracket, DemError> {
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
         return Err(DemError::Settings(format!(
@@ -389,7 +630,12 @@ pub fn minimum_amplitude(
         frames_every: None,
         ..settings.clone()
     };
-    first_collapse_bracket(start, tolerance, max_amplitude, |a| {
+    if !(scan_ratio.is_finite() && scan_ratio > 1.0 + tolerance && scan_ratio <= 4.0) {
+        return Err(DemError::Settings(format!(
+            "amplitude scan ratio {scan_ratio}: must be above 1 + tolerance and at most 4"
+        )));
+    }
+    first_collapse_bracket(start, tolerance, max_amplitude, scan_ratio, |a| {
         respond(model, params, &|t| pulse(a, t), duration, &quiet)
     })
 }
@@ -403,6 +649,7 @@ fn first_collapse_bracket(
     start: f64,
     tolerance: f64,
     max: f64,
+    ratio: f64,
     mut run: impl FnMut(f64) -> Result<DynamicResult, DemError>,
 ) -> Result<AmplitudeBracket, DemError> {
     let mut out = AmplitudeBracket {
@@ -410,11 +657,12 @@ fn first_collapse_bracket(
         collapses: None,
         runs: Vec::new(),
         steps: 0,
+        scan_ratio: ratio,
     };
     let mut x = start;
-    // Doubling up to `max` or halving down to 2^-30 start, then bisection to `tolerance`:
-    // the loop ends long before this bound.
-    for _ in 0..100 {
+    // Scanning up to `max` or down to 2^-30 start, then bisection to `tolerance`: the loop
+    // ends long before this bound.
+    for _ in 0..200 {
         match out.collapses {
             Some(hi) => {
                 if hi - out.survives <= tolerance * hi {
@@ -425,7 +673,7 @@ fn first_collapse_bracket(
                 } else if hi < start * 2f64.powi(-30) {
                     break;
                 } else {
-                    x = 0.5 * hi;
+                    x = hi / ratio;
                 }
             }
             None if x > max => break,
@@ -438,13 +686,19 @@ fn first_collapse_bracket(
                 "the structure does not stand under its permanent loads".to_string(),
             ));
         }
-        out.runs.push((x, r.collapsed));
-        if r.collapsed {
+        // Only a run at rest survives: one still moving when it gave up is not verified
+        // to stand, and counts with the collapses.
+        let fell = !matches!(
+            r.end_state,
+            EndState::AtRest | EndState::Settling | EndState::Rocking
+        );
+        out.runs.push((x, fell));
+        if fell {
             out.collapses = Some(x);
         } else {
             out.survives = x;
             if out.collapses.is_none() {
-                x *= 2.0;
+                x *= ratio;
             }
         }
     }

@@ -45,7 +45,7 @@ mod protocol;
 pub mod record;
 mod world;
 
-pub use params::{IntegrationParameters, DEM_KEYS};
+pub use params::{allowed_range, show_value, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS};
 pub use protocol::{Onset, Outcome, Run, Snapshot};
 
 use crate::assembly::{Assembly, Hinge};
@@ -54,6 +54,7 @@ use crate::geometry::Vec2;
 use crate::lp;
 use crate::model::Model;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use thiserror::Error;
 use world::World;
@@ -67,9 +68,51 @@ pub enum DemError {
     Settings(String),
     #[error("cannot write snapshots to {path}: {message}")]
     Output { path: PathBuf, message: String },
+    /// A `[dem]` knob (or a builder setting) outside its range.
+    #[error("{key} = {value}: {allowed}")]
+    Knob {
+        key: String,
+        value: String,
+        allowed: String,
+    },
+    /// A run would plan more time steps than the limit.
+    #[error("{what} would take up to {steps:.3e} time steps of {time_step:.3e} s, above the limit of {limit} steps a run (check the settings: the default limit is met only by runs of hours; --max-steps N sets it; docs/dem.md)")]
+    TooManySteps {
+        what: String,
+        steps: f64,
+        time_step: f64,
+        limit: u64,
+    },
+    /// Stopped by [`request_interrupt`] (Ctrl-C on the command line).
+    #[error("interrupted after {steps} time steps: nothing is reported")]
+    Interrupted { steps: u64 },
     #[error("the DEM models rigid contacts (point contacts at the block corners, with no cap on the normal force), so it cannot check a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); run it without that key for the rigid structure, or rely on the static program, which models crushing")]
     FiniteStrength { compressive_strength: f64 },
 }
+
+/// Set by [`request_interrupt`] (the command line's Ctrl-C handler), read by every DEM time
+/// loop every few steps: a run then stops and its search returns [`DemError::Interrupted`].
+static INTERRUPT: AtomicBool = AtomicBool::new(false);
+
+/// Ask every DEM run in this process to stop at its next check (a few time steps).
+pub fn request_interrupt() {
+    INTERRUPT.store(true, Ordering::Relaxed);
+}
+
+/// Whether an interrupt was asked for (and not cleared since).
+pub fn interrupt_requested() -> bool {
+    INTERRUPT.load(Ordering::Relaxed)
+}
+
+/// Forget an interrupt asked for (before starting new work in the same process).
+pub fn clear_interrupt() {
+    INTERRUPT.store(false, Ordering::Relaxed);
+}
+
+/// Penetration of a contact under the permanent loads, as a fraction of the shortest joint,
+/// beyond which a run warns that the contacts are too soft to stand for rigid blocks (the
+/// default stiffness gives about 1e-5).
+pub const PENETRATION_WARNING: f64 = 0.01;
 
 /// The first multiplier of a bracket search that is not told where to start and must not
 /// lean on the static bound: `crate::analysis::dem_of` starts here unless the scene sets
@@ -130,6 +173,12 @@ pub struct DemResult {
     pub guess_source: GuessSource,
     /// The settings used.
     pub params: IntegrationParameters,
+    /// The most time steps one run could take (its longest length over the time step),
+    /// checked against `params.max_steps` before the search starts.
+    pub planned_steps_per_run: u64,
+    /// What looked implausible (soft contacts, a time scale the defaults do not fit, the
+    /// static program disagreeing): one sentence each.
+    pub warnings: Vec<String>,
 }
 
 impl DemResult {
@@ -175,6 +224,128 @@ fn check_model(model: &Model) -> Result<(), DemError> {
     Ok(())
 }
 
+/// Every knob in its range ([`IntegrationParameters::check`]), and the contact tolerance
+/// small against the shortest joint (the corner rounding would otherwise glue blocks).
+fn check_params(params: &IntegrationParameters, model: &Model) -> Result<(), DemError> {
+    params
+        .check()
+        .map_err(|(key, value, allowed)| DemError::Knob {
+            key,
+            value: params::show_value(value),
+            allowed: allowed.to_string(),
+        })?;
+    if let Some(g) = params.initial_guess.filter(|g| *g > params.max_lambda) {
+        return Err(DemError::Knob {
+            key: "dem.initial_guess".to_string(),
+            value: params::show_value(g),
+            allowed: format!(
+                "must be at most dem.max_lambda = {} (the search never looks above it)",
+                params.max_lambda
+            ),
+        });
+    }
+    let joint = shortest_joint(&model.assembly);
+    if params.contact_tolerance > 0.1 * joint {
+        return Err(DemError::Knob {
+            key: "dem.contact_tolerance".to_string(),
+            value: params::show_value(params.contact_tolerance),
+            allowed: format!(
+                "must be at most 0.1 of the shortest joint ({joint:.4e} m; the default is 1e-3 of it)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The shortest joint of the assembly (m), or its size when it has none.
+fn shortest_joint(assembly: &Assembly) -> f64 {
+    assembly
+        .joints
+        .iter()
+        .map(|j| j.length())
+        .fold(assembly.size(), f64::min)
+}
+
+/// The time steps a stretch of `seconds` of simulated time takes, refused above
+/// `params.max_steps` (`what` says which run, for the error).
+fn check_steps(world: &World, seconds: f64, what: &str) -> Result<u64, DemError> {
+    let steps = (seconds / world.dt).ceil();
+    // A NaN step count (a NaN time) is refused with the rest.
+    if steps.is_nan() || steps > world.params.max_steps as f64 {
+        return Err(DemError::TooManySteps {
+            what: what.to_string(),
+            steps,
+            time_step: world.dt,
+            limit: world.params.max_steps,
+        });
+    }
+    Ok(steps as u64)
+}
+
+/// The time step of `model` under `params` (s) and the most time steps one run may take: a
+/// settling or constant-lambda run of the collapse search (`motion = None`), or the settling
+/// plus a dynamic run of `motion` seconds (ground motion and tail) and its longest extension
+/// to decide its end (`max_time`). Refused, before anything runs, above `params.max_steps`
+/// ([`DemError::TooManySteps`]), or with a knob out of range.
+pub fn plan(
+    model: &Model,
+    params: &IntegrationParameters,
+    motion: Option<f64>,
+) -> Result<(f64, u64), DemError> {
+    check_model(model)?;
+    check_params(params, model)?;
+    let world = World::new(model, params);
+    check_time_step(&world)?;
+    match motion {
+        None => Ok((
+            world.dt,
+            check_steps(&world, longest_run(params), "each run of the search")?,
+        )),
+        Some(m) => {
+            let settle = check_steps(&world, longest_run(params), "settling")?;
+            let run = check_steps(
+                &world,
+                m + params.max_time,
+                &format!(
+                    "the dynamic run ({m:.4e} s of ground motion and tail, and up to dem.max_time = {:.4e} s more to decide its end)",
+                    params.max_time
+                ),
+            )?;
+            Ok((world.dt, settle.saturating_add(run)))
+        }
+    }
+}
+
+/// The longest a settling or constant-lambda run can last (s).
+fn longest_run(params: &IntegrationParameters) -> f64 {
+    params.ramp_time + params.max_time
+}
+
+/// Warnings about a settled world: contacts pressed in by more than
+/// [`PENETRATION_WARNING`] of the shortest joint (soft contacts: the DEM then measures an
+/// elastic structure, not rigid blocks), and a `max_time` short against the time scale of
+/// the gravity used (a tiny `dem.gravity` slows everything down, and runs stop undecided).
+fn settled_warnings(world: &World, model: &Model) -> Vec<String> {
+    let mut out = Vec::new();
+    let joint = shortest_joint(&model.assembly);
+    let depth = world.max_penetration();
+    if depth > PENETRATION_WARNING * joint {
+        out.push(format!(
+            "the contacts press in by {depth:.3e} m under the permanent loads, {:.1}% of the shortest joint ({joint:.3e} m): far softer than rigid blocks (the default stiffness gives about 0.001%); check dem.normal_stiffness",
+            100.0 * depth / joint
+        ));
+    }
+    let p = &world.params;
+    let scale = (model.assembly.size() / p.gravity).sqrt();
+    if p.max_time < 10.0 * scale {
+        out.push(format!(
+            "dem.max_time = {:.3e} s is short against the time scale sqrt(L / g) = {scale:.3e} s of dem.gravity = {} m/s^2: runs may stop undecided (read as not standing); check dem.gravity and dem.max_time",
+            p.max_time, p.gravity
+        ));
+    }
+    out
+}
+
 /// A time step above the explicit stability limit makes the integration blow up, which
 /// would then read as a collapse: refuse it.
 fn check_time_step(world: &World) -> Result<(), DemError> {
@@ -185,6 +356,15 @@ fn check_time_step(world: &World) -> Result<(), DemError> {
         )));
     }
     Ok(())
+}
+
+/// Stop with [`DemError::Interrupted`] when an interrupt was asked for.
+fn check_interrupt(steps: u64) -> Result<(), DemError> {
+    if interrupt_requested() {
+        Err(DemError::Interrupted { steps })
+    } else {
+        Ok(())
+    }
 }
 
 /// A run whose block positions stopped being finite diverged: an error, not a collapse.
@@ -369,8 +549,10 @@ pub fn collapse_multiplier(
             _ => (DEFAULT_INITIAL_GUESS, GuessSource::Default),
         },
     };
+    check_params(params, model)?;
     let mut world = World::new(model, params);
     check_time_step(&world)?;
+    let planned = check_steps(&world, longest_run(params), "each run of the search")?;
     let friction_infinite = assembly.joints.iter().any(|j| j.friction.is_infinite());
     let mut result = DemResult {
         cannot_stand: false,
@@ -392,6 +574,8 @@ pub fn collapse_multiplier(
         initial_guess: guess,
         guess_source,
         params: params.clone(),
+        planned_steps_per_run: planned,
+        warnings: Vec::new(),
     };
 
     // Progress: runs done plus the fraction of the current one, over the runs still expected.
@@ -407,7 +591,9 @@ pub fn collapse_multiplier(
     let settle = protocol::run(&mut world, assembly, None, &mut |f| {
         report(f, 3.0, progress)
     });
+    check_interrupt(result.steps + settle.steps)?;
     check_finite(&settle)?;
+    result.warnings = settled_warnings(&world, model);
     let settled_ok = settle.outcome == Outcome::Stands;
     result.steps += settle.steps;
     result.runs.push(settle);
@@ -442,10 +628,17 @@ pub fn collapse_multiplier(
                 x
             }
         };
-        if hi.is_none() && x > params.max_lambda {
-            result.no_collapse = true;
-            break;
-        }
+        // A search that would step over the cap runs at the cap first: `no_collapse` is said
+        // only of a structure verified to stand at `max_lambda`.
+        let x = if hi.is_none() && x > params.max_lambda {
+            if lo >= params.max_lambda {
+                result.no_collapse = true;
+                break;
+            }
+            params.max_lambda
+        } else {
+            x
+        };
         let expected = 1.0
             + k as f64
             + match hi {
@@ -457,6 +650,7 @@ pub fn collapse_multiplier(
         let r = protocol::run(&mut w, assembly, Some(x), &mut |f| {
             report(done + f, expected, progress)
         });
+        check_interrupt(result.steps + r.steps)?;
         check_finite(&r)?;
         result.steps += r.steps;
         match r.outcome {
@@ -563,6 +757,7 @@ impl Simulation {
     /// model's loads at factor 0 (none applied yet).
     pub fn new(model: &Model, params: &IntegrationParameters) -> Result<Self, DemError> {
         check_model(model)?;
+        check_params(params, model)?;
         let world = World::new(model, params);
         check_time_step(&world)?;
         Ok(Simulation { world })

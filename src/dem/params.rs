@@ -31,6 +31,72 @@ use toml::{Table, Value};
 /// single contact point with the default normal stiffness.
 pub const STIFFNESS_OVERLAP: f64 = 3e-5;
 
+/// The most time steps one run may plan (its longest possible length over the time step)
+/// unless the caller lifts it (`IntegrationParameters::max_steps`, the CLI's `--max-steps`).
+/// The default runs plan 0.2 to 3 million steps; 5e7 steps is about 15 s of wall time for one
+/// block and 2 minutes for 20 (docs/dem.md), so a `dem.time_step = 1e-9`, a record with
+/// `DT = 1e9` or contacts a million times too stiff are refused before they run for hours.
+pub const DEFAULT_MAX_STEPS: u64 = 50_000_000;
+
+/// Stiffer contacts than this (N/m) are not a model of masonry joints (the defaults are
+/// 1e8 to 1e11) and their products overflow nothing but make the time step vanish.
+pub const MAX_STIFFNESS: f64 = 1e16;
+
+/// A knob's value as an error shows it: plainly, or in exponent form when very large or
+/// small (so 1e308 is not echoed as 309 digits).
+pub fn show_value(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
+/// The range of each numeric `[dem]` knob, as a test of the value and the words of the error.
+/// The same ranges hold for the `[dem]` table and for the builder setters
+/// ([`IntegrationParameters::check`]), so a value that would overflow a contact force (1e308)
+/// is refused by name instead of turning into a NaN in the time stepping.
+pub fn allowed_range(key: &str, v: f64) -> Result<f64, &'static str> {
+    let (ok, words) = match key {
+        "gravity" => (
+            (0.01..=1000.0).contains(&v),
+            "must be >= 0.01 and <= 1000 m/s^2 (g is 9.81)",
+        ),
+        "normal_stiffness" | "shear_stiffness" => (
+            v > 0.0 && v <= MAX_STIFFNESS,
+            "must be > 0 and <= 1e16 N/m (the defaults are 1e8 to 1e11)",
+        ),
+        "contact_damping" => (
+            (0.0..=2.0).contains(&v),
+            "must be >= 0 and <= 2 (fraction of critical)",
+        ),
+        "local_damping" | "hold_damping" => ((0.0..1.0).contains(&v), "must be >= 0 and < 1"),
+        "time_step_factor" => (v > 0.0 && v <= 1.0, "must be > 0 and <= 1"),
+        "rest_force" => (
+            v > 0.0 && v < 1.0,
+            "must be > 0 and < 1 (fraction of block weight)",
+        ),
+        "infinite_friction" => (
+            v > 0.0 && v <= 1e6,
+            "must be > 0 and <= 1e6 (a Coulomb coefficient)",
+        ),
+        "max_lambda" => (
+            v > 0.0 && v <= 100.0,
+            "must be > 0 and <= 100 (lambda = 10 is a tilt of 84 degrees)",
+        ),
+        "initial_guess" => (
+            v > 0.0 && v <= 100.0,
+            "must be > 0 and <= 100 (and at most dem.max_lambda)",
+        ),
+        _ => (v.is_finite() && v > 0.0, "must be a finite number > 0"),
+    };
+    if ok && v.is_finite() {
+        Ok(v)
+    } else {
+        Err(words)
+    }
+}
+
 /// Time-stepping knobs of the DEM (SI units). Build with [`IntegrationParameters::for_model`]
 /// or [`IntegrationParameters::for_assembly`], then adjust with the setters or a `[dem]` table
 /// ([`IntegrationParameters::apply_table`]; the analysis layer does both for a scene).
@@ -88,6 +154,10 @@ pub struct IntegrationParameters {
     /// Record block positions every this many seconds of simulated time (for
     /// `write_snapshots`); `None` records nothing. Default `None`.
     pub snapshot_interval: Option<f64>,
+    /// The most time steps one run may plan (its longest possible length over the time
+    /// step); a run planning more is refused before it starts. Default
+    /// [`DEFAULT_MAX_STEPS`]; not a `[dem]` key (the CLI's `--max-steps` sets it).
+    pub max_steps: u64,
 }
 
 /// Every key the `[dem]` table accepts.
@@ -155,7 +225,37 @@ impl IntegrationParameters {
             max_lambda: 10.0,
             initial_guess: None,
             snapshot_interval: None,
+            max_steps: DEFAULT_MAX_STEPS,
         }
+    }
+
+    /// Every knob within [`allowed_range`], and the start of the search at most
+    /// `max_lambda`: the first knob out of range as `(dem.KEY, value, allowed)`.
+    pub fn check(&self) -> Result<(), (String, f64, &'static str)> {
+        let mut knobs = vec![
+            ("gravity", self.gravity),
+            ("normal_stiffness", self.normal_stiffness),
+            ("shear_stiffness", self.shear_stiffness),
+            ("contact_damping", self.contact_damping),
+            ("local_damping", self.local_damping),
+            ("hold_damping", self.hold_damping),
+            ("time_step_factor", self.time_step_factor),
+            ("ramp_time", self.ramp_time),
+            ("max_time", self.max_time),
+            ("collapse_displacement", self.collapse_displacement),
+            ("rest_velocity", self.rest_velocity),
+            ("rest_force", self.rest_force),
+            ("infinite_friction", self.infinite_friction),
+            ("contact_tolerance", self.contact_tolerance),
+            ("max_lambda", self.max_lambda),
+        ];
+        knobs.extend(self.time_step.map(|v| ("time_step", v)));
+        knobs.extend(self.initial_guess.map(|v| ("initial_guess", v)));
+        knobs.extend(self.snapshot_interval.map(|v| ("snapshot_interval", v)));
+        for (key, v) in knobs {
+            allowed_range(key, v).map_err(|words| (format!("dem.{key}"), v, words))?;
+        }
+        Ok(())
     }
 
     /// Apply the entries of a `[dem]` table (`origin` names it in errors).
@@ -185,66 +285,29 @@ impl IntegrationParameters {
         let out_of_range = |v: f64, allowed: &str| SceneError::OutOfRange {
             origin: origin.to_string(),
             key: full.clone(),
-            value: v.to_string(),
+            value: show_value(v),
             allowed: allowed.to_string(),
         };
-        let positive = |v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(v)
-            } else {
-                Err(out_of_range(v, "must be a finite number > 0"))
-            }
-        };
-        let fraction = |v: f64| {
-            if (0.0..1.0).contains(&v) {
-                Ok(v)
-            } else {
-                Err(out_of_range(v, "must be >= 0 and < 1"))
-            }
-        };
+        let checked = |v: f64| allowed_range(key, v).map_err(|words| out_of_range(v, words));
         match key {
-            "gravity" => self.gravity = positive(number()?)?,
-            "normal_stiffness" => self.normal_stiffness = positive(number()?)?,
-            "shear_stiffness" => self.shear_stiffness = positive(number()?)?,
-            "contact_damping" => {
-                let v = number()?;
-                if !(0.0..=2.0).contains(&v) {
-                    return Err(out_of_range(
-                        v,
-                        "must be >= 0 and <= 2 (fraction of critical)",
-                    ));
-                }
-                self.contact_damping = v;
-            }
-            "local_damping" => self.local_damping = fraction(number()?)?,
-            "hold_damping" => self.hold_damping = fraction(number()?)?,
-            "time_step_factor" => {
-                let v = number()?;
-                if !(v > 0.0 && v <= 1.0) {
-                    return Err(out_of_range(v, "must be > 0 and <= 1"));
-                }
-                self.time_step_factor = v;
-            }
-            "time_step" => self.time_step = Some(positive(number()?)?),
-            "ramp_time" => self.ramp_time = positive(number()?)?,
-            "max_time" => self.max_time = positive(number()?)?,
-            "collapse_displacement" => self.collapse_displacement = positive(number()?)?,
-            "rest_velocity" => self.rest_velocity = positive(number()?)?,
-            "rest_force" => {
-                let v = number()?;
-                if !(v > 0.0 && v < 1.0) {
-                    return Err(out_of_range(
-                        v,
-                        "must be > 0 and < 1 (fraction of block weight)",
-                    ));
-                }
-                self.rest_force = v;
-            }
-            "infinite_friction" => self.infinite_friction = positive(number()?)?,
-            "contact_tolerance" => self.contact_tolerance = positive(number()?)?,
-            "max_lambda" => self.max_lambda = positive(number()?)?,
-            "initial_guess" => self.initial_guess = Some(positive(number()?)?),
-            "snapshot_interval" => self.snapshot_interval = Some(positive(number()?)?),
+            "gravity" => self.gravity = checked(number()?)?,
+            "normal_stiffness" => self.normal_stiffness = checked(number()?)?,
+            "shear_stiffness" => self.shear_stiffness = checked(number()?)?,
+            "contact_damping" => self.contact_damping = checked(number()?)?,
+            "local_damping" => self.local_damping = checked(number()?)?,
+            "hold_damping" => self.hold_damping = checked(number()?)?,
+            "time_step_factor" => self.time_step_factor = checked(number()?)?,
+            "time_step" => self.time_step = Some(checked(number()?)?),
+            "ramp_time" => self.ramp_time = checked(number()?)?,
+            "max_time" => self.max_time = checked(number()?)?,
+            "collapse_displacement" => self.collapse_displacement = checked(number()?)?,
+            "rest_velocity" => self.rest_velocity = checked(number()?)?,
+            "rest_force" => self.rest_force = checked(number()?)?,
+            "infinite_friction" => self.infinite_friction = checked(number()?)?,
+            "contact_tolerance" => self.contact_tolerance = checked(number()?)?,
+            "max_lambda" => self.max_lambda = checked(number()?)?,
+            "initial_guess" => self.initial_guess = Some(checked(number()?)?),
+            "snapshot_interval" => self.snapshot_interval = Some(checked(number()?)?),
             _ => {
                 return Err(SceneError::UnknownKey {
                     origin: origin.to_string(),
@@ -339,6 +402,10 @@ impl IntegrationParameters {
     }
     pub fn snapshot_interval(mut self, dt: Option<f64>) -> Self {
         self.snapshot_interval = dt;
+        self
+    }
+    pub fn max_steps(mut self, n: u64) -> Self {
+        self.max_steps = n;
         self
     }
 }

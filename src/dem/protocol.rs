@@ -126,6 +126,10 @@ pub(crate) fn run(
         if !(world.steps - steps0).is_multiple_of(check_every) {
             continue;
         }
+        if super::interrupt_requested() {
+            // The caller sees the flag and reports the interruption, not this outcome.
+            break Outcome::Undecided;
+        }
         max_disp = world
             .bodies
             .iter()

@@ -27,6 +27,51 @@ use std::path::Path;
 /// Standard gravity (m/s^2), the g of records given in g.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
+/// The largest ground acceleration a record or pulse may hold, in g. The strongest recorded
+/// ground motions peak at 3 to 4 g; a sample beyond 100 g is a unit mistake or a corrupt
+/// file, refused with the line it is on (and would only make the blocks fly off).
+pub const MAX_ACCELERATION_G: f64 = 100.0;
+
+/// The largest time step (s) of a sampled record: accelerographs sample at 0.001 to 0.05 s;
+/// a record sampled less than once a second is not a ground motion (and `DT = 1e9` would
+/// plan a run of 3e12 s).
+pub const MAX_RECORD_DT: f64 = 1.0;
+
+/// Refuse a sample `value` (m/s^2) beyond [`MAX_ACCELERATION_G`], naming the file and line.
+fn plausible(value: f64, written: &str, path: &Path, line: usize) -> Result<f64, RecordError> {
+    if value.abs() <= MAX_ACCELERATION_G * STANDARD_GRAVITY {
+        Ok(value)
+    } else {
+        Err(RecordError::Data {
+            path: path.to_path_buf(),
+            line,
+            message: format!(
+                "sample `{written}`{}: beyond the {MAX_ACCELERATION_G} g any ground motion stays within (wrong unit, or a corrupt file?)",
+                if value.is_finite() {
+                    format!(" is {:.4e} g", value / STANDARD_GRAVITY)
+                } else {
+                    String::new()
+                }
+            ),
+        })
+    }
+}
+
+/// Refuse a record time step above [`MAX_RECORD_DT`], naming the file and line.
+fn plausible_dt(dt: f64, path: &Path, line: usize) -> Result<f64, RecordError> {
+    if dt <= MAX_RECORD_DT {
+        Ok(dt)
+    } else {
+        Err(RecordError::Data {
+            path: path.to_path_buf(),
+            line,
+            message: format!(
+                "time step {dt} s: a ground-motion record is sampled at most every {MAX_RECORD_DT} s (usually 0.005 to 0.02 s)"
+            ),
+        })
+    }
+}
+
 pub use crate::error::RecordError;
 
 /// Unit of the accelerations of a text record.
@@ -127,6 +172,11 @@ impl Pulse {
         if !amplitude.is_finite() {
             return Err(RecordError::Pulse(format!(
                 "amplitude = {amplitude}: must be a finite number"
+            )));
+        }
+        if amplitude.abs() > MAX_ACCELERATION_G * STANDARD_GRAVITY {
+            return Err(RecordError::Pulse(format!(
+                "amplitude = {amplitude} m/s^2: beyond the {MAX_ACCELERATION_G} g any ground motion stays within"
             )));
         }
         if !(period.is_finite() && period > 0.0) {
@@ -279,7 +329,10 @@ pub fn parse_at2(text: &str, path: &Path) -> Result<GroundMotion, RecordError> {
         });
     }
     let (npts, dt) = at2_sampling(lines[3], path, 4)?;
-    let mut accel = Vec::with_capacity(npts);
+    let dt = plausible_dt(dt, path, 4)?;
+    // NPTS is the file's word, not a measure of it: reserve no more than the text can hold
+    // (one sample takes at least two characters), so `NPTS = 2^61` cannot abort.
+    let mut accel = Vec::with_capacity(npts.min(text.len() / 2 + 1));
     let mut last_line = 4;
     for (k, l) in lines.iter().enumerate().skip(4) {
         let line = k + 1;
@@ -288,7 +341,8 @@ pub fn parse_at2(text: &str, path: &Path) -> Result<GroundMotion, RecordError> {
             if token.is_empty() {
                 continue;
             }
-            accel.push(STANDARD_GRAVITY * number(token, path, line)?);
+            let a = STANDARD_GRAVITY * number(token, path, line)?;
+            accel.push(plausible(a, token, path, line)?);
             any = true;
         }
         if any {
@@ -384,7 +438,11 @@ pub fn parse_text(
             }
             time.push(t);
         }
-        (time, rows.iter().map(|(_, v)| f * v[1]).collect())
+        let mut accel = Vec::with_capacity(rows.len());
+        for (line, v) in &rows {
+            accel.push(plausible(f * v[1], &v[1].to_string(), path, *line)?);
+        }
+        (time, accel)
     } else {
         let dt = match dt {
             Some(d) if d.is_finite() && d > 0.0 => d,
@@ -403,10 +461,12 @@ pub fn parse_text(
                 ))
             }
         };
-        (
-            (0..rows.len()).map(|i| i as f64 * dt).collect(),
-            rows.iter().map(|(_, v)| f * v[0]).collect(),
-        )
+        let dt = plausible_dt(dt, path, rows[0].0)?;
+        let mut accel = Vec::with_capacity(rows.len());
+        for (line, v) in &rows {
+            accel.push(plausible(f * v[0], &v[0].to_string(), path, *line)?);
+        }
+        ((0..rows.len()).map(|i| i as f64 * dt).collect(), accel)
     };
     Ok(GroundMotion {
         time,

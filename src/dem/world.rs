@@ -377,10 +377,12 @@ impl World {
                 c.shear = shear;
                 c.normal_force = normal;
                 // The dashpot acts in shear only while sticking and within the Coulomb cap.
+                // `max` then `min`, not `clamp`: a state gone non-finite (an overflowing load)
+                // must reach the divergence checks as a NaN, not panic here.
                 let s_total = if c.sliding {
                     shear
                 } else {
-                    (shear - cs * vt).clamp(-cap, cap)
+                    (shear - cs * vt).max(-cap).min(cap)
                 };
                 let f = normal * n + s_total * t;
                 let fv = &mut self.force[vi];
@@ -441,6 +443,16 @@ impl World {
         }
         self.unbalanced = unbalanced;
         self.max_speed = max_speed;
+    }
+
+    /// The deepest overlap of a contact carrying a force (m).
+    pub fn max_penetration(&self) -> f64 {
+        self.pairs
+            .iter()
+            .flat_map(|p| &p.contacts)
+            .filter(|c| c.normal_force > 0.0)
+            .map(|c| c.depth)
+            .fold(0.0, f64::max)
     }
 
     /// Kinetic energy of all blocks (J).

@@ -610,6 +610,14 @@ pub struct DemReport {
     pub scene: SceneReport,
     #[serde(flatten)]
     pub loads: LoadsReport,
+    /// The most time steps one run could take (its longest length over `time_step`), and the
+    /// limit it was checked against before the search started (`--max-steps`).
+    pub planned_steps_per_run: u64,
+    pub max_steps: u64,
+    /// What looked implausible (contacts too soft for rigid blocks, a time scale the
+    /// defaults do not fit, the DEM contradicting the static status), one sentence each;
+    /// empty when nothing did.
+    pub warnings: Vec<String>,
 }
 
 impl DemReport {
@@ -699,6 +707,9 @@ impl DemReport {
                 .collect(),
             scene: SceneReport::new(scene, model),
             loads: LoadsReport::new(scene, model),
+            planned_steps_per_run: r.planned_steps_per_run,
+            max_steps: r.params.max_steps,
+            warnings: r.warnings.clone(),
         }
     }
 }
@@ -731,19 +742,26 @@ pub struct DynamicReport {
     /// without one.
     pub vertical_excitation: Option<String>,
     pub pga_vertical: Option<f64>,
+    /// How the run ended, decided by the state and not the clock: `at_rest`, `collapsed`,
+    /// `moving` (still moving when it gave up: `status` is then `undecided`) or
+    /// `cannot_stand`; and how long it ran past the motion and its tail to decide it (s).
+    pub end_state: crate::dem::dynamic::EndState,
+    pub extended: f64,
+    /// The collapse criterion (`displacement` or `overturning`, `--criterion`) and the
+    /// displacement of a block point (m) it calls collapse.
+    pub criterion: crate::dem::dynamic::Criterion,
+    pub collapse_displacement: f64,
+    /// The most time steps the run could take, checked against the limit before it started.
+    pub planned_steps: u64,
+    /// What looked implausible, one sentence each; empty when nothing did.
+    pub warnings: Vec<String>,
 }
 
 impl DynamicReport {
     pub fn new(scene: &Scene, d: &crate::analysis::DynamicAnalysis) -> Self {
         let r = &d.result;
         DynamicReport {
-            status: if r.cannot_stand {
-                "cannot_stand"
-            } else if r.collapsed {
-                "collapse"
-            } else {
-                "survives"
-            },
+            status: r.status(),
             excitation: d.ground.main.describe(),
             pga: d.ground.main.pga(),
             duration: d.ground.duration(),
@@ -760,6 +778,12 @@ impl DynamicReport {
             component: d.ground.component.name(),
             vertical_excitation: d.ground.vertical.as_ref().map(|v| v.describe()),
             pga_vertical: d.ground.vertical.as_ref().map(|v| v.pga()),
+            end_state: r.end_state,
+            extended: r.extended,
+            criterion: r.criterion,
+            collapse_displacement: r.collapse_displacement,
+            planned_steps: r.planned_steps,
+            warnings: r.warnings.clone(),
         }
     }
 }
@@ -790,6 +814,9 @@ pub struct IdaReport {
     pub vertical_excitation: Option<String>,
     pub pga_vertical: Option<f64>,
     pub collapse_pga_vertical: Option<f64>,
+    /// The collapse criterion of the runs (`displacement` or `overturning`); a run still
+    /// moving when it gave up counts as collapsed.
+    pub criterion: crate::dem::dynamic::Criterion,
 }
 
 impl IdaReport {
@@ -815,6 +842,7 @@ impl IdaReport {
             vertical_excitation: ground.vertical.as_ref().map(|v| v.describe()),
             pga_vertical,
             collapse_pga_vertical: r.scale_collapses.zip(pga_vertical).map(|(s, p)| s * p),
+            criterion: r.criterion,
         }
     }
 }
@@ -831,7 +859,17 @@ pub struct PulseCurveReport {
     pub tolerance: f64,
     pub points: Vec<PulseCurvePointReport>,
     pub wall_time_s: f64,
+    /// The factor between the amplitudes scanned before bisecting (the resolution: a collapse
+    /// window narrower than it can be missed), the collapse criterion of the runs, and in words
+    /// what the numbers are: the lowest collapse found on the scan, a first bracket and not a
+    /// proven minimum.
+    pub scan_ratio: f64,
+    pub criterion: crate::dem::dynamic::Criterion,
+    pub search: &'static str,
 }
+
+/// What a pulse curve's brackets are, for the JSON and the summary.
+pub const PULSE_CURVE_SEARCH: &str = "scanned up from the start by the scan ratio until a run collapses, then bisected: the lowest collapse found on the scan, a first bracket and not a proven minimum (overturning need not be monotone in the amplitude: Zhang & Makris 2001)";
 
 /// One point of a pulse curve.
 #[derive(Debug, Serialize)]
@@ -868,6 +906,9 @@ impl PulseCurveReport {
                 })
                 .collect(),
             wall_time_s: c.wall_time_s,
+            scan_ratio: crate::dem::dynamic::PULSE_SCAN_RATIO,
+            criterion: c.criterion,
+            search: PULSE_CURVE_SEARCH,
         }
     }
 }

@@ -839,13 +839,35 @@ pub fn dem_summary(scene: &Scene, model: &Model, rep: &DemReport) -> String {
     }
     let _ = writeln!(
         s,
-        "  {}, {} of {:.3e} s, {:.2} s wall time",
+        "  {}, {} of {:.3e} s (at most {} a run, limit {}), {:.2} s wall time",
         count(rep.runs.len() as u64, "run", "runs"),
         count(rep.steps, "time step", "time steps"),
         rep.time_step,
+        rep.planned_steps_per_run,
+        rep.max_steps,
         rep.wall_time_s
     );
+    warning_lines(&mut s, &rep.warnings);
     s
+}
+
+/// The warnings of a DEM report, one `warning:` line each.
+fn warning_lines(s: &mut String, warnings: &[String]) {
+    for w in warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
+}
+
+/// How a dynamic run's criterion calls collapse, for the summaries.
+fn criterion_words(criterion: crate::dem::dynamic::Criterion, displacement: f64) -> String {
+    match criterion {
+        crate::dem::dynamic::Criterion::Displacement => format!(
+            "collapse criterion: displacement (a block point moved by {displacement:.4} m, a quarter of the structure's size)"
+        ),
+        crate::dem::dynamic::Criterion::Overturning => format!(
+            "collapse criterion: overturning (the structure fell: a block point moved by {displacement:.4} m, its whole size; otherwise run until at rest)"
+        ),
+    }
 }
 
 /// The text summary of a dynamic DEM run.
@@ -878,14 +900,39 @@ pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::Dynami
         "collapse" => {
             let _ = writeln!(
                 s,
-                "DEM: COLLAPSE at t = {:.3} s (a block moved by a quarter of the structure's size)",
+                "DEM: COLLAPSE at t = {:.3} s",
                 rep.collapse_time.unwrap_or(f64::NAN)
             );
         }
+        "undecided" => {
+            let _ = writeln!(
+                s,
+                "DEM: UNDECIDED — still moving {:.3} s after the motion and its tail, neither at rest nor collapsed",
+                rep.extended
+            );
+        }
         _ => {
-            let _ = writeln!(s, "DEM: survives");
+            let how = match rep.end_state {
+                crate::dem::dynamic::EndState::Settling => "its motion dying out after the ground stopped: no block point moved by more than 0.25% of the structure's size over the last window",
+                crate::dem::dynamic::EndState::Rocking => "still rocking after the ground stopped, with less energy than it needs to tip over its base corner",
+                _ => "at rest after the ground stopped",
+            };
+            let _ = writeln!(
+                s,
+                "DEM: survives ({how}{})",
+                if rep.extended > 0.0 {
+                    format!("; decided {:.3} s past the tail", rep.extended)
+                } else {
+                    String::new()
+                }
+            );
         }
     }
+    let _ = writeln!(
+        s,
+        "  {}",
+        criterion_words(rep.criterion, rep.collapse_displacement)
+    );
     let _ = writeln!(
         s,
         "  block {}: peak displacement {:.4e} m, peak rotation {:.4e} rad; residual {:.4e} m, {:.4e} rad",
@@ -897,11 +944,13 @@ pub fn dynamic_summary(scene: &Scene, model: &Model, rep: &crate::report::Dynami
     );
     let _ = writeln!(
         s,
-        "  no local damping: energy is lost only at the contacts (docs/dem.md)\n  {}, time step {:.3e} s, {:.2} s wall time",
+        "  no local damping: energy is lost only at the contacts (docs/dem.md)\n  {} (at most {}), time step {:.3e} s, {:.2} s wall time",
         count(rep.steps, "time step", "time steps"),
+        rep.planned_steps,
         rep.time_step,
         rep.wall_time_s
     );
+    warning_lines(&mut s, &rep.warnings);
     s
 }
 
@@ -923,6 +972,7 @@ pub fn dynamic_headline(rep: &crate::report::DynamicReport) -> String {
             "collapses at t = {:.3} s",
             rep.collapse_time.unwrap_or(f64::NAN)
         ),
+        "undecided" => "undecided (still moving)".to_string(),
         _ => "survives".to_string(),
     };
     let vertical = rep
@@ -982,8 +1032,15 @@ pub fn pulse_curve_summary(
     }
     let _ = writeln!(
         s,
-        "  amplitudes in m/s^2; {:.2} s wall time (the first bracket from below: dynamic collapse need not be monotonic in the amplitude)",
-        rep.wall_time_s
+        "  amplitudes in m/s^2; {:.2} s wall time; collapse criterion: {}",
+        rep.wall_time_s,
+        rep.criterion.name()
+    );
+    let _ = writeln!(
+        s,
+        "  each point is {} (scan ratio {}: a collapse window narrower than that can be missed)",
+        crate::report::json::PULSE_CURVE_SEARCH,
+        rep.scan_ratio
     );
     s
 }
@@ -1022,10 +1079,11 @@ pub fn ida_summary(scene: &Scene, model: &Model, rep: &crate::report::IdaReport)
     }
     let _ = writeln!(
         s,
-        "  {}, {}, {:.2} s wall time (the first bracket from below: dynamic collapse need not be monotonic in the scale)",
+        "  {}, {}, {:.2} s wall time (the first bracket from below: dynamic collapse need not be monotonic in the scale); collapse criterion: {}",
         count(rep.runs.len() as u64, "run", "runs"),
         count(rep.steps, "time step", "time steps"),
-        rep.wall_time_s
+        rep.wall_time_s,
+        rep.criterion.name()
     );
     s
 }

@@ -79,3 +79,118 @@ pub fn data(name: &str) -> std::path::PathBuf {
 pub fn voussoir() -> assert_cmd::Command {
     assert_cmd::Command::cargo_bin("voussoir").expect("binary built")
 }
+
+/// Housner's rigid rocking block (1963), integrated directly: a block b x h on rigid ground
+/// under the horizontal ground acceleration `ground(t)` (m/s^2) with gravity `g`, rotating
+/// about one base corner at a time (Makris & Roussos 2000; Zhang & Makris 2001, "Rocking
+/// response of free-standing blocks under cycloidal pulses", J. Eng. Mech. 127:473-483):
+/// `theta'' = -p^2 [sin(alpha sgn(theta) - theta) + (a_g / g) cos(alpha sgn(theta) - theta)]`,
+/// `p^2 = 3 g / (4 R)` (R the half-diagonal), rocking starting when `|a_g| > g tan(alpha)`,
+/// and at each impact (theta through 0) Housner's sticking impact keeps `1 - 1.5 sin^2(alpha)`
+/// of the angular speed. Whether it overturns: it has, once `|theta|` passes pi/2; it has
+/// not, once the ground is still (`t >= duration`) and its energy above rest is below the
+/// energy to reach the unstable equilibrium, `m g R (1 - cos(alpha))`. Fourth-order
+/// Runge-Kutta with a step of 1e-5 s.
+pub fn housner_overturns(
+    b: f64,
+    h: f64,
+    g: f64,
+    ground: &dyn Fn(f64) -> f64,
+    duration: f64,
+) -> bool {
+    let alpha = (b / h).atan();
+    let r = 0.5 * (b * b + h * h).sqrt();
+    let p2 = 3.0 * g / (4.0 * r);
+    let e = 1.0 - 1.5 * alpha.sin().powi(2);
+    let accel = |t: f64, th: f64, side: f64| {
+        let ag = ground(t) / g;
+        -p2 * ((alpha * side - th).sin() + ag * (alpha * side - th).cos())
+    };
+    let h_step = 1e-5;
+    let (mut t, mut th, mut om) = (0.0_f64, 0.0_f64, 0.0_f64);
+    // The corner it rocks on: +1, -1, or 0 while it stands.
+    let mut side = 0.0_f64;
+    while t < duration + 60.0 {
+        if side == 0.0 {
+            let ag = ground(t) / g;
+            if ag < -alpha.tan() {
+                side = 1.0;
+            } else if ag > alpha.tan() {
+                side = -1.0;
+            } else {
+                if t >= duration {
+                    return false;
+                }
+                t += h_step;
+                continue;
+            }
+        }
+        let f = |t: f64, th: f64, om: f64| (om, accel(t, th, side));
+        let (k1a, k1b) = f(t, th, om);
+        let (k2a, k2b) = f(
+            t + 0.5 * h_step,
+            th + 0.5 * h_step * k1a,
+            om + 0.5 * h_step * k1b,
+        );
+        let (k3a, k3b) = f(
+            t + 0.5 * h_step,
+            th + 0.5 * h_step * k2a,
+            om + 0.5 * h_step * k2b,
+        );
+        let (k4a, k4b) = f(t + h_step, th + h_step * k3a, om + h_step * k3b);
+        let th_new = th + h_step / 6.0 * (k1a + 2.0 * k2a + 2.0 * k3a + k4a);
+        om += h_step / 6.0 * (k1b + 2.0 * k2b + 2.0 * k3b + k4b);
+        t += h_step;
+        if th_new * side < 0.0 {
+            // Impact: on the other corner, with the angular speed Housner's impact keeps.
+            th = 0.0;
+            om *= e;
+            side = if om > 0.0 { 1.0 } else { -1.0 };
+            if om.abs() < 1e-9 {
+                side = 0.0;
+                om = 0.0;
+            }
+            continue;
+        }
+        th = th_new;
+        if th.abs() > 0.5 * std::f64::consts::PI {
+            return true;
+        }
+        if t >= duration {
+            let energy = om * om / (2.0 * p2) + (alpha - th.abs()).cos() - alpha.cos();
+            if energy < 1.0 - alpha.cos() && th.abs() < alpha {
+                return false;
+            }
+        }
+    }
+    false
+}
+
+/// The smallest amplitude (m/s^2) of the pulse `pulse(a, t)` lasting `duration` that
+/// overturns Housner's block b x h ([`housner_overturns`]): scanned up from `g tan(alpha)`
+/// by 1% (the lowest overturning window is not missed unless narrower than that), then
+/// bisected to 1e-4.
+pub fn housner_minimum_amplitude(
+    b: f64,
+    h: f64,
+    g: f64,
+    pulse: &dyn Fn(f64, f64) -> f64,
+    duration: f64,
+) -> f64 {
+    let mut lo = g * b / h;
+    let mut hi = lo;
+    while !housner_overturns(b, h, g, &|t| pulse(hi, t), duration) {
+        lo = hi;
+        hi *= 1.01;
+        assert!(hi < 100.0 * g, "no overturning below 100 g");
+    }
+    while hi - lo > 1e-4 * hi {
+        let mid = 0.5 * (lo + hi);
+        if housner_overturns(b, h, g, &|t| pulse(mid, t), duration) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}

@@ -159,3 +159,21 @@ def test_the_gil_is_released_while_solving():
     elapsed = time.perf_counter() - start
     # With the GIL held the loop would not run at all until the sweep returned.
     assert elapsed > 0.05 and ticks >= 10, (elapsed, ticks)
+
+
+def test_too_many_cases_are_refused_before_any_is_built(cli):
+    """Three ranges of 2,000 values: 8e9 cases, refused at once like the CLI (not allocated,
+    which would end the interpreter)."""
+    vary = {
+        "arch.thickness": "0.1:0.2999:0.0001",
+        "arch.radius": "1:2.999:0.001",
+        "material.unit_weight": "1:2000:1",
+    }
+    with pytest.raises(voussoir.SceneError) as e:
+        voussoir.sweep(voussoir.Scene.from_toml(str(SEMI)), vary)
+    assert e.value.kind == "bad_variation"
+    assert "2000 x 2000 x 2000 values make 8000000000 cases" in str(e.value)
+    args = [a for k, v in vary.items() for a in ("--vary", f"{k}={v}")]
+    p = cli("sweep", SEMI, *args, check=False)
+    assert p.returncode != 0
+    assert p.stderr.strip() == f"error: {e.value}"

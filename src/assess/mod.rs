@@ -20,7 +20,11 @@
 //! 3. **Verdict** ([`verdict`]): `du* = 0.4 d0*`, `ds* = 0.4 du*`, `as* = a*(ds*)`,
 //!    `Ts = 2 pi sqrt(ds*/as*)`; linear check `a0* >= ag S / q`, nonlinear check
 //!    `du* >= SDe(Ts)` (and the amplified demands of a mechanism at height `Z`); the largest
-//!    `ag` passing each check, by bisection.
+//!    `ag` passing each check, by bisection. The mechanism passes when either check is
+//!    satisfied (C8.7.1 lets the engineer verify it with either analysis, [`RULE`]).
+//! 4. **Both directions** ([`assess_directions`]): the seismic action is reversible, so the
+//!    scene is assessed with the load toward the right and toward the left (each its own
+//!    governing mechanism) and the worse direction governs ([`Assessment::governing`]).
 //!
 //! Mechanisms with a joint that opens completely (families other than four hinges or one
 //! hinge) have no finite motion fixed by their hinges alone and are refused.
@@ -675,10 +679,61 @@ pub struct Verdict {
     pub nonlinear: Check,
 }
 
+/// Which of the two checks a verdict satisfies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Satisfied {
+    Both,
+    Linear,
+    Nonlinear,
+    Neither,
+}
+
+/// The rule that turns the two checks into a verdict, as the reports state it.
+pub const RULE: &str = "Circolare 2019 C8.7.1: a local mechanism is verified by the linear or by the nonlinear kinematic analysis; either check satisfied suffices";
+
 impl Verdict {
-    /// Whether both checks pass.
+    /// The code's verdict (Circolare 2019 C8.7.1): the mechanism passes when the linear or
+    /// the nonlinear kinematic check is satisfied; the engineer may verify it with either.
     pub fn passes(&self) -> bool {
+        self.linear.passes || self.nonlinear.passes
+    }
+
+    /// Whether both checks are satisfied (the stricter reading, reported beside the verdict).
+    pub fn both_pass(&self) -> bool {
         self.linear.passes && self.nonlinear.passes
+    }
+
+    /// Which checks are satisfied.
+    pub fn satisfied(&self) -> Satisfied {
+        match (self.linear.passes, self.nonlinear.passes) {
+            (true, true) => Satisfied::Both,
+            (true, false) => Satisfied::Linear,
+            (false, true) => Satisfied::Nonlinear,
+            (false, false) => Satisfied::Neither,
+        }
+    }
+
+    /// The largest `ag` (in g) at which the mechanism passes by [`Verdict::passes`]: the larger
+    /// of the two checks' `ag_max` (None when one of them passes even at [`AG_SEARCH_MAX`]).
+    pub fn ag_max(&self) -> Option<f64> {
+        match (self.linear.ag_max, self.nonlinear.ag_max) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        }
+    }
+
+    /// The verdict in words: "passes: linear check satisfied", "does not pass: neither the
+    /// linear nor the nonlinear check is satisfied", ...
+    pub fn text(&self) -> &'static str {
+        match self.satisfied() {
+            Satisfied::Both => "passes: linear and nonlinear checks satisfied",
+            Satisfied::Linear => "passes: linear check satisfied (the nonlinear one is not)",
+            Satisfied::Nonlinear => "passes: nonlinear check satisfied (the linear one is not)",
+            Satisfied::Neither => {
+                "does not pass: neither the linear nor the nonlinear check is satisfied"
+            }
+        }
     }
 }
 
@@ -771,4 +826,103 @@ pub fn verdict(model: &Model, capacity: &Capacity, site: &Site) -> Verdict {
         linear: check(a0, &linear_demand),
         nonlinear: check(du_star, &|s: &Site| nonlinear_demand(s, ts)),
     }
+}
+
+/// The assessment of a scene in each direction assessed, and which one governs.
+#[derive(Debug, Clone)]
+pub struct Assessment {
+    /// One assessment per direction: right then left, or the one direction asked for.
+    pub directions: Vec<crate::analysis::SiteAssessment>,
+    /// Index into `directions` of the governing (worse) direction.
+    pub governing: usize,
+    /// Whether the caller restricted the assessment to one direction (then the verdict covers
+    /// that direction only).
+    pub restricted: bool,
+}
+
+impl Assessment {
+    /// The governing direction's assessment.
+    pub fn governing(&self) -> &crate::analysis::SiteAssessment {
+        &self.directions[self.governing]
+    }
+
+    /// The verdict over the directions assessed: every one must pass.
+    pub fn passes(&self) -> bool {
+        self.directions.iter().all(|a| a.verdict.passes())
+    }
+}
+
+/// Index of the governing direction among `verdicts`: a direction that fails governs over
+/// one that passes; among equals, the one with the smaller largest passing `ag` (None, passing
+/// beyond [`AG_SEARCH_MAX`], counts as infinite); on a tie, the first.
+pub fn governing_index(verdicts: &[&Verdict]) -> usize {
+    let key = |v: &Verdict| (v.passes(), v.ag_max().unwrap_or(f64::INFINITY));
+    let mut best = 0;
+    for (i, v) in verdicts.iter().enumerate().skip(1) {
+        let (p, ag) = key(v);
+        let (bp, bag) = key(verdicts[best]);
+        if (!p && bp) || (p == bp && ag < bag) {
+            best = i;
+        }
+    }
+    best
+}
+
+fn direction_name(d: Direction) -> &'static str {
+    match d {
+        Direction::Right => "right",
+        Direction::Left => "left",
+    }
+}
+
+/// Assess `scene` at its `[site]` with the load toward the right and toward the left (or only
+/// toward `only`), each with its own governing mechanism, and let the worse govern. A
+/// direction that cannot be assessed (no mechanism with a capacity curve) fails the whole
+/// assessment unless the other was excluded with `only`: a verdict of one direction is not a
+/// verdict of the structure.
+pub fn assess_directions(
+    scene: &crate::scene::Scene,
+    options: &crate::analysis::Options,
+    assess: &crate::analysis::AssessOptions,
+    only: Option<Direction>,
+) -> Result<Assessment, crate::error::AnalysisError> {
+    let wanted: Vec<Direction> = match only {
+        Some(d) => vec![d],
+        None => vec![Direction::Right, Direction::Left],
+    };
+    let runs: Vec<_> = wanted
+        .iter()
+        .map(|&d| {
+            let mut o = options.clone();
+            o.static_settings = o.static_settings.clone().direction(d);
+            crate::analysis::assess(scene, &o, assess)
+        })
+        .collect();
+    let mut directions = Vec::with_capacity(runs.len());
+    let mut failed = None;
+    for (d, r) in wanted.iter().zip(runs) {
+        match r {
+            Ok(a) => directions.push(a),
+            Err(e) if failed.is_none() => failed = Some((*d, e)),
+            Err(_) => {}
+        }
+    }
+    if let Some((d, e)) = failed {
+        // Both failed (or the only one asked for): the error as it is.
+        let Some(other) = directions.first() else {
+            return Err(e);
+        };
+        let other = direction_name(other.capacity.direction);
+        return Err(crate::error::AnalysisError::Other(format!(
+            "the load toward the {} cannot be assessed: {e}. The load toward the {other} can, but a verdict needs both directions: give --direction {other} to assess that one alone (its verdict then covers that direction only)",
+            direction_name(d)
+        )));
+    }
+    let verdicts: Vec<&Verdict> = directions.iter().map(|a| &a.verdict).collect();
+    let governing = governing_index(&verdicts);
+    Ok(Assessment {
+        directions,
+        governing,
+        restricted: only.is_some(),
+    })
 }

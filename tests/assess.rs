@@ -893,3 +893,39 @@ fn charts_mark_significant_points_and_speak_the_engineers_symbols() {
     assert!(text.contains("α₀") && text.contains("dₖ"));
     assert!(text_mech.contains("α = "));
 }
+
+#[test]
+fn a_mechanism_the_static_bound_does_not_reach_is_not_assessed() {
+    // Finite friction: the thick semicircle slides at lambda = 0.13, far below its rotational
+    // mechanism (0.41). The rotational capacity curve would start 3 times too high; it used to
+    // be assessed (and passed) without a word.
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("semicircular.toml"))
+        .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
+        .args(["--set", "material.friction=0.4", "--set", "arch.thickness=0.25", "--json"])
+        .output()
+        .expect("run");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("slide") && err.contains("no assessment"), "{err}");
+    // The same ring with crushing but no sliding: the mechanism is the crushing one, its
+    // alpha0 is the static multiplier of the finite strength (below the rigid one).
+    let run = |fc: &str| {
+        let out = voussoir()
+            .arg("assess")
+            .arg(data("semicircular.toml"))
+            .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
+            .args(["--set", &format!("material.compressive_strength={fc}"), "--json"])
+            .output()
+            .expect("run");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).expect("json")
+    };
+    let (rigid, crushing) = (run("inf"), run("1e6"));
+    close(f(&crushing["alpha0"]), f(&crushing["lambda_lower"]), 1e-9, "alpha0 = lambda");
+    assert!(f(&crushing["alpha0"]) < f(&rigid["alpha0"]));
+    // Hinges inset by half the compressed zone: a shorter way to alpha = 0.
+    assert!(f(&crushing["d_k0"]) < f(&rigid["d_k0"]));
+    assert!(crushing["mechanism"]["hinges"][0]["offset"].as_f64().unwrap_or(0.0) > 0.0);
+}

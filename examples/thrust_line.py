@@ -68,7 +68,9 @@ ax.set_aspect("equal")
 ax.autoscale_view()
 ax.set_xlabel("x (m)")
 ax.set_ylabel("y (m)")
-ax.legend(loc="upper right")
+# The legend goes under the plot, outside the axes, so it never covers the structure (inside
+# the axes it sat on a portal's pier or an arch's haunch, whatever corner it took).
+ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
 fig.tight_layout()
-fig.savefig(out, dpi=120)
+fig.savefig(out, dpi=120, bbox_inches="tight")
 print(f"written {out}")

@@ -651,7 +651,14 @@ fn loaded_portal_json(extra: &[&str]) -> serde_json::Value {
         .arg("assess")
         .arg(data("loaded_portal.toml"))
         .args([
-            "--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3",
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
             "--json",
         ])
         .args(extra)
@@ -682,14 +689,19 @@ fn assess_checks_both_directions_and_the_worse_governs() {
     let (right, left) = (&v["directions"]["right"], &v["directions"]["left"]);
     assert_eq!(right["direction"], "right");
     assert_eq!(left["direction"], "left");
-    assert_eq!(v["directions_assessed"], serde_json::json!(["right", "left"]));
+    assert_eq!(
+        v["directions_assessed"],
+        serde_json::json!(["right", "left"])
+    );
     assert_eq!(v["restricted"], false);
     // Each direction is what `--direction` alone gives, to the last bit (its own mechanism).
     for (name, d) in [("right", right), ("left", left)] {
         let alone = loaded_portal_json(&["--direction", name]);
         assert_eq!(alone["restricted"], true);
         assert_eq!(alone["directions_assessed"], serde_json::json!([name]));
-        assert!(alone["directions"].get(if name == "right" { "left" } else { "right" }).is_none());
+        assert!(alone["directions"]
+            .get(if name == "right" { "left" } else { "right" })
+            .is_none());
         for key in ["alpha0", "a0_star", "d_k0", "du_star", "Ts", "ag_max"] {
             assert_eq!(alone[key], d[key], "{name}: {key}");
         }
@@ -729,7 +741,10 @@ fn assess_checks_both_directions_and_the_worse_governs() {
         "ag_max",
         "satisfied",
     ] {
-        assert_eq!(v[key], g[key], "top-level {key} is the governing direction's");
+        assert_eq!(
+            v[key], g[key],
+            "top-level {key} is the governing direction's"
+        );
     }
     // The structure passes only if every direction does.
     assert_eq!(
@@ -740,7 +755,16 @@ fn assess_checks_both_directions_and_the_worse_governs() {
     let out = voussoir()
         .arg("assess")
         .arg(data("loaded_portal.toml"))
-        .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
         .output()
         .expect("run");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -753,7 +777,16 @@ fn assess_checks_both_directions_and_the_worse_governs() {
     let out = voussoir()
         .arg("assess")
         .arg(data("loaded_portal.toml"))
-        .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
         .args(["--direction", "right"])
         .output()
         .expect("run");
@@ -786,11 +819,17 @@ fn either_check_satisfied_passes_the_mechanism() {
     // and not the nonlinear one: it passes (it used to be reported as not passing).
     let v = loaded_portal_json(&["--direction", "right"]);
     let (lin, nonlin) = (&v["linear_check"], &v["nonlinear_check"]);
-    assert!(f(&lin["ratio"]) >= 1.0 && f(&nonlin["ratio"]) < 1.0, "{lin} {nonlin}");
+    assert!(
+        f(&lin["ratio"]) >= 1.0 && f(&nonlin["ratio"]) < 1.0,
+        "{lin} {nonlin}"
+    );
     assert_eq!(v["passes"], true);
     assert_eq!(v["satisfied"], "linear");
     assert_eq!(v["both_checks_pass"], false);
-    assert!(v["verdict"].as_str().unwrap_or("").starts_with("passes: linear check satisfied"));
+    assert!(v["verdict"]
+        .as_str()
+        .unwrap_or("")
+        .starts_with("passes: linear check satisfied"));
     assert!(v["rule"].as_str().unwrap_or("").contains("C8.7.1"));
     // The largest passing ag by the rule is the larger of the two checks'.
     close(
@@ -807,7 +846,10 @@ fn either_check_satisfied_passes_the_mechanism() {
     let high = loaded_portal_json(&["--direction", "right", "--site", &format!("ag={above}")]);
     assert_eq!(high["passes"], false);
     assert_eq!(high["satisfied"], "neither");
-    assert!(high["verdict"].as_str().unwrap_or("").starts_with("does not pass"));
+    assert!(high["verdict"]
+        .as_str()
+        .unwrap_or("")
+        .starts_with("does not pass"));
 }
 
 #[test]
@@ -858,7 +900,16 @@ fn charts_mark_significant_points_and_speak_the_engineers_symbols() {
     let out = voussoir()
         .arg("assess")
         .arg(data("loaded_portal.toml"))
-        .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
         .arg("--svg")
         .arg(&cap)
         .arg("--adrs-svg")
@@ -867,7 +918,11 @@ fn charts_mark_significant_points_and_speak_the_engineers_symbols() {
         .arg(&mech)
         .output()
         .expect("run");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // Circles inside each series group (the legend draws its own, outside them).
     let markers = |text: &str| -> Vec<usize> {
         let doc = roxmltree::Document::parse(text).expect("well-formed svg");
@@ -886,7 +941,14 @@ fn charts_mark_significant_points_and_speak_the_engineers_symbols() {
     assert!(m[2..].iter().all(|&k| k == 0), "{m:?}");
     let text_mech = std::fs::read_to_string(&mech).expect("mechanism svg");
     for t in [&text, &text_adrs, &text_mech] {
-        for code in ["alpha0", "lambda_lower", "lambda_upper", "alpha(", "alpha =", "d_k"] {
+        for code in [
+            "alpha0",
+            "lambda_lower",
+            "lambda_upper",
+            "alpha(",
+            "alpha =",
+            "d_k",
+        ] {
             assert!(!t.contains(code), "a code name {code:?} in a drawing");
         }
     }
@@ -902,30 +964,75 @@ fn a_mechanism_the_static_bound_does_not_reach_is_not_assessed() {
     let out = voussoir()
         .arg("assess")
         .arg(data("semicircular.toml"))
-        .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
-        .args(["--set", "material.friction=0.4", "--set", "arch.thickness=0.25", "--json"])
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
+        .args([
+            "--set",
+            "material.friction=0.4",
+            "--set",
+            "arch.thickness=0.25",
+            "--json",
+        ])
         .output()
         .expect("run");
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("slide") && err.contains("no assessment"), "{err}");
+    assert!(
+        err.contains("slide") && err.contains("no assessment"),
+        "{err}"
+    );
     // The same ring with crushing but no sliding: the mechanism is the crushing one, its
     // alpha0 is the static multiplier of the finite strength (below the rigid one).
     let run = |fc: &str| {
         let out = voussoir()
             .arg("assess")
             .arg(data("semicircular.toml"))
-            .args(["--site", "ag=0.25", "--site", "soil=B", "--site", "F0=2.4", "--site", "Tc_star=0.3"])
-            .args(["--set", &format!("material.compressive_strength={fc}"), "--json"])
+            .args([
+                "--site",
+                "ag=0.25",
+                "--site",
+                "soil=B",
+                "--site",
+                "F0=2.4",
+                "--site",
+                "Tc_star=0.3",
+            ])
+            .args([
+                "--set",
+                &format!("material.compressive_strength={fc}"),
+                "--json",
+            ])
             .output()
             .expect("run");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         serde_json::from_slice::<serde_json::Value>(&out.stdout).expect("json")
     };
     let (rigid, crushing) = (run("inf"), run("1e6"));
-    close(f(&crushing["alpha0"]), f(&crushing["lambda_lower"]), 1e-9, "alpha0 = lambda");
+    close(
+        f(&crushing["alpha0"]),
+        f(&crushing["lambda_lower"]),
+        1e-9,
+        "alpha0 = lambda",
+    );
     assert!(f(&crushing["alpha0"]) < f(&rigid["alpha0"]));
     // Hinges inset by half the compressed zone: a shorter way to alpha = 0.
     assert!(f(&crushing["d_k0"]) < f(&rigid["d_k0"]));
-    assert!(crushing["mechanism"]["hinges"][0]["offset"].as_f64().unwrap_or(0.0) > 0.0);
+    assert!(
+        crushing["mechanism"]["hinges"][0]["offset"]
+            .as_f64()
+            .unwrap_or(0.0)
+            > 0.0
+    );
 }

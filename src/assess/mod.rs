@@ -909,7 +909,8 @@ pub fn rotation_governs(a: &crate::analysis::SiteAssessment) -> Result<(), Strin
     } else if a.analysis.model.strength.is_finite() {
         "the compressive strength lowers the multiplier, but the mechanism search kept rigid hinges at the joint ends (the static solution's crushing hinges do not form a four-hinge mechanism)".to_string()
     } else {
-        "the mechanism found by the kinematic search is not the one the static bound reaches".to_string()
+        "the mechanism found by the kinematic search is not the one the static bound reaches"
+            .to_string()
     };
     Err(format!(
         "load toward the {dir}: the static lower bound lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",

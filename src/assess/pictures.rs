@@ -15,7 +15,9 @@ use crate::thrustline::chart::{Chart, Series};
 /// `(d_k, alpha, d*, a*)`, None outside the curve.
 fn at_d_star(capacity: &Capacity, d: f64) -> Option<(f64, f64, f64, f64)> {
     let c = &capacity.curve;
-    let i = c.windows(2).position(|w| w[0].d_star <= d && d <= w[1].d_star)?;
+    let i = c
+        .windows(2)
+        .position(|w| w[0].d_star <= d && d <= w[1].d_star)?;
     let (p, q) = (&c[i], &c[i + 1]);
     let f = if q.d_star > p.d_star {
         (d - p.d_star) / (q.d_star - p.d_star)
@@ -103,7 +105,12 @@ fn periods(verdict: &Verdict, d_max: f64) -> Vec<f64> {
 
 /// The ADRS plot of one direction: `a*` (m/s²) against `d*` (mm), capacity and demand.
 /// `direction_note` follows the title (e.g. "load to the left, governing").
-pub fn adrs_chart(capacity: &Capacity, verdict: &Verdict, title: &str, direction_note: &str) -> Chart {
+pub fn adrs_chart(
+    capacity: &Capacity,
+    verdict: &Verdict,
+    title: &str,
+    direction_note: &str,
+) -> Chart {
     let sp = &verdict.spectrum;
     let demand_ts = verdict.nonlinear.demand;
     let d_max = 1.5 * capacity.d0_star.max(demand_ts);
@@ -115,7 +122,10 @@ pub fn adrs_chart(capacity: &Capacity, verdict: &Verdict, title: &str, direction
         .iter()
         .map(|p| (1e3 * p.d_star, p.a_star))
         .collect();
-    let mut cap_marks = vec![(0.0, capacity.a0_star), (1e3 * verdict.ds_star, verdict.as_star)];
+    let mut cap_marks = vec![
+        (0.0, capacity.a0_star),
+        (1e3 * verdict.ds_star, verdict.as_star),
+    ];
     if let Some((_, _, d, a)) = at_d_star(capacity, verdict.du_star) {
         cap_marks.push((1e3 * d, a));
     }

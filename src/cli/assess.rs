@@ -64,8 +64,12 @@ pub fn run(args: Args) -> Result<String, Error> {
         points: args.points,
         control_block: args.control_block,
     };
-    let all =
-        voussoir::assess::assess_directions(&scene, &options, &assess, args.direction.map(Into::into))?;
+    let all = voussoir::assess::assess_directions(
+        &scene,
+        &options,
+        &assess,
+        args.direction.map(Into::into),
+    )?;
     let a = all.governing();
     // The file name: the origin also lists the overrides, too long for a chart title.
     let title = args.scene.scene.file_name().map_or_else(
@@ -82,7 +86,10 @@ pub fn run(args: Args) -> Result<String, Error> {
         format!("{dir_words} only")
     };
     if let Some(path) = &args.svg {
-        write_chart(path, &voussoir::assess::pictures::capacity_chart(&all, &title))?;
+        write_chart(
+            path,
+            &voussoir::assess::pictures::capacity_chart(&all, &title),
+        )?;
     }
     if let Some(path) = &args.adrs_svg {
         write_chart(

@@ -323,7 +323,10 @@ fn verdict_line(all: &Assessment) -> String {
     let g = all.governing();
     let d = direction_words(g.capacity.direction);
     if all.restricted {
-        format!("{}; {d} only (--direction excluded the other)", g.verdict.text())
+        format!(
+            "{}; {d} only (--direction excluded the other)",
+            g.verdict.text()
+        )
     } else {
         format!("{}; governing direction: {d}", g.verdict.text())
     }

@@ -678,9 +678,9 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
     };
     let upper = match &a.upper {
         Ok(k) => match (k.status, k.lambda_upper) {
-            (Status::Collapse, Some(u)) if a.sliding_governs() => {
-                Some(format!("λ (kinematic upper bound) = {u:.4} (rotation only)"))
-            }
+            (Status::Collapse, Some(u)) if a.sliding_governs() => Some(format!(
+                "λ (kinematic upper bound) = {u:.4} (rotation only)"
+            )),
             (Status::Collapse, Some(u)) => Some(format!("λ (kinematic upper bound) = {u:.4}")),
             (status, _) if status == a.lower.status => None,
             (Status::NoCollapse, _) => Some("kinematic: no collapse".to_string()),

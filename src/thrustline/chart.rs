@@ -264,9 +264,8 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
                 }
             }
             if let Markers::At(at) = markers {
-                let inside = |&(x, y): &(f64, f64)| {
-                    (x0..=x1).contains(&x) && (y0..=y1).contains(&y)
-                };
+                let inside =
+                    |&(x, y): &(f64, f64)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y);
                 c.draw_series(
                     at.iter()
                         .copied()

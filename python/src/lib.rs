@@ -586,7 +586,7 @@ fn assess_json(
     let only = direction.map(self::direction).transpose()?;
     let lib_scene = scene.inner.clone();
     let (lib_scene, all) = interruptible(py, Arc::default(), move || {
-        let all = voussoir::assess::assess_directions(
+        let all = voussoir::analysis::assess_directions(
             &lib_scene,
             &Options::default(),
             &analysis::AssessOptions {
@@ -622,7 +622,7 @@ fn assess_svg(
     let lib_scene = scene.inner.clone();
     let which = which.to_string();
     let out = interruptible(py, Arc::default(), move || {
-        let all = voussoir::assess::assess_directions(
+        let all = voussoir::analysis::assess_directions(
             &lib_scene,
             &Options::default(),
             &analysis::AssessOptions {
@@ -633,7 +633,14 @@ fn assess_svg(
         )?;
         let title = report::shape_title(&lib_scene);
         let chart = if which == "capacity" {
-            voussoir::assess::pictures::capacity_chart(&all, &title)
+            voussoir::assess::pictures::capacity_chart(
+                &all.directions
+                    .iter()
+                    .map(|a| (&a.capacity, &a.verdict))
+                    .collect::<Vec<_>>(),
+                all.governing,
+                &title,
+            )
         } else {
             let a = all.governing();
             let words = match a.capacity.direction {

@@ -7,7 +7,7 @@
 //! points (rest, `ds*`, `du*`, the end at α = 0) carry markers. Labels use the engineer's
 //! symbols (α₀, dₖ, m/s²), not the JSON keys.
 
-use super::{Assessment, Capacity, Verdict};
+use super::{Capacity, Verdict};
 use crate::outcome::Direction;
 use crate::thrustline::chart::{Chart, Series};
 
@@ -33,22 +33,25 @@ fn at_d_star(capacity: &Capacity, d: f64) -> Option<(f64, f64, f64, f64)> {
     ))
 }
 
-/// The capacity curves α(dₖ) (dₖ in mm) of every direction assessed, the governing one
-/// first; each marked at rest (α₀), at `du*` and at α = 0 (`dₖ0`).
-pub fn capacity_chart(all: &Assessment, title: &str) -> Chart {
-    let order = std::iter::once(all.governing)
-        .chain((0..all.directions.len()).filter(|i| *i != all.governing));
+/// The capacity curves α(dₖ) (dₖ in mm) of every direction assessed (`directions`: each
+/// direction's capacity and verdict; `governing` indexes the governing one, drawn first), each
+/// marked at rest (α₀), at `du*` and at α = 0 (`dₖ0`).
+pub fn capacity_chart(
+    directions: &[(&Capacity, &Verdict)],
+    governing: usize,
+    title: &str,
+) -> Chart {
+    let order = std::iter::once(governing).chain((0..directions.len()).filter(|i| *i != governing));
     let series = order
-        .map(|i| {
-            let a = &all.directions[i];
-            let c = &a.capacity;
+        .filter_map(|i| directions.get(i).map(|d| (i, d)))
+        .map(|(i, (c, v))| {
             let points = c.curve.iter().map(|p| (1e3 * p.d_k, p.alpha)).collect();
             let mut marks = vec![(0.0, c.alpha0)];
-            if let Some((dk, alpha, _, _)) = at_d_star(c, a.verdict.du_star) {
+            if let Some((dk, alpha, _, _)) = at_d_star(c, v.du_star) {
                 marks.push((1e3 * dk, alpha));
             }
             marks.push((1e3 * c.d_k0, 0.0));
-            let governing = if i == all.governing && all.directions.len() > 1 {
+            let governing = if i == governing && directions.len() > 1 {
                 " (governing)"
             } else {
                 ""
@@ -70,12 +73,12 @@ pub fn capacity_chart(all: &Assessment, title: &str) -> Chart {
     Chart {
         title: format!(
             "{title}: capacity curves (control point: centroid of {})",
-            all.directions
+            directions
                 .iter()
-                .map(|a| format!(
+                .map(|(c, _)| format!(
                     "block {} {}",
-                    a.capacity.control_block,
-                    match a.capacity.direction {
+                    c.control_block,
+                    match c.direction {
                         Direction::Right => "right",
                         Direction::Left => "left",
                     }

@@ -64,7 +64,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         points: args.points,
         control_block: args.control_block,
     };
-    let all = voussoir::assess::assess_directions(
+    let all = voussoir::analysis::assess_directions(
         &scene,
         &options,
         &assess,
@@ -88,7 +88,14 @@ pub fn run(args: Args) -> Result<String, Error> {
     if let Some(path) = &args.svg {
         write_chart(
             path,
-            &voussoir::assess::pictures::capacity_chart(&all, &title),
+            &voussoir::assess::pictures::capacity_chart(
+                &all.directions
+                    .iter()
+                    .map(|a| (&a.capacity, &a.verdict))
+                    .collect::<Vec<_>>(),
+                all.governing,
+                &title,
+            ),
         )?;
     }
     if let Some(path) = &args.adrs_svg {

@@ -2,9 +2,10 @@
 //! scripts: later versions add fields, never rename them) and its text summary
 //! ([`assessment_summary`]).
 
+use crate::analysis::Assessment;
 use crate::analysis::SiteAssessment;
 use crate::assembly::Hinge;
-use crate::assess::{Assessment, CapacityPoint, Check, ParticipatingMass, Satisfied, RULE};
+use crate::assess::{CapacityPoint, Check, ParticipatingMass, Satisfied, RULE};
 use crate::outcome::Direction;
 use crate::report::SceneReport;
 use crate::scene::Scene;

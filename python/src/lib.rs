@@ -50,8 +50,15 @@ fn interruptible<T: Send + 'static>(
             let _ = tx.send(work());
         })
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
+    let mut rx = rx;
     loop {
-        match py.detach(|| rx.recv_timeout(SIGNAL_POLL)) {
+        // The receiver moves into the GIL-free closure and back (it is Send, not Sync).
+        let (back, received) = py.detach(move || {
+            let r = rx.recv_timeout(SIGNAL_POLL);
+            (rx, r)
+        });
+        rx = back;
+        match received {
             Ok(value) => return Ok(value),
             Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                 if let Err(e) = py.check_signals() {

@@ -887,6 +887,27 @@ fn governing_direction_is_the_failing_then_the_weaker_one() {
     assert_eq!(assess::governing_index(&[&b, &a]), 0);
     assert_eq!(assess::governing_index(&[&c, &a]), 1);
     assert_eq!(assess::governing_index(&[&a, &a]), 0);
+    // Round-off is a tie: the symmetric portal's directions differ by 1e-15, the right stays.
+    let a2 = verdict(
+        check(true, Some(0.3 * (1.0 - 1e-14))),
+        check(false, Some(0.1)),
+    );
+    assert_eq!(assess::governing_index(&[&a, &a2]), 0);
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("assess_portal.toml"))
+        .arg("--json")
+        .output()
+        .expect("run");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let (r, l) = (&v["directions"]["right"], &v["directions"]["left"]);
+    close(
+        ag_of(r),
+        ag_of(l),
+        1e-12,
+        "symmetric portal: the same ag both ways",
+    );
+    assert_eq!(v["governing"], "right", "a tie keeps the right");
 }
 
 #[test]

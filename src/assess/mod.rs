@@ -828,16 +828,20 @@ pub fn verdict(model: &Model, capacity: &Capacity, site: &Site) -> Verdict {
     }
 }
 
+/// Relative difference of the largest passing `ag` below which two directions tie (a
+/// symmetric structure's two directions differ by round-off only).
+pub const AG_TIE: f64 = 1e-9;
+
 /// Index of the governing direction among `verdicts`: a direction that fails governs over
 /// one that passes; among equals, the one with the smaller largest passing `ag` (None, passing
-/// beyond [`AG_SEARCH_MAX`], counts as infinite); on a tie, the first.
+/// beyond [`AG_SEARCH_MAX`], counts as infinite); on a tie (within [`AG_TIE`]), the first.
 pub fn governing_index(verdicts: &[&Verdict]) -> usize {
     let key = |v: &Verdict| (v.passes(), v.ag_max().unwrap_or(f64::INFINITY));
     let mut best = 0;
     for (i, v) in verdicts.iter().enumerate().skip(1) {
         let (p, ag) = key(v);
         let (bp, bag) = key(verdicts[best]);
-        if (!p && bp) || (p == bp && ag < bag) {
+        if (!p && bp) || (p == bp && ag < bag * (1.0 - AG_TIE)) {
             best = i;
         }
     }

@@ -59,16 +59,20 @@ if r.status == "collapse":
                 label="hinges" if k == 1 else None)
         ax.annotate(str(k), (h["x"], h["y"]), xytext=(6, 6), textcoords="offset points",
                     color="tab:blue")
-    ax.annotate("", xy=(0.95, 0.06), xytext=(0.8, 0.06), xycoords="axes fraction",
+    # The load arrow in the top left corner, which a structure standing on the ground and
+    # spanning the plot leaves free (the bottom corners hold its supports and hinges).
+    ax.annotate("", xy=(0.19, 0.93), xytext=(0.04, 0.93), xycoords="axes fraction",
                 arrowprops=dict(arrowstyle="->", color="k"))
-    ax.text(0.875, 0.08, r"$\lambda g$", transform=ax.transAxes, ha="center")
+    ax.text(0.115, 0.95, r"$\lambda g$", transform=ax.transAxes, ha="center")
 lam = "none" if r.lambda_lower is None else f"{r.lambda_lower:.4f}"
 ax.set_title(f"{scene_path.stem}: {r.status}, collapse multiplier $\\lambda$ = {lam}")
 ax.set_aspect("equal")
 ax.autoscale_view()
 ax.set_xlabel("x (m)")
 ax.set_ylabel("y (m)")
-ax.legend(loc="upper right")
+# The legend goes under the plot, outside the axes, so it never covers the structure (inside
+# the axes it sat on a portal's pier or an arch's haunch, whatever corner it took).
+ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
 fig.tight_layout()
-fig.savefig(out, dpi=120)
+fig.savefig(out, dpi=120, bbox_inches="tight")
 print(f"written {out}")

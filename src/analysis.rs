@@ -787,3 +787,131 @@ pub fn assess(
         verdict,
     })
 }
+
+/// The assessment of a scene in each direction assessed, and which one governs.
+#[derive(Debug, Clone)]
+pub struct Assessment {
+    /// One assessment per direction: right then left, or the one direction asked for.
+    pub directions: Vec<SiteAssessment>,
+    /// Index into `directions` of the governing (worse) direction.
+    pub governing: usize,
+    /// Whether the caller restricted the assessment to one direction (then the verdict covers
+    /// that direction only).
+    pub restricted: bool,
+}
+
+impl Assessment {
+    /// The governing direction's assessment.
+    pub fn governing(&self) -> &SiteAssessment {
+        &self.directions[self.governing]
+    }
+
+    /// The verdict over the directions assessed: every one must pass.
+    pub fn passes(&self) -> bool {
+        self.directions.iter().all(|a| a.verdict.passes())
+    }
+}
+
+fn direction_name(d: Direction) -> &'static str {
+    match d {
+        Direction::Right => "right",
+        Direction::Left => "left",
+    }
+}
+
+/// Relative margin (of `max(1, lambda)`) by which the static lower bound may sit below the
+/// assessed mechanism's `alpha0` (the interior-point optimum's round-off, as
+/// [`CERTIFY_TOL`]).
+pub const GOVERNS_TOL: f64 = 1e-6;
+
+/// Whether the assessed mechanism is the governing one: the static lower bound must reach its
+/// `alpha0`. It does not when the structure cannot stand, when joints slide at collapse
+/// (finite friction), or when a finite compressive strength lowers the multiplier but the
+/// mechanism came from a search with rigid hinges (its hinges at the joint ends): the
+/// rotational capacity curve would then start above the true collapse multiplier and
+/// overstate the capacity, so there is no assessment.
+pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
+    let lower = &a.analysis.lower;
+    let alpha0 = a.capacity.alpha0;
+    let dir = direction_name(a.capacity.direction);
+    let lambda = match (lower.status, lower.lambda) {
+        (Status::CannotStand, _) | (_, None) => {
+            return Err(format!(
+                "load toward the {dir}: the static program finds no equilibrium (the structure cannot stand, or no lower bound), while the rotational mechanism has alpha0 = {alpha0:.6}: its capacity curve would be that of a structure that does not exist, so there is no assessment"
+            ))
+        }
+        (_, Some(l)) => l,
+    };
+    if lambda >= alpha0 - GOVERNS_TOL * alpha0.abs().max(1.0) {
+        return Ok(());
+    }
+    let why = if !lower.sliding.is_empty() {
+        format!(
+            "{} joint(s) slide at collapse: sliding governs, and a sliding mechanism has no capacity curve in this model",
+            lower.sliding.len()
+        )
+    } else if a.analysis.model.strength.is_finite() {
+        "the compressive strength lowers the multiplier, but the mechanism search kept rigid hinges at the joint ends (the static solution's crushing hinges do not form a four-hinge mechanism)".to_string()
+    } else {
+        "the mechanism found by the kinematic search is not the one the static bound reaches"
+            .to_string()
+    };
+    Err(format!(
+        "load toward the {dir}: the static lower bound lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",
+        100.0 * (alpha0 - lambda) / alpha0
+    ))
+}
+
+/// Assess `scene` at its `[site]` with the load toward the right and toward the left (or only
+/// toward `only`), each with its own governing mechanism, and let the worse govern. A
+/// direction that cannot be assessed (no mechanism with a capacity curve) fails the whole
+/// assessment unless the other was excluded with `only`: a verdict of one direction is not a
+/// verdict of the structure.
+pub fn assess_directions(
+    scene: &Scene,
+    options: &Options,
+    settings: &AssessOptions,
+    only: Option<Direction>,
+) -> Result<Assessment, AnalysisError> {
+    let wanted: Vec<Direction> = match only {
+        Some(d) => vec![d],
+        None => vec![Direction::Right, Direction::Left],
+    };
+    let runs: Vec<_> = wanted
+        .iter()
+        .map(|&d| {
+            let mut o = options.clone();
+            o.static_settings = o.static_settings.clone().direction(d);
+            let a = assess(scene, &o, settings)?;
+            rotation_governs(&a).map_err(AnalysisError::Other)?;
+            Ok(a)
+        })
+        .collect();
+    let mut directions = Vec::with_capacity(runs.len());
+    let mut failed = None;
+    for (d, r) in wanted.iter().zip(runs) {
+        match r {
+            Ok(a) => directions.push(a),
+            Err(e) if failed.is_none() => failed = Some((*d, e)),
+            Err(_) => {}
+        }
+    }
+    if let Some((d, e)) = failed {
+        // Both failed (or the only one asked for): the error as it is.
+        let Some(other) = directions.first() else {
+            return Err(e);
+        };
+        let other = direction_name(other.capacity.direction);
+        return Err(AnalysisError::Other(format!(
+            "the load toward the {} cannot be assessed: {e}. The load toward the {other} can, but a verdict needs both directions: give --direction {other} to assess that one alone (its verdict then covers that direction only)",
+            direction_name(d)
+        )));
+    }
+    let verdicts: Vec<&crate::assess::Verdict> = directions.iter().map(|a| &a.verdict).collect();
+    let governing = crate::assess::governing_index(&verdicts);
+    Ok(Assessment {
+        directions,
+        governing,
+        restricted: only.is_some(),
+    })
+}

@@ -1046,9 +1046,9 @@ pub fn chart_of(
         title: title.to_string(),
         x_label: key_label(x),
         y_label: match y {
-            Some("lambda_ratio") => "lambda / lambda of the semicircle of equal span".to_string(),
+            Some("lambda_ratio") => "λ / λ of the semicircle of equal span".to_string(),
             Some(col) => col.to_string(),
-            None => "collapse multiplier lambda_lower".to_string(),
+            None => "collapse multiplier λ (static lower bound)".to_string(),
         },
         legend_title: match others.len() {
             0 => None,
@@ -1060,7 +1060,7 @@ pub fn chart_of(
             .map(|(name, pts)| {
                 Series::new(
                     if name.is_empty() {
-                        "lambda".to_string()
+                        "λ".to_string()
                     } else {
                         name
                     },

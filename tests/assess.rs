@@ -644,3 +644,416 @@ fn bundled_example_assesses_through_the_analysis_layer() {
         "alpha0 = lambda",
     );
 }
+
+/// The loaded portal (a 10 kN seismic mass on its right haunch) at a site, through the CLI.
+fn loaded_portal_json(extra: &[&str]) -> serde_json::Value {
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("loaded_portal.toml"))
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+            "--json",
+        ])
+        .args(extra)
+        .output()
+        .expect("run");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("json")
+}
+
+fn f(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or(f64::NAN)
+}
+
+/// The largest passing ag of a direction, None (more than 2 g) as infinity.
+fn ag_of(d: &serde_json::Value) -> f64 {
+    d["ag_max"].as_f64().unwrap_or(f64::INFINITY)
+}
+
+#[test]
+fn assess_checks_both_directions_and_the_worse_governs() {
+    // Issue 26: the default used to assess the load toward the right only. The seismic mass on
+    // the right haunch makes the left the weaker direction of this portal.
+    let v = loaded_portal_json(&[]);
+    let (right, left) = (&v["directions"]["right"], &v["directions"]["left"]);
+    assert_eq!(right["direction"], "right");
+    assert_eq!(left["direction"], "left");
+    assert_eq!(
+        v["directions_assessed"],
+        serde_json::json!(["right", "left"])
+    );
+    assert_eq!(v["restricted"], false);
+    // Each direction is what `--direction` alone gives, to the last bit (its own mechanism).
+    for (name, d) in [("right", right), ("left", left)] {
+        let alone = loaded_portal_json(&["--direction", name]);
+        assert_eq!(alone["restricted"], true);
+        assert_eq!(alone["directions_assessed"], serde_json::json!([name]));
+        assert!(alone["directions"]
+            .get(if name == "right" { "left" } else { "right" })
+            .is_none());
+        for key in ["alpha0", "a0_star", "d_k0", "du_star", "Ts", "ag_max"] {
+            assert_eq!(alone[key], d[key], "{name}: {key}");
+        }
+        assert_eq!(alone["linear_check"], d["linear_check"], "{name}");
+        assert_eq!(alone["nonlinear_check"], d["nonlinear_check"], "{name}");
+    }
+    // The two directions differ here, so the choice of the governing one matters.
+    assert!(f(&left["alpha0"]) < f(&right["alpha0"]) * 0.9);
+    // The governing direction is the worse one: a failing direction over a passing one, then
+    // the smaller largest passing ag.
+    let worse = match (right["passes"].as_bool(), left["passes"].as_bool()) {
+        (Some(true), Some(false)) => "left",
+        (Some(false), Some(true)) => "right",
+        _ if ag_of(left) < ag_of(right) => "left",
+        _ => "right",
+    };
+    assert_eq!(v["governing"], worse);
+    assert_eq!(v["direction"], worse);
+    let g = &v["directions"][worse];
+    // The top-level fields (the contract before issue 26) hold the governing direction's values.
+    for key in [
+        "lambda_lower",
+        "alpha0",
+        "a0_star",
+        "d_k0",
+        "d0_star",
+        "du_star",
+        "ds_star",
+        "as_star",
+        "Ts",
+        "control_block",
+        "linear_check",
+        "nonlinear_check",
+        "participating_mass",
+        "mechanism",
+        "capacity_curve",
+        "ag_max",
+        "satisfied",
+    ] {
+        assert_eq!(
+            v[key], g[key],
+            "top-level {key} is the governing direction's"
+        );
+    }
+    // The structure passes only if every direction does.
+    assert_eq!(
+        v["passes"].as_bool(),
+        Some(right["passes"] == true && left["passes"] == true)
+    );
+    // The text shows both directions and names the governing one.
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("loaded_portal.toml"))
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
+        .output()
+        .expect("run");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Load toward the right:"), "{text}");
+    assert!(text.contains("Load toward the left:"), "{text}");
+    assert!(
+        text.contains(&format!("Governing direction: the load toward the {worse}")),
+        "{text}"
+    );
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("loaded_portal.toml"))
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
+        .args(["--direction", "right"])
+        .output()
+        .expect("run");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!text.contains("Load toward the left:"), "{text}");
+    assert!(
+        text.contains("only the load toward the right was assessed"),
+        "says the verdict covers one direction: {text}"
+    );
+}
+
+#[test]
+fn mirrored_portal_to_the_right_is_the_portal_to_the_left() {
+    // Moving the seismic point load to the mirror point (the line load is symmetric) mirrors
+    // the structure: its right assessment must be the original's left one.
+    let v = loaded_portal_json(&[]);
+    let m = loaded_portal_json(&["--set", "loads[0].at=[-1.2, 2.19]"]);
+    let (a, b) = (&v["directions"]["left"], &m["directions"]["right"]);
+    for key in ["alpha0", "a0_star", "d_k0", "d0_star", "du_star", "Ts"] {
+        close(f(&b[key]), f(&a[key]), 1e-9, key);
+    }
+    close(ag_of(b), ag_of(a), 1e-9, "ag_max");
+    assert_eq!(a["satisfied"], b["satisfied"]);
+}
+
+#[test]
+fn either_check_satisfied_passes_the_mechanism() {
+    // Circolare 2019 C8.7.1: the linear or the nonlinear kinematic analysis verifies a local
+    // mechanism. At ag = 0.25 g the portal loaded toward the right satisfies the linear check
+    // and not the nonlinear one: it passes (it used to be reported as not passing).
+    let v = loaded_portal_json(&["--direction", "right"]);
+    let (lin, nonlin) = (&v["linear_check"], &v["nonlinear_check"]);
+    assert!(
+        f(&lin["ratio"]) >= 1.0 && f(&nonlin["ratio"]) < 1.0,
+        "{lin} {nonlin}"
+    );
+    assert_eq!(v["passes"], true);
+    assert_eq!(v["satisfied"], "linear");
+    assert_eq!(v["both_checks_pass"], false);
+    assert!(v["verdict"]
+        .as_str()
+        .unwrap_or("")
+        .starts_with("passes: linear check satisfied"));
+    assert!(v["rule"].as_str().unwrap_or("").contains("C8.7.1"));
+    // The largest passing ag by the rule is the larger of the two checks'.
+    close(
+        f(&v["ag_max"]),
+        f(&lin["ag_max"]).max(f(&nonlin["ag_max"])),
+        0.0,
+        "ag_max",
+    );
+    // Above both checks' limits nothing passes; between them, only the linear check.
+    let mid = 0.5 * (f(&lin["ag_max"]) + f(&nonlin["ag_max"]));
+    let between = loaded_portal_json(&["--direction", "right", "--site", &format!("ag={mid}")]);
+    assert_eq!(between["passes"], true);
+    let above = f(&lin["ag_max"]).max(f(&nonlin["ag_max"])) * 1.01;
+    let high = loaded_portal_json(&["--direction", "right", "--site", &format!("ag={above}")]);
+    assert_eq!(high["passes"], false);
+    assert_eq!(high["satisfied"], "neither");
+    assert!(high["verdict"]
+        .as_str()
+        .unwrap_or("")
+        .starts_with("does not pass"));
+}
+
+#[test]
+fn governing_direction_is_the_failing_then_the_weaker_one() {
+    let check = |passes: bool, ag_max: Option<f64>| assess::Check {
+        capacity: 1.0,
+        demand: 1.0,
+        ratio: if passes { 1.0 } else { 0.5 },
+        passes,
+        ag_max,
+    };
+    let verdict = |lin: assess::Check, nonlin: assess::Check| assess::Verdict {
+        spectrum: Site {
+            soil: Soil::A,
+            ..site("ag = 0.2\nsoil = \"A\"\nF0 = 2.4\nTc_star = 0.3\n").expect("site")
+        }
+        .spectrum(),
+        du_star: 0.01,
+        ds_star: 0.004,
+        as_star: 1.0,
+        ts: 0.4,
+        linear: lin,
+        nonlinear: nonlin,
+    };
+    let a = verdict(check(true, Some(0.3)), check(false, Some(0.1)));
+    let b = verdict(check(false, Some(0.15)), check(false, Some(0.12)));
+    let c = verdict(check(true, None), check(true, Some(0.5)));
+    assert!(a.passes() && !a.both_pass());
+    assert_eq!(a.satisfied(), assess::Satisfied::Linear);
+    assert_eq!(a.ag_max(), Some(0.3));
+    assert!(!b.passes());
+    assert_eq!(c.ag_max(), None);
+    // A failing direction governs, whatever the ag; then the smaller ag; ties keep the first.
+    assert_eq!(assess::governing_index(&[&a, &b]), 1);
+    assert_eq!(assess::governing_index(&[&b, &a]), 0);
+    assert_eq!(assess::governing_index(&[&c, &a]), 1);
+    assert_eq!(assess::governing_index(&[&a, &a]), 0);
+    // Round-off is a tie: the symmetric portal's directions differ by 1e-15, the right stays.
+    let a2 = verdict(
+        check(true, Some(0.3 * (1.0 - 1e-14))),
+        check(false, Some(0.1)),
+    );
+    assert_eq!(assess::governing_index(&[&a, &a2]), 0);
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("assess_portal.toml"))
+        .arg("--json")
+        .output()
+        .expect("run");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let (r, l) = (&v["directions"]["right"], &v["directions"]["left"]);
+    close(
+        ag_of(r),
+        ag_of(l),
+        1e-12,
+        "symmetric portal: the same ag both ways",
+    );
+    assert_eq!(v["governing"], "right", "a tie keeps the right");
+}
+
+#[test]
+fn charts_mark_significant_points_and_speak_the_engineers_symbols() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (cap, adrs, mech) = (
+        dir.path().join("capacity.svg"),
+        dir.path().join("adrs.svg"),
+        dir.path().join("mechanism.svg"),
+    );
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("loaded_portal.toml"))
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
+        .arg("--svg")
+        .arg(&cap)
+        .arg("--adrs-svg")
+        .arg(&adrs)
+        .arg("--mechanism-svg")
+        .arg(&mech)
+        .output()
+        .expect("run");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Circles inside each series group (the legend draws its own, outside them).
+    let markers = |text: &str| -> Vec<usize> {
+        let doc = roxmltree::Document::parse(text).expect("well-formed svg");
+        doc.descendants()
+            .filter(|n| n.attribute("class") == Some("series"))
+            .map(|g| g.descendants().filter(|n| n.has_tag_name("circle")).count())
+            .collect()
+    };
+    let text = std::fs::read_to_string(&cap).expect("capacity svg");
+    // Two curves of 200 points each: rest, du* and the end at alpha = 0 are marked, no more.
+    assert_eq!(markers(&text), vec![3, 3], "capacity chart markers");
+    let text_adrs = std::fs::read_to_string(&adrs).expect("adrs svg");
+    let m = markers(&text_adrs);
+    assert_eq!(m[0], 4, "capacity: a0*, (ds*, as*), du*, d0*");
+    assert_eq!(m[1], 1, "demand: the point at Ts");
+    assert!(m[2..].iter().all(|&k| k == 0), "{m:?}");
+    let text_mech = std::fs::read_to_string(&mech).expect("mechanism svg");
+    for t in [&text, &text_adrs, &text_mech] {
+        for code in [
+            "alpha0",
+            "lambda_lower",
+            "lambda_upper",
+            "alpha(",
+            "alpha =",
+            "d_k",
+        ] {
+            assert!(!t.contains(code), "a code name {code:?} in a drawing");
+        }
+    }
+    assert!(text.contains("α₀") && text.contains("dₖ"));
+    assert!(text_mech.contains("α = "));
+}
+
+#[test]
+fn a_mechanism_the_static_bound_does_not_reach_is_not_assessed() {
+    // Finite friction: the thick semicircle slides at lambda = 0.13, far below its rotational
+    // mechanism (0.41). The rotational capacity curve would start 3 times too high; it used to
+    // be assessed (and passed) without a word.
+    let out = voussoir()
+        .arg("assess")
+        .arg(data("semicircular.toml"))
+        .args([
+            "--site",
+            "ag=0.25",
+            "--site",
+            "soil=B",
+            "--site",
+            "F0=2.4",
+            "--site",
+            "Tc_star=0.3",
+        ])
+        .args([
+            "--set",
+            "material.friction=0.4",
+            "--set",
+            "arch.thickness=0.25",
+            "--json",
+        ])
+        .output()
+        .expect("run");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("slide") && err.contains("no assessment"),
+        "{err}"
+    );
+    // The same ring with crushing but no sliding: the mechanism is the crushing one, its
+    // alpha0 is the static multiplier of the finite strength (below the rigid one).
+    let run = |fc: &str| {
+        let out = voussoir()
+            .arg("assess")
+            .arg(data("semicircular.toml"))
+            .args([
+                "--site",
+                "ag=0.25",
+                "--site",
+                "soil=B",
+                "--site",
+                "F0=2.4",
+                "--site",
+                "Tc_star=0.3",
+            ])
+            .args([
+                "--set",
+                &format!("material.compressive_strength={fc}"),
+                "--json",
+            ])
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).expect("json")
+    };
+    let (rigid, crushing) = (run("inf"), run("1e6"));
+    close(
+        f(&crushing["alpha0"]),
+        f(&crushing["lambda_lower"]),
+        1e-9,
+        "alpha0 = lambda",
+    );
+    assert!(f(&crushing["alpha0"]) < f(&rigid["alpha0"]));
+    // Hinges inset by half the compressed zone: a shorter way to alpha = 0.
+    assert!(f(&crushing["d_k0"]) < f(&rigid["d_k0"]));
+    assert!(
+        crushing["mechanism"]["hinges"][0]["offset"]
+            .as_f64()
+            .unwrap_or(0.0)
+            > 0.0
+    );
+}

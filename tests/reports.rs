@@ -284,14 +284,17 @@ fn drawing_titles_say_why_there_is_no_multiplier() {
     let a = analysis::analyse(&slides, &opts).expect("analysis");
     let t = report::drawing_title(&slides, &a);
     assert!(
-        t.contains("cannot stand") && t.contains("lambda_upper = 0.4061 (rotation only)"),
+        t.contains("cannot stand")
+            && t.contains("λ (kinematic upper bound) = 0.4061 (rotation only)"),
         "{t}"
     );
 
     let a = analysis::analyse(&bundled("semicircular.toml"), &opts).expect("analysis");
     let t = report::drawing_title(&bundled("semicircular.toml"), &a);
     assert!(
-        t.contains("lambda_lower = 0.14") && t.contains("lambda_upper = 0.14"),
+        t.contains("λ (static lower bound) = 0.14")
+            && t.contains("λ (kinematic upper bound) = 0.14")
+            && !t.contains("lambda_"),
         "{t}"
     );
 
@@ -307,6 +310,8 @@ fn drawing_titles_say_why_there_is_no_multiplier() {
     let svg = std::fs::read_to_string(&path).expect("svg");
     assert!(svg.contains("cannot stand: no thrust line fits"));
     assert!(!svg.contains("lambda_lower = none"));
+    // Issue 26: no JSON key names in a drawing.
+    assert!(!svg.contains("lambda_lower") && !svg.contains("lambda_upper"));
 }
 
 // Item 6 (DEM) and item 4 (counts): the DEM's title and summary.

@@ -3,15 +3,16 @@
 //! `voussoir::analysis` (and `thickness`, `sweep`) exactly as the CLI's commands do, and every
 //! report is the library's JSON contract (`voussoir::report`), so Python and the CLI give the
 //! same numbers. What lives here is only translation: Python values to TOML values and back,
-//! library errors to Python exceptions (with the same messages), and releasing the GIL while
-//! the library solves. The pure-Python half (`python/voussoir/__init__.py`) turns the JSON
+//! library errors to Python exceptions (with the same messages), and running the library's
+//! work on a worker thread with the GIL released while this thread keeps answering Ctrl-C
+//! ([`interruptible`]). The pure-Python half (`python/voussoir/__init__.py`) turns the JSON
 //! reports into result objects with numpy arrays and sweeps into pandas frames.
 
 // No unsafe code of ours: PyO3's macros expand to code that passes this lint.
 #![forbid(unsafe_code)]
 
 use pyo3::create_exception;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString};
 use toml::{Table, Value};
@@ -22,6 +23,64 @@ use voussoir::outcome::Direction;
 use voussoir::report;
 use voussoir::scene::Scene as LibScene;
 use voussoir::sweep::{self, SweepRow, Variation};
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// How often a waiting call checks for Ctrl-C (and any other signal with a Python handler).
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Stack of the worker threads (the library's analyses run on the CLI's 8 MiB main stack).
+const WORKER_STACK: usize = 16 << 20;
+
+/// Run `work` on a worker thread with the GIL released, and wait for it while checking for
+/// signals every [`SIGNAL_POLL`]: Ctrl-C raises `KeyboardInterrupt` at once instead of after
+/// the work (a sweep or a DEM run can take minutes). On a signal `cancel` is set, which the
+/// work may poll to stop early (a sweep skips its remaining cases); work that cannot stop
+/// (a single DEM run) finishes on its thread and its result is dropped.
+fn interruptible<T: Send + 'static>(
+    py: Python<'_>,
+    cancel: Arc<AtomicBool>,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::Builder::new()
+        .name("voussoir-work".into())
+        .stack_size(WORKER_STACK)
+        .spawn(move || {
+            // The receiver is gone when the caller was interrupted: nothing to deliver to.
+            let _ = tx.send(work());
+        })
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
+    let mut rx = rx;
+    loop {
+        // The receiver moves into the GIL-free closure and back (it is Send, not Sync).
+        let (back, received) = py.detach(move || {
+            let r = rx.recv_timeout(SIGNAL_POLL);
+            (rx, r)
+        });
+        rx = back;
+        match received {
+            Ok(value) => return Ok(value),
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::Relaxed);
+                    return Err(e);
+                }
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                return Err(PyRuntimeError::new_err(
+                    "the library's worker thread stopped without a result (an internal error: please report it with the scene)",
+                ))
+            }
+        }
+    }
+}
+
+/// Deepest nesting of dicts and lists accepted from Python: a scene is a few tables deep, and
+/// the conversion recurses (a dict nested 10,000 deep overflowed the stack).
+const MAX_DEPTH: usize = 32;
 
 create_exception!(
     _voussoir,
@@ -129,9 +188,16 @@ fn analysis_error(py: Python<'_>, e: &LibAnalysisError) -> PyErr {
 
 /// A Python value as a TOML value (`key` names it in errors): bool, int, float, str, lists
 /// (any sequence, e.g. a numpy array) and dicts with string keys. numpy scalars convert
-/// through `__index__` / `__float__`.
-fn to_toml(key: &str, ob: &Bound<'_, PyAny>) -> PyResult<Value> {
+/// through `__index__` / `__float__`. `depth` counts the enclosing dicts and lists; beyond
+/// [`MAX_DEPTH`] the value is refused with a `ValueError`.
+fn to_toml(key: &str, ob: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
     let py = ob.py();
+    if depth > MAX_DEPTH {
+        return Err(PyValueError::new_err(format!(
+            "`{}`: nested more than {MAX_DEPTH} levels deep (a scene is a few tables deep; is a dict or list inside itself?)",
+            shorten(key)
+        )));
+    }
     if ob.is_instance_of::<PyBool>() {
         return Ok(Value::Boolean(ob.extract::<bool>()?));
     }
@@ -139,7 +205,7 @@ fn to_toml(key: &str, ob: &Bound<'_, PyAny>) -> PyResult<Value> {
         return Ok(Value::String(ob.extract::<String>()?));
     }
     if ob.is_instance_of::<PyDict>() {
-        return Ok(Value::Table(to_table(key, ob)?));
+        return Ok(Value::Table(to_table(key, ob, depth + 1)?));
     }
     if !ob.is_instance_of::<PyFloat>() {
         if let Ok(i) = ob.extract::<i64>() {
@@ -158,7 +224,7 @@ fn to_toml(key: &str, ob: &Bound<'_, PyAny>) -> PyResult<Value> {
         if let Ok(iter) = ob.try_iter() {
             let items = iter
                 .enumerate()
-                .map(|(i, item)| to_toml(&format!("{key}[{i}]"), &item?))
+                .map(|(i, item)| to_toml(&format!("{key}[{i}]"), &item?, depth + 1))
                 .collect::<PyResult<Vec<_>>>()?;
             return Ok(Value::Array(items));
         }
@@ -178,8 +244,26 @@ fn to_toml(key: &str, ob: &Bound<'_, PyAny>) -> PyResult<Value> {
     ))
 }
 
-/// A Python dict (string keys) as a TOML table; `prefix` is its dotted key.
-fn to_table(prefix: &str, ob: &Bound<'_, PyAny>) -> PyResult<Table> {
+/// A long dotted key, its middle elided (a key built 32 levels deep is long).
+fn shorten(key: &str) -> String {
+    if key.chars().count() <= 80 {
+        return key.to_string();
+    }
+    let head: String = key.chars().take(36).collect();
+    let tail: String = key
+        .chars()
+        .rev()
+        .take(36)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    format!("{head}...{tail}")
+}
+
+/// A Python dict (string keys) as a TOML table; `prefix` is its dotted key, `depth` as in
+/// [`to_toml`].
+fn to_table(prefix: &str, ob: &Bound<'_, PyAny>, depth: usize) -> PyResult<Table> {
     let dict = ob
         .cast::<PyDict>()
         .map_err(|_| PyValueError::new_err(format!("`{prefix}`: expected a dict of scene keys")))?;
@@ -193,7 +277,7 @@ fn to_table(prefix: &str, ob: &Bound<'_, PyAny>) -> PyResult<Table> {
         } else {
             format!("{prefix}.{k}")
         };
-        table.insert(k, to_toml(&dotted, &v)?);
+        table.insert(k, to_toml(&dotted, &v, depth)?);
     }
     Ok(table)
 }
@@ -255,7 +339,7 @@ impl Scene {
     #[staticmethod]
     #[pyo3(signature = (d, origin = "<dict>"))]
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, origin: &str) -> PyResult<Scene> {
-        let table = to_table("", d)?;
+        let table = to_table("", d, 0)?;
         LibScene::from_table(table, origin)
             .map(|inner| Scene { inner })
             .map_err(|e| scene_error(py, &e))
@@ -268,7 +352,7 @@ impl Scene {
         let mut pairs: Vec<(String, Value)> = Vec::new();
         for (k, v) in values.iter() {
             let k: String = k.extract()?;
-            let v = to_toml(&k, &v)?;
+            let v = to_toml(&k, &v, 0)?;
             pairs.push((k, v));
         }
         let refs: Vec<(&str, &Value)> = pairs.iter().map(|(k, v)| (k.as_str(), v)).collect();
@@ -333,6 +417,21 @@ impl Scene {
         Ok((rebuild, (text, slf.get().inner.origin.clone())))
     }
 
+    /// The scene drawn (its blocks and loads, the horizontal load toward +x), as SVG text:
+    /// Jupyter shows it inline. A scene whose blocks cannot be built raises the library's
+    /// error.
+    fn _repr_svg_(&self, py: Python<'_>) -> PyResult<String> {
+        use voussoir::thrustline::svg::{structure_svg, Drawing};
+        let model = voussoir::scene::build(&self.inner).map_err(|e| scene_error(py, &e))?;
+        let drawing = Drawing {
+            title: report::shape_title(&self.inner),
+            load: Some(Direction::Right),
+            loads: Some(&model.loads),
+            ..Default::default()
+        };
+        structure_svg(&model.assembly, &drawing).map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
     fn __repr__(&self) -> String {
         match &self.inner.arch {
             Some(a) => format!(
@@ -389,7 +488,7 @@ fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
     serde_json::to_string(value).map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
-/// `analyze --json` of a scene, as JSON text (the GIL is released while it solves).
+/// `analyze --json` of a scene, as JSON text (solved on a worker thread, Ctrl-C answered).
 #[pyfunction]
 #[pyo3(signature = (scene, direction = "right", continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
 fn analyze_json(
@@ -401,14 +500,40 @@ fn analyze_json(
     kinematic_max_joints: usize,
 ) -> PyResult<String> {
     let options = options(direction, continuous, kinematic, kinematic_max_joints)?;
-    let scene = &scene.inner;
-    let a = py
-        .detach(|| analysis::analyse(scene, &options))
-        .map_err(|e| analysis_error(py, &e))?;
-    to_json(&report::AnalysisReport::new(scene, &a))
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, a) = interruptible(py, Arc::default(), move || {
+        let a = analysis::analyse(&lib_scene, &options);
+        (lib_scene, a)
+    })?;
+    let a = a.map_err(|e| analysis_error(py, &e))?;
+    to_json(&report::AnalysisReport::new(&lib_scene, &a))
 }
 
-/// `min-thickness --json` of a scene, as JSON text (the GIL is released while it solves).
+/// The drawing `analyze --svg` writes (blocks, thrust line, hinges, mechanism, loads), as SVG
+/// text: `report::analysis_svg` of the same analysis as `analyze_json`.
+#[pyfunction]
+#[pyo3(signature = (scene, direction = "right", continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+fn analysis_svg(
+    py: Python<'_>,
+    scene: &Scene,
+    direction: &str,
+    continuous: bool,
+    kinematic: &str,
+    kinematic_max_joints: usize,
+) -> PyResult<String> {
+    let options = options(direction, continuous, kinematic, kinematic_max_joints)?;
+    let dir = options.direction();
+    let lib_scene = scene.inner.clone();
+    let out = interruptible(py, Arc::default(), move || {
+        analysis::analyse(&lib_scene, &options)
+            .map(|a| report::analysis_svg(&lib_scene, &a, dir).map_err(|e| e.to_string()))
+    })?;
+    out.map_err(|e| analysis_error(py, &e))?
+        .map_err(PyValueError::new_err)
+}
+
+/// `min-thickness --json` of a scene, as JSON text (solved on a worker thread, Ctrl-C
+/// answered).
 #[pyfunction]
 #[pyo3(signature = (scene, continuous = false, kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
 fn min_thickness_json(
@@ -417,36 +542,376 @@ fn min_thickness_json(
     continuous: bool,
     kinematic_max_joints: usize,
 ) -> PyResult<String> {
-    let scene = &scene.inner;
-    let (model, t) = py
-        .detach(|| -> Result<_, LibAnalysisError> {
-            let model = voussoir::scene::build(scene)?;
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, out) = interruptible(py, Arc::default(), move || {
+        let out = (|| -> Result<_, LibAnalysisError> {
+            let model = voussoir::scene::build(&lib_scene)?;
             let options = analysis::Options {
                 static_settings: StaticSettings::default(),
                 kinematic_max_joints,
                 kinematic: analysis::KinematicMode::Certified,
                 continuous,
             };
-            let t = voussoir::thickness::analyse(scene, &options)?;
+            let t = voussoir::thickness::analyse(&lib_scene, &options)?;
             Ok((model, t))
-        })
-        .map_err(|e| analysis_error(py, &e))?;
-    to_json(&report::MinThicknessReport::new(scene, &model, &t))
+        })();
+        (lib_scene, out)
+    })?;
+    let (model, t) = out.map_err(|e| analysis_error(py, &e))?;
+    to_json(&report::MinThicknessReport::new(&lib_scene, &model, &t))
 }
 
-/// `dem --json` of a scene, as JSON text (the GIL is released while it runs).
+/// `dem --json` of a scene, as JSON text. The bracket search runs on a worker thread: Ctrl-C
+/// raises `KeyboardInterrupt` at once, and the run in progress finishes on its thread (the
+/// library's DEM has no stop flag yet) with its result dropped.
 #[pyfunction]
-#[pyo3(signature = (scene, tolerance = 0.01))]
-fn dem_json(py: Python<'_>, scene: &Scene, tolerance: f64) -> PyResult<String> {
-    let scene = &scene.inner;
+#[pyo3(signature = (scene, tolerance = 0.01, from_static = false))]
+fn dem_json(py: Python<'_>, scene: &Scene, tolerance: f64, from_static: bool) -> PyResult<String> {
+    let lib_scene = scene.inner.clone();
     let options = DemOptions {
         tolerance,
+        from_static,
         ..DemOptions::default()
     };
-    let d = py
-        .detach(|| analysis::dem(scene, &options, &mut |_| {}))
-        .map_err(|e| analysis_error(py, &e))?;
-    to_json(&report::DemReport::of(scene, &d))
+    let (lib_scene, d) = interruptible(py, Arc::default(), move || {
+        let d = analysis::dem(&lib_scene, &options, &mut |_| {});
+        (lib_scene, d)
+    })?;
+    let d = d.map_err(|e| analysis_error(py, &e))?;
+    to_json(&report::DemReport::of(&lib_scene, &d))
+}
+
+/// `assess --json` of a scene at its `[site]`, as JSON text: both directions of the load, the
+/// worse governing, or only `direction` ("right" or "left") when given; `points` of the
+/// capacity curve and its `control_block` as the CLI's flags.
+#[pyfunction]
+#[pyo3(signature = (scene, direction = None, points = 200, control_block = None))]
+fn assess_json(
+    py: Python<'_>,
+    scene: &Scene,
+    direction: Option<&str>,
+    points: usize,
+    control_block: Option<usize>,
+) -> PyResult<String> {
+    let only = direction.map(self::direction).transpose()?;
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, all) = interruptible(py, Arc::default(), move || {
+        let all = voussoir::analysis::assess_directions(
+            &lib_scene,
+            &Options::default(),
+            &analysis::AssessOptions {
+                points,
+                control_block,
+            },
+            only,
+        );
+        (lib_scene, all)
+    })?;
+    let all = all.map_err(|e| analysis_error(py, &e))?;
+    to_json(&report::assessment::AssessmentReport::new(&lib_scene, &all))
+}
+
+/// The charts of `assess` as SVG text: `which` is "capacity" (the capacity curves of every
+/// direction, `--svg`) or "adrs" (the governing direction's ADRS plot, `--adrs-svg`).
+#[pyfunction]
+#[pyo3(signature = (scene, which = "adrs", direction = None, points = 200, control_block = None))]
+fn assess_svg(
+    py: Python<'_>,
+    scene: &Scene,
+    which: &str,
+    direction: Option<&str>,
+    points: usize,
+    control_block: Option<usize>,
+) -> PyResult<String> {
+    if which != "capacity" && which != "adrs" {
+        return Err(PyValueError::new_err(format!(
+            "which = `{which}`: expected \"capacity\" or \"adrs\""
+        )));
+    }
+    let only = direction.map(self::direction).transpose()?;
+    let lib_scene = scene.inner.clone();
+    let which = which.to_string();
+    let out = interruptible(py, Arc::default(), move || {
+        let all = voussoir::analysis::assess_directions(
+            &lib_scene,
+            &Options::default(),
+            &analysis::AssessOptions {
+                points,
+                control_block,
+            },
+            only,
+        )?;
+        let title = report::shape_title(&lib_scene);
+        let chart = if which == "capacity" {
+            voussoir::assess::pictures::capacity_chart(
+                &all.directions
+                    .iter()
+                    .map(|a| (&a.capacity, &a.verdict))
+                    .collect::<Vec<_>>(),
+                all.governing,
+                &title,
+            )
+        } else {
+            let a = all.governing();
+            let words = match a.capacity.direction {
+                Direction::Right => "load to the right",
+                Direction::Left => "load to the left",
+            };
+            let note = if all.directions.len() > 1 {
+                format!("{words}, governing")
+            } else {
+                format!("{words} only")
+            };
+            voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title, &note)
+        };
+        Ok(voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| e.to_string()))
+    })?;
+    out.map_err(|e: LibAnalysisError| analysis_error(py, &e))?
+        .map_err(PyValueError::new_err)
+}
+
+/// The ground motion of a dynamic run from the arguments of `dem_dynamic_json` (the CLI's
+/// `--record`, `--pulse`, `--amplitude`, `--period`, `--units`, `--dt`, `--scale`,
+/// `--component`, `--record-vertical`).
+#[allow(clippy::too_many_arguments)]
+fn ground_input(
+    record: Option<std::path::PathBuf>,
+    pulse: Option<&str>,
+    amplitude: Option<f64>,
+    period: Option<f64>,
+    units: &str,
+    dt: Option<f64>,
+    scale: f64,
+    component: &str,
+    record_vertical: Option<std::path::PathBuf>,
+) -> Result<voussoir::dem::record::GroundInput, voussoir::error::RecordError> {
+    use voussoir::dem::record::{
+        self as rec, AccelUnit, Component, Excitation, GroundInput, Pulse, PulseShape,
+    };
+    use voussoir::error::RecordError;
+    let flag = |flag: &str, value: String, message: &str| RecordError::Flag {
+        flag: flag.to_string(),
+        value,
+        message: message.to_string(),
+    };
+    let unit = match units {
+        "g" => AccelUnit::G,
+        "m/s2" => AccelUnit::MetersPerSecondSquared,
+        "cm/s2" => AccelUnit::CentimetersPerSecondSquared,
+        other => {
+            return Err(flag(
+                "units",
+                other.to_string(),
+                "expected \"g\", \"m/s2\" or \"cm/s2\"",
+            ))
+        }
+    };
+    let main = match (record, pulse) {
+        (Some(_), Some(_)) => {
+            return Err(flag(
+                "pulse",
+                pulse.unwrap_or("").to_string(),
+                "give a record or a pulse, not both",
+            ))
+        }
+        (Some(path), None) => Excitation::Record(rec::read(&path, unit, dt)?),
+        (None, Some(shape)) => {
+            let shape = match shape {
+                "sine" => PulseShape::Sine,
+                "rect" => PulseShape::Rect,
+                other => {
+                    return Err(flag(
+                        "pulse",
+                        other.to_string(),
+                        "expected \"sine\" or \"rect\"",
+                    ))
+                }
+            };
+            let (Some(a), Some(t)) = (amplitude, period) else {
+                return Err(flag(
+                    "pulse",
+                    format!("{shape:?}").to_lowercase(),
+                    "needs an amplitude and a period",
+                ));
+            };
+            Excitation::Pulse(Pulse::new(shape, a * unit.factor(), t)?)
+        }
+        (None, None) => {
+            return Err(flag(
+                "record",
+                String::new(),
+                "give a record (a file) or a pulse (\"sine\" or \"rect\")",
+            ))
+        }
+    };
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(flag(
+            "scale",
+            scale.to_string(),
+            "must be a finite number >= 0",
+        ));
+    }
+    let component = match component {
+        "x" => Component::X,
+        "y" => Component::Y,
+        other => {
+            return Err(flag(
+                "component",
+                other.to_string(),
+                "expected \"x\" or \"y\"",
+            ))
+        }
+    };
+    let vertical = match record_vertical {
+        Some(path) => Some(Excitation::Record(rec::read(&path, unit, dt)?)),
+        None => None,
+    };
+    Ok(GroundInput::new(main, component, vertical)?.scaled(scale))
+}
+
+/// A dynamic DEM run of a scene under a ground-acceleration record or an analytic pulse
+/// (`dem --record/--pulse --json`), or with `ida` the scale that brings it down
+/// (`--ida --json`): returns the JSON text and, for a single run, the control block's time
+/// history as columns `(time, ground_acceleration, displacement, rotation,
+/// ground_acceleration_vertical)` (`--history`). Runs on a worker thread: Ctrl-C raises
+/// `KeyboardInterrupt` at once (the run in progress finishes on its thread, its result
+/// dropped).
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+#[pyfunction]
+#[pyo3(signature = (scene, record = None, pulse = None, amplitude = None, period = None, units = "g", dt = None, scale = 1.0, component = "x", record_vertical = None, tail = 2.0, ida = false, tolerance = 0.01))]
+fn dem_dynamic_json(
+    py: Python<'_>,
+    scene: &Scene,
+    record: Option<std::path::PathBuf>,
+    pulse: Option<&str>,
+    amplitude: Option<f64>,
+    period: Option<f64>,
+    units: &str,
+    dt: Option<f64>,
+    scale: f64,
+    component: &str,
+    record_vertical: Option<std::path::PathBuf>,
+    tail: f64,
+    ida: bool,
+    tolerance: f64,
+) -> PyResult<(String, Option<[Vec<f64>; 5]>)> {
+    let record_error =
+        |e: voussoir::error::RecordError| analysis_error(py, &LibAnalysisError::Record(e));
+    let ground = ground_input(
+        record,
+        pulse,
+        amplitude,
+        period,
+        units,
+        dt,
+        scale,
+        component,
+        record_vertical,
+    )
+    .map_err(record_error)?;
+    if !(tail.is_finite() && tail >= 0.0) {
+        return Err(record_error(voussoir::error::RecordError::Flag {
+            flag: "tail".to_string(),
+            value: tail.to_string(),
+            message: "must be a finite number of seconds >= 0".to_string(),
+        }));
+    }
+    let settings = voussoir::dem::dynamic::DynamicSettings {
+        tail,
+        ..Default::default()
+    };
+    let lib_scene = scene.inner.clone();
+    if ida {
+        let out = interruptible(py, Arc::default(), move || {
+            analysis::dem_ida(&lib_scene, &ground, &settings, tolerance)
+                .map(|(_, r)| report::IdaReport::new(&ground, &r, tolerance))
+        })?;
+        let rep = out.map_err(|e| analysis_error(py, &e))?;
+        return Ok((to_json(&rep)?, None));
+    }
+    let (lib_scene, out) = interruptible(py, Arc::default(), move || {
+        let d = analysis::dem_dynamic(&lib_scene, &ground, &settings);
+        (lib_scene, d)
+    })?;
+    let d = out.map_err(|e| analysis_error(py, &e))?;
+    let h = &d.result.history;
+    let column = |f: fn(&voussoir::dem::dynamic::Sample) -> f64| h.iter().map(f).collect();
+    let history = [
+        column(|s| s.time),
+        column(|s| s.ground_acceleration),
+        column(|s| s.displacement),
+        column(|s| s.rotation),
+        column(|s| s.ground_acceleration_vertical),
+    ];
+    Ok((
+        to_json(&report::DynamicReport::new(&lib_scene, &d))?,
+        Some(history),
+    ))
+}
+
+/// The minimum collapse amplitude of one-cycle pulses against their period
+/// (`dem --pulse-curve --json`), as JSON text: `shapes` among "sine" and "rect", `periods` in
+/// s (the CLI's defaults when empty). Each amplitude search runs on a worker thread; Ctrl-C
+/// stops after the point in progress.
+#[pyfunction]
+#[pyo3(signature = (scene, periods = Vec::new(), shapes = Vec::new(), tail = 2.0, tolerance = 0.01))]
+fn dem_pulse_curve_json(
+    py: Python<'_>,
+    scene: &Scene,
+    periods: Vec<f64>,
+    shapes: Vec<String>,
+    tail: f64,
+    tolerance: f64,
+) -> PyResult<String> {
+    use voussoir::dem::record::PulseShape;
+    let record_error =
+        |e: voussoir::error::RecordError| analysis_error(py, &LibAnalysisError::Record(e));
+    let shapes: Vec<PulseShape> = if shapes.is_empty() {
+        vec![PulseShape::Sine, PulseShape::Rect]
+    } else {
+        shapes
+            .iter()
+            .map(|s| match s.as_str() {
+                "sine" => Ok(PulseShape::Sine),
+                "rect" => Ok(PulseShape::Rect),
+                other => Err(record_error(voussoir::error::RecordError::Flag {
+                    flag: "shapes".to_string(),
+                    value: other.to_string(),
+                    message: "expected \"sine\" or \"rect\"".to_string(),
+                })),
+            })
+            .collect::<PyResult<_>>()?
+    };
+    let periods = if periods.is_empty() {
+        analysis::PULSE_CURVE_PERIODS.to_vec()
+    } else {
+        periods
+    };
+    if !(tail.is_finite() && tail >= 0.0) {
+        return Err(record_error(voussoir::error::RecordError::Flag {
+            flag: "tail".to_string(),
+            value: tail.to_string(),
+            message: "must be a finite number of seconds >= 0".to_string(),
+        }));
+    }
+    let settings = voussoir::dem::dynamic::DynamicSettings {
+        tail,
+        ..Default::default()
+    };
+    let lib_scene = scene.inner.clone();
+    let out = interruptible(py, Arc::default(), move || {
+        analysis::dem_pulse_curve(
+            &lib_scene,
+            &shapes,
+            &periods,
+            &settings,
+            tolerance,
+            &mut |_| {},
+        )
+        .map(|c| report::PulseCurveReport::new(&c))
+    })?;
+    let rep = out.map_err(|e| analysis_error(py, &e))?;
+    to_json(&rep)
 }
 
 /// One varied key's values: a string in the CLI's syntax (`"0.1,0.2"`, `"0.1:0.2:0.01"`), a
@@ -457,7 +922,7 @@ fn variation(key: &str, values: &Bound<'_, PyAny>) -> PyResult<Variation> {
         let spec: String = values.extract()?;
         return sweep::parse_variation(&format!("{key}={spec}")).map_err(|e| scene_error(py, &e));
     }
-    let values = match to_toml(key, values)? {
+    let values = match to_toml(key, values, 0)? {
         Value::Array(a) => a,
         one => vec![one],
     };
@@ -527,7 +992,21 @@ fn sweep_rows<'py>(
     let plan = py
         .detach(|| sweep::Sweep::new(base, variations))
         .map_err(|e| scene_error(py, &e))?;
-    let rows = py.detach(|| plan.run(&options, dem, &|| {}));
+    // Solved on a worker thread; on Ctrl-C the cases not yet started are skipped (the cases
+    // in progress finish on their threads) and KeyboardInterrupt is raised at once.
+    let cancel = Arc::new(AtomicBool::new(false));
+    let stop = Arc::clone(&cancel);
+    let (plan, rows) = interruptible(py, cancel, move || {
+        let rows = sweep::run(
+            plan.cases(),
+            |values, scene| {
+                (!stop.load(Ordering::Relaxed)).then(|| sweep::case(values, scene, &options, dem))
+            },
+            &|| {},
+        );
+        (plan, rows)
+    })?;
+    let rows: Vec<SweepRow> = rows.into_iter().flatten().collect();
     let ratio_names: Vec<&str> = sweep::DERIVED_KEYS
         .iter()
         .copied()
@@ -548,6 +1027,11 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;
+    m.add_function(wrap_pyfunction!(assess_json, m)?)?;
+    m.add_function(wrap_pyfunction!(assess_svg, m)?)?;
+    m.add_function(wrap_pyfunction!(dem_dynamic_json, m)?)?;
+    m.add_function(wrap_pyfunction!(dem_pulse_curve_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_rows, m)?)?;
     m.add("VoussoirError", py.get_type::<VoussoirError>())?;
     m.add("SceneError", py.get_type::<SceneError>())?;

@@ -107,3 +107,43 @@ def test_bad_options_are_value_errors():
         voussoir.analyze(scene, direction="up")
     with pytest.raises(ValueError, match="kinematic `fast`"):
         voussoir.analyze(scene, kinematic="fast")
+
+
+def test_deeply_nested_dict_is_a_value_error_not_a_crash():
+    # Issue 26: a dict nested 10,000 deep overflowed the native stack (a segfault).
+    deep = {}
+    inner = deep
+    for _ in range(10_000):
+        inner["x"] = {}
+        inner = inner["x"]
+    with pytest.raises(ValueError, match="nested more than 32 levels"):
+        voussoir.Scene.from_dict({"arch": deep})
+    # A list inside itself, and a deep list in with_values.
+    loop = []
+    loop.append(loop)
+    with pytest.raises(ValueError, match="nested"):
+        voussoir.Scene.from_dict({"arch": {"radius": loop}})
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "semicircular.toml"))
+    nested = 1.0
+    for _ in range(1000):
+        nested = [nested]
+    with pytest.raises(ValueError, match="arch.thickness"):
+        scene.with_values({"arch.thickness": nested})
+    # Ordinary nesting (a blocks scene: a list of polygons of points) is untouched.
+    square = [[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]]
+    voussoir.Scene.from_dict({"blocks": {"polygons": square}})
+
+
+def test_scenes_and_results_draw_inline():
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "loaded_portal.toml"))
+    svg = scene._repr_svg_()
+    assert svg.lstrip().startswith("<?xml") and "<svg" in svg and "10 kN" in svg
+    r = voussoir.analyze(scene)
+    svg = r._repr_svg_()
+    assert "λ (static lower bound) = " in svg and "thrust line" in svg
+    assert "lambda_lower" not in svg
+    # The same drawing as `analyze --svg`: the library draws both.
+    assert svg == voussoir._voussoir.analysis_svg(scene)
+    # A report without a scene (min-thickness) has no picture; one from a pickle neither.
+    import pickle
+    assert pickle.loads(pickle.dumps(r))._repr_svg_() is None

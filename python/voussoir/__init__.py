@@ -42,9 +42,17 @@ __all__ = [
     "Result",
     "MinThicknessResult",
     "DemResult",
+    "AssessResult",
+    "DynamicResult",
+    "IdaResult",
+    "PulseCurveResult",
     "analyze",
     "min_thickness",
     "dem",
+    "assess",
+    "dem_dynamic",
+    "dem_ida",
+    "dem_pulse_curve",
     "sweep",
     "sweep_frame",
     "VoussoirError",
@@ -59,12 +67,25 @@ __all__ = [
 class Report:
     """A report of the JSON contract: every field is an attribute (``r.status``,
     ``r.lambda_lower``), ``r["field"]`` works too, and ``to_dict()`` gives the JSON object
-    (a deep copy: the same dict ``voussoir ... --json`` prints, parsed)."""
+    (a deep copy: the same dict ``voussoir ... --json`` prints, parsed). Results that have a
+    picture show it inline in Jupyter (``_repr_svg_``): the library draws it again from the
+    same scene and options on first display (a report rebuilt from a pickle has none)."""
 
-    __slots__ = ("_data",)
+    __slots__ = ("_data", "_drawer", "_svg")
 
-    def __init__(self, data: Dict[str, Any]):
+    def __init__(self, data: Dict[str, Any], drawer: Optional[Any] = None):
         object.__setattr__(self, "_data", data)
+        object.__setattr__(self, "_drawer", drawer)
+        object.__setattr__(self, "_svg", None)
+
+    def _repr_svg_(self) -> Optional[str]:
+        """The result's drawing as SVG text (Jupyter's inline picture), None without one."""
+        drawer = object.__getattribute__(self, "_drawer") if _has_slot(self, "_drawer") else None
+        if drawer is None:
+            return None
+        if object.__getattribute__(self, "_svg") is None:
+            object.__setattr__(self, "_svg", drawer())
+        return object.__getattribute__(self, "_svg")
 
     def __getattr__(self, name: str) -> Any:
         try:
@@ -106,14 +127,25 @@ class Report:
 
     def __setstate__(self, data: Dict[str, Any]) -> None:
         object.__setattr__(self, "_data", data)
+        object.__setattr__(self, "_drawer", None)
+        object.__setattr__(self, "_svg", None)
 
     def __repr__(self) -> str:
         shown = ", ".join(
             f"{k}={self._data[k]!r}"
-            for k in ("status", "outcome", "lambda_lower", "lambda_upper", "min_thickness", "lambda_dem")
+            for k in ("status", "outcome", "lambda_lower", "lambda_upper", "min_thickness",
+                      "lambda_dem", "governing", "passes", "verdict", "scale_collapses")
             if k in self._data
         )
         return f"{type(self).__name__}({shown})"
+
+
+def _has_slot(obj: Any, name: str) -> bool:
+    try:
+        object.__getattribute__(obj, name)
+        return True
+    except AttributeError:
+        return False
 
 
 def _float(x: Any) -> float:
@@ -199,10 +231,9 @@ def analyze(
     scene that cannot be built and :class:`AnalysisError` for a solver failure (physical
     answers such as ``cannot_stand`` are statuses, not errors).
     """
-    text = _voussoir.analyze_json(
-        scene, direction, continuous, kinematic, kinematic_max_joints
-    )
-    return Result(json.loads(text))
+    args = (scene, direction, continuous, kinematic, kinematic_max_joints)
+    text = _voussoir.analyze_json(*args)
+    return Result(json.loads(text), lambda: _voussoir.analysis_svg(*args))
 
 
 def min_thickness(
@@ -218,11 +249,228 @@ def min_thickness(
     return MinThicknessResult(json.loads(text))
 
 
-def dem(scene: Scene, tolerance: float = 0.01) -> DemResult:
+def dem(scene: Scene, tolerance: float = 0.01, *, from_static: bool = False) -> DemResult:
     """The collapse multiplier bracketed by discrete element runs (rigid blocks in time,
-    no-tension Coulomb contacts) to a relative width ``tolerance``, starting from the static
-    bound, as ``voussoir dem --json``. About a second per bundled scene."""
-    return DemResult(json.loads(_voussoir.dem_json(scene, tolerance)))
+    no-tension Coulomb contacts) to a relative width ``tolerance``, as ``voussoir dem --json``
+    (``from_static=True``: ``--from-static``, the search starts at the static bound). About a
+    second per bundled scene. Ctrl-C raises ``KeyboardInterrupt`` at once."""
+    return DemResult(json.loads(_voussoir.dem_json(scene, tolerance, from_static)))
+
+
+class AssessResult(Report):
+    """The result of :func:`assess`: the fields of ``voussoir assess --json``. The top-level
+    fields (``passes``, ``verdict``, ``alpha0``, ``a0_star``, ``du_star``, ``linear_check``,
+    ``nonlinear_check``, ``ag_max``, ``capacity_curve``, ...) are the governing direction's
+    (``governing``: ``"right"`` or ``"left"``); ``directions["right"]`` and
+    ``directions["left"]`` hold each direction in full. ``passes`` applies the code's rule
+    (either check satisfied, ``rule``), over every direction assessed.
+
+    - ``curve``: (points, 5) array of the governing capacity curve, columns ``rotation``
+      (rad), ``d_k`` (m), ``alpha``, ``d_star`` (m), ``a_star`` (m/s^2);
+      ``curve_of("left")`` the same for one direction;
+    - ``svg("capacity")`` / ``svg("adrs")``: the charts of ``--svg`` / ``--adrs-svg``; in
+      Jupyter the ADRS plot shows inline.
+    """
+
+    __slots__ = ()
+
+    _COLUMNS = ("rotation", "d_k", "alpha", "d_star", "a_star")
+
+    @staticmethod
+    def _curve(points: List[Dict[str, float]]) -> np.ndarray:
+        return np.array(
+            [[p[c] for c in AssessResult._COLUMNS] for p in points], dtype=float
+        ).reshape(-1, len(AssessResult._COLUMNS))
+
+    @property
+    def curve(self) -> np.ndarray:
+        return self._curve(self._data["capacity_curve"])
+
+    def curve_of(self, direction: str) -> np.ndarray:
+        """The capacity curve of ``direction`` (``"right"`` or ``"left"``), if assessed."""
+        try:
+            return self._curve(self._data["directions"][direction]["capacity_curve"])
+        except KeyError:
+            raise KeyError(
+                f"direction {direction!r} was not assessed (assessed: "
+                f"{', '.join(self._data['directions'])})"
+            ) from None
+
+    def svg(self, which: str = "adrs") -> str:
+        """A chart as SVG text: ``"capacity"`` (the capacity curves) or ``"adrs"``."""
+        drawer = object.__getattribute__(self, "_drawer") if _has_slot(self, "_drawer") else None
+        if drawer is None:
+            raise ValueError("this result has no scene to draw (rebuilt from a pickle?)")
+        return drawer(which)
+
+    def _repr_svg_(self) -> Optional[str]:
+        drawer = object.__getattribute__(self, "_drawer") if _has_slot(self, "_drawer") else None
+        if drawer is None:
+            return None
+        if object.__getattribute__(self, "_svg") is None:
+            object.__setattr__(self, "_svg", drawer("adrs"))
+        return object.__getattribute__(self, "_svg")
+
+
+def assess(
+    scene: Scene,
+    site: Optional[Mapping[str, Any]] = None,
+    direction: Optional[str] = None,
+    *,
+    points: int = 200,
+    control_block: Optional[int] = None,
+) -> AssessResult:
+    """The seismic assessment of the governing mechanism (NTC 2018 / Circolare 2019 C8.7.1,
+    docs/assessment.md), as ``voussoir assess --json``: both directions of the load, the worse
+    governing, or only ``direction`` (``"right"`` or ``"left"``, as ``--direction``).
+
+    ``site``: keys of the ``[site]`` table to set (``{"ag": 0.25, "soil": "B", "F0": 2.4,
+    "Tc_star": 0.3}``, as ``--site KEY=VALUE``) over the scene's own. ``points`` and
+    ``control_block`` as ``--points`` and ``--control-block``. Raises :class:`AnalysisError`
+    when a direction has no mechanism with a capacity curve (the message says why)."""
+    if site:
+        scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
+    text = _voussoir.assess_json(scene, direction, points, control_block)
+    return AssessResult(
+        json.loads(text),
+        lambda which: _voussoir.assess_svg(scene, which, direction, points, control_block),
+    )
+
+
+class DynamicResult(Report):
+    """The result of :func:`dem_dynamic`: the fields of ``voussoir dem --record/--pulse
+    --json`` (``status``, ``excitation``, ``pga``, ``collapse_time``, ``peak_displacement``,
+    ``peak_rotation``, ``residual_displacement``, ...) and ``history``, the control block's
+    time history (``--history``) as numpy arrays: ``time`` (s), ``ground_acceleration``
+    (m/s^2), ``displacement`` (m), ``rotation`` (rad), ``ground_acceleration_vertical``."""
+
+    __slots__ = ("history",)
+
+    def __init__(self, data: Dict[str, Any], history: Optional[Dict[str, np.ndarray]] = None):
+        super().__init__(data)
+        object.__setattr__(self, "history", history or {})
+
+    def __getstate__(self) -> Dict[str, Any]:
+        return {"data": self._data, "history": self.history}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        super().__setstate__(state["data"])
+        object.__setattr__(self, "history", state["history"])
+
+
+class IdaResult(Report):
+    """The result of :func:`dem_ida`: the fields of ``voussoir dem --ida --json``
+    (``scale_survives``, ``scale_collapses``, ``collapse_pga``, ``runs``, ...)."""
+
+    __slots__ = ()
+
+
+class PulseCurveResult(Report):
+    """The result of :func:`dem_pulse_curve`: the fields of ``voussoir dem --pulse-curve
+    --json`` (``points``: ``shape``, ``period``, ``amplitude_survives``,
+    ``amplitude_collapses``, ``runs``)."""
+
+    __slots__ = ()
+
+
+_HISTORY = ("time", "ground_acceleration", "displacement", "rotation",
+            "ground_acceleration_vertical")
+
+
+def _ground_args(record, pulse, amplitude, period, units, dt, scale, component, record_vertical):
+    return (
+        None if record is None else str(record),
+        pulse,
+        None if amplitude is None else float(amplitude),
+        None if period is None else float(period),
+        units,
+        None if dt is None else float(dt),
+        float(scale),
+        component,
+        None if record_vertical is None else str(record_vertical),
+    )
+
+
+def dem_dynamic(
+    scene: Scene,
+    record: Optional[Any] = None,
+    pulse: Optional[str] = None,
+    amplitude: Optional[float] = None,
+    period: Optional[float] = None,
+    *,
+    units: str = "g",
+    dt: Optional[float] = None,
+    scale: float = 1.0,
+    component: str = "x",
+    record_vertical: Optional[Any] = None,
+    tail: float = 2.0,
+) -> DynamicResult:
+    """Run the scene's blocks under a ground motion, as ``voussoir dem --json`` with
+    ``--record FILE`` (PEER NGA .AT2 in g, or one/two-column text or CSV in ``units``; ``dt``
+    for one column) or ``--pulse sine|rect --amplitude A --period T`` (``amplitude`` in
+    ``units``: ``"g"``, ``"m/s2"`` or ``"cm/s2"``). ``scale`` multiplies the motion,
+    ``component`` is ``"x"`` (horizontal) or ``"y"`` (vertical), ``record_vertical`` a vertical
+    record acting together with the horizontal one, ``tail`` the free motion after the ground
+    stops (s). Ctrl-C raises ``KeyboardInterrupt`` at once."""
+    text, columns = _voussoir.dem_dynamic_json(
+        scene,
+        *_ground_args(record, pulse, amplitude, period, units, dt, scale, component,
+                      record_vertical),
+        float(tail),
+        False,
+        0.01,
+    )
+    history = {k: np.asarray(c, dtype=float) for k, c in zip(_HISTORY, columns or [])}
+    return DynamicResult(json.loads(text), history)
+
+
+def dem_ida(
+    scene: Scene,
+    record: Optional[Any] = None,
+    pulse: Optional[str] = None,
+    amplitude: Optional[float] = None,
+    period: Optional[float] = None,
+    *,
+    tolerance: float = 0.01,
+    units: str = "g",
+    dt: Optional[float] = None,
+    scale: float = 1.0,
+    component: str = "x",
+    record_vertical: Optional[Any] = None,
+    tail: float = 2.0,
+) -> IdaResult:
+    """Scale a ground motion (as :func:`dem_dynamic`) up until the blocks collapse, to a
+    relative ``tolerance``, as ``voussoir dem --ida --json``."""
+    text, _ = _voussoir.dem_dynamic_json(
+        scene,
+        *_ground_args(record, pulse, amplitude, period, units, dt, scale, component,
+                      record_vertical),
+        float(tail),
+        True,
+        float(tolerance),
+    )
+    return IdaResult(json.loads(text))
+
+
+def dem_pulse_curve(
+    scene: Scene,
+    periods: Optional[Sequence[float]] = None,
+    shapes: Optional[Sequence[str]] = None,
+    *,
+    tail: float = 2.0,
+    tolerance: float = 0.01,
+) -> PulseCurveResult:
+    """The minimum amplitude of one-cycle pulses (``shapes``: ``"sine"``, ``"rect"``) that
+    brings the blocks down, at each of ``periods`` (s), as ``voussoir dem --pulse-curve
+    --json`` (the CLI's defaults when None)."""
+    text = _voussoir.dem_pulse_curve_json(
+        scene,
+        [float(t) for t in (periods or [])],
+        list(shapes or []),
+        float(tail),
+        float(tolerance),
+    )
+    return PulseCurveResult(json.loads(text))
 
 
 VaryValues = Union[str, Sequence[Any], Any]

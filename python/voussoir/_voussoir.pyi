@@ -62,6 +62,8 @@ class Scene:
     def ratios(self) -> Dict[str, float]:
         """The dimensionless ratios (t/R, t/span, ...); NaN where not defined."""
     def __reduce__(self) -> Tuple[Any, Tuple[str, str]]: ...
+    def _repr_svg_(self) -> str:
+        """The scene drawn (blocks and loads), as SVG text: Jupyter's inline picture."""
 
 def analyze_json(
     scene: Scene,
@@ -77,8 +79,62 @@ def min_thickness_json(
 ) -> str:
     """``voussoir min-thickness --json`` of a scene, as JSON text."""
 
-def dem_json(scene: Scene, tolerance: float = 0.01) -> str:
+def dem_json(scene: Scene, tolerance: float = 0.01, from_static: bool = False) -> str:
     """``voussoir dem --json`` of a scene, as JSON text."""
+
+def analysis_svg(
+    scene: Scene,
+    direction: str = "right",
+    continuous: bool = False,
+    kinematic: str = "certified",
+    kinematic_max_joints: int = 200,
+) -> str:
+    """The drawing of ``voussoir analyze --svg``, as SVG text."""
+
+def assess_json(
+    scene: Scene,
+    direction: Optional[str] = None,
+    points: int = 200,
+    control_block: Optional[int] = None,
+) -> str:
+    """``voussoir assess --json`` of a scene, as JSON text (both directions unless one is
+    given)."""
+
+def assess_svg(
+    scene: Scene,
+    which: str = "adrs",
+    direction: Optional[str] = None,
+    points: int = 200,
+    control_block: Optional[int] = None,
+) -> str:
+    """The chart of ``assess --svg`` (``which="capacity"``) or ``--adrs-svg`` (``"adrs"``)."""
+
+def dem_dynamic_json(
+    scene: Scene,
+    record: Optional[str] = None,
+    pulse: Optional[str] = None,
+    amplitude: Optional[float] = None,
+    period: Optional[float] = None,
+    units: str = "g",
+    dt: Optional[float] = None,
+    scale: float = 1.0,
+    component: str = "x",
+    record_vertical: Optional[str] = None,
+    tail: float = 2.0,
+    ida: bool = False,
+    tolerance: float = 0.01,
+) -> Tuple[str, Optional[List[List[float]]]]:
+    """``voussoir dem --record/--pulse [--ida] --json``, as JSON text, and for a single run
+    the control block's time history as five columns."""
+
+def dem_pulse_curve_json(
+    scene: Scene,
+    periods: List[float] = ...,
+    shapes: List[str] = ...,
+    tail: float = 2.0,
+    tolerance: float = 0.01,
+) -> str:
+    """``voussoir dem --pulse-curve --json``, as JSON text."""
 
 def sweep_rows(
     scene: Scene,

@@ -20,7 +20,11 @@
 //! 3. **Verdict** ([`verdict`]): `du* = 0.4 d0*`, `ds* = 0.4 du*`, `as* = a*(ds*)`,
 //!    `Ts = 2 pi sqrt(ds*/as*)`; linear check `a0* >= ag S / q`, nonlinear check
 //!    `du* >= SDe(Ts)` (and the amplified demands of a mechanism at height `Z`); the largest
-//!    `ag` passing each check, by bisection.
+//!    `ag` passing each check, by bisection. The mechanism passes when either check is
+//!    satisfied (C8.7.1 lets the engineer verify it with either analysis, [`RULE`]).
+//! 4. **Both directions** ([`assess_directions`]): the seismic action is reversible, so the
+//!    scene is assessed with the load toward the right and toward the left (each its own
+//!    governing mechanism) and the worse direction governs ([`Assessment::governing`]).
 //!
 //! Mechanisms with a joint that opens completely (families other than four hinges or one
 //! hinge) have no finite motion fixed by their hinges alone and are refused.
@@ -675,10 +679,61 @@ pub struct Verdict {
     pub nonlinear: Check,
 }
 
+/// Which of the two checks a verdict satisfies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Satisfied {
+    Both,
+    Linear,
+    Nonlinear,
+    Neither,
+}
+
+/// The rule that turns the two checks into a verdict, as the reports state it.
+pub const RULE: &str = "Circolare 2019 C8.7.1: a local mechanism is verified by the linear or by the nonlinear kinematic analysis; either check satisfied suffices";
+
 impl Verdict {
-    /// Whether both checks pass.
+    /// The code's verdict (Circolare 2019 C8.7.1): the mechanism passes when the linear or
+    /// the nonlinear kinematic check is satisfied; the engineer may verify it with either.
     pub fn passes(&self) -> bool {
+        self.linear.passes || self.nonlinear.passes
+    }
+
+    /// Whether both checks are satisfied (the stricter reading, reported beside the verdict).
+    pub fn both_pass(&self) -> bool {
         self.linear.passes && self.nonlinear.passes
+    }
+
+    /// Which checks are satisfied.
+    pub fn satisfied(&self) -> Satisfied {
+        match (self.linear.passes, self.nonlinear.passes) {
+            (true, true) => Satisfied::Both,
+            (true, false) => Satisfied::Linear,
+            (false, true) => Satisfied::Nonlinear,
+            (false, false) => Satisfied::Neither,
+        }
+    }
+
+    /// The largest `ag` (in g) at which the mechanism passes by [`Verdict::passes`]: the larger
+    /// of the two checks' `ag_max` (None when one of them passes even at [`AG_SEARCH_MAX`]).
+    pub fn ag_max(&self) -> Option<f64> {
+        match (self.linear.ag_max, self.nonlinear.ag_max) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        }
+    }
+
+    /// The verdict in words: "passes: linear check satisfied", "does not pass: neither the
+    /// linear nor the nonlinear check is satisfied", ...
+    pub fn text(&self) -> &'static str {
+        match self.satisfied() {
+            Satisfied::Both => "passes: linear and nonlinear checks satisfied",
+            Satisfied::Linear => "passes: linear check satisfied (the nonlinear one is not)",
+            Satisfied::Nonlinear => "passes: nonlinear check satisfied (the linear one is not)",
+            Satisfied::Neither => {
+                "does not pass: neither the linear nor the nonlinear check is satisfied"
+            }
+        }
     }
 }
 
@@ -771,4 +826,24 @@ pub fn verdict(model: &Model, capacity: &Capacity, site: &Site) -> Verdict {
         linear: check(a0, &linear_demand),
         nonlinear: check(du_star, &|s: &Site| nonlinear_demand(s, ts)),
     }
+}
+
+/// Relative difference of the largest passing `ag` below which two directions tie (a
+/// symmetric structure's two directions differ by round-off only).
+pub const AG_TIE: f64 = 1e-9;
+
+/// Index of the governing direction among `verdicts`: a direction that fails governs over
+/// one that passes; among equals, the one with the smaller largest passing `ag` (None, passing
+/// beyond [`AG_SEARCH_MAX`], counts as infinite); on a tie (within [`AG_TIE`]), the first.
+pub fn governing_index(verdicts: &[&Verdict]) -> usize {
+    let key = |v: &Verdict| (v.passes(), v.ag_max().unwrap_or(f64::INFINITY));
+    let mut best = 0;
+    for (i, v) in verdicts.iter().enumerate().skip(1) {
+        let (p, ag) = key(v);
+        let (bp, bag) = key(verdicts[best]);
+        if (!p && bp) || (p == bp && ag < bag * (1.0 - AG_TIE)) {
+            best = i;
+        }
+    }
+    best
 }

@@ -3,7 +3,7 @@
 use super::{json, write_chart, write_svg, Dir, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
-use voussoir::lp::StaticSettings;
+use voussoir::outcome::Direction;
 use voussoir::report::assessment::{assessment_summary, AssessmentReport};
 use voussoir::thrustline::svg::{Drawing, Placements};
 
@@ -36,9 +36,10 @@ pub struct Args {
     /// Control block (its centroid is the control point); default the block that moves most
     #[arg(long)]
     control_block: Option<usize>,
-    /// Direction of the horizontal acceleration
-    #[arg(long, value_enum, default_value = "right")]
-    direction: Dir,
+    /// Assess one direction of the horizontal acceleration only (default: both, the worse
+    /// governs; with this flag the verdict covers the given direction only)
+    #[arg(long, value_enum)]
+    direction: Option<Dir>,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -58,30 +59,49 @@ pub fn run(args: Args) -> Result<String, Error> {
             args.at
         ))));
     }
-    let options = analysis::Options {
-        static_settings: StaticSettings::default().direction(args.direction.into()),
-        ..Default::default()
-    };
+    let options = analysis::Options::default();
     let assess = analysis::AssessOptions {
         points: args.points,
         control_block: args.control_block,
     };
-    let a = analysis::assess(&scene, &options, &assess)?;
+    let all = voussoir::analysis::assess_directions(
+        &scene,
+        &options,
+        &assess,
+        args.direction.map(Into::into),
+    )?;
+    let a = all.governing();
     // The file name: the origin also lists the overrides, too long for a chart title.
     let title = args.scene.scene.file_name().map_or_else(
         || scene.origin.clone(),
         |n| n.to_string_lossy().into_owned(),
     );
+    let dir_words = match a.capacity.direction {
+        Direction::Right => "load to the right",
+        Direction::Left => "load to the left",
+    };
+    let note = if all.directions.len() > 1 {
+        format!("{dir_words}, governing")
+    } else {
+        format!("{dir_words} only")
+    };
     if let Some(path) = &args.svg {
         write_chart(
             path,
-            &voussoir::assess::pictures::capacity_chart(&a.capacity, &title),
+            &voussoir::assess::pictures::capacity_chart(
+                &all.directions
+                    .iter()
+                    .map(|a| (&a.capacity, &a.verdict))
+                    .collect::<Vec<_>>(),
+                all.governing,
+                &title,
+            ),
         )?;
     }
     if let Some(path) = &args.adrs_svg {
         write_chart(
             path,
-            &voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title),
+            &voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title, &note),
         )?;
     }
     if let Some(path) = &args.mechanism_svg {
@@ -104,23 +124,24 @@ pub fn run(args: Args) -> Result<String, Error> {
             .unwrap_or_default();
         let drawing = Drawing {
             title: format!(
-                "{title}\nmechanism at rotation {u:.4} rad: d_k = {:.1} mm, alpha = {alpha:.4}",
-                1e3 * d_k
+                "{title} ({note})\nmechanism turned by {u:.4} rad: control displacement dₖ = {:.1} mm, α = {alpha:.4} (α₀ = {:.4})",
+                1e3 * d_k,
+                a.capacity.alpha0
             ),
             hinges: &hinges,
             moved: Some(Placements {
                 moves: &moves,
-                label: format!("moved (true scale), alpha = {alpha:.4}"),
+                label: format!("moved (true scale), α = {alpha:.4}"),
             }),
-            load: Some(options.direction()),
+            load: Some(a.capacity.direction),
             loads: Some(&model.loads),
             ..Default::default()
         };
         write_svg(path, &model.assembly, &drawing)?;
     }
     Ok(if args.json {
-        json(&AssessmentReport::new(&scene, &a))
+        json(&AssessmentReport::new(&scene, &all))
     } else {
-        assessment_summary(&scene, &a)
+        assessment_summary(&scene, &all)
     })
 }

@@ -2,9 +2,10 @@
 //! scripts: later versions add fields, never rename them) and its text summary
 //! ([`assessment_summary`]).
 
+use crate::analysis::Assessment;
 use crate::analysis::SiteAssessment;
 use crate::assembly::Hinge;
-use crate::assess::{CapacityPoint, Check, ParticipatingMass};
+use crate::assess::{CapacityPoint, Check, ParticipatingMass, Satisfied, RULE};
 use crate::outcome::Direction;
 use crate::report::SceneReport;
 use crate::scene::Scene;
@@ -82,10 +83,112 @@ pub struct MechanismReport {
     pub lambda: f64,
 }
 
-/// `voussoir assess --json`.
+/// The assessment of one direction of the load (its own governing mechanism).
+#[derive(Debug, Serialize)]
+pub struct DirectionReport {
+    pub direction: Direction,
+    /// The static (lower-bound) collapse multiplier.
+    pub lambda_lower: Option<f64>,
+    /// The kinematic (upper-bound) collapse multiplier.
+    pub lambda_upper: Option<f64>,
+    pub mechanism: MechanismReport,
+    /// Block whose centroid is the control point.
+    pub control_block: usize,
+    pub participating_mass: ParticipatingMass,
+    /// Multiplier at rest (= the mechanism's lambda).
+    pub alpha0: f64,
+    /// `a0* = alpha0 g / (e* FC)` (m/s^2).
+    pub a0_star: f64,
+    /// Control displacement at alpha = 0 (m).
+    pub d_k0: f64,
+    /// Spectral displacement at alpha = 0 (m).
+    pub d0_star: f64,
+    /// `du* = 0.4 d0*` (m).
+    pub du_star: f64,
+    /// `ds* = 0.4 du*` (m).
+    pub ds_star: f64,
+    /// `as* = a*(ds*)` (m/s^2).
+    pub as_star: f64,
+    /// Secant period `Ts = 2 pi sqrt(ds*/as*)` (s).
+    #[serde(rename = "Ts")]
+    pub ts: f64,
+    /// Linear check `a0* >= ag S / q` (capacity and demand in m/s^2).
+    pub linear_check: Check,
+    /// Nonlinear check `du* >= SDe(Ts)` (capacity and demand in m).
+    pub nonlinear_check: Check,
+    /// The verdict of this direction: either check satisfied ([`crate::assess::RULE`]).
+    pub passes: bool,
+    /// Which checks are satisfied: `both`, `linear`, `nonlinear` or `neither`.
+    pub satisfied: Satisfied,
+    /// Both checks satisfied (the stricter reading; before the code's rule was applied this
+    /// was `passes`).
+    pub both_checks_pass: bool,
+    /// The verdict in words, e.g. "passes: linear check satisfied (the nonlinear one is not)".
+    pub verdict: &'static str,
+    /// Largest `ag` (g) at which this direction passes by the rule: the larger of the two
+    /// checks' `ag_max`; None when one passes even at 2 g.
+    pub ag_max: Option<f64>,
+    /// The capacity curve from rest to `d_k0`.
+    pub capacity_curve: Vec<CapacityPoint>,
+}
+
+impl DirectionReport {
+    pub fn new(a: &SiteAssessment) -> Self {
+        let (c, v) = (&a.capacity, &a.verdict);
+        let k = a.analysis.upper.as_ref().ok();
+        let mech = k.and_then(|k| k.mechanism.as_ref());
+        DirectionReport {
+            direction: c.direction,
+            lambda_lower: a.analysis.lower.lambda,
+            lambda_upper: a.analysis.lambda_upper(),
+            mechanism: MechanismReport {
+                hinges: mech.map(|m| m.hinges.clone()).unwrap_or_default(),
+                bodies: c
+                    .linkage
+                    .bodies()
+                    .iter()
+                    .map(|r| [r.start, r.end.saturating_sub(1)])
+                    .collect(),
+                lambda: mech.map_or(f64::NAN, |m| m.lambda),
+            },
+            control_block: c.control_block,
+            participating_mass: c.mass,
+            alpha0: c.alpha0,
+            a0_star: c.a0_star,
+            d_k0: c.d_k0,
+            d0_star: c.d0_star,
+            du_star: v.du_star,
+            ds_star: v.ds_star,
+            as_star: v.as_star,
+            ts: v.ts,
+            linear_check: v.linear,
+            nonlinear_check: v.nonlinear,
+            passes: v.passes(),
+            satisfied: v.satisfied(),
+            both_checks_pass: v.both_pass(),
+            verdict: v.text(),
+            ag_max: v.ag_max(),
+            capacity_curve: c.curve.clone(),
+        }
+    }
+}
+
+/// The directions assessed, by name.
+#[derive(Debug, Serialize)]
+pub struct DirectionsReport {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub right: Option<DirectionReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub left: Option<DirectionReport>,
+}
+
+/// `voussoir assess --json`. The fields before `directions` are those of the governing
+/// direction (the worse one), so a script written when only one direction was assessed reads
+/// the governing verdict; `directions` holds each direction in full.
 #[derive(Debug, Serialize)]
 pub struct AssessmentReport {
     pub scene: SceneReport,
+    /// The governing direction (the direction of every direction-dependent field below).
     pub direction: Direction,
     /// The static (lower-bound) collapse multiplier.
     pub lambda_lower: Option<f64>,
@@ -118,32 +221,55 @@ pub struct AssessmentReport {
     pub linear_check: Check,
     /// Nonlinear check `du* >= SDe(Ts)` (capacity and demand in m).
     pub nonlinear_check: Check,
-    /// Both checks pass.
+    /// The verdict: every direction assessed passes, each by the linear or the nonlinear
+    /// check ([`crate::assess::RULE`]). (Until both directions were assessed this was "both
+    /// checks pass, load to the right"; `both_checks_pass` keeps the stricter reading.)
     pub passes: bool,
     /// The capacity curve from rest to `d_k0`.
     pub capacity_curve: Vec<CapacityPoint>,
+    /// The governing direction, `right` or `left` (the same as `direction`).
+    pub governing: Direction,
+    /// The directions assessed: `["right", "left"]`, or the one given with `--direction`.
+    pub directions_assessed: Vec<Direction>,
+    /// Whether `--direction` restricted the assessment to one direction (the verdict then
+    /// covers that direction only).
+    pub restricted: bool,
+    /// Which checks the governing direction satisfies: `both`, `linear`, `nonlinear`, `neither`.
+    pub satisfied: Satisfied,
+    /// Both checks satisfied in every direction assessed.
+    pub both_checks_pass: bool,
+    /// The verdict in words, e.g. "passes: linear check satisfied (the nonlinear one is not)".
+    pub verdict: String,
+    /// The rule applied to the two checks.
+    pub rule: &'static str,
+    /// Largest `ag` (g) at which the governing direction passes by the rule.
+    pub ag_max: Option<f64>,
+    /// Each direction assessed, in full.
+    pub directions: DirectionsReport,
 }
 
 impl AssessmentReport {
-    pub fn new(scene: &Scene, a: &SiteAssessment) -> Self {
-        let (c, v) = (&a.capacity, &a.verdict);
-        let k = a.analysis.upper.as_ref().ok();
-        let mech = k.and_then(|k| k.mechanism.as_ref());
+    pub fn new(scene: &Scene, all: &Assessment) -> Self {
+        let a = all.governing();
+        let v = &a.verdict;
+        let g = DirectionReport::new(a);
+        let mut directions = DirectionsReport {
+            right: None,
+            left: None,
+        };
+        for d in &all.directions {
+            let r = DirectionReport::new(d);
+            match d.capacity.direction {
+                Direction::Right => directions.right = Some(r),
+                Direction::Left => directions.left = Some(r),
+            }
+        }
         AssessmentReport {
             scene: SceneReport::new(scene, &a.analysis.model),
-            direction: c.direction,
-            lambda_lower: a.analysis.lower.lambda,
-            lambda_upper: a.analysis.lambda_upper(),
-            mechanism: MechanismReport {
-                hinges: mech.map(|m| m.hinges.clone()).unwrap_or_default(),
-                bodies: c
-                    .linkage
-                    .bodies()
-                    .iter()
-                    .map(|r| [r.start, r.end.saturating_sub(1)])
-                    .collect(),
-                lambda: mech.map_or(f64::NAN, |m| m.lambda),
-            },
+            direction: g.direction,
+            lambda_lower: g.lambda_lower,
+            lambda_upper: g.lambda_upper,
+            mechanism: g.mechanism,
             site: SiteReport::new(&a.site),
             spectrum: SpectrumReport {
                 ag_ms2: v.spectrum.ag,
@@ -155,48 +281,83 @@ impl AssessmentReport {
                 tc: v.spectrum.tc,
                 td: v.spectrum.td,
             },
-            control_block: c.control_block,
-            participating_mass: c.mass,
-            alpha0: c.alpha0,
-            a0_star: c.a0_star,
-            d_k0: c.d_k0,
-            d0_star: c.d0_star,
-            du_star: v.du_star,
-            ds_star: v.ds_star,
-            as_star: v.as_star,
-            ts: v.ts,
-            linear_check: v.linear,
-            nonlinear_check: v.nonlinear,
-            passes: v.passes(),
-            capacity_curve: c.curve.clone(),
+            control_block: g.control_block,
+            participating_mass: g.participating_mass,
+            alpha0: g.alpha0,
+            a0_star: g.a0_star,
+            d_k0: g.d_k0,
+            d0_star: g.d0_star,
+            du_star: g.du_star,
+            ds_star: g.ds_star,
+            as_star: g.as_star,
+            ts: g.ts,
+            linear_check: g.linear_check,
+            nonlinear_check: g.nonlinear_check,
+            passes: all.passes(),
+            capacity_curve: g.capacity_curve,
+            governing: g.direction,
+            directions_assessed: all
+                .directions
+                .iter()
+                .map(|d| d.capacity.direction)
+                .collect(),
+            restricted: all.restricted,
+            satisfied: g.satisfied,
+            both_checks_pass: all.directions.iter().all(|d| d.verdict.both_pass()),
+            verdict: verdict_line(all),
+            rule: RULE,
+            ag_max: g.ag_max,
+            directions,
         }
+    }
+}
+
+fn direction_words(d: Direction) -> &'static str {
+    match d {
+        Direction::Right => "load toward the right",
+        Direction::Left => "load toward the left",
+    }
+}
+
+/// The verdict over the directions, in one line.
+fn verdict_line(all: &Assessment) -> String {
+    let g = all.governing();
+    let d = direction_words(g.capacity.direction);
+    if all.restricted {
+        format!(
+            "{}; {d} only (--direction excluded the other)",
+            g.verdict.text()
+        )
+    } else {
+        format!("{}; governing direction: {d}", g.verdict.text())
     }
 }
 
 fn verdict_word(c: &Check) -> &'static str {
     if c.passes {
-        "passes"
+        "satisfied"
     } else {
-        "FAILS"
+        "NOT satisfied"
     }
 }
 
-fn ag_max(c: &Check) -> String {
-    match c.ag_max {
+fn ag_text(ag: Option<f64>) -> String {
+    match ag {
         Some(ag) => format!("{ag:.4} g"),
         None => format!("more than {} g", crate::assess::AG_SEARCH_MAX),
     }
 }
 
-/// The text `voussoir assess` prints.
-pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
+/// The lines of one direction.
+fn direction_summary(t: &mut String, a: &SiteAssessment) {
     let (c, v, s) = (&a.capacity, &a.verdict, &a.site);
-    let sp = &v.spectrum;
-    let mut t = String::new();
-    let _ = writeln!(t, "Scene: {}", scene.origin);
     let _ = writeln!(
         t,
-        "Governing mechanism: alpha0 = lambda = {:.6} (static lower bound {}), bodies {}",
+        "Load toward the {}: governing mechanism alpha0 = lambda = {:.6} (static lower bound {}), bodies {}",
+        match c.direction {
+            Direction::Right => "right",
+            Direction::Left => "left",
+        },
         c.alpha0,
         a.analysis
             .lower
@@ -212,12 +373,12 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
     let m = &c.mass;
     let _ = writeln!(
         t,
-        "Participating mass: M* = {:.1} kg, e* = {:.4} (of {:.1} N of seismic weight on the moving blocks)",
+        "  Participating mass: M* = {:.1} kg, e* = {:.4} (of {:.1} N of seismic weight on the moving blocks)",
         m.m_star, m.e_star, m.seismic_weight
     );
     let _ = writeln!(
         t,
-        "Capacity curve ({} points): control point = centroid of block {}, d_k0 = {:.2} mm, d0* = {:.2} mm",
+        "  Capacity curve ({} points): control point = centroid of block {}, d_k0 = {:.2} mm, d0* = {:.2} mm",
         c.curve.len(),
         c.control_block,
         1e3 * c.d_k0,
@@ -225,7 +386,7 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
     );
     let _ = writeln!(
         t,
-        "  a0* = alpha0 g/(e* FC) = {:.4} m/s^2 (FC = {}), du* = {:.2} mm, ds* = {:.2} mm, as* = {:.4} m/s^2, Ts = {:.3} s",
+        "    a0* = alpha0 g/(e* FC) = {:.4} m/s^2 (FC = {}), du* = 0.4 d0* = {:.2} mm, ds* = {:.2} mm, as* = {:.4} m/s^2, Ts = {:.3} s",
         c.a0_star,
         s.fc,
         1e3 * v.du_star,
@@ -233,6 +394,48 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
         v.as_star,
         v.ts
     );
+    let (lin, nonlin) = if s.elevated() {
+        (
+            "a0* >= max(ag S/q, Se(T1) psi gamma/q)",
+            "du* >= max(SDe(Ts), amplified at Z)",
+        )
+    } else {
+        ("a0* >= ag S/q", "du* >= SDe(Ts)")
+    };
+    let _ = writeln!(
+        t,
+        "  Linear check ({lin}): {:.4} vs {:.4} m/s^2, ratio {:.3}: {}; largest passing ag = {}",
+        v.linear.capacity,
+        v.linear.demand,
+        v.linear.ratio,
+        verdict_word(&v.linear),
+        ag_text(v.linear.ag_max)
+    );
+    let _ = writeln!(
+        t,
+        "  Nonlinear check ({nonlin}): {:.2} vs {:.2} mm, ratio {:.3}: {}; largest passing ag = {}",
+        1e3 * v.nonlinear.capacity,
+        1e3 * v.nonlinear.demand,
+        v.nonlinear.ratio,
+        verdict_word(&v.nonlinear),
+        ag_text(v.nonlinear.ag_max)
+    );
+    let _ = writeln!(
+        t,
+        "  This direction {}; largest passing ag = {}",
+        v.text(),
+        ag_text(v.ag_max())
+    );
+}
+
+/// The text `voussoir assess` prints: the site, each direction assessed, the rule and the
+/// verdict of the governing direction.
+pub fn assessment_summary(scene: &Scene, all: &Assessment) -> String {
+    let g = all.governing();
+    let (v, s) = (&g.verdict, &g.site);
+    let sp = &v.spectrum;
+    let mut t = String::new();
+    let _ = writeln!(t, "Scene: {}", scene.origin);
     let _ = writeln!(
         t,
         "Site: ag = {} g, soil {}, topography {}, F0 = {}, Tc* = {} s, q = {}{}",
@@ -258,44 +461,41 @@ pub fn assessment_summary(scene: &Scene, a: &SiteAssessment) -> String {
         "  spectrum: S = SS ST = {:.3} x {:.2}, TB = {:.3} s, TC = {:.3} s, TD = {:.3} s",
         sp.ss, sp.st, sp.tb, sp.tc, sp.td
     );
-    let (lin, nonlin) = if s.elevated() {
-        (
-            "a0* >= max(ag S/q, Se(T1) psi gamma/q)",
-            "du* >= max(SDe(Ts), amplified at Z)",
-        )
-    } else {
-        ("a0* >= ag S/q", "du* >= SDe(Ts)")
-    };
-    let _ = writeln!(
-        t,
-        "Linear check ({lin}): {:.4} vs {:.4} m/s^2, ratio {:.3}: {}; largest passing ag = {}",
-        v.linear.capacity,
-        v.linear.demand,
-        v.linear.ratio,
-        verdict_word(&v.linear),
-        ag_max(&v.linear)
-    );
-    let _ = writeln!(
-        t,
-        "Nonlinear check ({nonlin}): {:.2} vs {:.2} mm, ratio {:.3}: {}; largest passing ag = {}",
-        1e3 * v.nonlinear.capacity,
-        1e3 * v.nonlinear.demand,
-        v.nonlinear.ratio,
-        verdict_word(&v.nonlinear),
-        ag_max(&v.nonlinear)
-    );
+    for a in &all.directions {
+        direction_summary(&mut t, a);
+    }
     let _ = writeln!(
         t,
         "(The capacity curve keeps the hinges at their joints, as the code method does; past about a third of d_k0 a real arch may move a hinge: docs/assessment.md)"
     );
-    let _ = writeln!(
-        t,
-        "Verdict: {}",
-        if v.passes() {
-            "the mechanism passes both checks"
-        } else {
-            "the mechanism does not pass"
-        }
-    );
+    let _ = writeln!(t, "Rule: {RULE}.");
+    let words = direction_words(g.capacity.direction);
+    if all.restricted {
+        let _ = writeln!(
+            t,
+            "Direction: only the {words} was assessed (--direction); the other direction is not covered by this verdict"
+        );
+    } else {
+        let other = all
+            .directions
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != all.governing)
+            .map(|(_, a)| {
+                format!(
+                    "{} {}",
+                    direction_words(a.capacity.direction),
+                    ag_text(a.verdict.ag_max())
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = writeln!(
+            t,
+            "Governing direction: the {words} (largest passing ag {}; {other})",
+            ag_text(v.ag_max())
+        );
+    }
+    let _ = writeln!(t, "Verdict: the mechanism {}", verdict_line(all));
     t
 }

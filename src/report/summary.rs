@@ -700,19 +700,20 @@ pub fn shape_title(scene: &Scene) -> String {
 }
 
 /// Title of a structure drawing: shape, thickness, voussoirs, and the multipliers of every
-/// bound that ran, or in words why there is none (`cannot stand`, `no collapse`).
+/// bound that ran, or in words why there is none (`cannot stand`, `no collapse`). Written for
+/// the engineer (λ and the bound's name), not with the JSON keys.
 pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
     let lower = match (a.lower.status, a.lower.lambda) {
-        (Status::Collapse, Some(l)) => format!("lambda_lower = {l:.4}"),
-        (Status::NoCollapse, _) => "no collapse: a thrust line fits at any lambda".to_string(),
+        (Status::Collapse, Some(l)) => format!("λ (static lower bound) = {l:.4}"),
+        (Status::NoCollapse, _) => "no collapse: a thrust line fits at any λ".to_string(),
         _ => "cannot stand: no thrust line fits".to_string(),
     };
     let upper = match &a.upper {
         Ok(k) => match (k.status, k.lambda_upper) {
-            (Status::Collapse, Some(u)) if a.sliding_governs() => {
-                Some(format!("lambda_upper = {u:.4} (rotation only)"))
-            }
-            (Status::Collapse, Some(u)) => Some(format!("lambda_upper = {u:.4}")),
+            (Status::Collapse, Some(u)) if a.sliding_governs() => Some(format!(
+                "λ (kinematic upper bound) = {u:.4} (rotation only)"
+            )),
+            (Status::Collapse, Some(u)) => Some(format!("λ (kinematic upper bound) = {u:.4}")),
             (status, _) if status == a.lower.status => None,
             (Status::NoCollapse, _) => Some("kinematic: no collapse".to_string()),
             _ => Some("kinematic: cannot stand".to_string()),
@@ -720,7 +721,7 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
         Err(_) => None,
     };
     let second = match upper {
-        Some(u) => format!("{lower}   {u}"),
+        Some(u) => format!("{lower}, {u}"),
         None => lower,
     };
     match &scene.arch {
@@ -738,12 +739,12 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
 /// words why there is none (`lower` is the static status of the same model).
 pub fn dem_drawing_title(scene: &Scene, rep: &DemReport, lower: Status) -> String {
     let dem = match (rep.status, rep.lambda_dem) {
-        ("collapse", Some(l)) => format!("lambda_dem = {l:.4}"),
-        ("no_collapse", _) => "DEM: no collapse up to the largest lambda tried".to_string(),
+        ("collapse", Some(l)) => format!("λ (DEM) = {l:.4}"),
+        ("no_collapse", _) => "DEM: no collapse up to the largest λ tried".to_string(),
         _ => "DEM: cannot stand (no rest under the permanent loads)".to_string(),
     };
     let lower = match (lower, rep.lambda_lower) {
-        (Status::Collapse, Some(l)) => format!("static lambda_lower = {l:.4}"),
+        (Status::Collapse, Some(l)) => format!("static lower bound λ = {l:.4}"),
         (Status::NoCollapse, _) => "static: no collapse".to_string(),
         _ => "static: cannot stand".to_string(),
     };

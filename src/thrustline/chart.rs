@@ -4,8 +4,10 @@
 //! right of the plot, so it never hides a line.
 //!
 //! A point with a non-finite x or y (NaN for a case that cannot stand or failed) breaks its
-//! line; every finite point also gets a marker, so an isolated point still shows. Each series
-//! is its own group `<g id="series-K" class="series">` in the file.
+//! line; by default every finite point also gets a marker, so an isolated point still shows,
+//! while a finely sampled curve (a capacity curve, a spectrum) is drawn as a plain line with
+//! only its significant points marked ([`Markers::At`]). Each series is its own group
+//! `<g id="series-K" class="series">` in the file.
 
 use std::path::Path;
 
@@ -31,6 +33,19 @@ pub struct Series {
     pub name: String,
     /// `(x, y)` points; a non-finite x or y breaks the line there. Drawn in x order.
     pub points: Vec<(f64, f64)>,
+    /// Which points get a marker.
+    pub markers: Markers,
+}
+
+/// The markers of a series.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub enum Markers {
+    /// A marker on every finite point (study points: each is a case that was solved).
+    #[default]
+    Every,
+    /// Markers at these points only (none when empty): a curve sampled finely enough to read
+    /// as a line, with its significant points marked.
+    At(Vec<(f64, f64)>),
 }
 
 impl Series {
@@ -45,6 +60,20 @@ impl Series {
                 .into_iter()
                 .map(|(x, y)| (x, y.unwrap_or(f64::NAN)))
                 .collect(),
+            markers: Markers::Every,
+        }
+    }
+
+    /// A line through `points` with markers only at `marks` (none when empty).
+    pub fn line(
+        name: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        marks: impl IntoIterator<Item = (f64, f64)>,
+    ) -> Self {
+        Series {
+            name: name.into(),
+            points,
+            markers: Markers::At(marks.into_iter().collect()),
         }
     }
 }
@@ -100,7 +129,7 @@ pub fn write_lines<W: std::io::Write>(mut writer: W, chart: &Chart) -> Result<()
 /// The SVG document of `chart`.
 pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
     // Sorted finite points of each series, with the breaks kept.
-    let series: Vec<(String, Runs)> = chart
+    let series: Vec<(String, Runs, &Markers)> = chart
         .series
         .iter()
         .map(|s| {
@@ -118,10 +147,10 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
             if !cur.is_empty() {
                 runs.push(cur);
             }
-            (s.name.clone(), runs)
+            (s.name.clone(), runs, &s.markers)
         })
         .collect();
-    let finite = || series.iter().flat_map(|(_, r)| r.iter().flatten());
+    let finite = || series.iter().flat_map(|(_, r, _)| r.iter().flatten());
     let has_data = finite().next().is_some();
     let (mut x0, mut x1, mut y0, mut y1) = finite().fold(
         (
@@ -163,8 +192,13 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
 
     // The legend column to the right of the plot.
     let mut entries: Vec<(Glyph, String)> = Vec::new();
-    for (k, (name, _)) in series.iter().enumerate() {
-        entries.push((Glyph::Marked(PALETTE[k % PALETTE.len()]), name.clone()));
+    for (k, (name, _, markers)) in series.iter().enumerate() {
+        let colour = PALETTE[k % PALETTE.len()];
+        let glyph = match markers {
+            Markers::At(at) if at.is_empty() => Glyph::Line(colour, 2, false),
+            _ => Glyph::Marked(colour),
+        };
+        entries.push((glyph, name.clone()));
     }
     let legend_w = entries
         .iter()
@@ -214,7 +248,7 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
         }
         Ok(())
     })?;
-    for (k, (_, runs)) in series.iter().enumerate() {
+    for (k, (_, runs, markers)) in series.iter().enumerate() {
         let colour = PALETTE[k % PALETTE.len()];
         svg.layer_class(&format!("series-{k}"), "series", |root| {
             let (left, _) = root.split_horizontally(plot_w);
@@ -224,8 +258,21 @@ pub fn chart_svg(chart: &Chart) -> Result<String, SvgError> {
                     c.draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))
                         .map_err(plot_err)?;
                 }
-                c.draw_series(run.iter().map(|&p| Circle::new(p, 3, colour.filled())))
-                    .map_err(plot_err)?;
+                if let Markers::Every = markers {
+                    c.draw_series(run.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                        .map_err(plot_err)?;
+                }
+            }
+            if let Markers::At(at) = markers {
+                let inside =
+                    |&(x, y): &(f64, f64)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y);
+                c.draw_series(
+                    at.iter()
+                        .copied()
+                        .filter(inside)
+                        .map(|p| Circle::new(p, 4, colour.filled())),
+                )
+                .map_err(plot_err)?;
             }
             Ok(())
         })?;

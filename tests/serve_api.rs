@@ -870,3 +870,210 @@ fn the_downloaded_toml_stands_on_its_own() {
         Some("blocks.file"),
     );
 }
+
+/// Short timeouts, so that the tests below see them run out.
+fn short_timeouts() -> serve::Timeouts {
+    serve::Timeouts {
+        header_read: std::time::Duration::from_millis(300),
+        body_read: std::time::Duration::from_millis(300),
+        shutdown_grace: std::time::Duration::from_millis(300),
+    }
+}
+
+/// A server on a free loopback port in its own runtime, stopped when `stop` is sent; its
+/// address, and the handle that says how it stopped.
+fn server_until_stopped(
+    timeouts: serve::Timeouts,
+) -> (
+    std::net::SocketAddr,
+    tokio::sync::oneshot::Sender<()>,
+    std::thread::JoinHandle<serve::Stopped>,
+) {
+    let (addr_tx, addr_rx) = std::sync::mpsc::channel();
+    let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();
+    let handle = std::thread::spawn(move || {
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .expect("runtime");
+        rt.block_on(async move {
+            let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+                .await
+                .expect("bind");
+            addr_tx.send(listener.local_addr().expect("addr")).expect("send");
+            let state = ServerState::with_default_scene(Limits::default())
+                .expect("scene")
+                .with_timeouts(timeouts);
+            serve::serve_until(listener, Arc::new(state), async {
+                let _ = stop_rx.await;
+            })
+            .await
+        })
+    });
+    let addr = addr_rx.recv().expect("the server's address");
+    (addr, stop_tx, handle)
+}
+
+/// Everything the server sends on `stream` until it closes the connection; an error if it
+/// keeps it open for `patience` without a word (that is, for ever as far as a test goes).
+fn read_until_closed(
+    stream: &mut std::net::TcpStream,
+    patience: std::time::Duration,
+) -> std::io::Result<String> {
+    use std::io::Read;
+    stream.set_read_timeout(Some(patience))?;
+    let mut all = Vec::new();
+    let mut buf = [0u8; 4096];
+    loop {
+        match stream.read(&mut buf) {
+            Ok(0) => return Ok(String::from_utf8_lossy(&all).into_owned()),
+            Ok(n) => all.extend_from_slice(&buf[..n]),
+            // A reset after an answer is a close too.
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionReset => {
+                return Ok(String::from_utf8_lossy(&all).into_owned())
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// A client that sends half a request's head, one that opens a connection and says nothing,
+/// and one that keeps its connection alive after an answer are all closed by the server
+/// when the header-read (idle) timeout runs out; a body sent in part is refused with a 400
+/// when the body's timeout runs out. Before the timeouts, each held its connection for ever.
+#[test]
+fn slow_and_idle_clients_are_closed_by_the_timeouts() {
+    use std::io::Write;
+    let (addr, stop, server) = server_until_stopped(short_timeouts());
+    let patience = std::time::Duration::from_secs(15);
+
+    let mut half_head = std::net::TcpStream::connect(addr).expect("connect");
+    half_head
+        .write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        .expect("write");
+    let mut silent = std::net::TcpStream::connect(addr).expect("connect");
+    let mut kept_alive = std::net::TcpStream::connect(addr).expect("connect");
+    kept_alive
+        .write_all(b"GET /no/such/page HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .expect("write");
+    let mut half_body = std::net::TcpStream::connect(addr).expect("connect");
+    half_body
+        .write_all(
+            b"POST /api/analyze HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 100\r\n\r\n{\"arch\": ",
+        )
+        .expect("write");
+
+    let closed = |stream: &mut std::net::TcpStream, what: &str| {
+        read_until_closed(stream, patience)
+            .unwrap_or_else(|e| panic!("{what}: the server kept the connection open ({e})"))
+    };
+    assert_eq!(closed(&mut half_head, "half a head"), "", "no answer to half a head");
+    assert_eq!(closed(&mut silent, "a silent client"), "");
+    let answer = closed(&mut kept_alive, "an idle kept-alive connection");
+    assert!(answer.starts_with("HTTP/1.1 404"), "{answer}");
+    assert!(!answer.contains("connection: close"), "kept alive: {answer}");
+    let answer = closed(&mut half_body, "half a body");
+    assert!(answer.starts_with("HTTP/1.1 400"), "{answer}");
+    assert!(answer.contains("bad_body") && answer.contains("did not arrive"), "{answer}");
+
+    // The server itself is well: a whole request is answered.
+    let mut whole = std::net::TcpStream::connect(addr).expect("connect");
+    whole
+        .write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n")
+        .expect("write");
+    let answer = closed(&mut whole, "a whole request");
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    stop.send(()).expect("stop");
+    assert_eq!(server.join().expect("server"), serve::Stopped::Clean);
+}
+
+/// Asked to stop, the server takes no new connection and waits for a request in flight no
+/// longer than its grace: a client that sent half a request and stays does not keep it
+/// running (before, it did until the client left).
+#[test]
+fn shutdown_waits_at_most_the_grace_for_a_half_sent_request() {
+    use std::io::Write;
+    let timeouts = serve::Timeouts {
+        // Longer than the test's patience: only the grace can end the server.
+        header_read: std::time::Duration::from_secs(600),
+        ..short_timeouts()
+    };
+    let (addr, stop, server) = server_until_stopped(timeouts);
+    let mut half = std::net::TcpStream::connect(addr).expect("connect");
+    half.write_all(b"POST /api/analyze HTTP/1.1\r\nHost: 127.0").expect("write");
+    // The connection is taken before the stop.
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    stop.send(()).expect("stop");
+    let (done_tx, done_rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done_tx.send(server.join());
+    });
+    let stopped = done_rx
+        .recv_timeout(std::time::Duration::from_secs(20))
+        .expect("the server stops within its grace")
+        .expect("server thread");
+    assert_eq!(stopped, serve::Stopped::GraceExpired { open: 1 });
+    drop(half);
+}
+
+/// The binary: with a client that sent half a request and stays, and another whose
+/// connection is kept alive, SIGINT (Ctrl-C) stops `voussoir serve` within its grace and it
+/// says so.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_binary_despite_a_half_sent_request() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let bin = assert_cmd::cargo::cargo_bin("voussoir");
+    let mut child = std::process::Command::new(&bin)
+        .args(["serve", "--port", "0"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start the server");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    let mut first = String::new();
+    stdout.read_line(&mut first).expect("first line");
+    let url = first
+        .trim()
+        .strip_prefix("voussoir serve: listening on http://")
+        .expect("the address line")
+        .trim_end_matches('/')
+        .to_string();
+    let mut half = std::net::TcpStream::connect(&url).expect("connect");
+    half.write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        .expect("write");
+    let mut alive = std::net::TcpStream::connect(&url).expect("connect");
+    alive
+        .write_all(b"GET /no/such/page HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .expect("write");
+    let mut buf = [0u8; 64];
+    let n = alive.read(&mut buf).expect("an answer");
+    assert!(buf[..n].starts_with(b"HTTP/1.1 404"));
+    let sent = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill -INT");
+    assert!(sent.success());
+    // The default grace is 5 s; a minute is "never" for this test.
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break Some(status);
+        }
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            break None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let Some(status) = status else {
+        let _ = child.kill();
+        let _ = child.wait();
+        panic!("voussoir serve did not stop within a minute of SIGINT");
+    };
+    assert!(status.success(), "{status}");
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).expect("the last lines");
+    assert!(rest.contains("voussoir serve: stopped"), "{rest}");
+    drop((half, alive));
+}

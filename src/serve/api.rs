@@ -771,6 +771,63 @@ pub async fn same_machine_only(
     next.run(request).await
 }
 
+/// A request body that must arrive before a deadline: past it, reading it fails (the
+/// handler answers 400 and hyper closes the connection, which was left mid-body).
+struct Deadline {
+    body: axum::body::Body,
+    sleep: std::pin::Pin<Box<tokio::time::Sleep>>,
+    seconds: f64,
+}
+
+impl hyper::body::Body for Deadline {
+    type Data = Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<Option<Result<hyper::body::Frame<Bytes>, axum::Error>>> {
+        use std::future::Future;
+        use std::task::Poll;
+        if let Poll::Ready(frame) = std::pin::Pin::new(&mut self.body).poll_frame(cx) {
+            return Poll::Ready(frame);
+        }
+        if self.sleep.as_mut().poll(cx).is_ready() {
+            let message = format!(
+                "the request body did not arrive within {} s of its headers",
+                self.seconds
+            );
+            return Poll::Ready(Some(Err(axum::Error::new(message))));
+        }
+        Poll::Pending
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.body.is_end_stream()
+    }
+
+    fn size_hint(&self) -> hyper::body::SizeHint {
+        self.body.size_hint()
+    }
+}
+
+/// Give the request's body `timeout` to arrive, counted from now (its head has been read):
+/// a client that declares a body and sends half of it does not hold a handler for ever.
+pub async fn body_deadline(
+    axum::extract::State(timeout): axum::extract::State<std::time::Duration>,
+    request: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let request = request.map(|body| {
+        axum::body::Body::new(Deadline {
+            body,
+            sleep: Box::pin(tokio::time::sleep(timeout)),
+            seconds: timeout.as_secs_f64(),
+        })
+    });
+    next.run(request).await
+}
+
 /// A known path asked with a method it does not take.
 pub async fn method_not_allowed(method: axum::http::Method, uri: Uri) -> ApiError {
     let allowed = if uri.path().starts_with("/api/analyze") || uri.path().starts_with("/api/sweep")

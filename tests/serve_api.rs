@@ -803,6 +803,92 @@ fn requests_from_elsewhere_are_refused() {
     }
 }
 
+/// The Host and Origin checks read strictly: a second Host (or Origin) header, a host with
+/// text after `[::1]`, a port that is not a number, or a request line naming another host is
+/// refused with 403, whichever header the loopback name is in.
+#[test]
+fn ambiguous_hosts_and_origins_are_refused() {
+    let s = state();
+    let forbidden = |answer: (StatusCode, String, Vec<u8>), what: &str| {
+        let (status, _, bytes) = answer;
+        let v: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+        assert_eq!(status, StatusCode::FORBIDDEN, "{what}: {v}");
+        assert_eq!(v["kind"], "forbidden", "{what}: {v}");
+    };
+    for hosts in [
+        ["127.0.0.1:8080", "evil.example"],
+        ["evil.example", "127.0.0.1:8080"],
+        ["localhost", "localhost"],
+    ] {
+        let headers = [("host", hosts[0]), ("host", hosts[1])];
+        forbidden(
+            call_with(&s, "GET", "/api/scene", &headers, Vec::new()),
+            &format!("{hosts:?}"),
+        );
+    }
+    for host in [
+        "[::1]evil.example",
+        "[::1]evil.example:8080",
+        "[::1].evil.example",
+        "localhost:80evil",
+        "localhost:",
+        "127.0.0.1:8080 evil.example",
+    ] {
+        forbidden(
+            call_with(&s, "GET", "/api/scene", &[("host", host)], Vec::new()),
+            host,
+        );
+    }
+    let body = json!({ "scene": scene_json("semicircular.toml") }).to_string();
+    let json_type = ("content-type", "application/json");
+    for origins in [
+        &["http://[::1]evil.example"][..],
+        &["http://127.0.0.1:8080/evil"],
+        &["http://127.0.0.1:8080", "http://evil.example"],
+    ] {
+        let mut headers = vec![json_type, ("host", "127.0.0.1:8080")];
+        headers.extend(origins.iter().map(|o| ("origin", *o)));
+        forbidden(
+            call_with(&s, "POST", "/api/analyze", &headers, body.clone().into_bytes()),
+            &format!("{origins:?}"),
+        );
+    }
+    // A request line naming another host (absolute form) overrides its loopback Host.
+    forbidden(
+        call_with(
+            &s,
+            "GET",
+            "http://evil.example/api/scene",
+            &[("host", "127.0.0.1:8080")],
+            Vec::new(),
+        ),
+        "absolute URI",
+    );
+    // What a browser on this machine sends still passes.
+    for (host, origin) in [
+        ("127.0.0.1:8080", "http://127.0.0.1:8080"),
+        ("[::1]:8080", "http://[::1]:8080"),
+        ("localhost:8080", "http://localhost:8080"),
+    ] {
+        let (status, _, _) = call_with(
+            &s,
+            "POST",
+            "/api/analyze",
+            &[json_type, ("host", host), ("origin", origin)],
+            body.clone().into_bytes(),
+        );
+        assert_eq!(status, StatusCode::OK, "{host} {origin}");
+    }
+    let (status, _, _) = call_with(
+        &s,
+        "GET",
+        "http://127.0.0.1:8080/api/scene",
+        &[("host", "127.0.0.1:8080")],
+        Vec::new(),
+    );
+    assert_eq!(status, StatusCode::OK, "absolute URI to loopback");
+}
+
 /// The TOML to download analyses to the page's multiplier wherever it is saved: a leftward
 /// analysis says so in its first line, and a start scene's relative blocks file becomes an
 /// absolute path, the only file a request may name.

@@ -699,18 +699,51 @@ pub async fn sweep(
     .into_response())
 }
 
-/// Whether a `Host` header (or an origin's host) names this machine's loopback: `127.0.0.1`,
-/// `localhost` or `[::1]`, with any port.
-fn loopback_host(host: &str) -> bool {
-    let name = if let Some(rest) = host.strip_prefix('[') {
-        rest.split(']').next().unwrap_or("")
+/// Whether an authority (a `Host` header, an origin's host, a request's absolute URI) names
+/// this machine's loopback, read strictly: `localhost`, `127.x.y.z` (four decimal numbers)
+/// or `[::1]`, then nothing or `:` and a port number. Anything else is refused, also what a
+/// lenient reading would cut short: `[::1]evil.example`, `localhost.evil:80`, `127.0.0.1:80x`.
+fn loopback_host(authority: &str) -> bool {
+    let (loopback, port) = if let Some(rest) = authority.strip_prefix('[') {
+        let Some((inside, after)) = rest.split_once(']') else {
+            return false;
+        };
+        let port = match after {
+            "" => None,
+            _ => match after.strip_prefix(':') {
+                Some(port) => Some(port),
+                None => return false,
+            },
+        };
+        (
+            inside.parse::<std::net::Ipv6Addr>() == Ok(std::net::Ipv6Addr::LOCALHOST),
+            port,
+        )
     } else {
-        host.rsplit_once(':').map_or(host, |(name, _port)| name)
+        let (name, port) = match authority.split_once(':') {
+            Some((name, port)) => (name, Some(port)),
+            None => (authority, None),
+        };
+        let loopback = name.eq_ignore_ascii_case("localhost")
+            || (name.bytes().all(|b| b.is_ascii_digit() || b == b'.')
+                && name
+                    .parse::<std::net::Ipv4Addr>()
+                    .is_ok_and(|a| a.is_loopback()));
+        (loopback, port)
     };
-    matches!(
-        name.to_ascii_lowercase().as_str(),
-        "127.0.0.1" | "localhost" | "::1"
-    )
+    let port_ok = port.is_none_or(|p| {
+        !p.is_empty() && p.len() <= 5 && p.bytes().all(|b| b.is_ascii_digit()) && p.parse::<u16>().is_ok()
+    });
+    loopback && port_ok
+}
+
+/// The authority of an `Origin` header (`http://127.0.0.1:8080`: a scheme, `://`, the
+/// authority and nothing else), or None when it has another form (`null`, a path).
+fn origin_authority(origin: &str) -> Option<&str> {
+    let rest = origin
+        .strip_prefix("http://")
+        .or_else(|| origin.strip_prefix("https://"))?;
+    (!rest.contains(['/', '?', '#', '@'])).then_some(rest)
 }
 
 /// Refuse what does not come from this machine's own page: a `Host` other than loopback (a
@@ -734,19 +767,33 @@ pub async fn same_machine_only(
         }
         .into_response()
     };
+    // One Host and at most one Origin: with two, which one a check reads and which one
+    // the rest of the server (or a proxy before it) reads could differ.
+    for name in [header::HOST, header::ORIGIN] {
+        if headers.get_all(&name).iter().count() > 1 {
+            return forbidden(format!(
+                "more than one `{name}` header: this server answers only requests with one"
+            ));
+        }
+    }
     if let Some(host) = text(header::HOST) {
         if !loopback_host(host) {
             return forbidden(format!(
-                "Host `{host}`: this server answers only requests to 127.0.0.1, localhost or [::1]"
+                "Host `{host}`: this server answers only requests to 127.0.0.1, localhost or [::1] (with an optional port)"
+            ));
+        }
+    }
+    // A request line with an absolute URI (`GET http://evil.example/ HTTP/1.1`) names its
+    // host there, and HTTP says it overrides the Host header.
+    if let Some(authority) = request.uri().authority() {
+        if !loopback_host(authority.as_str()) {
+            return forbidden(format!(
+                "request for `{authority}`: this server answers only requests to 127.0.0.1, localhost or [::1]"
             ));
         }
     }
     if let Some(origin) = text(header::ORIGIN) {
-        let host = origin
-            .strip_prefix("http://")
-            .or_else(|| origin.strip_prefix("https://"))
-            .unwrap_or("");
-        if !loopback_host(host) {
+        if !origin_authority(origin).is_some_and(loopback_host) {
             return forbidden(format!(
                 "Origin `{origin}`: this server answers only its own page"
             ));
@@ -879,21 +926,62 @@ mod tests {
         for ok in [
             "127.0.0.1",
             "127.0.0.1:80",
+            "127.1.2.3:8080",
             "localhost:8080",
             "LOCALHOST",
+            "[::1]",
             "[::1]:9",
+            "[0:0:0:0:0:0:0:1]:9",
+            "localhost:65535",
         ] {
             assert!(loopback_host(ok), "{ok}");
         }
         for bad in [
             "",
             "evil.example",
-            "127.0.0.2",
+            "10.0.0.1",
+            "128.0.0.1",
             "localhost.evil",
+            "localhost.",
+            "127.0.0.1.evil.example",
+            "127.0.0.01",
+            "127.1",
+            "0x7f.0.0.1",
             "[::2]:80",
             "::1",
+            "[::1]evil.example",
+            "[::1]evil.example:80",
+            "[::1].evil.example",
+            "[::1]:80evil",
+            "[::1",
+            "[::ffff:127.0.0.1]",
+            "localhost:",
+            "localhost:http",
+            "localhost:80:80",
+            "localhost:65536",
+            "localhost:+80",
+            "127.0.0.1:8080x",
+            "127.0.0.1 :80",
+            "user@localhost",
         ] {
             assert!(!loopback_host(bad), "{bad}");
         }
+    }
+
+    #[test]
+    fn origins_are_read_strictly() {
+        assert_eq!(origin_authority("http://127.0.0.1:8080"), Some("127.0.0.1:8080"));
+        assert_eq!(origin_authority("https://[::1]"), Some("[::1]"));
+        for bad in [
+            "null",
+            "127.0.0.1",
+            "ftp://127.0.0.1",
+            "http://127.0.0.1/",
+            "http://user@127.0.0.1",
+            "http://127.0.0.1?x",
+        ] {
+            assert_eq!(origin_authority(bad), None, "{bad}");
+        }
+        assert!(!origin_authority("http://[::1]evil.example").is_some_and(loopback_host));
     }
 }

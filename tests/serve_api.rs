@@ -849,7 +849,13 @@ fn ambiguous_hosts_and_origins_are_refused() {
         let mut headers = vec![json_type, ("host", "127.0.0.1:8080")];
         headers.extend(origins.iter().map(|o| ("origin", *o)));
         forbidden(
-            call_with(&s, "POST", "/api/analyze", &headers, body.clone().into_bytes()),
+            call_with(
+                &s,
+                "POST",
+                "/api/analyze",
+                &headers,
+                body.clone().into_bytes(),
+            ),
             &format!("{origins:?}"),
         );
     }
@@ -987,7 +993,9 @@ fn server_until_stopped(
             let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
                 .await
                 .expect("bind");
-            addr_tx.send(listener.local_addr().expect("addr")).expect("send");
+            addr_tx
+                .send(listener.local_addr().expect("addr"))
+                .expect("send");
             let state = ServerState::with_default_scene(Limits::default())
                 .expect("scene")
                 .with_timeouts(timeouts);
@@ -1054,14 +1062,24 @@ fn slow_and_idle_clients_are_closed_by_the_timeouts() {
         read_until_closed(stream, patience)
             .unwrap_or_else(|e| panic!("{what}: the server kept the connection open ({e})"))
     };
-    assert_eq!(closed(&mut half_head, "half a head"), "", "no answer to half a head");
+    assert_eq!(
+        closed(&mut half_head, "half a head"),
+        "",
+        "no answer to half a head"
+    );
     assert_eq!(closed(&mut silent, "a silent client"), "");
     let answer = closed(&mut kept_alive, "an idle kept-alive connection");
     assert!(answer.starts_with("HTTP/1.1 404"), "{answer}");
-    assert!(!answer.contains("connection: close"), "kept alive: {answer}");
+    assert!(
+        !answer.contains("connection: close"),
+        "kept alive: {answer}"
+    );
     let answer = closed(&mut half_body, "half a body");
     assert!(answer.starts_with("HTTP/1.1 400"), "{answer}");
-    assert!(answer.contains("bad_body") && answer.contains("did not arrive"), "{answer}");
+    assert!(
+        answer.contains("bad_body") && answer.contains("did not arrive"),
+        "{answer}"
+    );
 
     // The server itself is well: a whole request is answered.
     let mut whole = std::net::TcpStream::connect(addr).expect("connect");
@@ -1087,7 +1105,8 @@ fn shutdown_waits_at_most_the_grace_for_a_half_sent_request() {
     };
     let (addr, stop, server) = server_until_stopped(timeouts);
     let mut half = std::net::TcpStream::connect(addr).expect("connect");
-    half.write_all(b"POST /api/analyze HTTP/1.1\r\nHost: 127.0").expect("write");
+    half.write_all(b"POST /api/analyze HTTP/1.1\r\nHost: 127.0")
+        .expect("write");
     // The connection is taken before the stop.
     std::thread::sleep(std::time::Duration::from_millis(200));
     stop.send(()).expect("stop");
@@ -1162,4 +1181,156 @@ fn ctrl_c_stops_the_binary_despite_a_half_sent_request() {
     stdout.read_to_string(&mut rest).expect("the last lines");
     assert!(rest.contains("voussoir serve: stopped"), "{rest}");
     drop((half, alive));
+}
+
+/// Each pier slider applies to the pier profiles it lists (`pier_shapes`) and to no other:
+/// on a portal of each profile (rectangular, stepped, battered), a value inside the slider's
+/// range is accepted for a listed profile and refused, naming the key, for the others (a
+/// stepped pier has no `width`, and its `courses` are its number of widths); the stepped
+/// pier's widths are a list (`list`), which the API analyses to the library's value.
+#[test]
+fn pier_sliders_apply_to_the_pier_profiles_they_list() {
+    let s = state();
+    let params = get_json(&s, "/api/parameters");
+    let profiles = [
+        ("portal.toml", "rectangular"),
+        ("stepped_portal.toml", "stepped"),
+        ("battered_portal.toml", "battered"),
+    ];
+    let mut applied = std::collections::BTreeSet::new();
+    for p in params["parameters"].as_array().expect("parameters") {
+        let key = p["key"].as_str().expect("key");
+        if !key.starts_with("piers.") {
+            continue;
+        }
+        let shapes: Vec<&str> = p["pier_shapes"]
+            .as_array()
+            .expect("pier_shapes")
+            .iter()
+            .filter_map(Value::as_str)
+            .collect();
+        let (lo, hi) = (
+            p["min"].as_f64().expect("min"),
+            p["max"].as_f64().expect("max"),
+        );
+        let entry = |x: f64| {
+            if p["integer"] == true {
+                toml::Value::Integer(x.round() as i64)
+            } else {
+                toml::Value::Float(x)
+            }
+        };
+        for (file, profile) in profiles {
+            let scene = Scene::from_file(std::path::Path::new(&data(file))).expect("scene");
+            let n = scene.piers.as_ref().expect("piers").left.courses;
+            // A value the slider can reach; a list as long as the pier's courses.
+            let value = if p["list"] == true {
+                toml::Value::Array(
+                    (0..n)
+                        .map(|i| entry(hi.min(0.6) - 0.05 * i as f64))
+                        .collect(),
+                )
+            } else if key == "piers.courses" {
+                // Any count but the stepped pier's own number of widths (the one value a
+                // courses slider could give without an error there).
+                entry(n as f64 + 1.0)
+            } else {
+                entry(lo + (hi - lo) / 4.0)
+            };
+            let listed = shapes.is_empty() || shapes.contains(&profile);
+            match scene.with_value(key, value.clone()) {
+                Ok(changed) => {
+                    assert!(
+                        listed,
+                        "{key} = {value} on a {profile} pier is accepted but not offered"
+                    );
+                    applied.insert((key.to_string(), profile));
+                    // Through the API too, to the library's multiplier.
+                    let body = json!({"scene": serve::api::table_json(changed.table())});
+                    let (status, answer) = post(&s, "/api/analyze", &body);
+                    assert_eq!(status, StatusCode::OK, "{key} on {profile}: {answer}");
+                    let lib = library_lambda(&changed, Direction::Right);
+                    assert_eq!(answer["lambda_lower"].as_f64(), lib.lower.lambda, "{key}");
+                }
+                Err(e) => {
+                    assert!(
+                        !listed,
+                        "{key} = {value} on a {profile} pier is offered but refused: {e}"
+                    );
+                    assert!(
+                        e.to_string().contains(key.trim_start_matches("piers.")),
+                        "{e}"
+                    );
+                }
+            }
+        }
+    }
+    for (key, profile) in [
+        ("piers.width", "rectangular"),
+        ("piers.widths", "stepped"),
+        ("piers.bottom_width", "battered"),
+        ("piers.top_width", "battered"),
+        ("piers.courses", "battered"),
+        ("piers.height", "stepped"),
+    ] {
+        assert!(
+            applied.contains(&(key.to_string(), profile)),
+            "no slider for {key} on a {profile} pier"
+        );
+    }
+}
+
+/// With crushing and finite friction the upper bound of a sweep comes from a search with
+/// rigid hinges (the certified mechanism of the compressed zones does not apply to sliding):
+/// its rows say so (`upper_rigid`, `kinematic_search`), as does the analysis, whose note
+/// says it too; without crushing, or with the certified search, the upper bound is the
+/// structure's own.
+#[test]
+fn an_upper_bound_that_ignores_crushing_is_marked_rigid() {
+    let s = state();
+    let mut scene = scene_json("semicircular.toml");
+    scene["material"]["compressive_strength"] = json!(5e6);
+    scene["material"]["friction"] = json!(0.6);
+    let body =
+        json!({"scene": scene, "key": "arch.thickness", "from": 0.3, "to": 0.7, "points": 3});
+    let (status, answer) = post(&s, "/api/sweep", &body);
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let table = match serve::api::to_toml("", &scene).expect("TOML") {
+        toml::Value::Table(t) => t,
+        other => panic!("not a table: {other}"),
+    };
+    let base = Scene::from_table_in(table, "scene", None).expect("scene");
+    for row in answer["rows"].as_array().expect("rows") {
+        let t = row["value"].as_f64().expect("value");
+        let case = base
+            .with_value("arch.thickness", toml::Value::Float(t))
+            .expect("scene");
+        let a = library_lambda(&case, Direction::Right);
+        assert_eq!(row["lambda_upper"].as_f64(), a.lambda_upper(), "t = {t}");
+        assert_ne!(row["kinematic_search"], "certified", "{row}");
+        assert_eq!(row["upper_rigid"], true, "{row}");
+        let note = a
+            .upper
+            .as_ref()
+            .ok()
+            .and_then(|k| k.note.clone())
+            .unwrap_or_default();
+        assert!(note.contains("rigid hinges"), "{note}");
+    }
+    // The analysis of one scene says the same.
+    let said = |scene: &Value| {
+        let (status, one) = post(&s, "/api/analyze", &json!({"scene": scene}));
+        assert_eq!(status, StatusCode::OK, "{}", one["error"]);
+        (one["upper_rigid"].clone(), one["kinematic_search"].clone())
+    };
+    scene["arch"]["thickness"] = json!(0.5);
+    assert_eq!(said(&scene), (json!(true), json!("exhaustive")));
+    // Joints that cannot slide: the certified mechanism about the compressed zones.
+    scene["material"]["friction"] = json!("inf");
+    assert_eq!(said(&scene), (json!(false), json!("certified")));
+    // No crushing: the rigid structure is the structure.
+    let mut rigid = scene_json("semicircular.toml");
+    rigid["material"]["friction"] = json!(0.6);
+    rigid["arch"]["thickness"] = json!(0.5);
+    assert_eq!(said(&rigid).0, json!(false));
 }

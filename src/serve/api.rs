@@ -513,6 +513,7 @@ pub async fn analyze(
             Ok(JsonValue::Object(map)) => map,
             _ => Map::new(),
         };
+        out.insert("upper_rigid".into(), JsonValue::Bool(upper_rigid(&a)));
         out.insert("svg".into(), JsonValue::String(svg));
         let text = scene_toml(&scene, dir, scene.base_dir())?;
         out.insert("toml".into(), JsonValue::String(text));
@@ -583,6 +584,53 @@ fn number(body: &Map<String, JsonValue>, name: &str) -> Result<f64, ApiError> {
                 "missing `{name}` (the sweep runs `key` from `from` to `to` in `points` values)"
             ),
         )),
+    }
+}
+
+/// Whether the upper bound is the rigid structure's: a finite compressive strength, and a
+/// search other than the certified one (which rotates about the compressed zones' centres),
+/// whose hinges sit at the joints' ends, so that it ignores crushing (the analysis says so
+/// in `kinematic_note`).
+fn upper_rigid(a: &analysis::SceneAnalysis) -> bool {
+    a.model.strength.is_finite()
+        && a.lambda_upper().is_some()
+        && a.kinematic_search != Some(crate::kinematic::Search::Certified)
+}
+
+/// One row of `/api/sweep`: the value, the status and both bounds as `voussoir sweep`
+/// writes them ([`sweep::case`]), and which kinematic search gave the upper bound
+/// (`kinematic_search`) and whether that bound is the rigid structure's (`upper_rigid`: with
+/// a finite compressive strength, a search other than the certified one places its hinges
+/// at the joints' ends, so its multiplier ignores crushing; an upper bound still, but of
+/// another structure's collapse, and the page must not draw it as this one's).
+fn sweep_row(values: &[Toml], case: &Result<Scene, SceneError>, options: &Options) -> JsonValue {
+    let value = values.first().map_or(JsonValue::Null, to_json);
+    let Ok(scene) = case else {
+        let r = sweep::case(values, case, options, false);
+        return json!({
+            "value": value, "status": r.status, "lambda_lower": r.lambda_lower,
+            "lambda_upper": r.lambda_upper, "error": r.error,
+            "kinematic_search": null, "upper_rigid": false,
+        });
+    };
+    match analysis::analyse(scene, options) {
+        Ok(a) => {
+            let search = a.kinematic_search;
+            let rigid = upper_rigid(&a);
+            json!({
+                "value": value,
+                "status": a.lower.status.as_str(),
+                "lambda_lower": a.lower.lambda,
+                "lambda_upper": a.lambda_upper(),
+                "error": null,
+                "kinematic_search": search.map(|k| k.as_str()),
+                "upper_rigid": rigid,
+            })
+        }
+        Err(e) => json!({
+            "value": value, "status": "error", "lambda_lower": null, "lambda_upper": null,
+            "error": e.to_string(), "kinematic_search": null, "upper_rigid": false,
+        }),
     }
 }
 
@@ -668,27 +716,14 @@ pub async fn sweep(
         Ok(sweep::run(
             sweep.cases(),
             |values, case| {
-                (!cancelled.load(Ordering::Relaxed))
-                    .then(|| sweep::case(values, case, &options, false))
+                (!cancelled.load(Ordering::Relaxed)).then(|| sweep_row(values, case, &options))
             },
             &|| {},
         ))
     })
     .await?;
     drop(cancel);
-    let rows: Vec<JsonValue> = rows
-        .iter()
-        .flatten()
-        .map(|r| {
-            json!({
-                "value": r.values.first().map_or(JsonValue::Null, to_json),
-                "status": r.status,
-                "lambda_lower": r.lambda_lower,
-                "lambda_upper": r.lambda_upper,
-                "error": r.error,
-            })
-        })
-        .collect();
+    let rows: Vec<JsonValue> = rows.into_iter().flatten().collect();
     let key = body.get("key").cloned().unwrap_or(JsonValue::Null);
     Ok(Json(json!({
         "key": key,
@@ -732,7 +767,10 @@ fn loopback_host(authority: &str) -> bool {
         (loopback, port)
     };
     let port_ok = port.is_none_or(|p| {
-        !p.is_empty() && p.len() <= 5 && p.bytes().all(|b| b.is_ascii_digit()) && p.parse::<u16>().is_ok()
+        !p.is_empty()
+            && p.len() <= 5
+            && p.bytes().all(|b| b.is_ascii_digit())
+            && p.parse::<u16>().is_ok()
     });
     loopback && port_ok
 }
@@ -970,7 +1008,10 @@ mod tests {
 
     #[test]
     fn origins_are_read_strictly() {
-        assert_eq!(origin_authority("http://127.0.0.1:8080"), Some("127.0.0.1:8080"));
+        assert_eq!(
+            origin_authority("http://127.0.0.1:8080"),
+            Some("127.0.0.1:8080")
+        );
         assert_eq!(origin_authority("https://[::1]"), Some("[::1]"));
         for bad in [
             "null",

@@ -29,6 +29,9 @@
   };
   // How many points a chart asks for (at most the server's limit).
   const SWEEP_POINTS = 41;
+  // The keys that move a range input.
+  const SLIDER_KEYS = new Set(['ArrowLeft', 'ArrowRight', 'ArrowUp', 'ArrowDown', 'Home', 'End',
+    'PageUp', 'PageDown']);
   // How many update times window.voussoirTimings keeps.
   const TIMINGS_KEPT = 500;
 
@@ -451,7 +454,11 @@
     row.append(error);
 
     slider.addEventListener('pointerdown', () => startSweep(p.key));
-    slider.addEventListener('keydown', () => startSweep(p.key));
+    // Only a key that moves the slider charts it: Tab through the form must not start (and
+    // abort) a sweep per slider, each a run of analyses on the server (slow with crushing).
+    slider.addEventListener('keydown', (ev) => {
+      if (SLIDER_KEYS.has(ev.key)) startSweep(p.key);
+    });
     slider.addEventListener('input', (ev) => {
       const t = eventTime(ev);
       const v = Number(slider.value);

@@ -375,6 +375,7 @@
     number.type = 'number';
     number.id = id + '-number';
     number.inputMode = p.integer ? 'numeric' : 'decimal';
+    if (Math.max(Math.abs(p.min), Math.abs(p.max)) >= 1e6) number.classList.add('wide');
     // The help (a tooltip for the mouse) is also a description a screen reader reads with
     // the field, shown under it while the field or its slider has the keyboard's focus; so
     // is the field's error when it has one.

@@ -11,9 +11,12 @@
 //! they are for this machine and come from its own page ([`api::same_machine_only`]: the
 //! `Host`, the `Origin`, and JSON bodies, so that no other web site open in the user's browser
 //! can use it); request bodies, block counts and sweep sizes are limited, and sweeps run a few
-//! at a time and stop when their client has gone; a request that cannot be analysed is answered with a 400 and
-//! the message (naming the scene key when there is one), and a panic in an analysis is caught
-//! and answered with a 500, never a crash. The server reads no files on request: a scene's
+//! at a time and stop when their client has gone; no client is waited for without end
+//! ([`Timeouts`]: a request's head and body must arrive in time, an idle connection is closed,
+//! and Ctrl-C waits a bounded grace for the requests in flight, [`serve_until`]); a request
+//! that cannot be analysed is answered with a 400 and the message (naming the scene key when
+//! there is one), and a panic in an analysis is caught and answered with a 500, never a
+//! crash. The server reads no files on request: a scene's
 //! `blocks.file` is accepted only when it is the file of the scene the server was started
 //! with.
 

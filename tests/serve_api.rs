@@ -803,6 +803,98 @@ fn requests_from_elsewhere_are_refused() {
     }
 }
 
+/// The Host and Origin checks read strictly: a second Host (or Origin) header, a host with
+/// text after `[::1]`, a port that is not a number, or a request line naming another host is
+/// refused with 403, whichever header the loopback name is in.
+#[test]
+fn ambiguous_hosts_and_origins_are_refused() {
+    let s = state();
+    let forbidden = |answer: (StatusCode, String, Vec<u8>), what: &str| {
+        let (status, _, bytes) = answer;
+        let v: Value = serde_json::from_slice(&bytes).expect("JSON refusal");
+        assert_eq!(status, StatusCode::FORBIDDEN, "{what}: {v}");
+        assert_eq!(v["kind"], "forbidden", "{what}: {v}");
+    };
+    for hosts in [
+        ["127.0.0.1:8080", "evil.example"],
+        ["evil.example", "127.0.0.1:8080"],
+        ["localhost", "localhost"],
+    ] {
+        let headers = [("host", hosts[0]), ("host", hosts[1])];
+        forbidden(
+            call_with(&s, "GET", "/api/scene", &headers, Vec::new()),
+            &format!("{hosts:?}"),
+        );
+    }
+    for host in [
+        "[::1]evil.example",
+        "[::1]evil.example:8080",
+        "[::1].evil.example",
+        "localhost:80evil",
+        "localhost:",
+        "127.0.0.1:8080 evil.example",
+    ] {
+        forbidden(
+            call_with(&s, "GET", "/api/scene", &[("host", host)], Vec::new()),
+            host,
+        );
+    }
+    let body = json!({ "scene": scene_json("semicircular.toml") }).to_string();
+    let json_type = ("content-type", "application/json");
+    for origins in [
+        &["http://[::1]evil.example"][..],
+        &["http://127.0.0.1:8080/evil"],
+        &["http://127.0.0.1:8080", "http://evil.example"],
+    ] {
+        let mut headers = vec![json_type, ("host", "127.0.0.1:8080")];
+        headers.extend(origins.iter().map(|o| ("origin", *o)));
+        forbidden(
+            call_with(
+                &s,
+                "POST",
+                "/api/analyze",
+                &headers,
+                body.clone().into_bytes(),
+            ),
+            &format!("{origins:?}"),
+        );
+    }
+    // A request line naming another host (absolute form) overrides its loopback Host.
+    forbidden(
+        call_with(
+            &s,
+            "GET",
+            "http://evil.example/api/scene",
+            &[("host", "127.0.0.1:8080")],
+            Vec::new(),
+        ),
+        "absolute URI",
+    );
+    // What a browser on this machine sends still passes.
+    for (host, origin) in [
+        ("127.0.0.1:8080", "http://127.0.0.1:8080"),
+        ("[::1]:8080", "http://[::1]:8080"),
+        ("localhost:8080", "http://localhost:8080"),
+    ] {
+        let (status, _, _) = call_with(
+            &s,
+            "POST",
+            "/api/analyze",
+            &[json_type, ("host", host), ("origin", origin)],
+            body.clone().into_bytes(),
+        );
+        assert_eq!(status, StatusCode::OK, "{host} {origin}");
+    }
+    let (status, _, _) = call_with(
+        &s,
+        "GET",
+        "http://127.0.0.1:8080/api/scene",
+        &[("host", "127.0.0.1:8080")],
+        Vec::new(),
+    );
+    assert_eq!(status, StatusCode::OK, "absolute URI to loopback");
+}
+
 /// The TOML to download analyses to the page's multiplier wherever it is saved: a leftward
 /// analysis says so in its first line, and a start scene's relative blocks file becomes an
 /// absolute path, the only file a request may name.
@@ -869,4 +961,376 @@ fn the_downloaded_toml_stands_on_its_own() {
         "file_refused",
         Some("blocks.file"),
     );
+}
+
+/// Short timeouts, so that the tests below see them run out.
+fn short_timeouts() -> serve::Timeouts {
+    serve::Timeouts {
+        header_read: std::time::Duration::from_millis(300),
+        body_read: std::time::Duration::from_millis(300),
+        shutdown_grace: std::time::Duration::from_millis(300),
+    }
+}
+
+/// A server on a free loopback port in its own runtime, stopped when `stop` is sent; its
+/// address, and the handle that says how it stopped.
+fn server_until_stopped(
+    timeouts: serve::Timeouts,
+) -> (
+    std::net::SocketAddr,
+    tokio::sync::oneshot::Sender<()>,
+    std::thread::JoinHandle<serve::Stopped>,
+) {
+    let (addr_tx, addr_rx) = std::sync::mpsc::channel();
+    let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();
+    let handle = std::thread::spawn(move || {
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .expect("runtime");
+        rt.block_on(async move {
+            let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+                .await
+                .expect("bind");
+            addr_tx
+                .send(listener.local_addr().expect("addr"))
+                .expect("send");
+            let state = ServerState::with_default_scene(Limits::default())
+                .expect("scene")
+                .with_timeouts(timeouts);
+            serve::serve_until(listener, Arc::new(state), async {
+                let _ = stop_rx.await;
+            })
+            .await
+        })
+    });
+    let addr = addr_rx.recv().expect("the server's address");
+    (addr, stop_tx, handle)
+}
+
+/// Everything the server sends on `stream` until it closes the connection; an error if it
+/// keeps it open for `patience` without a word (that is, for ever as far as a test goes).
+fn read_until_closed(
+    stream: &mut std::net::TcpStream,
+    patience: std::time::Duration,
+) -> std::io::Result<String> {
+    use std::io::Read;
+    stream.set_read_timeout(Some(patience))?;
+    let mut all = Vec::new();
+    let mut buf = [0u8; 4096];
+    loop {
+        match stream.read(&mut buf) {
+            Ok(0) => return Ok(String::from_utf8_lossy(&all).into_owned()),
+            Ok(n) => all.extend_from_slice(&buf[..n]),
+            // A reset after an answer is a close too.
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionReset => {
+                return Ok(String::from_utf8_lossy(&all).into_owned())
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// A client that sends half a request's head, one that opens a connection and says nothing,
+/// and one that keeps its connection alive after an answer are all closed by the server
+/// when the header-read (idle) timeout runs out; a body sent in part is refused with a 400
+/// when the body's timeout runs out. Before the timeouts, each held its connection for ever.
+#[test]
+fn slow_and_idle_clients_are_closed_by_the_timeouts() {
+    use std::io::Write;
+    let (addr, stop, server) = server_until_stopped(short_timeouts());
+    let patience = std::time::Duration::from_secs(15);
+
+    let mut half_head = std::net::TcpStream::connect(addr).expect("connect");
+    half_head
+        .write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        .expect("write");
+    let mut silent = std::net::TcpStream::connect(addr).expect("connect");
+    let mut kept_alive = std::net::TcpStream::connect(addr).expect("connect");
+    kept_alive
+        .write_all(b"GET /no/such/page HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .expect("write");
+    let mut half_body = std::net::TcpStream::connect(addr).expect("connect");
+    half_body
+        .write_all(
+            b"POST /api/analyze HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 100\r\n\r\n{\"arch\": ",
+        )
+        .expect("write");
+
+    let closed = |stream: &mut std::net::TcpStream, what: &str| {
+        read_until_closed(stream, patience)
+            .unwrap_or_else(|e| panic!("{what}: the server kept the connection open ({e})"))
+    };
+    assert_eq!(
+        closed(&mut half_head, "half a head"),
+        "",
+        "no answer to half a head"
+    );
+    assert_eq!(closed(&mut silent, "a silent client"), "");
+    let answer = closed(&mut kept_alive, "an idle kept-alive connection");
+    assert!(answer.starts_with("HTTP/1.1 404"), "{answer}");
+    assert!(
+        !answer.contains("connection: close"),
+        "kept alive: {answer}"
+    );
+    let answer = closed(&mut half_body, "half a body");
+    assert!(answer.starts_with("HTTP/1.1 400"), "{answer}");
+    assert!(
+        answer.contains("bad_body") && answer.contains("did not arrive"),
+        "{answer}"
+    );
+
+    // The server itself is well: a whole request is answered.
+    let mut whole = std::net::TcpStream::connect(addr).expect("connect");
+    whole
+        .write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n")
+        .expect("write");
+    let answer = closed(&mut whole, "a whole request");
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    stop.send(()).expect("stop");
+    assert_eq!(server.join().expect("server"), serve::Stopped::Clean);
+}
+
+/// Asked to stop, the server takes no new connection and waits for a request in flight no
+/// longer than its grace: a client that sent half a request and stays does not keep it
+/// running (before, it did until the client left).
+#[test]
+fn shutdown_waits_at_most_the_grace_for_a_half_sent_request() {
+    use std::io::Write;
+    let timeouts = serve::Timeouts {
+        // Longer than the test's patience: only the grace can end the server.
+        header_read: std::time::Duration::from_secs(600),
+        ..short_timeouts()
+    };
+    let (addr, stop, server) = server_until_stopped(timeouts);
+    let mut half = std::net::TcpStream::connect(addr).expect("connect");
+    half.write_all(b"POST /api/analyze HTTP/1.1\r\nHost: 127.0")
+        .expect("write");
+    // The connection is taken before the stop.
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    stop.send(()).expect("stop");
+    let (done_tx, done_rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done_tx.send(server.join());
+    });
+    let stopped = done_rx
+        .recv_timeout(std::time::Duration::from_secs(20))
+        .expect("the server stops within its grace")
+        .expect("server thread");
+    assert_eq!(stopped, serve::Stopped::GraceExpired { open: 1 });
+    drop(half);
+}
+
+/// The binary: with a client that sent half a request and stays, and another whose
+/// connection is kept alive, SIGINT (Ctrl-C) stops `voussoir serve` within its grace and it
+/// says so.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_binary_despite_a_half_sent_request() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let bin = assert_cmd::cargo::cargo_bin("voussoir");
+    let mut child = std::process::Command::new(&bin)
+        .args(["serve", "--port", "0"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start the server");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    let mut first = String::new();
+    stdout.read_line(&mut first).expect("first line");
+    let url = first
+        .trim()
+        .strip_prefix("voussoir serve: listening on http://")
+        .expect("the address line")
+        .trim_end_matches('/')
+        .to_string();
+    let mut half = std::net::TcpStream::connect(&url).expect("connect");
+    half.write_all(b"GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        .expect("write");
+    let mut alive = std::net::TcpStream::connect(&url).expect("connect");
+    alive
+        .write_all(b"GET /no/such/page HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .expect("write");
+    let mut buf = [0u8; 64];
+    let n = alive.read(&mut buf).expect("an answer");
+    assert!(buf[..n].starts_with(b"HTTP/1.1 404"));
+    let sent = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill -INT");
+    assert!(sent.success());
+    // The default grace is 5 s; a minute is "never" for this test.
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break Some(status);
+        }
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            break None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let Some(status) = status else {
+        let _ = child.kill();
+        let _ = child.wait();
+        panic!("voussoir serve did not stop within a minute of SIGINT");
+    };
+    assert!(status.success(), "{status}");
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).expect("the last lines");
+    assert!(rest.contains("voussoir serve: stopped"), "{rest}");
+    drop((half, alive));
+}
+
+/// Each pier slider applies to the pier profiles it lists (`pier_shapes`) and to no other:
+/// on a portal of each profile (rectangular, stepped, battered), a value inside the slider's
+/// range is accepted for a listed profile and refused, naming the key, for the others (a
+/// stepped pier has no `width`, and its `courses` are its number of widths); the stepped
+/// pier's widths are a list (`list`), which the API analyses to the library's value.
+#[test]
+fn pier_sliders_apply_to_the_pier_profiles_they_list() {
+    let s = state();
+    let params = get_json(&s, "/api/parameters");
+    let profiles = [
+        ("portal.toml", "rectangular"),
+        ("stepped_portal.toml", "stepped"),
+        ("battered_portal.toml", "battered"),
+    ];
+    let mut applied = std::collections::BTreeSet::new();
+    for p in params["parameters"].as_array().expect("parameters") {
+        let key = p["key"].as_str().expect("key");
+        if !key.starts_with("piers.") {
+            continue;
+        }
+        let shapes: Vec<&str> = p["pier_shapes"]
+            .as_array()
+            .expect("pier_shapes")
+            .iter()
+            .filter_map(Value::as_str)
+            .collect();
+        let (lo, hi) = (
+            p["min"].as_f64().expect("min"),
+            p["max"].as_f64().expect("max"),
+        );
+        let entry = |x: f64| {
+            if p["integer"] == true {
+                toml::Value::Integer(x.round() as i64)
+            } else {
+                toml::Value::Float(x)
+            }
+        };
+        for (file, profile) in profiles {
+            let scene = Scene::from_file(std::path::Path::new(&data(file))).expect("scene");
+            let n = scene.piers.as_ref().expect("piers").left.courses;
+            // A value the slider can reach; a list as long as the pier's courses.
+            let value = if p["list"] == true {
+                toml::Value::Array(
+                    (0..n)
+                        .map(|i| entry(hi.min(0.6) - 0.05 * i as f64))
+                        .collect(),
+                )
+            } else if key == "piers.courses" {
+                // Any count but the stepped pier's own number of widths (the one value a
+                // courses slider could give without an error there).
+                entry(n as f64 + 1.0)
+            } else {
+                entry(lo + (hi - lo) / 4.0)
+            };
+            let listed = shapes.is_empty() || shapes.contains(&profile);
+            match scene.with_value(key, value.clone()) {
+                Ok(changed) => {
+                    assert!(
+                        listed,
+                        "{key} = {value} on a {profile} pier is accepted but not offered"
+                    );
+                    applied.insert((key.to_string(), profile));
+                    // Through the API too, to the library's multiplier.
+                    let body = json!({"scene": serve::api::table_json(changed.table())});
+                    let (status, answer) = post(&s, "/api/analyze", &body);
+                    assert_eq!(status, StatusCode::OK, "{key} on {profile}: {answer}");
+                    let lib = library_lambda(&changed, Direction::Right);
+                    assert_eq!(answer["lambda_lower"].as_f64(), lib.lower.lambda, "{key}");
+                }
+                Err(e) => {
+                    assert!(
+                        !listed,
+                        "{key} = {value} on a {profile} pier is offered but refused: {e}"
+                    );
+                    assert!(
+                        e.to_string().contains(key.trim_start_matches("piers.")),
+                        "{e}"
+                    );
+                }
+            }
+        }
+    }
+    for (key, profile) in [
+        ("piers.width", "rectangular"),
+        ("piers.widths", "stepped"),
+        ("piers.bottom_width", "battered"),
+        ("piers.top_width", "battered"),
+        ("piers.courses", "battered"),
+        ("piers.height", "stepped"),
+    ] {
+        assert!(
+            applied.contains(&(key.to_string(), profile)),
+            "no slider for {key} on a {profile} pier"
+        );
+    }
+}
+
+/// With crushing and finite friction the upper bound of a sweep comes from a search with
+/// rigid hinges (the certified mechanism of the compressed zones does not apply to sliding):
+/// its rows say so (`upper_rigid`, `kinematic_search`), as does the analysis, whose note
+/// says it too; without crushing, or with the certified search, the upper bound is the
+/// structure's own.
+#[test]
+fn an_upper_bound_that_ignores_crushing_is_marked_rigid() {
+    let s = state();
+    let mut scene = scene_json("semicircular.toml");
+    scene["material"]["compressive_strength"] = json!(5e6);
+    scene["material"]["friction"] = json!(0.6);
+    let body =
+        json!({"scene": scene, "key": "arch.thickness", "from": 0.3, "to": 0.7, "points": 3});
+    let (status, answer) = post(&s, "/api/sweep", &body);
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let table = match serve::api::to_toml("", &scene).expect("TOML") {
+        toml::Value::Table(t) => t,
+        other => panic!("not a table: {other}"),
+    };
+    let base = Scene::from_table_in(table, "scene", None).expect("scene");
+    for row in answer["rows"].as_array().expect("rows") {
+        let t = row["value"].as_f64().expect("value");
+        let case = base
+            .with_value("arch.thickness", toml::Value::Float(t))
+            .expect("scene");
+        let a = library_lambda(&case, Direction::Right);
+        assert_eq!(row["lambda_upper"].as_f64(), a.lambda_upper(), "t = {t}");
+        assert_ne!(row["kinematic_search"], "certified", "{row}");
+        assert_eq!(row["upper_rigid"], true, "{row}");
+        let note = a
+            .upper
+            .as_ref()
+            .ok()
+            .and_then(|k| k.note.clone())
+            .unwrap_or_default();
+        assert!(note.contains("rigid hinges"), "{note}");
+    }
+    // The analysis of one scene says the same.
+    let said = |scene: &Value| {
+        let (status, one) = post(&s, "/api/analyze", &json!({"scene": scene}));
+        assert_eq!(status, StatusCode::OK, "{}", one["error"]);
+        (one["upper_rigid"].clone(), one["kinematic_search"].clone())
+    };
+    scene["arch"]["thickness"] = json!(0.5);
+    assert_eq!(said(&scene), (json!(true), json!("exhaustive")));
+    // Joints that cannot slide: the certified mechanism about the compressed zones.
+    scene["material"]["friction"] = json!("inf");
+    assert_eq!(said(&scene), (json!(false), json!("certified")));
+    // No crushing: the rigid structure is the structure.
+    let mut rigid = scene_json("semicircular.toml");
+    rigid["material"]["friction"] = json!(0.6);
+    rigid["arch"]["thickness"] = json!(0.5);
+    assert_eq!(said(&rigid).0, json!(false));
 }

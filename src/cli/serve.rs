@@ -37,13 +37,14 @@ pub fn run(args: Args) -> Result<String, Error> {
             .with_overrides(&args.set)?,
     };
     let state = ServerState::new(scene, limits);
+    let grace = state.timeouts.shutdown_grace;
     // Loopback only: the page is for the person at this machine.
     let addr = SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), args.port);
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
         .map_err(|e| other(format!("cannot start the server's runtime: {e}")))?;
-    runtime.block_on(async move {
+    let stopped: Result<serve::Stopped, Error> = runtime.block_on(async move {
         let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| {
             other(format!(
                 "cannot listen on {addr}: {e} (is another server on that port? try --port 0)"
@@ -60,9 +61,17 @@ pub fn run(args: Args) -> Result<String, Error> {
             let _ = writeln!(out, "open it in a browser; Ctrl-C stops the server");
             let _ = out.flush();
         }
-        serve::serve(listener, Arc::new(state))
-            .await
-            .map_err(|e| other(format!("the server stopped: {e}")))
-    })?;
-    Ok("voussoir serve: stopped".into())
+        Ok(serve::serve(listener, Arc::new(state)).await)
+    });
+    // A request still running past the grace (a long sweep's case) is not waited for: its
+    // blocking thread ends with the process.
+    runtime.shutdown_background();
+    Ok(match stopped? {
+        serve::Stopped::Clean => "voussoir serve: stopped".into(),
+        serve::Stopped::GraceExpired { open } => format!(
+            "voussoir serve: stopped ({open} connection{} still open after {} s were closed)",
+            if open == 1 { "" } else { "s" },
+            grace.as_secs_f64()
+        ),
+    })
 }

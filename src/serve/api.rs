@@ -513,6 +513,7 @@ pub async fn analyze(
             Ok(JsonValue::Object(map)) => map,
             _ => Map::new(),
         };
+        out.insert("upper_rigid".into(), JsonValue::Bool(upper_rigid(&a)));
         out.insert("svg".into(), JsonValue::String(svg));
         let text = scene_toml(&scene, dir, scene.base_dir())?;
         out.insert("toml".into(), JsonValue::String(text));
@@ -583,6 +584,53 @@ fn number(body: &Map<String, JsonValue>, name: &str) -> Result<f64, ApiError> {
                 "missing `{name}` (the sweep runs `key` from `from` to `to` in `points` values)"
             ),
         )),
+    }
+}
+
+/// Whether the upper bound is the rigid structure's: a finite compressive strength, and a
+/// search other than the certified one (which rotates about the compressed zones' centres),
+/// whose hinges sit at the joints' ends, so that it ignores crushing (the analysis says so
+/// in `kinematic_note`).
+fn upper_rigid(a: &analysis::SceneAnalysis) -> bool {
+    a.model.strength.is_finite()
+        && a.lambda_upper().is_some()
+        && a.kinematic_search != Some(crate::kinematic::Search::Certified)
+}
+
+/// One row of `/api/sweep`: the value, the status and both bounds as `voussoir sweep`
+/// writes them ([`sweep::case`]), and which kinematic search gave the upper bound
+/// (`kinematic_search`) and whether that bound is the rigid structure's (`upper_rigid`: with
+/// a finite compressive strength, a search other than the certified one places its hinges
+/// at the joints' ends, so its multiplier ignores crushing; an upper bound still, but of
+/// another structure's collapse, and the page must not draw it as this one's).
+fn sweep_row(values: &[Toml], case: &Result<Scene, SceneError>, options: &Options) -> JsonValue {
+    let value = values.first().map_or(JsonValue::Null, to_json);
+    let Ok(scene) = case else {
+        let r = sweep::case(values, case, options, false);
+        return json!({
+            "value": value, "status": r.status, "lambda_lower": r.lambda_lower,
+            "lambda_upper": r.lambda_upper, "error": r.error,
+            "kinematic_search": null, "upper_rigid": false,
+        });
+    };
+    match analysis::analyse(scene, options) {
+        Ok(a) => {
+            let search = a.kinematic_search;
+            let rigid = upper_rigid(&a);
+            json!({
+                "value": value,
+                "status": a.lower.status.as_str(),
+                "lambda_lower": a.lower.lambda,
+                "lambda_upper": a.lambda_upper(),
+                "error": null,
+                "kinematic_search": search.map(|k| k.as_str()),
+                "upper_rigid": rigid,
+            })
+        }
+        Err(e) => json!({
+            "value": value, "status": "error", "lambda_lower": null, "lambda_upper": null,
+            "error": e.to_string(), "kinematic_search": null, "upper_rigid": false,
+        }),
     }
 }
 
@@ -668,27 +716,14 @@ pub async fn sweep(
         Ok(sweep::run(
             sweep.cases(),
             |values, case| {
-                (!cancelled.load(Ordering::Relaxed))
-                    .then(|| sweep::case(values, case, &options, false))
+                (!cancelled.load(Ordering::Relaxed)).then(|| sweep_row(values, case, &options))
             },
             &|| {},
         ))
     })
     .await?;
     drop(cancel);
-    let rows: Vec<JsonValue> = rows
-        .iter()
-        .flatten()
-        .map(|r| {
-            json!({
-                "value": r.values.first().map_or(JsonValue::Null, to_json),
-                "status": r.status,
-                "lambda_lower": r.lambda_lower,
-                "lambda_upper": r.lambda_upper,
-                "error": r.error,
-            })
-        })
-        .collect();
+    let rows: Vec<JsonValue> = rows.into_iter().flatten().collect();
     let key = body.get("key").cloned().unwrap_or(JsonValue::Null);
     Ok(Json(json!({
         "key": key,
@@ -699,18 +734,54 @@ pub async fn sweep(
     .into_response())
 }
 
-/// Whether a `Host` header (or an origin's host) names this machine's loopback: `127.0.0.1`,
-/// `localhost` or `[::1]`, with any port.
-fn loopback_host(host: &str) -> bool {
-    let name = if let Some(rest) = host.strip_prefix('[') {
-        rest.split(']').next().unwrap_or("")
+/// Whether an authority (a `Host` header, an origin's host, a request's absolute URI) names
+/// this machine's loopback, read strictly: `localhost`, `127.x.y.z` (four decimal numbers)
+/// or `[::1]`, then nothing or `:` and a port number. Anything else is refused, also what a
+/// lenient reading would cut short: `[::1]evil.example`, `localhost.evil:80`, `127.0.0.1:80x`.
+fn loopback_host(authority: &str) -> bool {
+    let (loopback, port) = if let Some(rest) = authority.strip_prefix('[') {
+        let Some((inside, after)) = rest.split_once(']') else {
+            return false;
+        };
+        let port = match after {
+            "" => None,
+            _ => match after.strip_prefix(':') {
+                Some(port) => Some(port),
+                None => return false,
+            },
+        };
+        (
+            inside.parse::<std::net::Ipv6Addr>() == Ok(std::net::Ipv6Addr::LOCALHOST),
+            port,
+        )
     } else {
-        host.rsplit_once(':').map_or(host, |(name, _port)| name)
+        let (name, port) = match authority.split_once(':') {
+            Some((name, port)) => (name, Some(port)),
+            None => (authority, None),
+        };
+        let loopback = name.eq_ignore_ascii_case("localhost")
+            || (name.bytes().all(|b| b.is_ascii_digit() || b == b'.')
+                && name
+                    .parse::<std::net::Ipv4Addr>()
+                    .is_ok_and(|a| a.is_loopback()));
+        (loopback, port)
     };
-    matches!(
-        name.to_ascii_lowercase().as_str(),
-        "127.0.0.1" | "localhost" | "::1"
-    )
+    let port_ok = port.is_none_or(|p| {
+        !p.is_empty()
+            && p.len() <= 5
+            && p.bytes().all(|b| b.is_ascii_digit())
+            && p.parse::<u16>().is_ok()
+    });
+    loopback && port_ok
+}
+
+/// The authority of an `Origin` header (`http://127.0.0.1:8080`: a scheme, `://`, the
+/// authority and nothing else), or None when it has another form (`null`, a path).
+fn origin_authority(origin: &str) -> Option<&str> {
+    let rest = origin
+        .strip_prefix("http://")
+        .or_else(|| origin.strip_prefix("https://"))?;
+    (!rest.contains(['/', '?', '#', '@'])).then_some(rest)
 }
 
 /// Refuse what does not come from this machine's own page: a `Host` other than loopback (a
@@ -734,19 +805,33 @@ pub async fn same_machine_only(
         }
         .into_response()
     };
+    // One Host and at most one Origin: with two, which one a check reads and which one
+    // the rest of the server (or a proxy before it) reads could differ.
+    for name in [header::HOST, header::ORIGIN] {
+        if headers.get_all(&name).iter().count() > 1 {
+            return forbidden(format!(
+                "more than one `{name}` header: this server answers only requests with one"
+            ));
+        }
+    }
     if let Some(host) = text(header::HOST) {
         if !loopback_host(host) {
             return forbidden(format!(
-                "Host `{host}`: this server answers only requests to 127.0.0.1, localhost or [::1]"
+                "Host `{host}`: this server answers only requests to 127.0.0.1, localhost or [::1] (with an optional port)"
+            ));
+        }
+    }
+    // A request line with an absolute URI (`GET http://evil.example/ HTTP/1.1`) names its
+    // host there, and HTTP says it overrides the Host header.
+    if let Some(authority) = request.uri().authority() {
+        if !loopback_host(authority.as_str()) {
+            return forbidden(format!(
+                "request for `{authority}`: this server answers only requests to 127.0.0.1, localhost or [::1]"
             ));
         }
     }
     if let Some(origin) = text(header::ORIGIN) {
-        let host = origin
-            .strip_prefix("http://")
-            .or_else(|| origin.strip_prefix("https://"))
-            .unwrap_or("");
-        if !loopback_host(host) {
+        if !origin_authority(origin).is_some_and(loopback_host) {
             return forbidden(format!(
                 "Origin `{origin}`: this server answers only its own page"
             ));
@@ -768,6 +853,63 @@ pub async fn same_machine_only(
             .into_response();
         }
     }
+    next.run(request).await
+}
+
+/// A request body that must arrive before a deadline: past it, reading it fails (the
+/// handler answers 400 and hyper closes the connection, which was left mid-body).
+struct Deadline {
+    body: axum::body::Body,
+    sleep: std::pin::Pin<Box<tokio::time::Sleep>>,
+    seconds: f64,
+}
+
+impl hyper::body::Body for Deadline {
+    type Data = Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<Option<Result<hyper::body::Frame<Bytes>, axum::Error>>> {
+        use std::future::Future;
+        use std::task::Poll;
+        if let Poll::Ready(frame) = std::pin::Pin::new(&mut self.body).poll_frame(cx) {
+            return Poll::Ready(frame);
+        }
+        if self.sleep.as_mut().poll(cx).is_ready() {
+            let message = format!(
+                "the request body did not arrive within {} s of its headers",
+                self.seconds
+            );
+            return Poll::Ready(Some(Err(axum::Error::new(message))));
+        }
+        Poll::Pending
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.body.is_end_stream()
+    }
+
+    fn size_hint(&self) -> hyper::body::SizeHint {
+        self.body.size_hint()
+    }
+}
+
+/// Give the request's body `timeout` to arrive, counted from now (its head has been read):
+/// a client that declares a body and sends half of it does not hold a handler for ever.
+pub async fn body_deadline(
+    axum::extract::State(timeout): axum::extract::State<std::time::Duration>,
+    request: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let request = request.map(|body| {
+        axum::body::Body::new(Deadline {
+            body,
+            sleep: Box::pin(tokio::time::sleep(timeout)),
+            seconds: timeout.as_secs_f64(),
+        })
+    });
     next.run(request).await
 }
 
@@ -822,21 +964,65 @@ mod tests {
         for ok in [
             "127.0.0.1",
             "127.0.0.1:80",
+            "127.1.2.3:8080",
             "localhost:8080",
             "LOCALHOST",
+            "[::1]",
             "[::1]:9",
+            "[0:0:0:0:0:0:0:1]:9",
+            "localhost:65535",
         ] {
             assert!(loopback_host(ok), "{ok}");
         }
         for bad in [
             "",
             "evil.example",
-            "127.0.0.2",
+            "10.0.0.1",
+            "128.0.0.1",
             "localhost.evil",
+            "localhost.",
+            "127.0.0.1.evil.example",
+            "127.0.0.01",
+            "127.1",
+            "0x7f.0.0.1",
             "[::2]:80",
             "::1",
+            "[::1]evil.example",
+            "[::1]evil.example:80",
+            "[::1].evil.example",
+            "[::1]:80evil",
+            "[::1",
+            "[::ffff:127.0.0.1]",
+            "localhost:",
+            "localhost:http",
+            "localhost:80:80",
+            "localhost:65536",
+            "localhost:+80",
+            "127.0.0.1:8080x",
+            "127.0.0.1 :80",
+            "user@localhost",
         ] {
             assert!(!loopback_host(bad), "{bad}");
         }
+    }
+
+    #[test]
+    fn origins_are_read_strictly() {
+        assert_eq!(
+            origin_authority("http://127.0.0.1:8080"),
+            Some("127.0.0.1:8080")
+        );
+        assert_eq!(origin_authority("https://[::1]"), Some("[::1]"));
+        for bad in [
+            "null",
+            "127.0.0.1",
+            "ftp://127.0.0.1",
+            "http://127.0.0.1/",
+            "http://user@127.0.0.1",
+            "http://127.0.0.1?x",
+        ] {
+            assert_eq!(origin_authority(bad), None, "{bad}");
+        }
+        assert!(!origin_authority("http://[::1]evil.example").is_some_and(loopback_host));
     }
 }

@@ -11,9 +11,12 @@
 //! they are for this machine and come from its own page ([`api::same_machine_only`]: the
 //! `Host`, the `Origin`, and JSON bodies, so that no other web site open in the user's browser
 //! can use it); request bodies, block counts and sweep sizes are limited, and sweeps run a few
-//! at a time and stop when their client has gone; a request that cannot be analysed is answered with a 400 and
-//! the message (naming the scene key when there is one), and a panic in an analysis is caught
-//! and answered with a 500, never a crash. The server reads no files on request: a scene's
+//! at a time and stop when their client has gone; no client is waited for without end
+//! ([`Timeouts`]: a request's head and body must arrive in time, an idle connection is closed,
+//! and Ctrl-C waits a bounded grace for the requests in flight, [`serve_until`]); a request
+//! that cannot be analysed is answered with a 400 and the message (naming the scene key when
+//! there is one), and a panic in an analysis is caught and answered with a 500, never a
+//! crash. The server reads no files on request: a scene's
 //! `blocks.file` is accepted only when it is the file of the scene the server was started
 //! with.
 
@@ -22,8 +25,10 @@ pub mod assets;
 pub mod parameters;
 
 use crate::scene::Scene;
+use std::future::Future;
 use std::net::{Ipv4Addr, SocketAddr};
 use std::sync::Arc;
+use std::time::Duration;
 
 /// Where `voussoir serve` listens unless told otherwise: loopback only, port 8080.
 pub const DEFAULT_ADDR: SocketAddr =
@@ -54,13 +59,41 @@ impl Default for Limits {
     }
 }
 
-/// What the server knows: the scene it was started with and its limits.
+/// How long the server waits for a client, and for itself when asked to stop. Without
+/// them one client that sends half a request and stays holds its connection for ever, and
+/// Ctrl-C (which waits for open requests) never stops the server.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Timeouts {
+    /// Time a client has to send a request's head (request line and headers), counted from
+    /// when the connection is ready for one: from its opening, and on a kept-alive
+    /// connection from the end of the previous answer. So it is also the idle (keep-alive)
+    /// timeout: a connection that sends nothing for this long is closed.
+    pub header_read: Duration,
+    /// Time a client has to send a request's body, counted from its head.
+    pub body_read: Duration,
+    /// After Ctrl-C: how long requests in flight may take to finish (no new connection is
+    /// taken meanwhile) before the server stops without them.
+    pub shutdown_grace: Duration,
+}
+
+impl Default for Timeouts {
+    fn default() -> Self {
+        Timeouts {
+            header_read: Duration::from_secs(20),
+            body_read: Duration::from_secs(20),
+            shutdown_grace: Duration::from_secs(5),
+        }
+    }
+}
+
+/// What the server knows: the scene it was started with, its limits and its timeouts.
 #[derive(Debug)]
 pub struct ServerState {
     /// The scene the page opens with (`GET /api/scene`). Request scenes are read relative
     /// to its directory.
     pub scene: Scene,
     pub limits: Limits,
+    pub timeouts: Timeouts,
     /// Sweeps running at once (each is parallel already): more wait their turn.
     pub(crate) sweeps: tokio::sync::Semaphore,
 }
@@ -77,8 +110,15 @@ impl ServerState {
         ServerState {
             scene,
             limits,
+            timeouts: Timeouts::default(),
             sweeps: tokio::sync::Semaphore::new(CONCURRENT_SWEEPS),
         }
+    }
+
+    /// The same state with other timeouts.
+    pub fn with_timeouts(mut self, timeouts: Timeouts) -> Self {
+        self.timeouts = timeouts;
+        self
     }
 
     /// The start scene's `blocks.file`, as written in it, when it has one: the only file a
@@ -108,21 +148,93 @@ pub fn router(state: Arc<ServerState>) -> axum::Router {
         .route("/api/sweep", post(api::sweep))
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
+        .layer(axum::middleware::from_fn_with_state(
+            state.timeouts.body_read,
+            api::body_deadline,
+        ))
         .layer(axum::middleware::from_fn(api::same_machine_only))
         .layer(axum::extract::DefaultBodyLimit::max(limit))
         .with_state(state)
 }
 
-/// Serve `state` on `listener` until Ctrl-C.
-pub async fn serve(
+/// Serve `state` on `listener` until Ctrl-C (then as [`serve_until`]).
+pub async fn serve(listener: tokio::net::TcpListener, state: Arc<ServerState>) -> Stopped {
+    serve_until(listener, state, async {
+        // An error here means no signal handler could be installed: then the server runs
+        // until it is killed, which is what Ctrl-C would have done.
+        if tokio::signal::ctrl_c().await.is_err() {
+            std::future::pending::<()>().await;
+        }
+    })
+    .await
+}
+
+/// How the server stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stopped {
+    /// Every request in flight was answered.
+    Clean,
+    /// This many connections were still open (a request being answered, or one whose
+    /// client had not finished sending it) when the shutdown grace ran out: they were closed.
+    GraceExpired { open: usize },
+}
+
+/// Serve `state` on `listener` until `shutdown` completes; then take no new connection, let
+/// the requests in flight finish for at most [`Timeouts::shutdown_grace`], and return.
+///
+/// The connection loop is hyper's own, not `axum::serve`: that one sets no timer, so hyper's
+/// header-read timeout never runs and a client that sends half a request (or opens a
+/// connection and says nothing) keeps it open for ever, and with it the graceful shutdown.
+/// HTTP/1 only (the page is on loopback).
+pub async fn serve_until(
     listener: tokio::net::TcpListener,
     state: Arc<ServerState>,
-) -> std::io::Result<()> {
-    axum::serve(listener, router(state))
-        .with_graceful_shutdown(async {
-            // An error here means no signal handler could be installed: then the server runs
-            // until it is killed, which is what Ctrl-C would have done.
-            let _ = tokio::signal::ctrl_c().await;
-        })
-        .await
+    shutdown: impl Future<Output = ()>,
+) -> Stopped {
+    use hyper_util::rt::{TokioIo, TokioTimer};
+    let timeouts = state.timeouts;
+    let app = router(state);
+    let mut http = hyper::server::conn::http1::Builder::new();
+    http.timer(TokioTimer::new())
+        .header_read_timeout(timeouts.header_read)
+        .keep_alive(true);
+    let graceful = hyper_util::server::graceful::GracefulShutdown::new();
+    // One clone per open connection: how many are left when the grace runs out.
+    let open = Arc::new(());
+    let mut shutdown = std::pin::pin!(shutdown);
+    loop {
+        let stream = tokio::select! {
+            accepted = listener.accept() => match accepted {
+                Ok((stream, _)) => stream,
+                Err(e) => {
+                    // A connection that failed before it was taken (reset, aborted) is the
+                    // client's affair; anything else (out of file descriptors) passes
+                    // with time, so wait a little rather than spin or stop serving.
+                    use std::io::ErrorKind::*;
+                    if !matches!(e.kind(), ConnectionAborted | ConnectionReset | ConnectionRefused) {
+                        eprintln!("voussoir serve: cannot take a connection: {e}");
+                        tokio::time::sleep(Duration::from_millis(200)).await;
+                    }
+                    continue;
+                }
+            },
+            () = &mut shutdown => break,
+        };
+        let service = hyper_util::service::TowerToHyperService::new(app.clone());
+        let connection = graceful.watch(http.serve_connection(TokioIo::new(stream), service));
+        let token = open.clone();
+        tokio::spawn(async move {
+            // A connection's error (a client gone, a head not sent in time) ends that
+            // connection only.
+            let _ = connection.await;
+            drop(token);
+        });
+    }
+    drop(listener);
+    match tokio::time::timeout(timeouts.shutdown_grace, graceful.shutdown()).await {
+        Ok(()) => Stopped::Clean,
+        Err(_) => Stopped::GraceExpired {
+            open: Arc::strong_count(&open).saturating_sub(1),
+        },
+    }
 }

@@ -38,6 +38,14 @@ pub struct Slider {
     pub shape_steps: &'static [(&'static str, f64)],
     /// Sections in whose presence the key does not apply (a portal's arch embraces 180 deg).
     pub not_with: &'static [&'static str],
+    /// For `piers` keys, the pier profiles (`piers.shape`: `rectangular`, the default,
+    /// `stepped`, `battered`) that take the key; empty: every profile. A stepped pier has no
+    /// `width` and its `courses` are its number of widths, so those sliders could only error.
+    pub pier_shapes: &'static [&'static str],
+    /// The value is a list of numbers (a stepped pier's `widths`, base to top): the page
+    /// shows a text field of comma-separated numbers, with no slider and no chart; `min`,
+    /// `max` and `step` are those of one entry.
+    pub list: bool,
 }
 
 fn as_map<S: serde::Serializer>(
@@ -139,6 +147,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Thickness of the arch ring, measured radially.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.radius",
@@ -154,6 +164,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Centreline radius (of each arc of a pointed arch).",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.embrace_deg",
@@ -169,6 +181,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Angle the arch spans at its centre (180 for a semicircle; a portal needs 180).",
         shape_steps: &[],
         not_with: &["piers"],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.eccentricity",
@@ -184,6 +198,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Distance of each arc's centre from the axis: 0 is a semicircle.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.span",
@@ -199,6 +215,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Centreline span of the basket-handle arch.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.rise",
@@ -214,6 +232,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Centreline rise: at most half the span.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.side_angle_deg",
@@ -229,6 +249,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Angle subtended by each side arc of the three-centred arch.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "arch.voussoirs",
@@ -244,6 +266,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Number of voussoirs (even for a pointed arch).",
         shape_steps: &[("pointed", 2.0)],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "piers.height",
@@ -259,6 +283,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Height of the piers below the springings.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "piers.width",
@@ -274,6 +300,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Width of each pier.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &["rectangular"],
+        list: false,
     },
     Slider {
         key: "piers.courses",
@@ -289,6 +317,59 @@ pub const SLIDERS: &[Slider] = &[
         help: "Number of blocks stacked in each pier.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &["rectangular", "battered"],
+        list: false,
+    },
+    Slider {
+        key: "piers.bottom_width",
+        label: "Pier base width",
+        unit: "m",
+        min: 0.1,
+        max: 5.0,
+        step: 0.05,
+        integer: false,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Width of each battered pier at its base.",
+        shape_steps: &[],
+        not_with: &[],
+        pier_shapes: &["battered"],
+        list: false,
+    },
+    Slider {
+        key: "piers.top_width",
+        label: "Pier top width",
+        unit: "m",
+        min: 0.1,
+        max: 5.0,
+        step: 0.05,
+        integer: false,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Width of each battered pier under the springing.",
+        shape_steps: &[],
+        not_with: &[],
+        pier_shapes: &["battered"],
+        list: false,
+    },
+    Slider {
+        key: "piers.widths",
+        label: "Course widths",
+        unit: "m",
+        min: 0.1,
+        max: 5.0,
+        step: 0.05,
+        integer: false,
+        section: "piers",
+        arch_shapes: &[],
+        absent: None,
+        help: "Width of each course of a stepped pier, base to top, separated by commas: one course per width.",
+        shape_steps: &[],
+        not_with: &[],
+        pier_shapes: &["stepped"],
+        list: true,
     },
     Slider {
         key: "fill.level",
@@ -304,6 +385,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Height of the fill's top surface (y = 0 at the springings).",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "fill.unit_weight",
@@ -319,6 +402,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Unit weight of the fill, which loads the extrados vertically.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "seismic.vertical_ratio",
@@ -334,6 +419,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Vertical ground acceleration as a share of the horizontal one (positive upward).",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "loads[0].intensity",
@@ -349,6 +436,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Intensity of the first [[loads]] entry, when it is a line load (downward).",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "loads[1].intensity",
@@ -364,6 +453,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Intensity of the second [[loads]] entry, when it is a line load (downward).",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "material.friction",
@@ -379,6 +470,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Coulomb friction coefficient of the joints.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "material.unit_weight",
@@ -394,6 +487,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Unit weight of the masonry.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
     Slider {
         key: "material.compressive_strength",
@@ -409,6 +504,8 @@ pub const SLIDERS: &[Slider] = &[
         help: "Masonry compressive strength: hinges move inward by half the compressed zone.",
         shape_steps: &[],
         not_with: &[],
+        pier_shapes: &[],
+        list: false,
     },
 ];
 
@@ -436,11 +533,21 @@ fn preset_has(table: &toml::Table, slider: &Slider) -> bool {
     if slider.not_with.iter().any(|sec| table.contains_key(*sec)) {
         return false;
     }
+    if !slider.pier_shapes.is_empty() && !slider.pier_shapes.contains(&pier_shape(table)) {
+        return false;
+    }
     if lookup(table, slider.key).is_some() {
         return true;
     }
     let has_section = table.contains_key(slider.section);
     slider.absent.is_some() && (has_section || slider.section == "seismic")
+}
+
+/// The profile of a scene's common pier table (`piers.shape`, `rectangular` when left out).
+pub fn pier_shape(table: &toml::Table) -> &str {
+    lookup(table, "piers.shape")
+        .and_then(toml::Value::as_str)
+        .unwrap_or("rectangular")
 }
 
 /// Every slider, with the presets whose scenes have its key.

@@ -435,7 +435,8 @@ async function noMadeUpValues(page) {
     const get = (obj, key) => key.replace(/\[(\d+)\]/g, '.$1').split('.')
       .reduce((o, k) => (o !== null && typeof o === 'object' && k in o ? o[k] : undefined), obj);
     const out = [];
-    for (const row of document.querySelectorAll('.field')) {
+    // (A list field, a stepped pier's widths, is checked by its own test.)
+    for (const row of document.querySelectorAll('.field:not(.field-list)')) {
       const p = state.byKey.get(row.dataset.key);
       const number = row.querySelector('input[type="number"]');
       const v = get(state.scene, p.key);
@@ -636,6 +637,224 @@ test('an update takes under 50 ms (median) for 200 voussoirs', async (t) => {
     assert.ok(med < 50, `median update ${med.toFixed(1)} ms, over 50 ms`);
     // The page shows the last update time.
     assert.match(await page.locator('#v-timing').textContent(), /updated in \d+ ms/);
+  } finally {
+    await context.close();
+  }
+});
+
+// ---- issue 26 -------------------------------------------------------------------------------
+
+// A scene file in a temporary directory.
+function tempScene(name, lines) {
+  const dir = mkdtempSync(path.join(os.tmpdir(), 'voussoir-e2e-'));
+  const file = path.join(dir, name);
+  writeFileSync(file, lines.join('\n') + '\n');
+  return file;
+}
+
+test('a stepped pier has a field for its widths and no width or course slider', async () => {
+  const stepped = scenePath('stepped_portal.toml');
+  const other = await startServer(stepped);
+  const { page, context, problems } = await openPage(browser, other.url);
+  try {
+    // The keys a stepped pier does not take have no field (they could only be refused).
+    for (const key of ['piers.width', 'piers.courses', 'piers.bottom_width', 'piers.top_width']) {
+      assert.equal(await field(page, key).row.count(), 0, `no ${key} field`);
+    }
+    assert.equal(await field(page, 'piers.height').row.count(), 1, 'the height applies');
+    const widths = page.locator('.field[data-key="piers.widths"] input[type="text"]');
+    assert.equal(await widths.inputValue(), '0.55, 0.45, 0.35, 0.3', 'the scene\'s widths');
+    assertShows(await shown(page), analyze(stepped), 'stepped portal');
+    // Three courses, typed: the CLI's values for those widths.
+    await widths.fill('0.6, 0.5, 0.4');
+    await widths.press('Enter');
+    await settled(page);
+    assertShows(await shown(page), analyze(stepped, { 'piers.widths': '[0.6, 0.5, 0.4]' }),
+      'widths 0.6, 0.5, 0.4');
+    assert.equal(await page.locator('.field.has-error').count(), 0);
+    // A width that is not a number is refused beside the field, as the CLI refuses it.
+    await widths.fill('0.6, x');
+    await widths.press('Enter');
+    await settled(page);
+    const error = page.locator('.field[data-key="piers.widths"] .field-error');
+    assert.match(await error.textContent(), /piers\.widths/);
+    assert.ok(await page.locator('#v-dl-json').isDisabled(), 'downloads disabled');
+    assert.notEqual(analyzeFails(stepped, { 'piers.widths': '[0.6, "x"]' }).status, 0);
+    await widths.fill('0.6, 0.5, 0.4');
+    await widths.press('Enter');
+    await settled(page);
+    assert.equal(await error.textContent(), '', 'the error is cleared');
+    // The chart (of the thickness) is of the new piers: its line is there and no row failed.
+    await chartSettled(page);
+    assert.ok(await page.locator('#v-chart svg polyline.series').count() >= 1);
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+    await other.stop();
+  }
+  // A battered pier: its base and top widths and its courses, no single width.
+  const battered = scenePath('battered_portal.toml');
+  const third = await startServer(battered);
+  const opened = await openPage(browser, third.url);
+  try {
+    const p = opened.page;
+    for (const key of ['piers.bottom_width', 'piers.top_width', 'piers.courses']) {
+      assert.equal(await field(p, key).row.count(), 1, `a ${key} field`);
+    }
+    for (const key of ['piers.width', 'piers.widths']) {
+      assert.equal(await field(p, key).row.count(), 0, `no ${key} field`);
+    }
+    const top = field(p, 'piers.top_width');
+    await top.number.fill('0.35');
+    await top.number.press('Enter');
+    await settled(p);
+    assertShows(await shown(p), analyze(battered, { 'piers.top_width': '0.35' }), 'top width 0.35');
+    assert.deepEqual(opened.problems, []);
+  } finally {
+    await opened.context.close();
+    await third.stop();
+  }
+});
+
+// The x-axis tick labels of the chart (centred under their ticks; the y-axis ones are
+// right-aligned), and the pairs of neighbours whose boxes overlap.
+async function tickOverlaps(page) {
+  return page.evaluate(() => {
+    const boxes = [...document.querySelectorAll('#v-chart svg text.tick[text-anchor="middle"]')]
+      .map((t) => t.getBoundingClientRect()).sort((a, b) => a.left - b.left);
+    const out = [];
+    for (let i = 1; i < boxes.length; i++) {
+      if (boxes[i].left < boxes[i - 1].right) out.push([boxes[i - 1].right, boxes[i].left]);
+    }
+    return { count: boxes.length, out };
+  });
+}
+
+test('the compressive strength is charted in MPa, its labels apart', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    const fc = field(page, 'material.compressive_strength');
+    await fc.row.locator('input[type="checkbox"]').uncheck();
+    await settled(page);
+    await fc.number.fill('5000000');
+    await fc.number.press('Enter');
+    await settled(page);
+    await chartSettled(page);
+    assertShows(await shown(page), analyze(SCENE, { 'material.compressive_strength': 5e6 }), 'fc = 5 MPa');
+    assert.match(await page.locator('#v-chart-title').textContent(), /compressive strength/i);
+    const labels = await page.locator('#v-chart svg text.tick').allTextContents();
+    assert.ok(labels.every((t) => t.length <= 4), `short labels: ${labels}`);
+    assert.match(await page.locator('#v-chart svg text.axis-label').first().textContent(), /\(MPa\)/);
+    assert.match(await page.locator('#v-chart .chart-legend').textContent(), /at 5 MPa/);
+    const { count, out } = await tickOverlaps(page);
+    assert.ok(count >= 3, `x-axis labels: ${count}`);
+    assert.deepEqual(out, [], 'no two x-axis labels overlap');
+    assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+  }
+});
+
+test('an upper bound with rigid hinges on a crushing scene is drawn and named as such', async () => {
+  // Crushing and joints that slide: the certified mechanism about the compressed zones does
+  // not apply, and the search's upper bound is the rigid structure's.
+  const file = tempScene('crushing_sliding.toml', [
+    '[arch]', 'shape = "circular"', 'radius = 1.0', 'thickness = 0.5', 'voussoirs = 32', '',
+    '[material]', 'unit_weight = 20000.0', 'depth = 1.0', 'friction = 0.6',
+    'compressive_strength = 5e6',
+  ]);
+  const cli = analyze(file);
+  assert.equal(cli.kinematic_search, 'exhaustive');
+  assert.match(cli.kinematic_note, /rigid hinges/);
+  const other = await startServer(file);
+  const { page, context, problems } = await openPage(browser, other.url);
+  try {
+    assertShows(await shown(page), cli, 'crushing and sliding');
+    assert.equal(await page.locator('#v-upper-how').textContent(), 'rigid hinges');
+    assert.match(await page.locator('#v-note').textContent(), /upper bound ignores crushing/);
+    await chartSettled(page);
+    // The thickness chart: no dashed "upper" line, a dotted one named for what it is.
+    assert.equal(await page.locator('#v-chart svg .series-upper').count(), 0, 'no plain upper line');
+    assert.ok(await page.locator('#v-chart svg polyline.series-upper-rigid').count() >= 1);
+    const legend = await page.locator('#v-chart .chart-legend').textContent();
+    assert.match(legend, /dotted: upper bound with rigid hinges \(ignores crushing\)/);
+    assert.doesNotMatch(legend, /dashed/);
+    // The JSON download is still the CLI's (the page's own field is not in it).
+    const json = JSON.parse((await download(page, '#v-dl-json')).text);
+    assert.equal(json.upper_rigid, undefined);
+    sameAnalysis(json, cli, 'crushing and sliding');
+    assert.deepEqual(problems, []);
+  } finally {
+    await context.close();
+    await other.stop();
+  }
+});
+
+test('the layout reflows at 1024 and 800 px: nothing overlaps or leaves the window', async () => {
+  for (const width of [1024, 800]) {
+    const { page, context, problems } = await openPage(browser, server.url, { width, height: 768 });
+    try {
+      await chartSettled(page);
+      const box = await page.evaluate(() => {
+        const r = (sel) => {
+          const b = document.querySelector(sel).getBoundingClientRect();
+          return { left: b.left, right: b.right, top: b.top + window.scrollY, bottom: b.bottom + window.scrollY, width: b.width };
+        };
+        return {
+          scrollWidth: document.documentElement.scrollWidth,
+          inner: window.innerWidth,
+          panels: ['.controls', '#v-drawing', '#v-result', '.chart-panel', '.downloads']
+            .map((sel) => ({ sel, ...r(sel) })),
+          topbar: [...document.querySelectorAll('.topbar button, .topbar .brand')].map((e) => {
+            const b = e.getBoundingClientRect();
+            return { right: b.right, width: b.width };
+          }),
+        };
+      });
+      assert.ok(box.scrollWidth <= box.inner, `${width}: no horizontal scrolling (${box.scrollWidth})`);
+      for (const b of box.topbar) assert.ok(b.right <= width && b.width > 20, `${width}: top bar fits`);
+      const drawing = box.panels.find((p) => p.sel === '#v-drawing');
+      assert.ok(drawing.width >= width * 0.5, `${width}: the drawing has half the width (${drawing.width})`);
+      for (const [i, a] of box.panels.entries()) {
+        assert.ok(a.right <= width + 0.5, `${width}: ${a.sel} inside the window`);
+        for (const b of box.panels.slice(i + 1)) {
+          const apart = a.right <= b.left + 0.5 || b.right <= a.left + 0.5
+            || a.bottom <= b.top + 0.5 || b.bottom <= a.top + 0.5;
+          assert.ok(apart, `${width}: ${a.sel} and ${b.sel} do not overlap`);
+        }
+      }
+      // Every control can still be reached and used: a slider step updates lambda.
+      const t = field(page, 'arch.thickness');
+      await t.slider.focus();
+      await page.keyboard.press('ArrowRight');
+      await settled(page);
+      assertShows(await shown(page), analyze(SCENE, { 'arch.thickness': await t.slider.inputValue() }),
+        `${width} px`);
+      assert.deepEqual(problems, []);
+    } finally {
+      await context.close();
+    }
+  }
+});
+
+test('tabbing through the sliders asks for no sweep', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    await chartSettled(page);
+    const sweeps = [];
+    page.on('request', (r) => { if (r.url().endsWith('/api/sweep')) sweeps.push(r.postDataJSON().key); });
+    await field(page, 'arch.thickness').slider.focus();
+    for (let i = 0; i < 8; i++) await page.keyboard.press('Tab');
+    await page.waitForTimeout(300);
+    assert.deepEqual(sweeps, [], 'moving the focus is not moving a slider');
+    // A key that moves a slider charts its parameter, once.
+    await field(page, 'arch.radius').slider.focus();
+    await page.keyboard.press('ArrowRight');
+    await page.keyboard.press('ArrowRight');
+    await settled(page);
+    await chartSettled(page);
+    assert.deepEqual(sweeps, ['arch.radius']);
+    assert.deepEqual(problems, []);
   } finally {
     await context.close();
   }

@@ -29,6 +29,9 @@
   };
   // How many points a chart asks for (at most the server's limit).
   const SWEEP_POINTS = 41;
+  // The keys that move a range input.
+  const SLIDER_KEYS = new Set(['ArrowLeft', 'ArrowRight', 'ArrowUp', 'ArrowDown', 'Home', 'End',
+    'PageUp', 'PageDown']);
   // How many update times window.voussoirTimings keeps.
   const TIMINGS_KEPT = 500;
 
@@ -129,10 +132,21 @@
       && ['left', 'right'].some((side) => piers[side] && typeof piers[side] === 'object');
   }
 
+  // The profile of the scene's piers (`piers.shape`, rectangular when left out).
+  function pierShape() {
+    const piers = state.scene.piers;
+    return piers && typeof piers === 'object' && typeof piers.shape === 'string'
+      ? piers.shape : 'rectangular';
+  }
+
   function visible(p) {
     const section = sectionOf(p);
     if (Array.isArray(p.not_with) && p.not_with.some(hasSection)) return false;
     if (section === 'piers' && segments(p.key).length === 2 && perSidePiers()) return false;
+    // A pier key the piers' profile does not take (a stepped pier has no `width`, and its
+    // courses are its number of widths): a slider that could only be refused.
+    if (section === 'piers' && Array.isArray(p.pier_shapes) && p.pier_shapes.length
+      && !p.pier_shapes.includes(pierShape())) return false;
     const has = hasSection(section);
     if (!has && !(section === 'material' || absentValue(p) !== undefined)) return false;
     if (getKey(state.scene, p.key) !== undefined) return true;
@@ -211,6 +225,33 @@
     return String(v);
   }
 
+  // A unit with a prefix for large values (Pa -> MPa, N/m -> kN/m), so that a chart's axis
+  // labels stay short: the factor the values are divided by, and the unit to print.
+  function scaledUnit(unit, maxAbs) {
+    const base = unit || '';
+    if (!/^(Pa|N|N\/m|N\/m\^2|N\/m\^3)$/.test(base)) return { factor: 1, unit: base };
+    if (maxAbs >= 1e6) return { factor: 1e6, unit: 'M' + base };
+    if (maxAbs >= 1e4) return { factor: 1e3, unit: 'k' + base };
+    return { factor: 1, unit: base };
+  }
+
+  // A value in a scaled unit, without binary noise (5000000 Pa -> "5 MPa").
+  function scaledValue(v, su) {
+    const x = Number((v / su.factor).toPrecision(6));
+    return String(x) + (su.unit ? ' ' + prettyUnit(su.unit) : '');
+  }
+
+  // Ticks for an axis `width` units long whose labels do not overlap: as many as fit
+  // (5 at most) at about 5.6 units per character of the 9.5-unit font, plus a gap.
+  function fittingTicks(lo, hi, width) {
+    for (let count = 5; count > 1; count--) {
+      const ticks = niceTicks(lo, hi, count);
+      const longest = Math.max(...ticks.map((v) => tickLabel(v, ticks).length));
+      if (ticks.length < 2 || (longest * 5.6 + 6) * ticks.length <= width) return ticks;
+    }
+    return niceTicks(lo, hi, 1);
+  }
+
   function niceTicks(lo, hi, count) {
     const span = hi - lo;
     if (!(span > 0)) return [lo];
@@ -257,7 +298,66 @@
     return 'f-' + key.replace(/[^A-Za-z0-9_-]/g, '-');
   }
 
+  // A list of numbers (a stepped pier's widths, base to top): one text field of
+  // comma-separated numbers, no slider, no chart. What does not read as a number is sent as
+  // typed, so that the server's message names it.
+  function buildListField(p) {
+    const id = fieldId(p.key);
+    const row = document.createElement('div');
+    row.className = 'field field-list';
+    row.dataset.key = p.key;
+    const head = document.createElement('div');
+    head.className = 'field-head';
+    const label = document.createElement('label');
+    label.htmlFor = id + '-list';
+    label.textContent = p.label;
+    if (p.help) label.title = p.help;
+    const unit = document.createElement('span');
+    unit.className = 'unit';
+    unit.textContent = prettyUnit(p.unit);
+    head.append(label, unit);
+    const input = document.createElement('input');
+    input.type = 'text';
+    input.id = id + '-list';
+    input.className = 'list-input';
+    input.inputMode = 'decimal';
+    input.spellcheck = false;
+    const help = document.createElement('p');
+    help.className = 'field-note';
+    help.id = id + '-help';
+    help.textContent = p.help || '';
+    const error = document.createElement('p');
+    error.className = 'field-error';
+    error.id = id + '-error';
+    error.setAttribute('aria-live', 'polite');
+    input.setAttribute('aria-describedby', error.id + ' ' + help.id);
+    row.append(head, input, help, error);
+    input.addEventListener('change', (ev) => {
+      const t = eventTime(ev);
+      const items = input.value.split(/[,;\s]+/).filter((x) => x !== '');
+      if (items.length === 0) {
+        showFieldError(p.key, 'Enter one width per course, base to top, e.g. 0.6, 0.5, 0.4.');
+        return;
+      }
+      const values = items.map((x) => {
+        const v = Number(x);
+        return Number.isFinite(v) ? v : x;
+      });
+      setKey(state.scene, p.key, values);
+      changed(p.key, t, ev);
+    });
+    row._applyRange = () => {};
+    row._sync = () => {
+      const v = getKey(state.scene, p.key);
+      input.value = Array.isArray(v) ? v.join(', ') : '';
+      input.placeholder = Array.isArray(v) ? '' : 'not set';
+    };
+    row._sync();
+    return row;
+  }
+
   function buildField(p) {
+    if (p.list) return buildListField(p);
     const id = fieldId(p.key);
     const row = document.createElement('div');
     row.className = 'field';
@@ -275,6 +375,7 @@
     number.type = 'number';
     number.id = id + '-number';
     number.inputMode = p.integer ? 'numeric' : 'decimal';
+    if (Math.max(Math.abs(p.min), Math.abs(p.max)) >= 1e6) number.classList.add('wide');
     // The help (a tooltip for the mouse) is also a description a screen reader reads with
     // the field, shown under it while the field or its slider has the keyboard's focus; so
     // is the field's error when it has one.
@@ -354,7 +455,11 @@
     row.append(error);
 
     slider.addEventListener('pointerdown', () => startSweep(p.key));
-    slider.addEventListener('keydown', () => startSweep(p.key));
+    // Only a key that moves the slider charts it: Tab through the form must not start (and
+    // abort) a sweep per slider, each a run of analyses on the server (slow with crushing).
+    slider.addEventListener('keydown', (ev) => {
+      if (SLIDER_KEYS.has(ev.key)) startSweep(p.key);
+    });
     slider.addEventListener('input', (ev) => {
       const t = eventTime(ev);
       const v = Number(slider.value);
@@ -637,6 +742,12 @@
     $('v-lambda-relation').textContent = apart ? '≥' : '=';
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);
+    // An upper bound from rigid hinges on a structure that crushes is the rigid structure's.
+    const how = $('v-upper-how');
+    how.textContent = r.upper_rigid ? 'rigid hinges' : 'kinematic';
+    how.title = r.upper_rigid
+      ? 'Found with hinges at the joints\' ends: it ignores the compressive strength, so it is the rigid structure\'s multiplier (an upper bound of this one\'s, not its collapse).'
+      : '';
     let note = STATUS_NOTES[r.status] || '';
     if (r.status === 'collapse') {
       const hinges = Array.isArray(r.hinges) ? r.hinges.length : 0;
@@ -646,6 +757,7 @@
         parts.push(typeof r.gap === 'number' && r.gap < 1e-6
           ? 'bounds agree'
           : 'gap ' + (100 * (r.gap || 0)).toPrecision(2) + ' %' + (r.sliding_governs ? ' (sliding governs)' : ''));
+        if (r.upper_rigid) parts.push('upper bound ignores crushing');
       }
       note = parts.join(' · ');
     }
@@ -684,7 +796,7 @@
     // What `voussoir analyze --json` prints: the answer without the page's extra fields.
     const copy = {};
     for (const [k, v] of Object.entries(r)) {
-      if (k !== 'svg' && k !== 'toml' && k !== 'elapsed_ms') copy[k] = v;
+      if (k !== 'svg' && k !== 'toml' && k !== 'elapsed_ms' && k !== 'upper_rigid') copy[k] = v;
     }
     return JSON.stringify(copy, null, 2) + '\n';
   }
@@ -702,6 +814,14 @@
   async function startSweep(key) {
     const p = state.byKey.get(key);
     if (!p) return;
+    // A list (a stepped pier's widths) has no chart: the parameter charted is charted again
+    // for the changed scene (or the first one there is).
+    if (p.list) {
+      const other = chart.key && chart.key !== key && fieldRow(chart.key) ? chart.key : null;
+      if (other) startSweep(other);
+      else if (!chart.key) firstSweep();
+      return;
+    }
     // The same sweep is not asked twice (the signature leaves out the charted key's own
     // value); a sweep that failed leaves no signature, so the next event tries again.
     const sig = sweepSignature(key);
@@ -767,7 +887,8 @@
 
   // The first chart: of the parameter moved last, else the thickness, if the page shows it.
   function firstSweep() {
-    const key = [state.lastKey, 'arch.thickness'].find((k) => k && state.byKey.has(k) && fieldRow(k));
+    const key = [state.lastKey, 'arch.thickness'].find((k) => k && state.byKey.has(k)
+      && !state.byKey.get(k).list && fieldRow(k));
     if (key) startSweep(key);
     else resetChart();
   }
@@ -792,19 +913,22 @@
       box.replaceChildren(placeholder(chart.error));
       return;
     }
+    const range = rangeOf(p);
+    // Large values in a prefixed unit (MPa for a strength in Pa): short, legible labels.
+    const su = scaledUnit(p.unit, Math.max(Math.abs(range.min), Math.abs(range.max)));
+    const span = scaledValue(range.min, { factor: su.factor, unit: '' }) + '–' + scaledValue(range.max, su);
     if (!chart.rows) {
-      box.replaceChildren(placeholder('Computing λ over ' + rangeOf(p).min + '–' + rangeOf(p).max + (p.unit ? ' ' + prettyUnit(p.unit) : '') + '…'));
+      box.replaceChildren(placeholder('Computing λ over ' + span + '…'));
       return;
     }
     const usable = chart.rows.filter((r) => !r.error);
     if (usable.length === 0) {
       const first = chart.rows.find((r) => r.error);
-      box.replaceChildren(placeholder('No value of ' + p.label + ' in ' + rangeOf(p).min + '–' + rangeOf(p).max
+      box.replaceChildren(placeholder('No value of ' + p.label + ' in ' + span
         + ' could be analysed' + (first ? ': ' + first.error : '.')));
       return;
     }
     const W = 300, H = 184, L = 46, R = 10, T = 12, B = 34;
-    const range = rangeOf(p);
     const xs = [range.min, range.max];
     const x = (v) => L + (v - xs[0]) / (xs[1] - xs[0] || 1) * (W - L - R);
     const finite = (v) => typeof v === 'number' && Number.isFinite(v);
@@ -839,20 +963,21 @@
       svg.append(el('line', { x1: L, x2: W - R, y1: y(v), y2: y(v), class: 'grid' }));
       svg.append(el('text', { x: L - 5, y: y(v) + 3.5, class: 'tick', 'text-anchor': 'end' }, tickLabel(v, yTicks)));
     }
-    const xTicks = niceTicks(xs[0], xs[1], 5);
+    const xTicks = fittingTicks(xs[0] / su.factor, xs[1] / su.factor, W - L - R);
     for (const v of xTicks) {
-      svg.append(el('line', { x1: x(v), x2: x(v), y1: H - B, y2: H - B + 4, class: 'axis' }));
-      svg.append(el('text', { x: x(v), y: H - B + 14, class: 'tick', 'text-anchor': 'middle' }, tickLabel(v, xTicks)));
+      const at = x(v * su.factor);
+      svg.append(el('line', { x1: at, x2: at, y1: H - B, y2: H - B + 4, class: 'axis' }));
+      svg.append(el('text', { x: at, y: H - B + 14, class: 'tick', 'text-anchor': 'middle' }, tickLabel(v, xTicks)));
     }
     svg.append(el('line', { x1: L, x2: W - R, y1: H - B, y2: H - B, class: 'axis' }));
     svg.append(el('line', { x1: L, x2: L, y1: T, y2: H - B, class: 'axis' }));
     svg.append(el('text', { x: (L + W - R) / 2, y: H - 4, class: 'axis-label', 'text-anchor': 'middle' },
-      p.label + (p.unit ? ' (' + prettyUnit(p.unit) + ')' : '')));
+      p.label + (su.unit ? ' (' + prettyUnit(su.unit) + ')' : '')));
     svg.append(el('text', { x: 8, y: (T + H - B) / 2 + 4, class: 'axis-label lambda-axis', 'text-anchor': 'middle' }, 'λ'));
 
     // One polyline per run of rows with a multiplier (rows that failed are skipped; rows
     // without a multiplier break the line).
-    const line = (field, cls) => {
+    const line = (field, cls, include = () => true) => {
       let run = [];
       const flush = () => {
         if (run.length > 1) svg.append(el('polyline', { points: run.join(' '), class: cls }));
@@ -864,14 +989,22 @@
       };
       for (const r of chart.rows) {
         if (r.error) continue;
-        if (finite(r[field])) run.push(x(r.value).toFixed(2) + ',' + y(r[field]).toFixed(2));
+        if (!include(r)) flush();
+        else if (finite(r[field])) run.push(x(r.value).toFixed(2) + ',' + y(r[field]).toFixed(2));
         else flush();
       }
       flush();
     };
-    const differs = chart.rows.some((r) => finite(r.lambda_upper) && finite(r.lambda_lower)
-      && Math.abs(r.lambda_upper - r.lambda_lower) > 1e-6 * Math.max(1, r.lambda_lower));
-    if (differs) line('lambda_upper', 'series-upper');
+    // The upper bound, dashed where it differs from the lower one. Where it comes from a
+    // search with rigid hinges on a structure that crushes (`upper_rigid`: the certified
+    // mechanism about the compressed zones did not apply, e.g. joints that slide), it is the
+    // rigid structure's multiplier, not this one's: dotted and named for what it is.
+    const apart = (r) => finite(r.lambda_upper) && finite(r.lambda_lower)
+      && Math.abs(r.lambda_upper - r.lambda_lower) > 1e-6 * Math.max(1, r.lambda_lower);
+    const differs = chart.rows.some((r) => !r.upper_rigid && apart(r));
+    const rigid = chart.rows.some((r) => r.upper_rigid && apart(r));
+    if (differs) line('lambda_upper', 'series-upper', (r) => !r.upper_rigid);
+    if (rigid) line('lambda_upper', 'series-upper-rigid', (r) => !!r.upper_rigid);
     line('lambda_lower', 'series');
 
     if (typeof current === 'number' && current >= xs[0] && current <= xs[1]) {
@@ -886,9 +1019,11 @@
     legend.className = 'chart-legend';
     const bits = [];
     if (typeof current === 'number' && finite(currentLambda)) {
-      bits.push('at ' + current + (p.unit ? ' ' + prettyUnit(p.unit) : '') + ': λ = ' + currentLambda.toFixed(4));
+      bits.push('at ' + scaledValue(current, su) + ': λ = ' + currentLambda.toFixed(4));
     }
-    if (differs) bits.push('solid: lower bound, dashed: upper');
+    if (differs || rigid) bits.push('solid: lower bound');
+    if (differs) bits.push('dashed: upper bound');
+    if (rigid) bits.push('dotted: upper bound with rigid hinges (ignores crushing)');
     if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');
     if (chart.rows.some((r) => r.status === 'no_collapse')) bits.push('green: stands at any λ');
     if (failed) bits.push(failed + ' of ' + chart.rows.length + ' values refused');

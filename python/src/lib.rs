@@ -177,6 +177,8 @@ fn analysis_error(py: Python<'_>, e: &LibAnalysisError) -> PyErr {
         LibAnalysisError::SolverFailed { .. } => "solver_failed",
         LibAnalysisError::Assembly(_) => "assembly",
         LibAnalysisError::Record(_) => "record",
+        LibAnalysisError::Settings { .. } => "settings",
+        LibAnalysisError::NotForAction { .. } => "not_for_action",
         LibAnalysisError::Other(_) => "other",
     };
     let err = AnalysisError::new_err(e.to_string());

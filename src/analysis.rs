@@ -156,6 +156,7 @@ pub fn direction_for(scene: &Scene, asked: Option<Direction>) -> Result<Directio
 
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
+    options.static_settings.validate()?;
     if options.direction() == Direction::Left {
         seismic_only(
             scene,

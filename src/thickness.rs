@@ -317,6 +317,7 @@ pub fn analyse(
     options: &crate::analysis::Options,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
     let settings = &options.static_settings;
+    settings.validate()?;
     let max_joints = options.kinematic_max_joints;
     let lower = min_thickness(scene, settings)?;
     let joints = crate::scene::build(scene)?.assembly.joints.len();

@@ -790,3 +790,27 @@ fn overflowing_knobs_are_refused_by_name() {
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(err.contains("--criterion"), "{err}");
 }
+
+/// The record is an input: `--history` on it is refused before any run, and the record is
+/// kept (issue 26).
+#[test]
+fn dem_outputs_never_overwrite_the_record_or_each_other() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = block_scene(dir.path());
+    let rec = dir.path().join("rec.csv");
+    let text = "time,acc\n0,0\n0.1,0.1\n0.4,0.1\n0.5,0\n";
+    std::fs::write(&rec, text).expect("record");
+    let out = common::voussoir()
+        .arg("dem")
+        .arg(&scene)
+        .arg("--record")
+        .arg(&rec)
+        .args(["--units", "g", "--history"])
+        .arg(&rec)
+        .output()
+        .expect("run");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("record") && err.contains("rec.csv"), "{err}");
+    assert_eq!(std::fs::read_to_string(&rec).expect("kept"), text);
+}

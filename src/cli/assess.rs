@@ -48,11 +48,16 @@ pub fn run(args: Args) -> Result<String, Error> {
         let sets: Vec<String> = args.site.iter().map(|s| format!("site.{s}")).collect();
         scene = scene.with_overrides(&sets)?;
     }
-    super::check_output_paths([
-        args.svg.as_ref(),
-        args.adrs_svg.as_ref(),
-        args.mechanism_svg.as_ref(),
-    ])?;
+    args.scene
+        .outputs(&scene)
+        .output("--svg", args.svg.as_deref(), super::Format::Svg)
+        .output("--adrs-svg", args.adrs_svg.as_deref(), super::Format::Svg)
+        .output(
+            "--mechanism-svg",
+            args.mechanism_svg.as_deref(),
+            super::Format::Svg,
+        )
+        .check()?;
     if !(args.at.is_finite() && (0.0..=1.0).contains(&args.at)) {
         return Err(Error::Analysis(AnalysisError::Other(format!(
             "--at {}: must be a fraction from 0 to 1",

@@ -1,6 +1,6 @@
 //! `voussoir dem`: the collapse multiplier bracketed by discrete-element runs.
 
-use super::{json, progress_bar, write_chart, write_svg, write_text, SceneArgs};
+use super::{json, progress_bar, write_chart, write_svg, write_text, Format, SceneArgs};
 use voussoir::analysis::{self, DemOptions};
 use voussoir::dem;
 use voussoir::dem::record::{
@@ -252,35 +252,36 @@ fn run_pulse_curve(
     bar.finish_and_clear();
     let rep = report::PulseCurveReport::new(&curve);
     let csv_path = path.with_extension("csv");
-    let err = |e: &dyn std::fmt::Display| Error::Output {
-        path: csv_path.clone(),
-        message: e.to_string(),
-    };
-    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| err(&e))?;
-    w.write_record([
-        "shape",
-        "period_s",
-        "amplitude_survives_m_s2",
-        "amplitude_collapses_m_s2",
-        "amplitude_collapses_g",
-        "runs",
-    ])
-    .map_err(|e| err(&e))?;
-    for p in &rep.points {
+    // Written whole through a temporary, as every output (super::write_atomically).
+    super::write_atomically(&csv_path, |buf| {
+        let err = |e: &dyn std::fmt::Display| e.to_string();
+        let mut w = csv::Writer::from_writer(buf);
         w.write_record([
-            p.shape.to_string(),
-            format!("{}", p.period),
-            format!("{:.6}", p.amplitude_survives),
-            p.amplitude_collapses
-                .map_or(String::new(), |a| format!("{a:.6}")),
-            p.amplitude_collapses.map_or(String::new(), |a| {
-                format!("{:.6}", a / record::STANDARD_GRAVITY)
-            }),
-            p.runs.to_string(),
+            "shape",
+            "period_s",
+            "amplitude_survives_m_s2",
+            "amplitude_collapses_m_s2",
+            "amplitude_collapses_g",
+            "runs",
         ])
         .map_err(|e| err(&e))?;
-    }
-    w.flush().map_err(|e| err(&e))?;
+        for p in &rep.points {
+            w.write_record([
+                p.shape.to_string(),
+                format!("{}", p.period),
+                format!("{:.6}", p.amplitude_survives),
+                p.amplitude_collapses
+                    .map_or(String::new(), |a| format!("{a:.6}")),
+                p.amplitude_collapses.map_or(String::new(), |a| {
+                    format!("{:.6}", a / record::STANDARD_GRAVITY)
+                }),
+                p.runs.to_string(),
+            ])
+            .map_err(|e| err(&e))?;
+        }
+        w.flush().map_err(|e| err(&e))?;
+        Ok(())
+    })?;
     let series = pulses
         .iter()
         .map(|&p| {
@@ -341,30 +342,30 @@ fn run_dynamic(
     }
     let d = analysis::dem_dynamic(scene, motion, &settings)?;
     if let Some(path) = &args.history {
-        let err = |e: &dyn std::fmt::Display| Error::Output {
-            path: path.clone(),
-            message: e.to_string(),
-        };
-        let mut w = csv::Writer::from_path(path).map_err(|e| err(&e))?;
-        w.write_record([
-            "time_s",
-            "ground_acceleration_m_s2",
-            "displacement_m",
-            "rotation_rad",
-            "ground_acceleration_vertical_m_s2",
-        ])
-        .map_err(|e| err(&e))?;
-        for h in &d.result.history {
+        super::write_atomically(path, |buf| {
+            let err = |e: &dyn std::fmt::Display| e.to_string();
+            let mut w = csv::Writer::from_writer(buf);
             w.write_record([
-                format!("{:.6}", h.time),
-                format!("{:.6e}", h.ground_acceleration),
-                format!("{:.9e}", h.displacement),
-                format!("{:.9e}", h.rotation),
-                format!("{:.6e}", h.ground_acceleration_vertical),
+                "time_s",
+                "ground_acceleration_m_s2",
+                "displacement_m",
+                "rotation_rad",
+                "ground_acceleration_vertical_m_s2",
             ])
             .map_err(|e| err(&e))?;
-        }
-        w.flush().map_err(|e| err(&e))?;
+            for h in &d.result.history {
+                w.write_record([
+                    format!("{:.6}", h.time),
+                    format!("{:.6e}", h.ground_acceleration),
+                    format!("{:.9e}", h.displacement),
+                    format!("{:.9e}", h.rotation),
+                    format!("{:.6e}", h.ground_acceleration_vertical),
+                ])
+                .map_err(|e| err(&e))?;
+            }
+            w.flush().map_err(|e| err(&e))?;
+            Ok(())
+        })?;
     }
     let rep = report::DynamicReport::new(scene, &d);
     if let Some(path) = &args.animation {
@@ -415,6 +416,25 @@ fn state_plan(
 pub fn run(args: Args) -> Result<String, Error> {
     stop_on_ctrl_c();
     let scene = args.scene.load()?;
+    // Every file this run reads and writes, checked at once before any work: no output on an
+    // input (the scene, its blocks, a record) or on another output, each named for its format.
+    let mut outputs = args.scene.outputs(&scene);
+    for (what, path) in [
+        ("the record", &args.record),
+        ("the vertical record", &args.record_vertical),
+    ] {
+        if let Some(path) = path {
+            outputs = outputs.input(path, what);
+        }
+    }
+    let curve_csv = args.pulse_curve.as_ref().map(|p| p.with_extension("csv"));
+    outputs
+        .output("--svg", args.svg.as_deref(), Format::Svg)
+        .output("--history", args.history.as_deref(), Format::Csv)
+        .output("--animation", args.animation.as_deref(), Format::Html)
+        .output("--pulse-curve", args.pulse_curve.as_deref(), Format::Svg)
+        .output("the pulse curve's CSV", curve_csv.as_deref(), Format::Csv)
+        .check()?;
     // clap lets `--periods` through beside `--pulse` (which excludes `--pulse-curve`): a
     // curve's option without the curve would be ignored, so it is refused.
     if args.pulse_curve.is_none() && !(args.periods.is_empty() && args.shapes.is_empty()) {
@@ -423,7 +443,6 @@ pub fn run(args: Args) -> Result<String, Error> {
         )));
     }
     if let Some(path) = &args.pulse_curve {
-        super::check_output_paths([Some(path)])?;
         let periods: &[f64] = if args.periods.is_empty() {
             analysis::PULSE_CURVE_PERIODS
         } else {
@@ -445,7 +464,6 @@ pub fn run(args: Args) -> Result<String, Error> {
         })));
     }
     if let Some(motion) = excitation(&args)? {
-        super::check_output_paths([args.history.as_ref(), args.animation.as_ref()])?;
         state_plan(&args, &scene, Some(motion.duration() + args.tail.max(0.0)))?;
         return run_dynamic(&args, &scene, &motion);
     }
@@ -466,7 +484,6 @@ pub fn run(args: Args) -> Result<String, Error> {
             message: "animates a dynamic run: give a --record or a --pulse".to_string(),
         })));
     }
-    super::check_output_paths([args.svg.as_ref()])?;
     state_plan(&args, &scene, None)?;
     let options = DemOptions {
         tolerance: args.tolerance,

@@ -14,7 +14,7 @@ pub mod serve;
 pub mod study;
 pub mod sweep;
 
-pub use outputs::{check_output_paths, write_atomically, write_text, Format, Outputs};
+pub use outputs::{write_atomically, write_text, Format, Outputs};
 use std::path::{Path, PathBuf};
 use voussoir::assembly::Assembly;
 use voussoir::error::{Error, SceneError};

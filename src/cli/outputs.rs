@@ -290,16 +290,6 @@ pub fn check_output_path(path: &Path) -> Result<(), Error> {
         .map_err(|e| fail(e.to_string()))
 }
 
-/// [`check_output_path`] for each path given.
-pub fn check_output_paths<'a>(
-    paths: impl IntoIterator<Item = Option<&'a PathBuf>>,
-) -> Result<(), Error> {
-    paths
-        .into_iter()
-        .flatten()
-        .try_for_each(|p| check_output_path(p))
-}
-
 /// Write a file whole or not at all: `write` fills a buffer, which goes to a new temporary
 /// file in the target's directory (a unique name: two runs never share it, and no file of the
 /// user's is touched), is flushed to the disk (fsync), and is then renamed over `path` (an
@@ -360,7 +350,6 @@ mod tests {
         assert!(files_in(dir.path()).is_empty());
         assert!(check_output_path(&dir.path().join("missing/a.csv")).is_err());
         assert!(check_output_path(dir.path()).is_err());
-        assert!(check_output_paths([Some(&ok), None]).is_ok());
     }
 
     #[test]

@@ -76,7 +76,6 @@ pub struct StaticResult {
 
 /// Run the static analysis of `model` (an assembly and its loads).
 pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult, AnalysisError> {
-    settings.validate()?;
     if settings.program == Program::Auto && model.assembly.is_chain() {
         // The chain's program is exact when its vertex step lands; when it does not (a
         // degenerate optimum) or the interior-point solve falls short, the full program,

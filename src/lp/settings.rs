@@ -1,6 +1,8 @@
 //! Settings of the static analysis, gathered in one struct with documented defaults and
-//! checked by [`StaticSettings::validate`] wherever an analysis starts (CLI, Python, the
-//! page's server and the library alike: [`crate::lp::analyse`] calls it).
+//! checked by [`StaticSettings::validate`] where an analysis of a scene starts
+//! (`crate::analysis::analyse` and `crate::thickness::analyse`, which the CLI, Python and the
+//! page's server call). The program itself ([`crate::lp::analyse`]) takes any tolerance, so
+//! the convergence study can measure what a looser one costs in accuracy.
 
 use crate::error::AnalysisError;
 pub use crate::outcome::Direction;

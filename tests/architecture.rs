@@ -171,3 +171,35 @@ fn crate_paths_reads_code_only() {
     let got: Vec<String> = crate_paths(text).into_iter().collect();
     assert_eq!(got, ["a", "c"]);
 }
+
+/// The model is built once per analysis: reading a scene builds nothing, `analyze` (with the
+/// continuous model too) builds once, and the static minimum-thickness search once per
+/// trial thickness (plus the hinges at the minimum found).
+#[test]
+fn the_model_is_built_once_per_analysis() {
+    use voussoir::scene::{builds_on_this_thread as builds, Scene};
+    let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[[loads]]\ntype = \"line\"\nfrom_x = -0.5\nto_x = 0.2\nintensity = 1000.0\n";
+    let before = builds();
+    let scene = Scene::from_toml_str(text, "test").expect("scene");
+    let overridden = scene.with_thickness(0.2).expect("override");
+    assert_eq!(builds(), before, "reading a scene builds no model");
+    assert!(overridden.loads.len() == 1);
+    for continuous in [false, true] {
+        let options = voussoir::analysis::Options {
+            continuous,
+            ..Default::default()
+        };
+        let start = builds();
+        let a = voussoir::analysis::analyse(&scene, &options).expect("analysis");
+        assert!(a.lower.lambda.is_some());
+        assert_eq!(builds() - start, 1, "analyze (continuous {continuous})");
+    }
+    let start = builds();
+    let t = voussoir::thickness::min_thickness(&scene, &Default::default()).expect("search");
+    assert!(t.search.min_thickness.is_some());
+    assert_eq!(
+        builds() - start,
+        t.search.evaluations as u64 + 1,
+        "one build per trial thickness and one at the minimum"
+    );
+}

@@ -720,10 +720,14 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
         },
         Err(_) => None,
     };
-    let second = match upper {
+    let mut second = match upper {
         Some(u) => format!("{lower}, {u}"),
         None => lower,
     };
+    if a.model.loads.action() == crate::model::Action::Live {
+        // λ multiplies the live loads: say so where a reader expects an acceleration.
+        second = format!("adequacy factor of the live loads: {second}");
+    }
     match &scene.arch {
         Some(arch) => format!(
             "{}, t = {} m, {} voussoirs\n{second}",

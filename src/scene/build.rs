@@ -24,8 +24,22 @@ use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
 use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
 
-/// Build the assembly and load case of a scene.
+thread_local! {
+    /// Models built on this thread ([`build`] calls): see [`builds_on_this_thread`].
+    static BUILDS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// How many models [`build`] has built on the calling thread so far: a test counts the builds
+/// an analysis makes (one per analysis, one per step of a thickness search), and the counter
+/// costs one increment per build.
+pub fn builds_on_this_thread() -> u64 {
+    BUILDS.with(std::cell::Cell::get)
+}
+
+/// Build the assembly and load case of a scene: the one place a scene becomes a model, run
+/// once per analysis (a [`Scene`] holds values only).
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
+    BUILDS.with(|b| b.set(b.get() + 1));
     let strength = crate::model::Strength {
         compressive: scene.material.compressive_strength,
         depth: scene.material.depth,

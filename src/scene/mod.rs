@@ -9,7 +9,7 @@ mod build;
 mod piers;
 pub mod units;
 mod user_blocks;
-pub use build::build;
+pub use build::{build, builds_on_this_thread};
 pub use piers::{Pier, PierProfile, Piers};
 pub use user_blocks::{BlockSource, BlocksSpec};
 
@@ -873,12 +873,16 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         table,
         base_dir: base_dir.map(Path::to_path_buf),
     };
-    // Loads are placed on blocks here too (a point outside every block is an error of the
-    // scene, whatever the command).
-    let model = build(&scene)?;
+    // A scene holds values, never a model: the one build is the analysis's (`build`), where a
+    // load outside every block is reported as this scene's error. The [dem] knobs are checked
+    // here, each against its own range, so a typo is caught whatever the command; the checks
+    // that need the blocks (a contact tolerance against the shortest joint) run with the DEM.
     if !scene.dem.is_empty() {
-        // The [dem] knobs are validated here too, so a typo is caught whatever the command.
-        let mut p = crate::dem::IntegrationParameters::for_model(&model);
+        let nothing = crate::assembly::Assembly {
+            blocks: Vec::new(),
+            joints: Vec::new(),
+        };
+        let mut p = crate::dem::IntegrationParameters::for_assembly(&nothing);
         p.apply_table(&scene.dem, &scene.origin)?;
     }
     Ok(scene)

@@ -397,7 +397,10 @@ fn a_running_bond_wall_is_no_chain_and_static_and_dem_agree() {
 /// A scene refused: the error's text.
 fn refused(toml: &str, files: &[(&str, &[u8])]) -> String {
     let dir = tempfile::tempdir().expect("tempdir");
-    match scene_in(dir.path(), toml, files) {
+    // Refused when read, or when its model is built (a fill over no block top).
+    let built = scene_in(dir.path(), toml, files)
+        .and_then(|s| voussoir::scene::build(&s).map_err(|e| e.to_string()));
+    match built {
         Ok(_) => panic!("accepted: {toml}"),
         Err(e) => e,
     }

@@ -906,7 +906,10 @@ fn bad_cases() -> Vec<(String, &'static str, &'static str)> {
 #[test]
 fn bad_loads_name_their_key_and_value() {
     for (text, key, value) in bad_cases() {
-        let e = match Scene::from_toml_str(&text, "bad.toml") {
+        // A scene is refused when read, or when its model is built (a load on no block).
+        let e = match Scene::from_toml_str(&text, "bad.toml")
+            .and_then(|s| voussoir::scene::build(&s).map(|_| s))
+        {
             Ok(_) => panic!("scene should be rejected:\n{text}"),
             Err(e) => e,
         };
@@ -1199,7 +1202,9 @@ fn loads_that_miss_or_overflow_are_refused() {
             "fill.unit_weight",
         ),
     ] {
-        let e = Scene::from_toml_str(&format!("{base}{extra}"), "t.toml").expect_err(extra);
+        let e = Scene::from_toml_str(&format!("{base}{extra}"), "t.toml")
+            .and_then(|s| voussoir::scene::build(&s).map(|_| s))
+            .expect_err(extra);
         assert_eq!(e.key(), Some(key), "{e}");
     }
 }

@@ -274,7 +274,7 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
     }
     let live = scene.loads.iter().filter(|l| l.live()).count() as u64;
     if live > 0 {
-        parts.push(format!("{live} of them live"));
+        parts.push(format!("{live} live (multiplied by lambda)"));
     }
     match model.loads.action() {
         crate::model::Action::Seismic => format!(

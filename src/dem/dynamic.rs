@@ -14,7 +14,7 @@
 //! switched off, and energy is lost only where the contact law loses it, in the contact
 //! dashpots at impacts (`contact_damping`, 0.3 of critical by default) and by Coulomb sliding.
 //! For a rocking block this gives a coefficient of restitution of its own, measured against
-//! Housner's (1963) `1 - 1.5 sin^2(alpha)` in `tests/dem_dynamic.rs` and docs/dem.md.
+//! Housner's (1963) `1 - 1.5 sin^2(alpha)` in `tests/it/dem_dynamic.rs` and docs/dem.md.
 
 use super::world::{Load, World};
 use super::{

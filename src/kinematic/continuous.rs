@@ -29,7 +29,7 @@
 //!   a point load on the ring acts on the side of a section its polar angle lies on (in a
 //!   pointed arch's keystone when it lies there); seismic masses follow their loads. This is
 //!   the limit of the discrete arch with curved voussoirs, whose blocks carry the same loads
-//!   by the same definitions (`tests/loads.rs` checks the convergence).
+//!   by the same definitions (`tests/it/loads.rs` checks the convergence).
 //! - Piers are kept as given: a coursed pier has horizontal bed joints, and a crack across a
 //!   course would be a tensile fracture of a stone, which the no-tension model excludes; so a
 //!   pier can only hinge or open at its bed joints (base, course joints), and the

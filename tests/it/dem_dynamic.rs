@@ -11,7 +11,7 @@ use voussoir::dem::{IntegrationParameters, Simulation};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
 
-mod common;
+use crate::common;
 
 const G: f64 = 9.81;
 

@@ -2,7 +2,7 @@
 //! correct multiplier, or a clear status or error — never NaN, a panic, or a solver failure
 //! reported as a number.
 
-mod common;
+use crate::common;
 use common::*;
 use voussoir::lp::{self, StaticResult, StaticSettings, Status};
 use voussoir::scene::Scene;

@@ -2,7 +2,7 @@
 //! `live = true` (issue 22). Closed forms and virtual work derived here, agreement of the
 //! bounds over shapes and load positions, the DEM's bracket, and the refusals.
 
-mod common;
+use crate::common;
 
 use voussoir::analysis::{self, KinematicMode, Options};
 use voussoir::geometry::Vec2;

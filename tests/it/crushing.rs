@@ -1,7 +1,7 @@
 //! Finite compressive strength (issue 13): closed forms, the rigid limit, monotonicity,
 //! hinge positions, the scaling law and full = chain with the crushing cones.
 
-mod common;
+use crate::common;
 use common::*;
 use voussoir::assembly::JointEnd;
 use voussoir::lp::{self, Program, StaticSettings, Status};

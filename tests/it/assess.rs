@@ -2,7 +2,7 @@
 //! kinematics, the NTC 2018 spectrum and the checks, against closed forms derived here, the
 //! static bound, and the DEM started from configurations on the capacity curve.
 
-mod common;
+use crate::common;
 
 use common::{data, hjoint, model_of, rect, single_block, voussoir};
 use voussoir::analysis::{self, AssessOptions, Options};

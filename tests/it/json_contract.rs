@@ -1,7 +1,7 @@
 //! The JSON printed by the CLI is a contract for scripts: later versions add fields, never
 //! rename or remove them. These lists pin every field that exists today.
 
-mod common;
+use crate::common;
 use common::{data, voussoir};
 
 fn json(args: &[&str], scene: &str) -> serde_json::Value {

@@ -2,7 +2,7 @@
 //! give the same answers; closed forms of single and stacked blocks; a wall that is not a
 //! chain, static against DEM; bad files refused with clear errors; the example scenes.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use voussoir::analysis::{self, KinematicMode, Options};

@@ -3,7 +3,7 @@
 //! meets the static lower bound (certifying lambda_c); any window gives an upper bound; and a
 //! search that finds nothing claims nothing.
 
-mod common;
+use crate::common;
 
 use voussoir::analysis::{self, Options};
 use voussoir::kinematic::{self, KinematicError, KinematicResult, KinematicSettings, Search};

@@ -9,7 +9,7 @@
 //! free motion after it, theta'' = p^2 (theta - alpha), passes the upright-over-the-corner
 //! position theta = alpha when theta' / p >= alpha - theta, i.e. u (e^{p t1} - 1) >= alpha.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 use std::path::Path;
@@ -179,7 +179,7 @@ fn component_y_acts_vertically() {
 }
 
 /// `--record-vertical`: a vertical record acting with the horizontal one, scaled alike. The
-/// block 0.1 x 1 uplifts at a_h = (g + a_v) tan(alpha) (see tests/dem_dynamic.rs): a
+/// block 0.1 x 1 uplifts at a_h = (g + a_v) tan(alpha) (see tests/it/dem_dynamic.rs): a
 /// horizontal 0.09 g held for 2 s (below g tan(alpha) = 0.1 g) leaves it standing alone, and
 /// overturns it with a vertical -0.2 g (threshold 0.08 g); a vertical +0.2 g keeps it
 /// standing. The JSON and the history CSV carry the vertical motion.

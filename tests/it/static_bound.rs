@@ -1,7 +1,7 @@
 //! Static (lower-bound) analysis: published values, hand-derived values, equilibrium,
 //! invariance and statuses.
 
-mod common;
+use crate::common;
 use common::*;
 use voussoir::assembly::JointEnd;
 use voussoir::lp::{self, Direction, StaticSettings, Status};

@@ -3,7 +3,7 @@
 //! settings behave as documented, and the 1000-voussoir acceptance case (library path; its
 //! timing lives in `benches/`).
 
-mod common;
+use crate::common;
 
 use assert_cmd::Command;
 use voussoir::analysis::{self, Options};

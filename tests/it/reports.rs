@@ -1,7 +1,7 @@
 //! What a newcomer reads (issue 11): the summaries, titles and CSV of the reports say what
 //! they mean in words, with numbers formatted for reading.
 
-mod common;
+use crate::common;
 use common::{data, scene, voussoir};
 use voussoir::analysis::{self, DemOptions, Options};
 use voussoir::kinematic::Family;

@@ -322,7 +322,7 @@ fn analyze_json_is_unchanged_for_bundled_and_random_scenes() {
     }
     // Cases by name: a scene bundled since the baseline has nothing to compare with, but
     // every case of the baseline must still be there.
-    let baseline = include_str!("data/json_baseline.txt");
+    let baseline = include_str!("../data/json_baseline.txt");
     let expected: std::collections::BTreeMap<&str, &str> = baseline
         .lines()
         .filter_map(|l| l.split_once('\t'))

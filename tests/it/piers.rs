@@ -10,7 +10,7 @@
 //!   directions on a small grid; a mirrored portal loaded the other way gives the same lambda;
 //!   unequal piers give different, mirror-consistent values.
 
-mod common;
+use crate::common;
 
 use common::{model_of, scene};
 use voussoir::kinematic::{self, KinematicSettings};

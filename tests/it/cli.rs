@@ -1,6 +1,6 @@
 //! End-to-end runs of the `voussoir` binary.
 
-mod common;
+use crate::common;
 use common::{data, voussoir};
 
 #[test]

@@ -1,0 +1,36 @@
+//! The integration tests, one binary (each file a module): the library and its CLI checked
+//! from outside, as a user and an independent check would. One binary links the library once
+//! instead of once per file (docs/performance.md has the build times).
+
+mod common;
+
+mod architecture;
+mod assess;
+mod bad_input;
+mod blocks;
+mod bounds;
+mod cli;
+mod cli_dem;
+mod convergence;
+mod crushing;
+mod dem;
+mod dem_brackets;
+mod dem_dynamic;
+mod dem_fuzz;
+mod dem_record;
+mod extremes;
+mod json_contract;
+mod json_unchanged;
+mod kinematic;
+mod live_loads;
+mod loads;
+mod local_search;
+mod piers;
+mod proptest_scenes;
+mod reduced;
+mod reports;
+mod serve_api;
+mod static_bound;
+mod studies;
+mod svg;
+mod sweep;

@@ -75,7 +75,7 @@ fn main() {
     // 1b. A live action costs what a seismic one does: the same semicircle with a point load
     //     near quarter span, as a live load (the adequacy factor) and as a permanent load
     //     under the seismic action.
-    println!("Live against seismic action (`analysis::analyse`, defaults), semicircle t/R = 0.15 with a 5 kN point load near quarter span, one thread, median\n");
+    println!("Live against seismic action (`analysis::analyse`, defaults), semicircle t/R = 0.15 with a 1 kN point load near quarter span, one thread, median\n");
     println!("| n | action | lambda_lower | lambda_upper | upper bound | total ms |");
     println!("|---:|---|---:|---:|---|---:|");
     for n in [64usize, 1000] {
@@ -90,7 +90,7 @@ fn main() {
         let reps = (20_000 / n).clamp(5, 2000);
         for (action, flag) in [("seismic", "seismic = false"), ("live", "live = true")] {
             let text = format!(
-                "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = {n}\n[action]\nkind = \"{action}\"\n[[loads]]\ntype = \"point\"\nat = [{:?}, {:?}]\nforce = [0.0, -5000.0]\n{flag}\n",
+                "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = {n}\n[action]\nkind = \"{action}\"\n[[loads]]\ntype = \"point\"\nat = [{:?}, {:?}]\nforce = [0.0, -1000.0]\n{flag}\n",
                 at.x, at.y
             );
             let scene = Scene::from_toml_str(&text, "bench").expect("valid scene");

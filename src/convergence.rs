@@ -29,11 +29,11 @@ use std::time::Instant;
 
 use crate::analysis::KINEMATIC_DEFAULT_MAX_JOINTS;
 use crate::dem::{self, IntegrationParameters};
+use crate::drawing::chart::{Chart, Series};
 use crate::kinematic::{self, KinematicSettings};
 use crate::lp::{self, Direction, StaticSettings, Status};
 use crate::model::Model;
 use crate::scene::Scene;
-use crate::thrustline::chart::{Chart, Series};
 
 /// Errors of the convergence study (a failed row is recorded in the row, not here).
 #[derive(Debug, thiserror::Error)]

@@ -25,11 +25,11 @@
 //! ...
 //! ```
 
+use crate::drawing::chart::{Chart, Series};
 use crate::error::SceneError;
 use crate::lp::StaticSettings;
 use crate::scene::Scene;
 use crate::sweep::{self, SweepRow, Variation};
-use crate::thrustline::chart::{Chart, Series};
 use std::path::Path;
 use toml::{Table, Value};
 

@@ -966,7 +966,7 @@ pub fn chart(
     x: &str,
     series: Option<&str>,
     title: &str,
-) -> Result<crate::thrustline::chart::Chart, SceneError> {
+) -> Result<crate::drawing::chart::Chart, SceneError> {
     chart_of(variations, rows, x, series, title, None)
 }
 
@@ -978,8 +978,8 @@ pub fn chart_of(
     series: Option<&str>,
     title: &str,
     y: Option<&str>,
-) -> Result<crate::thrustline::chart::Chart, SceneError> {
-    use crate::thrustline::chart::{Chart, Series};
+) -> Result<crate::drawing::chart::Chart, SceneError> {
+    use crate::drawing::chart::{Chart, Series};
     let x_index = variations.iter().position(|v| v.key == x);
     if x_index.is_none() && !DERIVED_KEYS.contains(&x) {
         return Err(SceneError::BadChart {

@@ -423,7 +423,7 @@ impl Scene {
     /// Jupyter shows it inline. A scene whose blocks cannot be built raises the library's
     /// error.
     fn _repr_svg_(&self, py: Python<'_>) -> PyResult<String> {
-        use voussoir::thrustline::svg::{structure_svg, Drawing};
+        use voussoir::drawing::svg::{structure_svg, Drawing};
         let model = voussoir::scene::build(&self.inner).map_err(|e| scene_error(py, &e))?;
         let drawing = Drawing {
             title: report::shape_title(&self.inner),
@@ -666,7 +666,7 @@ fn assess_svg(
             };
             voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title, &note)
         };
-        Ok(voussoir::thrustline::chart::chart_svg(&chart).map_err(|e| e.to_string()))
+        Ok(voussoir::drawing::chart::chart_svg(&chart).map_err(|e| e.to_string()))
     })?;
     out.map_err(|e: LibAnalysisError| analysis_error(py, &e))?
         .map_err(PyValueError::new_err)

@@ -1,4 +1,4 @@
-//! The charts of an assessment, as data for [`crate::thrustline::chart`]: the capacity curves
+//! The charts of an assessment, as data for [`crate::drawing::chart`]: the capacity curves
 //! (the multiplier α against the control displacement `dₖ`, one curve per direction
 //! assessed) and the ADRS plot of the governing direction (spectral acceleration against
 //! spectral displacement: the capacity `a*(d*)` against the elastic demand spectrum
@@ -8,8 +8,8 @@
 //! symbols (α₀, dₖ, m/s²), not the JSON keys.
 
 use super::{Capacity, Verdict};
+use crate::drawing::chart::{Chart, Series};
 use crate::outcome::Direction;
-use crate::thrustline::chart::{Chart, Series};
 
 /// The point of the curve at spectral displacement `d` (linear between the curve's points):
 /// `(d_k, alpha, d*, a*)`, None outside the curve.

@@ -2,10 +2,10 @@
 
 use super::{json, write_chart, write_svg, Dir, SceneArgs};
 use voussoir::analysis;
+use voussoir::drawing::svg::{Drawing, Placements};
 use voussoir::error::{AnalysisError, Error};
 use voussoir::outcome::Direction;
 use voussoir::report::assessment::{assessment_summary, AssessmentReport};
-use voussoir::thrustline::svg::{Drawing, Placements};
 
 #[derive(clap::Args)]
 pub struct Args {

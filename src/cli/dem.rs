@@ -6,10 +6,10 @@ use voussoir::dem;
 use voussoir::dem::record::{
     self, AccelUnit, Component, Excitation, GroundInput, Pulse, PulseShape, RecordError,
 };
+use voussoir::drawing::chart::{Chart, Series};
+use voussoir::drawing::svg::{self, Drawing};
 use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
-use voussoir::thrustline::chart::{Chart, Series};
-use voussoir::thrustline::svg::{self, Drawing};
 
 #[derive(clap::Args)]
 pub struct Args {

@@ -2,11 +2,11 @@
 
 use super::{json, write_svg, Format, SceneArgs};
 use voussoir::analysis;
+use voussoir::drawing::svg::Drawing;
 use voussoir::error::Error;
 use voussoir::lp::StaticSettings;
 use voussoir::report;
 use voussoir::thickness;
-use voussoir::thrustline::svg::Drawing;
 
 #[derive(clap::Args)]
 pub struct Args {

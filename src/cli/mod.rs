@@ -17,9 +17,9 @@ pub mod sweep;
 pub use outputs::{write_atomically, write_text, Format, Outputs};
 use std::path::{Path, PathBuf};
 use voussoir::assembly::Assembly;
+use voussoir::drawing::svg::{self, Drawing};
 use voussoir::error::{Error, SceneError};
 use voussoir::scene::{BlockSource, Scene};
-use voussoir::thrustline::svg::{self, Drawing};
 
 /// Direction of the horizontal acceleration, as the command line names it.
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -119,8 +119,8 @@ impl SceneArgs {
 }
 
 /// Draw a chart to an SVG file.
-pub fn write_chart(path: &Path, chart: &voussoir::thrustline::chart::Chart) -> Result<(), Error> {
-    let text = voussoir::thrustline::chart::chart_svg(chart).map_err(|e| Error::Output {
+pub fn write_chart(path: &Path, chart: &voussoir::drawing::chart::Chart) -> Result<(), Error> {
+    let text = voussoir::drawing::chart::chart_svg(chart).map_err(|e| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;

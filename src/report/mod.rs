@@ -20,8 +20,8 @@ pub fn analysis_svg(
     scene: &crate::scene::Scene,
     a: &crate::analysis::SceneAnalysis,
     direction: crate::outcome::Direction,
-) -> Result<String, crate::thrustline::svg::SvgError> {
-    use crate::thrustline::svg::{structure_svg, Drawing, Mechanism};
+) -> Result<String, crate::drawing::svg::SvgError> {
+    use crate::drawing::svg::{structure_svg, Drawing, Mechanism};
     let result = &a.lower;
     let drawing = Drawing {
         title: drawing_title(scene, a),

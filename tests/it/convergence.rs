@@ -120,7 +120,7 @@ fn csv_and_chart_match_rows() {
         assert!((x - (row.voussoirs as f64).log10()).abs() < 1e-12);
         assert!((y - row.error_lower.expect("error").abs().log10()).abs() < 1e-12);
     }
-    let svg = voussoir::thrustline::chart::chart_svg(&chart).expect("svg");
+    let svg = voussoir::drawing::chart::chart_svg(&chart).expect("svg");
     assert!(svg.contains("static lower bound"));
 }
 

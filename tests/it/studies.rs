@@ -5,9 +5,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use voussoir::drawing::chart::{chart_svg, Chart};
 use voussoir::study::{Baseline, Study};
 use voussoir::sweep::SweepRow;
-use voussoir::thrustline::chart::{chart_svg, Chart};
 
 fn study_files() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/studies");

@@ -4,15 +4,15 @@
 
 use roxmltree::{Document, Node};
 use voussoir::assembly::{Assembly, Hinge};
+use voussoir::drawing::chart::{self, Chart, Series};
+use voussoir::drawing::svg::{
+    self, Drawing, Mechanism, Placements, SvgError, DASH, POINT_LOAD_SHARE,
+};
+use voussoir::drawing::thrust_points;
 use voussoir::geometry::Vec2;
 use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use voussoir::model::{LoadSource, Model};
 use voussoir::scene::Scene;
-use voussoir::thrustline::chart::{self, Chart, Series};
-use voussoir::thrustline::svg::{
-    self, Drawing, Mechanism, Placements, SvgError, DASH, POINT_LOAD_SHARE,
-};
-use voussoir::thrustline::thrust_points;
 
 fn scene(text: &str) -> Scene {
     Scene::from_toml_str(text, "test").expect("valid scene")

@@ -3,7 +3,7 @@
 //! `draw_structure` draws an [`Assembly`] to scale with equal axes, and on top of it what a
 //! [`Drawing`] asks for:
 //! - the thrust line (line of pressure): the points `p_mid + (M/N) u` where the resultant
-//!   crosses each joint (`thrustline::thrust_points`), joined in joint order;
+//!   crosses each joint (`drawing::thrust_points`), joined in joint order;
 //! - hinges as circles at the joint end where the resultant (or the rotation centre) sits,
 //!   numbered 1, 2, ... in the order given (chain order, the order of the text summary);
 //! - sliding joints as thick orange segments;

@@ -3,7 +3,7 @@
 //! cross-check, and the paper-style sweep with both bounds. Plain `harness = false` program
 //! printing Markdown tables; run with `cargo bench --bench limit`. Targets: static + certified
 //! n = 64 <= 0.05 ms and n = 1000 <= 0.5 ms (one thread, growth ~ n^1); min-thickness of a
-//! 100-joint chain <= 50 ms; the 2,040-case sweep >= 20,000 cases/s on two threads; a live
+//! 100-joint chain <= 50 ms; the 2,000-case sweep >= 20,000 cases/s on two threads; a live
 //! action (the adequacy factor) at n = 64 and 1000 costs about what a seismic one does.
 
 use std::time::Instant;

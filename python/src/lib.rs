@@ -472,14 +472,21 @@ fn kinematic_mode(k: &str) -> PyResult<KinematicMode> {
     }
 }
 
+/// The analysis options; `dir` is the caller's direction, None for the default (toward +x).
+/// A live action has no direction: one asked for is refused, as the CLI's `--direction`
+/// (`analysis::direction_for`).
 fn options(
-    dir: &str,
+    py: Python<'_>,
+    scene: &LibScene,
+    dir: Option<&str>,
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
 ) -> PyResult<Options> {
+    let asked = dir.map(direction).transpose()?;
+    let d = analysis::direction_for(scene, asked).map_err(|e| analysis_error(py, &e))?;
     Ok(Options {
-        static_settings: StaticSettings::default().direction(direction(dir)?),
+        static_settings: StaticSettings::default().direction(d),
         kinematic_max_joints,
         kinematic: kinematic_mode(kinematic)?,
         continuous,
@@ -492,16 +499,23 @@ fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
 
 /// `analyze --json` of a scene, as JSON text (solved on a worker thread, Ctrl-C answered).
 #[pyfunction]
-#[pyo3(signature = (scene, direction = "right", continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
 fn analyze_json(
     py: Python<'_>,
     scene: &Scene,
-    direction: &str,
+    direction: Option<&str>,
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
 ) -> PyResult<String> {
-    let options = options(direction, continuous, kinematic, kinematic_max_joints)?;
+    let options = options(
+        py,
+        &scene.inner,
+        direction,
+        continuous,
+        kinematic,
+        kinematic_max_joints,
+    )?;
     let lib_scene = scene.inner.clone();
     let (lib_scene, a) = interruptible(py, Arc::default(), move || {
         let a = analysis::analyse(&lib_scene, &options);
@@ -514,16 +528,23 @@ fn analyze_json(
 /// The drawing `analyze --svg` writes (blocks, thrust line, hinges, mechanism, loads), as SVG
 /// text: `report::analysis_svg` of the same analysis as `analyze_json`.
 #[pyfunction]
-#[pyo3(signature = (scene, direction = "right", continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
 fn analysis_svg(
     py: Python<'_>,
     scene: &Scene,
-    direction: &str,
+    direction: Option<&str>,
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
 ) -> PyResult<String> {
-    let options = options(direction, continuous, kinematic, kinematic_max_joints)?;
+    let options = options(
+        py,
+        &scene.inner,
+        direction,
+        continuous,
+        kinematic,
+        kinematic_max_joints,
+    )?;
     let dir = options.direction();
     let lib_scene = scene.inner.clone();
     let out = interruptible(py, Arc::default(), move || {
@@ -978,7 +999,14 @@ fn sweep_rows<'py>(
     kinematic: &str,
     kinematic_max_joints: usize,
 ) -> PyResult<Bound<'py, PyList>> {
-    let options = options("right", continuous, kinematic, kinematic_max_joints)?;
+    let options = options(
+        py,
+        &scene.inner,
+        None,
+        continuous,
+        kinematic,
+        kinematic_max_joints,
+    )?;
     let mut variations = Vec::new();
     for (k, v) in vary.iter() {
         let k: String = k.extract()?;

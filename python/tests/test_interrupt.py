@@ -26,7 +26,7 @@ CALLS = {
         scene = voussoir.Scene.from_toml_str(
             '[blocks]\\npolygons = [[[-0.1, 0.0], [0.1, 0.0], [0.1, 1.0], [-0.1, 1.0]]]\\n'
             '[material]\\nfriction = "inf"\\n')
-        voussoir.dem_dynamic(scene, pulse="sine", amplitude=0.1, period=0.5, tail=30000.0)
+        voussoir.dem_dynamic(scene, pulse="sine", amplitude=0.1, period=0.5, tail=2000.0)
     """,
     "dem": """
         scene = voussoir.Scene.from_toml(str(REPO / "data" / "semicircular.toml"))

@@ -214,7 +214,7 @@ class DemResult(Report):
 
 def analyze(
     scene: Scene,
-    direction: str = "right",
+    direction: Optional[str] = None,
     continuous: bool = False,
     *,
     kinematic: str = "certified",
@@ -224,7 +224,10 @@ def analyze(
     hinges and mechanism, the kinematic upper bound, and with ``continuous=True`` the
     continuous model, as ``voussoir analyze --json`` reports them.
 
-    ``direction``: ``"right"`` (+x) or ``"left"``. ``kinematic``: ``"certified"`` (the
+    ``direction``: ``"right"`` (+x, the default) or ``"left"``; a scene whose ``[action]``
+    is ``"live"`` (lambda the adequacy factor of its live loads) has no direction, and giving
+    one raises :class:`AnalysisError` (``kind = "not_for_action"``), as ``--direction`` does.
+    ``kinematic``: ``"certified"`` (the
     mechanism of the static hinges, falling back to a search) or ``"exhaustive"``;
     ``kinematic_max_joints`` bounds the exhaustive search (0 turns the kinematic analysis
     off). The GIL is released while the library solves. Raises :class:`SceneError` for a

@@ -3,14 +3,14 @@
 //! voussoirs, rigid next to fc = 20 MPa and 1 MPa, on the chain program (`Program::Auto`: the
 //! active set when rigid, Clarabel with the crushing cones otherwise) and on the full program
 //! (Clarabel, with the cones when crushing). Run with `cargo bench --bench crushing`. One
-//! thread; each time is the median of repeated runs of `lp::analyse`.
+//! thread; each time is the median of repeated runs of `statics::analyse`.
 //!
 //! A plain table (`harness = false`), as the other benches.
 
 use std::time::Instant;
 
-use voussoir::lp::{self, Program, StaticSettings};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Program, StaticSettings};
 
 fn semicircle(n: usize, fc: f64) -> Scene {
     Scene::from_toml_str(
@@ -41,7 +41,7 @@ fn main() {
                 let mut last = None;
                 for _ in 0..runs {
                     let start = Instant::now();
-                    let r = lp::analyse(&model, &settings).expect("solves");
+                    let r = statics::analyse(&model, &settings).expect("solves");
                     times.push(start.elapsed().as_secs_f64());
                     last = Some(r);
                 }

@@ -4,8 +4,8 @@
 
 use std::time::Instant;
 use voussoir::dem;
-use voussoir::lp;
 use voussoir::scene::Scene;
+use voussoir::statics;
 
 fn main() {
     let cases = [
@@ -56,7 +56,7 @@ fn main() {
         };
         let clock = Instant::now();
         // The static bound starts the bracket, as the CLI does; its time is included.
-        let lower = lp::analyse(&m, &lp::StaticSettings::default())
+        let lower = statics::analyse(&m, &statics::StaticSettings::default())
             .ok()
             .and_then(|r| r.lambda);
         let r = match dem::collapse_multiplier(&m, &p.initial_guess(lower), 0.01, &mut |_| {}) {

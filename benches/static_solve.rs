@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
 use voussoir::convergence::loglog_slope;
-use voussoir::lp::{self, Objective, StaticProblem, StaticSettings};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Objective, StaticProblem, StaticSettings};
 
 fn semicircle(n: usize) -> Scene {
     Scene::from_toml_str(
@@ -27,7 +27,7 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Clarabel's settings as `lp::analyse` makes them, adjusted by `f`.
+/// Clarabel's settings as `statics::analyse` makes them, adjusted by `f`.
 fn settings(
     linear_solver: &str,
     f: impl Fn(&mut DefaultSettingsBuilder<f64>),
@@ -44,7 +44,7 @@ fn settings(
     b.build().expect("valid settings")
 }
 
-/// n, lp::analyse time, time per iteration, iterations, setup time, faer time.
+/// n, statics::analyse time, time per iteration, iterations, setup time, faer time.
 type Row = (f64, f64, f64, f64, f64, f64);
 
 struct Split {
@@ -92,7 +92,7 @@ fn split(scene: &Scene, s: clarabel::solver::DefaultSettings<f64>) -> Split {
 fn main() {
     let ns = [16usize, 32, 64, 128, 256, 512, 1000, 2000];
     println!("Static solve, semicircle t/R = 0.15 (median of repeated runs, one thread)\n");
-    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | lp::analyse_full ms | faer ms |");
+    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | statics::analyse_full ms | faer ms |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for n in ns {
@@ -115,7 +115,7 @@ fn main() {
                 .map(|_| {
                     let t = Instant::now();
                     let m = voussoir::scene::build(&scene).expect("valid model");
-                    lp::analyse_full(&m, &StaticSettings::default()).expect("solves");
+                    statics::analyse_full(&m, &StaticSettings::default()).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),
@@ -129,7 +129,7 @@ fn main() {
                         linear_solver: "faer".into(),
                         ..StaticSettings::default()
                     };
-                    lp::analyse_full(&m, &s).expect("solves");
+                    statics::analyse_full(&m, &s).expect("solves");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),
@@ -158,7 +158,7 @@ fn main() {
         loglog_slope(&pts).map_or("-".to_string(), |e| format!("{e:.2}"))
     };
     println!(
-        "\nfitted exponents (n >= 64, least squares on log-log): lp::analyse_full n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}, faer n^{}",
+        "\nfitted exponents (n >= 64, least squares on log-log): statics::analyse_full n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}, faer n^{}",
         fit(|r| r.1),
         fit(|r| r.2),
         fit(|r| r.3),
@@ -210,14 +210,14 @@ fn main() {
     reduced_against_full();
 }
 
-/// The chain's reduced program (four unknowns, `lp::analyse_chain`) against the full one.
+/// The chain's reduced program (four unknowns, `statics::analyse_chain`) against the full one.
 fn reduced_against_full() {
     println!("\nReduced chain program (lambda, H, V, M0) against the full program, semicircle t/R = 0.15 (median, one thread)\n");
     println!(
         "| n | lambda full | lambda reduced (exact vertex) | full ms | reduced ms | speed-up |"
     );
     println!("|---:|---:|---:|---:|---:|---:|");
-    let settings = voussoir::lp::StaticSettings::default();
+    let settings = voussoir::statics::StaticSettings::default();
     for n in [16usize, 64, 256, 1000, 4000, 20000] {
         let m = voussoir::scene::build(&semicircle(n)).expect("valid model");
         let reps = if n >= 4000 { 3 } else { 9 };
@@ -232,13 +232,13 @@ fn reduced_against_full() {
             (l, median(ts))
         };
         let (lf, tf) = time(&|| {
-            voussoir::lp::analyse_full(&m, &settings)
+            voussoir::statics::analyse_full(&m, &settings)
                 .expect("full")
                 .lambda
                 .unwrap_or(f64::NAN)
         });
         let (lr, tr) = time(&|| {
-            voussoir::lp::analyse_chain(&m, &settings)
+            voussoir::statics::analyse_chain(&m, &settings)
                 .expect("reduced")
                 .lambda
                 .unwrap_or(f64::NAN)

@@ -8,9 +8,9 @@ use crate::error::AnalysisError;
 use crate::kinematic::{
     self, ContinuousResult, KinematicError, KinematicResult, KinematicSettings, Search,
 };
-use crate::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use crate::model::{Action, Model};
 use crate::scene::Scene;
+use crate::statics::{self, Direction, StaticResult, StaticSettings, Status};
 
 /// Joints up to which `analyze` runs the exhaustive kinematic search by default: its cost
 /// candidate count grows as joints^4, its measured cost as about joints^3.6
@@ -164,7 +164,7 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         )?;
     }
     let model = crate::scene::build(scene)?;
-    let lower = lp::analyse(&model, &options.static_settings)?;
+    let lower = statics::analyse(&model, &options.static_settings)?;
     let (mut upper, kinematic_search) = upper_bound(&model, &lower, options);
     if model.strength.is_finite() && kinematic_search != Some(Search::Certified) {
         // The searches enumerate hinges at the joint ends: say so, since their multiplier is
@@ -410,7 +410,7 @@ pub fn dem(
     progress: &mut dyn FnMut(f64),
 ) -> Result<DemAnalysis, AnalysisError> {
     let model = crate::scene::build(scene)?;
-    let lower = lp::analyse(&model, &StaticSettings::default())?;
+    let lower = statics::analyse(&model, &StaticSettings::default())?;
     let (lower_simulated, chord_polygons) = simulated_static(&model, lower.lambda)?;
     let mut result = dem_of(scene, &model, lower.lambda, options, progress)?;
     result
@@ -501,7 +501,10 @@ pub fn simulated_static(
 ) -> Result<(Option<f64>, bool), AnalysisError> {
     match crate::dem::simulated_model(model) {
         None => Ok((lambda_lower, false)),
-        Some(m) => Ok((lp::analyse(&m, &StaticSettings::default())?.lambda, true)),
+        Some(m) => Ok((
+            statics::analyse(&m, &StaticSettings::default())?.lambda,
+            true,
+        )),
     }
 }
 
@@ -657,7 +660,7 @@ pub fn dem_pulse_curve(
     }
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
-    let lower = lp::analyse(&model, &StaticSettings::default())?;
+    let lower = statics::analyse(&model, &StaticSettings::default())?;
     let lambda_lower = lower.lambda.filter(|l| *l > 0.0);
     let g = params.gravity;
     let start = lambda_lower.unwrap_or(0.1) * g;

@@ -4,7 +4,7 @@
 //! Three studies:
 //! 1. **Refinement**: the arch is cut into n = 8, 16, 32, ... voussoirs (doubling, up to
 //!    [`ConvergenceSettings::max_voussoirs`]); for each n the static lower bound (the conic
-//!    program of [`crate::lp`]) and, where the chain is small enough, the discrete kinematic
+//!    program of [`crate::statics`]) and, where the chain is small enough, the discrete kinematic
 //!    upper bound are computed and compared with the continuous model ([`crate::analysis::
 //!    continuous`], hinges anywhere: the limit n -> infinity). A discrete arch can only
 //!    hinge at its joints, so it is stronger than the continuum and its multiplier falls
@@ -31,9 +31,9 @@ use crate::analysis::KINEMATIC_DEFAULT_MAX_JOINTS;
 use crate::dem::{self, IntegrationParameters};
 use crate::drawing::chart::{Chart, Series};
 use crate::kinematic::{self, KinematicSettings};
-use crate::lp::{self, Direction, StaticSettings, Status};
 use crate::model::Model;
 use crate::scene::Scene;
+use crate::statics::{self, Direction, StaticSettings, Status};
 
 /// Errors of the convergence study (a failed row is recorded in the row, not here).
 #[derive(Debug, thiserror::Error)]
@@ -351,12 +351,12 @@ pub fn run(
             // The study is of the interior-point solver's tolerance, so it runs the full
             // program: the chain program's exact vertex step removes the tolerance's effect on
             // lambda wherever it finds the vertex.
-            let r = lp::analyse(
+            let r = statics::analyse(
                 &model,
                 &static_settings
                     .clone()
                     .tolerance(tol)
-                    .program(lp::Program::Full),
+                    .program(statics::Program::Full),
             );
             let time_s = clock.elapsed().as_secs_f64();
             tolerances.push(match r {
@@ -400,7 +400,7 @@ pub fn run(
             .min(scene.parametric("the convergence study")?.voussoirs);
         let small = with_voussoirs(scene, n)?;
         let model = crate::scene::build(&small)?;
-        let lambda_static = lp::analyse(&model, &static_settings)
+        let lambda_static = statics::analyse(&model, &static_settings)
             .ok()
             .and_then(|r| r.lambda);
         let base = crate::analysis::dem_parameters(&small, &model)?;
@@ -486,7 +486,7 @@ fn refine_row(
         }
     };
     let assembly = &model.assembly;
-    let lower = lp::analyse(&model, static_settings);
+    let lower = statics::analyse(&model, static_settings);
     row.lower_time_s = clock.elapsed().as_secs_f64();
     row.joints = assembly.joints.len();
     match lower {

@@ -331,7 +331,7 @@ pub enum AnalysisError {
     /// A ground-motion record or pulse that cannot be read or used.
     #[error(transparent)]
     Record(#[from] RecordError),
-    /// A method's setting out of its range (`crate::lp::StaticSettings::validate`).
+    /// A method's setting out of its range (`crate::statics::StaticSettings::validate`).
     #[error("{setting} = {value}: must be {allowed}")]
     Settings {
         setting: String,

@@ -15,7 +15,6 @@ pub mod drawing;
 pub mod error;
 pub mod geometry;
 pub mod kinematic;
-pub mod lp;
 pub mod model;
 pub mod outcome;
 pub mod overrides;
@@ -24,6 +23,7 @@ pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;
 pub mod spectrum;
+pub mod statics;
 pub mod study;
 pub mod sweep;
 pub mod thickness;

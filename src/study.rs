@@ -27,8 +27,8 @@
 
 use crate::drawing::chart::{Chart, Series};
 use crate::error::SceneError;
-use crate::lp::StaticSettings;
 use crate::scene::Scene;
+use crate::statics::StaticSettings;
 use crate::sweep::{self, SweepRow, Variation};
 use std::path::Path;
 use toml::{Table, Value};

@@ -8,8 +8,8 @@
 use crate::analysis::{self, Options};
 use crate::assembly::{Hinge, JointEnd};
 use crate::error::SceneError;
-use crate::lp::StaticSettings;
 use crate::scene::{parse_assignment, Scene};
+use crate::statics::StaticSettings;
 use rayon::prelude::*;
 use toml::Value;
 

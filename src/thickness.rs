@@ -9,9 +9,9 @@
 use crate::assembly::Hinge;
 use crate::error::AnalysisError;
 use crate::kinematic::{self, KinematicSettings};
-use crate::lp::{self, StandResult, StaticSettings, Status};
 use crate::model::Model;
 use crate::scene::Scene;
+use crate::statics::{self, StandResult, StaticSettings, Status};
 
 /// Relative tolerance of the bisection on t.
 pub const DEFAULT_REL_TOL: f64 = 1e-9;
@@ -128,7 +128,7 @@ pub struct MinThickness {
 
 /// Whether the static program finds equilibrium at lambda = 0.
 pub fn stands_static(scene: &Scene, settings: &StaticSettings) -> Result<bool, AnalysisError> {
-    lp::stands_at_rest(&crate::scene::build(scene)?, settings)
+    statics::stands_at_rest(&crate::scene::build(scene)?, settings)
 }
 
 /// The static minimum thickness of `scene`.
@@ -147,7 +147,7 @@ pub fn min_thickness(
     let mut at_minimum = None;
     if let Some(t) = search.min_thickness {
         let model = crate::scene::build(&scene.with_thickness(t)?)?;
-        let r = lp::stands(&model, settings)?;
+        let r = statics::stands(&model, settings)?;
         hinges = r.hinges.clone();
         at_minimum = Some((model, r));
     }
@@ -240,12 +240,13 @@ pub fn certify_min_thickness(
         }
     };
     // The direction whose largest multiplier is (nearly) zero at hi is the one that binds.
-    let mut governing: Option<lp::StaticResult> = None;
+    let mut governing: Option<statics::StaticResult> = None;
     for d in [
         crate::outcome::Direction::Right,
         crate::outcome::Direction::Left,
     ] {
-        let r = lp::analyse(model, &settings.clone().direction(d)).map_err(|e| e.to_string())?;
+        let r =
+            statics::analyse(model, &settings.clone().direction(d)).map_err(|e| e.to_string())?;
         if r.status == Status::Collapse
             && governing.as_ref().is_none_or(|g| {
                 r.lambda.unwrap_or(f64::INFINITY) < g.lambda.unwrap_or(f64::INFINITY)

@@ -18,10 +18,10 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString};
 use toml::{Table, Value};
 use voussoir::analysis::{self, DemOptions, KinematicMode, Options};
 use voussoir::error::{AnalysisError as LibAnalysisError, SceneError as LibSceneError};
-use voussoir::lp::StaticSettings;
 use voussoir::outcome::Direction;
 use voussoir::report;
 use voussoir::scene::Scene as LibScene;
+use voussoir::statics::StaticSettings;
 use voussoir::sweep::{self, SweepRow, Variation};
 
 use std::sync::atomic::{AtomicBool, Ordering};

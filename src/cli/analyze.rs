@@ -3,8 +3,8 @@
 use super::{json, write_atomically, Dir, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::Error;
-use voussoir::lp::StaticSettings;
 use voussoir::report;
+use voussoir::statics::StaticSettings;
 
 #[derive(clap::Args)]
 pub struct Args {

@@ -4,8 +4,8 @@ use super::{json, write_svg, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::drawing::svg::Drawing;
 use voussoir::error::Error;
-use voussoir::lp::StaticSettings;
 use voussoir::report;
+use voussoir::statics::StaticSettings;
 use voussoir::thickness;
 
 #[derive(clap::Args)]

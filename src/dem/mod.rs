@@ -51,8 +51,8 @@ pub use protocol::{Onset, Outcome, Run, Snapshot};
 use crate::assembly::{Assembly, Hinge};
 use crate::error::AnalysisError;
 use crate::geometry::Vec2;
-use crate::lp;
 use crate::model::Model;
+use crate::statics;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -542,7 +542,7 @@ pub fn collapse_multiplier(
     }
     let (guess, guess_source) = match params.initial_guess {
         Some(g) => (g, GuessSource::Given),
-        None => match lp::analyse(model, &lp::StaticSettings::default()) {
+        None => match statics::analyse(model, &statics::StaticSettings::default()) {
             Ok(r) if r.lambda.is_some_and(|l| l > 0.0) => {
                 (r.lambda.unwrap_or(0.2), GuessSource::Static)
             }

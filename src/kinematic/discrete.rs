@@ -31,8 +31,8 @@ use super::{
 };
 use crate::assembly::{Assembly, Hinge, JointEnd};
 use crate::geometry::{cross, Vec2};
-use crate::lp::{StaticResult, Status};
 use crate::model::Model;
+use crate::statics::{StaticResult, Status};
 use rayon::prelude::*;
 use std::time::Instant;
 

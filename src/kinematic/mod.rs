@@ -36,7 +36,7 @@
 //! `A = d sum(W vx)` (d = +-1 the load direction), the seed paper's equation.
 //! Equilibrium at lambda is possible iff `lambda A <= G` for every admissible mechanism, so
 //! the static set of multipliers is `[max_{A<0} G/A, min_{A>0} G/A]` (LP duality with the
-//! static program of `crate::lp`). Hence:
+//! static program of `crate::statics`). Hence:
 //! - `Collapse`: the interval is non-empty and its top `lambda_upper = min_{A>0} G/A >= 0`;
 //! - `NoCollapse`: no admissible mechanism is driven by the load (`A > 0`), the top is open;
 //! - `CannotStand`: `min_{A>0} G/A < 0` (a mechanism runs even against a load pushing it back,

@@ -2,7 +2,7 @@
 
 use super::joint_label;
 use crate::assembly::Assembly;
-use crate::lp::StaticResult;
+use crate::statics::StaticResult;
 
 /// Write the thrust line as CSV: one row per joint.
 pub fn write_thrust_csv<W: std::io::Write>(

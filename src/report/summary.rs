@@ -5,10 +5,10 @@ use crate::analysis::SceneAnalysis;
 use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
 use crate::geometry::Stereotomy;
 use crate::kinematic::{Family, Search};
-use crate::lp::StaticResult;
 use crate::model::Model;
 use crate::outcome::{Direction, Status};
 use crate::scene::{LoadSpec, Scene, VoussoirShape};
+use crate::statics::StaticResult;
 use crate::thickness::{MinThickness, ThicknessOutcome};
 use std::fmt::Write as _;
 

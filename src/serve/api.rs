@@ -14,10 +14,10 @@
 use super::{parameters, Limits, ServerState};
 use crate::analysis::{self, Options};
 use crate::error::{AnalysisError, SceneError};
-use crate::lp::StaticSettings;
 use crate::outcome::Direction;
 use crate::report;
 use crate::scene::Scene;
+use crate::statics::StaticSettings;
 use crate::sweep::{self, Sweep, Variation};
 use axum::body::Bytes;
 use axum::extract::rejection::{BytesRejection, QueryRejection};

@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 use voussoir::analysis::{self, KinematicMode, Options};
 use voussoir::assembly::{Assembly, JointKind};
 use voussoir::geometry::Vec2;
-use voussoir::lp::{self, StaticSettings, Status};
 use voussoir::outcome::Direction;
 use voussoir::scene::Scene;
+use voussoir::statics::{self, StaticSettings, Status};
 
 /// A JSON block file of the polygons of `assembly`, in its block order.
 fn json_of(assembly: &Assembly) -> String {
@@ -640,7 +640,7 @@ fn units_and_renumbering_do_not_change_lambda() {
          [piers]\nheight = 1.0\nwidth = 0.3\ncourses = 2\n",
     );
     let model = common::model_of(&p);
-    let reference = lp::analyse(&model, &StaticSettings::default())
+    let reference = statics::analyse(&model, &StaticSettings::default())
         .expect("static")
         .lambda
         .expect("lambda");
@@ -906,8 +906,8 @@ fn example_block_files_are_current_and_analyse() {
         "[arch]\nshape = \"pointed\"\nradius = 3.0\neccentricity = 0.6\nthickness = 0.45\nvoussoirs = 12\n\
          [[loads]]\ntype = \"line\"\nfrom_x = -0.3\nto_x = 0.3\nintensity = 20000\n",
     );
-    let ls = lp::analyse(&common::model_of(&s), &StaticSettings::default()).expect("static");
-    let lp_ = lp::analyse(&common::model_of(&p), &StaticSettings::default()).expect("static");
+    let ls = statics::analyse(&common::model_of(&s), &StaticSettings::default()).expect("static");
+    let lp_ = statics::analyse(&common::model_of(&p), &StaticSettings::default()).expect("static");
     let (a, b) = (ls.lambda.expect("lambda"), lp_.lambda.expect("lambda"));
     assert!(close(a, b, 1e-9), "DXF arch {a} vs parametric {b}");
 }
@@ -1122,7 +1122,7 @@ fn a_byte_order_mark_is_accepted_in_every_block_format() {
     let csv = b"block,x,y\na,0,0\na,1,0\na,1,1\na,0,1\nb,0,1\nb,1,1\nb,1,2\nb,0,2\n";
     let bom = |b: &[u8]| [b"\xef\xbb\xbf".as_slice(), b].concat();
     let lambda = |scene: Scene| {
-        lp::analyse(&scene.model().expect("model"), &StaticSettings::default())
+        statics::analyse(&scene.model().expect("model"), &StaticSettings::default())
             .expect("static")
             .lambda
     };

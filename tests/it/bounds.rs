@@ -8,8 +8,8 @@
 
 use voussoir::assembly::JointEnd;
 use voussoir::kinematic::{self, KinematicSettings};
-use voussoir::lp::{self, Direction, StaticSettings, Status};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticSettings, Status};
 
 struct Case {
     label: String,
@@ -142,8 +142,8 @@ fn static_and_kinematic_bounds_coincide() {
         let asm = voussoir::scene::build(&scene).expect("valid model");
         for dir in [Direction::Right, Direction::Left] {
             let settings = StaticSettings::default().direction(dir);
-            let st = lp::analyse_chain(&asm, &settings).expect("reduced program");
-            let full = lp::analyse_full(&asm, &settings).expect("full program");
+            let st = statics::analyse_chain(&asm, &settings).expect("reduced program");
+            let full = statics::analyse_full(&asm, &settings).expect("full program");
             let kin = kinematic::analyse(&asm, &KinematicSettings::default().direction(dir))
                 .expect("kinematic");
             let label = format!("{} {:?}", case.label, dir);
@@ -252,7 +252,7 @@ fn finite_friction_static_stays_below_kinematic() {
             );
             let scene = Scene::from_toml_str(&text, "friction").expect("scene");
             let asm = voussoir::scene::build(&scene).expect("valid model");
-            let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
+            let st = statics::analyse(&asm, &StaticSettings::default()).expect("static");
             let kin = kinematic::analyse(&asm, &KinematicSettings::default()).expect("kinematic");
             let (Some(ls), Some(lk)) = (st.lambda, kin.lambda_upper) else {
                 continue;

@@ -8,7 +8,7 @@ use crate::common;
 use assert_cmd::Command;
 use voussoir::analysis::{self, Options};
 use voussoir::convergence::{self, loglog_slope, ConvergenceSettings, DemCase};
-use voussoir::lp::Status;
+use voussoir::statics::Status;
 
 fn quiet() -> impl FnMut(&str) {
     |_| {}

@@ -4,9 +4,9 @@
 use crate::common;
 use common::*;
 use voussoir::assembly::JointEnd;
-use voussoir::lp::{self, Program, StaticSettings, Status};
 use voussoir::model::{equilibrium_residual, Model, Strength};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Program, StaticSettings, Status};
 
 fn strength(fc: f64, depth: f64) -> Strength {
     Strength {
@@ -21,8 +21,8 @@ fn with_fc(scene: &Scene, fc: f64) -> Scene {
         .expect("valid override")
 }
 
-fn analyse(model: &Model, program: Program) -> lp::StaticResult {
-    lp::analyse(model, &StaticSettings::default().program(program)).expect("solves")
+fn analyse(model: &Model, program: Program) -> statics::StaticResult {
+    statics::analyse(model, &StaticSettings::default().program(program)).expect("solves")
 }
 
 fn lambda_of(scene: &Scene, program: Program) -> f64 {
@@ -98,7 +98,7 @@ fn single_block_closed_form() {
         );
         assert_eq!(r.status, Status::CannotStand, "{}", r.solver_status);
         assert!(r.lambda.is_none());
-        let stand = lp::stands(
+        let stand = statics::stands(
             &model.clone().with_strength(strength(0.99 * fc_full, d)),
             &StaticSettings::default(),
         )
@@ -245,7 +245,7 @@ fn full_program_equals_chain_program_with_cones() {
             assert_eq!(chain.status, full.status, "{name} {fc:e}");
             if let (Some(a), Some(b)) = (chain.lambda, full.lambda) {
                 assert!((a - b).abs() <= 1e-9, "{name} {fc:e}: chain {a} full {b}");
-                let joints = |r: &lp::StaticResult| {
+                let joints = |r: &statics::StaticResult| {
                     r.hinges
                         .iter()
                         .map(|h| (h.joint, h.end))
@@ -289,7 +289,7 @@ fn minimum_thickness_grows_as_the_strength_falls() {
         let (lo, hi) = m.search.bracket.expect("bracket");
         let stands = |t: f64| {
             let model = model_of(&s.with_thickness(t).expect("thickness"));
-            lp::stands(&model, &StaticSettings::default())
+            statics::stands(&model, &StaticSettings::default())
                 .expect("runs")
                 .stands
         };
@@ -388,7 +388,7 @@ fn dem_and_continuous_refuse_finite_strength() {
         "{err}"
     );
     assert!(err.to_string().contains("compressive_strength"), "{err}");
-    let err = voussoir::analysis::continuous(&s, lp::Direction::Right).expect_err("refused");
+    let err = voussoir::analysis::continuous(&s, statics::Direction::Right).expect_err("refused");
     assert!(
         matches!(
             err,
@@ -464,10 +464,10 @@ fn mirror_invariance_with_crushing() {
         1e6,
     );
     let model = model_of(&s);
-    let right = lp::analyse(&model, &StaticSettings::default()).expect("solves");
-    let left = lp::analyse(
+    let right = statics::analyse(&model, &StaticSettings::default()).expect("solves");
+    let left = statics::analyse(
         &model.mirrored(),
-        &StaticSettings::default().direction(lp::Direction::Left),
+        &StaticSettings::default().direction(statics::Direction::Left),
     )
     .expect("solves");
     let (a, b) = (
@@ -475,7 +475,7 @@ fn mirror_invariance_with_crushing() {
         left.lambda.expect("collapse"),
     );
     assert!((a - b).abs() <= 1e-9, "{a} vs {b}");
-    let offsets = |r: &lp::StaticResult| {
+    let offsets = |r: &statics::StaticResult| {
         let mut o: Vec<f64> = r.hinges.iter().map(|h| h.offset).collect();
         o.sort_by(f64::total_cmp);
         o

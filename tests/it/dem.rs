@@ -5,9 +5,9 @@
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind};
 use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
 use voussoir::geometry::Vec2;
-use voussoir::lp::{self, Status};
 use voussoir::model::Model;
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Status};
 
 /// A rectangular block b x h standing on the ground (one support joint along its base).
 fn block(b: f64, h: f64, mu: f64) -> Assembly {
@@ -126,7 +126,7 @@ fn single_block_slides_at_mu() {
 /// `tol` well below 1% makes the DEM find its own threshold inside.
 fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
     let m = build(s);
-    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+    let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse);
     let lower = st.lambda.expect("lambda");
     let p = voussoir::analysis::dem_parameters(s, &m).expect("params");
@@ -216,7 +216,7 @@ fn sliding_case_against_the_associative_bound() {
     for (t, mu) in [(0.25, 0.35), (0.15, 0.4)] {
         let s = arch(16, t, mu);
         let m = build(&s);
-        let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+        let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
         let assoc = st.lambda.expect("collapse");
         assert!(!st.sliding.is_empty());
         let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
@@ -248,7 +248,7 @@ fn sliding_case_against_the_associative_bound() {
 fn an_arch_that_cannot_stand_says_so() {
     let s = arch(16, 0.25, 0.3);
     let m = build(&s);
-    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+    let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
     let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
     let r = run(&m, &p, 0.01);
@@ -415,11 +415,11 @@ fn loaded_bracket_contains_static(
 ) -> (f64, f64, f64) {
     let m = build(loaded);
     assert!(!m.loads.is_self_weight_only(), "{name}: no loads");
-    let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+    let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse, "{name}");
     let lower = st.lambda.expect("lambda");
     let bare = build(unloaded);
-    let bare_lower = lp::analyse(&bare, &lp::StaticSettings::default())
+    let bare_lower = statics::analyse(&bare, &statics::StaticSettings::default())
         .expect("static")
         .lambda
         .expect("lambda");
@@ -524,7 +524,7 @@ fn single_block_with_a_point_load_rocks_at_the_hand_value() {
         });
         let s = if seismic { load } else { 0.0 };
         let exact = (w * 0.5 * b + load * (0.5 * b - x)) / (w * 0.5 * h + s * y);
-        let st = lp::analyse(&m, &lp::StaticSettings::default()).expect("static");
+        let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
         let lower = st.lambda.expect("lambda");
         assert!(
             (lower / exact - 1.0).abs() < 1e-6,

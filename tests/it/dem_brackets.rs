@@ -128,7 +128,7 @@ fn curved_voussoirs_are_compared_with_their_chord_polygons() {
         .expect("polygon");
     let poly_model = voussoir::scene::build(&poly_scene).expect("model");
     assert!(dem::simulated_model(&poly_model).is_none());
-    let direct = voussoir::lp::analyse(&poly_model, &Default::default())
+    let direct = voussoir::statics::analyse(&poly_model, &Default::default())
         .expect("static")
         .lambda
         .expect("lambda");

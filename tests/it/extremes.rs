@@ -4,14 +4,14 @@
 
 use crate::common;
 use common::*;
-use voussoir::lp::{self, StaticResult, StaticSettings, Status};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, StaticResult, StaticSettings, Status};
 use voussoir::thickness;
 
 fn analyse(s: &Scene) -> StaticResult {
     let m = model_of(s);
     let a = &m.assembly;
-    let r = lp::analyse(&m, &StaticSettings::default()).expect("no solver failure");
+    let r = statics::analyse(&m, &StaticSettings::default()).expect("no solver failure");
     if let Some(l) = r.lambda {
         assert!(l.is_finite() && l >= 0.0);
         assert!(r.equilibrium_residual < 1e-8 * a.total_weight());

@@ -13,8 +13,8 @@
 
 use serde_json::Value;
 use voussoir::analysis::{self, Options};
-use voussoir::lp::{Direction, StaticSettings};
 use voussoir::scene::Scene;
+use voussoir::statics::{Direction, StaticSettings};
 
 /// Fields added to the JSON contract since the baseline, ignored in the comparison, and
 /// `file` (a block file's path, which depends on where the checkout is).

@@ -6,9 +6,9 @@ use voussoir::geometry::{polygon_area_centroid, Vec2};
 use voussoir::kinematic::{
     self, HingeLocation, KinematicError, KinematicResult, KinematicSettings,
 };
-use voussoir::lp::{self, Direction, StaticSettings, Status};
 use voussoir::model::Model;
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticSettings, Status};
 
 fn rect(x0: f64, x1: f64, y0: f64, y1: f64) -> Block {
     let polygon = vec![
@@ -79,7 +79,7 @@ fn single_block_overturns_at_b_over_h() {
         .expect("kinematic");
         assert!((kl.lambda_upper.expect("lambda") - b / h).abs() < 1e-12);
         assert_eq!(kl.mechanism.expect("m").hinges[0].end, JointEnd::P2);
-        let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
+        let st = statics::analyse(&asm, &StaticSettings::default()).expect("static");
         assert!((st.lambda.expect("static lambda") - b / h).abs() < 1e-7);
     }
 }
@@ -110,7 +110,7 @@ fn stepped_column_matches_hand_values() {
     // The whole-column value at the base is the hand value too: check it with a column
     // without the top two joints' freedom (one block of the same weights would differ), so
     // only compare the static bound.
-    let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
+    let st = statics::analyse(&asm, &StaticSettings::default()).expect("static");
     assert!((st.lambda.expect("static") - 0.3).abs() < 1e-7);
     // Remove the top block: joint 1 governs at 0.6 * 0.5 * ... = 0.3 * 0.6 / 0.3 = 0.6 / 1
     // (block of width 0.6, height 1 alone: b/h = 0.6) versus joint 0: 0.5 * 1.6 / (0.5 + 0.9)
@@ -164,7 +164,7 @@ fn portal_frame_sways_at_b_over_h() {
     // The lintel translates: no rotation, velocity along (h, b).
     let v = m.velocities[1];
     assert!(v[2].abs() < 1e-12 && (v[1] / v[0] - b / h).abs() < 1e-12);
-    let st = lp::analyse(&asm, &StaticSettings::default()).expect("static");
+    let st = statics::analyse(&asm, &StaticSettings::default()).expect("static");
     assert!((st.lambda.expect("static") - b / h).abs() < 1e-7);
 }
 
@@ -352,7 +352,7 @@ fn kinematic_minimum_thickness_matches_static() {
     }
     let tk = 0.5 * (lo + hi);
     let status = |t: f64| {
-        lp::analyse(
+        statics::analyse(
             &voussoir::scene::build(&base.with_thickness(t).expect("t")).expect("valid model"),
             &StaticSettings::default(),
         )

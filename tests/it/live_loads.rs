@@ -6,9 +6,9 @@ use crate::common;
 
 use voussoir::analysis::{self, KinematicMode, Options};
 use voussoir::geometry::Vec2;
-use voussoir::lp::Status;
 use voussoir::model::Action;
 use voussoir::scene::Scene;
+use voussoir::statics::Status;
 
 fn scene(text: &str) -> Scene {
     Scene::from_toml_str(text, "test").unwrap_or_else(|e| panic!("scene: {e}\n{text}"))
@@ -218,7 +218,7 @@ fn live_on_a_seismic_action_changes_nothing() {
         static_settings: opts
             .static_settings
             .clone()
-            .direction(voussoir::lp::Direction::Left),
+            .direction(voussoir::statics::Direction::Left),
         ..exhaustive()
     };
     let live_l = analysis::analyse(&scene(&load("live = true")), &left).expect("live");
@@ -347,7 +347,7 @@ fn live_action_refusals() {
         "fill",
     );
     let s = scene(&format!("{arch}[action]\nkind = \"live\"\n{live_load}"));
-    let e = analysis::direction_for(&s, Some(voussoir::lp::Direction::Left))
+    let e = analysis::direction_for(&s, Some(voussoir::statics::Direction::Left))
         .expect_err("direction refused")
         .to_string();
     assert!(e.contains("--direction") && e.contains("live"), "{e}");

@@ -8,9 +8,9 @@ use proptest::test_runner::RngSeed;
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
 use voussoir::kinematic::{self, KinematicResult, KinematicSettings};
-use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use voussoir::model::{LoadCase, Model};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticResult, StaticSettings, Status};
 
 // ---------------------------------------------------------------------------------------------
 // Helpers.
@@ -26,7 +26,7 @@ fn build(text: &str) -> Model {
 }
 
 fn statics(m: &Model, d: Direction) -> StaticResult {
-    lp::analyse(m, &StaticSettings::default().direction(d)).expect("static analysis solves")
+    statics::analyse(m, &StaticSettings::default().direction(d)).expect("static analysis solves")
 }
 
 fn kinematics(m: &Model, d: Direction) -> KinematicResult {
@@ -823,7 +823,7 @@ proptest! {
         let m = voussoir::scene::build(&s).expect("builds");
         let infinite = s.material.friction.is_infinite();
         for d in [Direction::Right, Direction::Left] {
-            let st = lp::analyse(&m, &StaticSettings::default().direction(d));
+            let st = statics::analyse(&m, &StaticSettings::default().direction(d));
             let st = match st {
                 Ok(r) => r,
                 Err(e) => return Err(TestCaseError::fail(format!("static analysis failed: {e}\n{text}"))),
@@ -1054,7 +1054,7 @@ fn an_arch_that_cannot_carry_its_loads_without_an_earthquake_cannot_stand() {
     };
     for (t, stands) in [(0.12, false), (0.13, true)] {
         let m = build(&text(t));
-        let st = lp::stands(&m, &StaticSettings::default()).expect("phase one");
+        let st = statics::stands(&m, &StaticSettings::default()).expect("phase one");
         assert_eq!(st.stands, stands, "t = {t}");
         for d in [Direction::Right, Direction::Left] {
             let s = statics(&m, d);
@@ -1097,7 +1097,7 @@ fn minimum_thickness_under_fill_and_asymmetric_loads() {
     );
     // At the minimum thickness the arch just stands; a little thinner it does not.
     let stands = |t: f64| {
-        lp::stands(
+        statics::stands(
             &build_scene(&s.with_thickness(t).expect("valid")),
             &StaticSettings::default(),
         )

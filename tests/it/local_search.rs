@@ -7,10 +7,10 @@ use crate::common;
 
 use voussoir::analysis::{self, Options};
 use voussoir::kinematic::{self, KinematicError, KinematicResult, KinematicSettings, Search};
-use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use voussoir::model::Model;
 use voussoir::report::AnalysisReport;
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticResult, StaticSettings, Status};
 
 /// A pointed arch; the geometry admits fewer voussoirs the larger e/R (at most 164 at 0.2).
 fn pointed(e: f64, t: f64, n: usize) -> Scene {
@@ -32,7 +32,8 @@ fn portal(n: usize, courses: usize, friction: &str) -> Scene {
 }
 
 fn statics(asm: &Model, dir: Direction) -> StaticResult {
-    let st = lp::analyse(asm, &StaticSettings::default().direction(dir)).expect("static solve");
+    let st =
+        statics::analyse(asm, &StaticSettings::default().direction(dir)).expect("static solve");
     assert_eq!(st.status, Status::Collapse);
     st
 }
@@ -189,7 +190,7 @@ fn local_search_claims_nothing_without_a_mechanism() {
     ));
     // A thin semicircle cannot stand: no local search.
     let thin = common::model_of(&common::semicircle(0.05, 64));
-    let st = lp::analyse(&thin, &StaticSettings::default()).expect("static");
+    let st = statics::analyse(&thin, &StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
     assert!(matches!(
         kinematic::analyse_local(&thin, &st, &settings, 8),

@@ -14,8 +14,8 @@ use crate::common;
 
 use common::{model_of, scene};
 use voussoir::kinematic::{self, KinematicSettings};
-use voussoir::lp::{self, Direction, Program, StaticSettings, Status};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, Program, StaticSettings, Status};
 use voussoir::thickness;
 
 /// Static minimum thickness of a scene, to a relative bracket of 1e-7.
@@ -149,7 +149,7 @@ fn portal(t: f64, n: usize, piers: &str) -> String {
 /// multiplier too.
 fn lambdas(s: &Scene, dir: Direction) -> (Status, Option<f64>, Status, Option<f64>) {
     let m = model_of(s);
-    let st = lp::analyse(&m, &StaticSettings::default().direction(dir)).expect("static");
+    let st = statics::analyse(&m, &StaticSettings::default().direction(dir)).expect("static");
     assert!(
         st.equilibrium_residual <= 1e-9 * m.assembly.total_weight(),
         "residual {}",
@@ -195,7 +195,7 @@ fn stepped_and_battered_static_equals_kinematic() {
                             compared += 1;
                             let m = model_of(&s);
                             let settings = StaticSettings::default().direction(dir);
-                            let st = lp::analyse(&m, &settings).expect("static");
+                            let st = statics::analyse(&m, &settings).expect("static");
                             let kin = KinematicSettings::default().direction(dir);
                             if kinematic::certify(&m, &st, &kin).is_ok() {
                                 certified += 1;
@@ -301,7 +301,7 @@ fn degenerate_profiles_are_the_rectangular_pier() {
         "[piers]\nheight = 1.2\nwidth = 0.35\ncourses = 3\nshape = \"rectangular\"\n".to_string(),
     ];
     let base = model_of(&scene(&portal(0.2, 16, plain)));
-    let lb = lp::analyse(&base, &StaticSettings::default())
+    let lb = statics::analyse(&base, &StaticSettings::default())
         .expect("static")
         .lambda;
     for v in &variants {
@@ -310,7 +310,7 @@ fn degenerate_profiles_are_the_rectangular_pier() {
             assert_eq!(p.polygon, q.polygon, "{v}");
             assert!((p.area - q.area).abs() <= 1e-15 && (p.centroid - q.centroid).norm() <= 1e-15);
         }
-        let l = lp::analyse(&m, &StaticSettings::default())
+        let l = statics::analyse(&m, &StaticSettings::default())
             .expect("static")
             .lambda;
         assert_eq!(l, lb, "{v}");
@@ -369,12 +369,12 @@ fn full_program_agrees_with_the_chain_program() {
         "[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.2\nthickness = 0.2\nvoussoirs = 16\njoints = \"vertical\"\n".to_string(),
     ] {
         let m = model_of(&scene(&text));
-        let chain = lp::analyse(&m, &StaticSettings::default()).expect("chain");
+        let chain = statics::analyse(&m, &StaticSettings::default()).expect("chain");
         let full_settings = StaticSettings {
             program: Program::Full,
             ..StaticSettings::default()
         };
-        let full = lp::analyse(&m, &full_settings).expect("full");
+        let full = statics::analyse(&m, &full_settings).expect("full");
         let (a, b) = (chain.lambda.expect("collapse"), full.lambda.expect("collapse"));
         assert!((a - b).abs() <= 1e-6 * a, "{text}: chain {a} full {b}");
         let k = kinematic::analyse(&m, &KinematicSettings::default()).expect("kinematic");
@@ -495,7 +495,7 @@ fn a_portal_that_leans_cannot_stand_in_either_direction() {
     // load toward +x, up to the largest one.
     let m = model_of(&a);
     assert!(
-        !lp::stands(&m, &StaticSettings::default())
+        !statics::stands(&m, &StaticSettings::default())
             .expect("stand")
             .stands
     );
@@ -515,7 +515,7 @@ fn dem_agrees_with_the_static_bound_on_the_new_geometries() {
     for text in &cases {
         let s = scene(text);
         let m = model_of(&s);
-        let lower = lp::analyse(&m, &StaticSettings::default())
+        let lower = statics::analyse(&m, &StaticSettings::default())
             .expect("static")
             .lambda
             .expect("collapse");

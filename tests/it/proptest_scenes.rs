@@ -4,8 +4,8 @@
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use voussoir::lp::{self, StaticSettings};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, StaticSettings};
 
 fn number() -> impl Strategy<Value = String> {
     prop_oneof![
@@ -115,7 +115,7 @@ proptest! {
                 prop_assert!(a.validate().is_ok(), "invalid assembly from a valid scene:\n{}", text);
                 // Solve only small models, so 10,000 cases run in seconds.
                 if a.blocks.len() <= 40 {
-                    match lp::analyse(&m, &StaticSettings::default()) {
+                    match statics::analyse(&m, &StaticSettings::default()) {
                         Ok(r) => {
                             if let Some(l) = r.lambda {
                                 prop_assert!(l.is_finite() && l >= 0.0);

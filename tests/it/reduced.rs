@@ -3,9 +3,9 @@
 //! status, multiplier, joint forces, hinges and mechanism, on every shape, portals, loads,
 //! both directions and finite friction.
 
-use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use voussoir::model::Model;
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticResult, StaticSettings, Status};
 
 fn bundled(name: &str) -> Scene {
     Scene::from_file(
@@ -18,10 +18,11 @@ fn bundled(name: &str) -> Scene {
 
 fn both(m: &Model, d: Direction) -> (StaticResult, StaticResult) {
     let s = StaticSettings::default().direction(d);
-    let full = lp::analyse_full(m, &s).expect("full program solves");
-    let reduced = lp::analyse_chain(m, &s).expect("reduced program solves");
+    let full = statics::analyse_full(m, &s).expect("full program solves");
+    let reduced = statics::analyse_chain(m, &s).expect("reduced program solves");
     // The chain program by the interior point alone (its fallback) gives the same answer.
-    let ip = lp::analyse_chain(m, &s.clone().active_set(false)).expect("interior point solves");
+    let ip =
+        statics::analyse_chain(m, &s.clone().active_set(false)).expect("interior point solves");
     assert_eq!(ip.status, reduced.status);
     if let (Some(a), Some(b)) = (ip.lambda, reduced.lambda) {
         assert!(
@@ -167,7 +168,7 @@ fn reduced_program_is_refused_for_an_assembly_that_is_not_a_chain() {
     let m = voussoir::scene::build(&bundled("semicircular.toml")).expect("builds");
     let mut a = m.assembly.clone();
     a.joints.swap(3, 4);
-    let e = lp::analyse_chain(&Model::self_weight(a), &StaticSettings::default());
+    let e = statics::analyse_chain(&Model::self_weight(a), &StaticSettings::default());
     assert!(e.is_err());
 }
 
@@ -183,7 +184,7 @@ fn exact_vertex_on_long_chains_meets_the_kinematic_bound() {
             .expect("valid");
         let m = voussoir::scene::build(&s).expect("builds");
         let settings = StaticSettings::default();
-        let r = lp::analyse_chain(&m, &settings).expect("reduced");
+        let r = statics::analyse_chain(&m, &settings).expect("reduced");
         assert!(
             r.solver_status.contains("exact vertex"),
             "n = {n}: {}",
@@ -228,7 +229,7 @@ fn certified_upper_bound_from_the_static_hinges() {
         for d in [Direction::Right, Direction::Left] {
             let s = StaticSettings::default().direction(d);
             let ks = KinematicSettings::default().direction(d);
-            let r = lp::analyse_chain(&m, &s).expect("reduced");
+            let r = statics::analyse_chain(&m, &s).expect("reduced");
             let Ok(c) = kinematic::certify(&m, &r, &ks) else {
                 continue;
             };
@@ -255,7 +256,7 @@ fn certified_upper_bound_from_the_static_hinges() {
         .with_override("arch.voussoirs=20000")
         .expect("valid");
     let m = voussoir::scene::build(&s).expect("builds");
-    let r = lp::analyse_chain(&m, &StaticSettings::default()).expect("reduced");
+    let r = statics::analyse_chain(&m, &StaticSettings::default()).expect("reduced");
     let c = kinematic::certify(&m, &r, &KinematicSettings::default()).expect("certified");
     let (lc, ls) = (c.lambda_upper.expect("bound"), r.lambda.expect("collapse"));
     assert!(
@@ -410,9 +411,9 @@ mod random {
                 let m = voussoir::scene::build(&s).expect("builds");
                 for d in [Direction::Right, Direction::Left] {
                     let st = StaticSettings::default().direction(d);
-                    let full = lp::analyse_full(&m, &st).expect("full program");
-                    let Ok(red) = lp::analyse_chain(&m, &st) else {
-                        // The chain program may stop short; `lp::analyse` then runs the full
+                    let full = statics::analyse_full(&m, &st).expect("full program");
+                    let Ok(red) = statics::analyse_chain(&m, &st) else {
+                        // The chain program may stop short; `statics::analyse` then runs the full
                         // one, so only its answers are compared.
                         continue;
                     };

@@ -12,10 +12,10 @@ use serde_json::{json, Value};
 use std::sync::Arc;
 use tower::ServiceExt;
 use voussoir::analysis::{self, Options};
-use voussoir::lp::StaticSettings;
 use voussoir::outcome::Direction;
 use voussoir::scene::Scene;
 use voussoir::serve::{self, parameters, Limits, ServerState};
+use voussoir::statics::StaticSettings;
 
 fn runtime() -> tokio::runtime::Runtime {
     tokio::runtime::Builder::new_current_thread()

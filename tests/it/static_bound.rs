@@ -4,13 +4,13 @@
 use crate::common;
 use common::*;
 use voussoir::assembly::JointEnd;
-use voussoir::lp::{self, Direction, StaticSettings, Status};
 use voussoir::model::equilibrium_residual;
 use voussoir::model::Model;
+use voussoir::statics::{self, Direction, StaticSettings, Status};
 use voussoir::thickness::{self, ThicknessOutcome};
 
 fn lambda(scene: &voussoir::scene::Scene) -> f64 {
-    let r = lp::analyse(&model_of(scene), &StaticSettings::default()).expect("solves");
+    let r = statics::analyse(&model_of(scene), &StaticSettings::default()).expect("solves");
     assert_eq!(r.status, Status::Collapse);
     r.lambda.expect("collapse has a multiplier")
 }
@@ -60,7 +60,7 @@ fn semicircle_thousand_voussoirs_matches_continuous_values() {
 fn single_block_rocks_at_b_over_h_or_slides_at_mu() {
     let (b, h) = (0.4, 1.3);
     for mu in [f64::INFINITY, 0.5, 1.0] {
-        let r = lp::analyse(
+        let r = statics::analyse(
             &Model::self_weight(single_block(b, h, mu)),
             &StaticSettings::default(),
         )
@@ -77,7 +77,7 @@ fn single_block_rocks_at_b_over_h_or_slides_at_mu() {
         assert!(r.sliding.is_empty());
     }
     for mu in [0.1, 0.25] {
-        let r = lp::analyse(
+        let r = statics::analyse(
             &Model::self_weight(single_block(b, h, mu)),
             &StaticSettings::default(),
         )
@@ -103,7 +103,7 @@ fn forces_are_in_equilibrium_and_admissible() {
     ] {
         let m = model_of(&s);
         let a = &m.assembly;
-        let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+        let r = statics::analyse(&m, &StaticSettings::default()).expect("solves");
         let l = r.lambda.expect("collapse");
         let w = a.total_weight();
         let f = r.forces.as_ref().expect("forces");
@@ -146,9 +146,9 @@ fn scale_unit_weight_and_depth_do_not_change_lambda() {
 fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
     let s = scene("[arch]\nshape = \"pointed\"\nradius = 1.0\neccentricity = 0.25\nthickness = 0.14\nvoussoirs = 18\n[piers]\nheight = 0.8\nwidth = 0.35\ncourses = 2\n");
     let a = model_of(&s);
-    let right = lp::analyse(&a, &StaticSettings::default()).expect("solves");
-    let left =
-        lp::analyse(&a, &StaticSettings::default().direction(Direction::Left)).expect("solves");
+    let right = statics::analyse(&a, &StaticSettings::default()).expect("solves");
+    let left = statics::analyse(&a, &StaticSettings::default().direction(Direction::Left))
+        .expect("solves");
     let (lr, ll) = (right.lambda.expect("c"), left.lambda.expect("c"));
     assert!((lr - ll).abs() <= 1e-8 * lr, "{lr} vs {ll}");
 
@@ -161,15 +161,15 @@ fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
             hjoint(0.3, -0.1, 1.0, Some(0), Some(1), f64::INFINITY),
         ],
     });
-    let l_left = lp::analyse(&asym, &StaticSettings::default().direction(Direction::Left))
+    let l_left = statics::analyse(&asym, &StaticSettings::default().direction(Direction::Left))
         .expect("solves")
         .lambda
         .expect("c");
-    let l_mirror = lp::analyse(&asym.mirrored(), &StaticSettings::default())
+    let l_mirror = statics::analyse(&asym.mirrored(), &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
-    let l_right = lp::analyse(&asym, &StaticSettings::default())
+    let l_right = statics::analyse(&asym, &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
@@ -184,7 +184,7 @@ fn symmetric_arch_has_same_capacity_both_ways_and_mirror_is_consistent() {
 fn block_renumbering_does_not_change_lambda() {
     let m = model_of(&semicircle(0.2, 12));
     let a = &m.assembly;
-    let l0 = lp::analyse(&m, &StaticSettings::default())
+    let l0 = statics::analyse(&m, &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
@@ -199,7 +199,7 @@ fn block_renumbering_does_not_change_lambda() {
     }
     b.joints.rotate_left(5);
     assert!(!b.is_chain());
-    let l1 = lp::analyse(&Model::self_weight(b), &StaticSettings::default())
+    let l1 = statics::analyse(&Model::self_weight(b), &StaticSettings::default())
         .expect("solves")
         .lambda
         .expect("c");
@@ -214,11 +214,11 @@ fn lambda_rises_with_thickness_and_statuses_are_honest() {
         assert!(l > last, "t = {t}: {l} <= {last}");
         last = l;
     }
-    let thin =
-        lp::analyse(&model_of(&semicircle(0.1, 48)), &StaticSettings::default()).expect("solves");
+    let thin = statics::analyse(&model_of(&semicircle(0.1, 48)), &StaticSettings::default())
+        .expect("solves");
     assert_eq!(thin.status, Status::CannotStand);
     assert!(thin.lambda.is_none());
-    let flat = lp::analyse(
+    let flat = statics::analyse(
         &model_of(&circular(0.3, 16, 60.0, "polygon")),
         &StaticSettings::default(),
     )
@@ -226,7 +226,7 @@ fn lambda_rises_with_thickness_and_statuses_are_honest() {
     assert_eq!(flat.status, Status::NoCollapse);
     assert!(flat.lambda.is_none());
     // With finite friction the same flat arch slides at its springings.
-    let slides = lp::analyse(
+    let slides = statics::analyse(
         &model_of(
             &circular(0.3, 16, 60.0, "polygon")
                 .with_override("material.friction=0.4")
@@ -245,7 +245,7 @@ fn too_little_friction_cannot_stand_and_no_thickness_helps() {
     let s = circular(0.3, 16, 240.0, "polygon")
         .with_override("material.friction=0.05")
         .expect("valid");
-    let r = lp::analyse(&model_of(&s), &StaticSettings::default()).expect("solves");
+    let r = statics::analyse(&model_of(&s), &StaticSettings::default()).expect("solves");
     assert_eq!(r.status, Status::CannotStand);
     let m = thickness::min_thickness(&s, &StaticSettings::default()).expect("runs");
     assert_eq!(m.search.outcome, ThicknessOutcome::NeverStands);
@@ -256,7 +256,7 @@ fn too_little_friction_cannot_stand_and_no_thickness_helps() {
 fn mechanism_from_duals_is_a_four_hinge_mechanism() {
     let m = model_of(&semicircle(0.15, 32));
     let a = &m.assembly;
-    let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+    let r = statics::analyse(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(r.hinges.len(), 4);
     // Blocks between consecutive hinges move as rigid bodies: equal rotation rates.
     let joints: Vec<usize> = r.hinges.iter().map(|h| h.joint).collect();
@@ -295,13 +295,13 @@ fn the_model_holds_only_what_the_scene_requires() {
     // No friction rows without friction limits, two per joint with them.
     let m = model_of(&semicircle(0.15, 16));
     let a = &m.assembly;
-    let r = lp::analyse_full(&m, &StaticSettings::default()).expect("solves");
+    let r = statics::analyse_full(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(r.model.friction_rows, 0);
     assert_eq!(r.model.variables, 1 + 3 * a.joints.len());
     assert_eq!(r.model.equality_rows, 3 * a.blocks.len());
     assert_eq!(r.model.inequality_rows, 2 * a.joints.len());
     // The chain's program (the default for chains): four unknowns, two rows per joint.
-    let c = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+    let c = statics::analyse(&m, &StaticSettings::default()).expect("solves");
     assert_eq!(c.model.variables, 4);
     assert_eq!(c.model.equality_rows, 0);
     assert_eq!(c.model.inequality_rows, 2 * a.joints.len());
@@ -312,9 +312,9 @@ fn the_model_holds_only_what_the_scene_requires() {
             .expect("valid"),
     );
     let f = &mf.assembly;
-    let rf = lp::analyse_full(&mf, &StaticSettings::default()).expect("solves");
+    let rf = statics::analyse_full(&mf, &StaticSettings::default()).expect("solves");
     assert_eq!(rf.model.friction_rows, 2 * f.joints.len());
-    let cf = lp::analyse(&mf, &StaticSettings::default()).expect("solves");
+    let cf = statics::analyse(&mf, &StaticSettings::default()).expect("solves");
     assert_eq!(cf.model.friction_rows, 2 * f.joints.len());
     assert_eq!(cf.model.inequality_rows, 4 * f.joints.len());
     // No pier blocks without piers; k courses per pier with them.
@@ -346,7 +346,7 @@ fn reported_resultants_stay_inside_their_joints() {
     ] {
         let m = model_of(&s);
         let a = &m.assembly;
-        let r = lp::analyse(&m, &StaticSettings::default()).expect("solves");
+        let r = statics::analyse(&m, &StaticSettings::default()).expect("solves");
         let forces = r.forces.as_ref().expect("collapse");
         for (j, (jt, f)) in a.joints.iter().zip(forces).enumerate() {
             assert!(f.n >= 0.0, "joint {j}: N = {}", f.n);

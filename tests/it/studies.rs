@@ -240,9 +240,9 @@ fn pointed_arches_win_at_equal_radius_and_lose_at_equal_span() {
         .with_override("arch.eccentricity=0.5")
         .and_then(|s| s.with_override("arch.thickness=0.12"))
         .expect("valid");
-    let direct = voussoir::lp::analyse(
+    let direct = voussoir::statics::analyse(
         &voussoir::scene::build(&same).expect("valid model"),
-        &voussoir::lp::StaticSettings::default(),
+        &voussoir::statics::StaticSettings::default(),
     )
     .expect("solves")
     .lambda
@@ -337,9 +337,9 @@ fn portal_trends() {
         let mut s = load("portal_pier_width").scene.table().clone();
         s.remove("piers");
         let scene = voussoir::scene::Scene::from_table(s, "arch alone").expect("valid");
-        voussoir::lp::analyse(
+        voussoir::statics::analyse(
             &voussoir::scene::build(&scene).expect("valid model"),
-            &voussoir::lp::StaticSettings::default(),
+            &voussoir::statics::StaticSettings::default(),
         )
         .expect("solves")
         .lambda

@@ -10,9 +10,9 @@ use voussoir::drawing::svg::{
 };
 use voussoir::drawing::thrust_points;
 use voussoir::geometry::Vec2;
-use voussoir::lp::{self, Direction, StaticResult, StaticSettings, Status};
 use voussoir::model::{LoadSource, Model};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticResult, StaticSettings, Status};
 
 fn scene(text: &str) -> Scene {
     Scene::from_toml_str(text, "test").expect("valid scene")
@@ -34,7 +34,7 @@ fn portal() -> Model {
 }
 
 fn analyse(m: &Model) -> StaticResult {
-    let r = lp::analyse(m, &StaticSettings::default()).expect("analysis runs");
+    let r = statics::analyse(m, &StaticSettings::default()).expect("analysis runs");
     assert_eq!(r.status, Status::Collapse);
     r
 }
@@ -508,7 +508,7 @@ fn every_kind_of_structure_draws() {
     for (name, text, dir) in cases {
         let m = voussoir::scene::build(&scene(text)).expect("valid model");
         let a = &m.assembly;
-        let r = lp::analyse(&m, &StaticSettings::default().direction(dir)).expect("runs");
+        let r = statics::analyse(&m, &StaticSettings::default().direction(dir)).expect("runs");
         assert_eq!(r.status, Status::Collapse, "{name}");
         let forces = r.forces.as_deref().expect("forces");
         let d = Drawing {
@@ -643,7 +643,7 @@ fn full_drawing<'a>(title: &str, m: &'a Model, r: &'a StaticResult, dir: Directi
 }
 
 fn draw(name: &str, m: &Model, dir: Direction, title: &str) -> (StaticResult, String) {
-    let r = lp::analyse(m, &StaticSettings::default().direction(dir)).expect("analysis runs");
+    let r = statics::analyse(m, &StaticSettings::default().direction(dir)).expect("analysis runs");
     let text = svg::structure_svg(&m.assembly, &full_drawing(title, m, &r, dir)).expect("drawing");
     keep(name, &text);
     (r, text)

@@ -1,7 +1,7 @@
 //! Sweeps give the same numbers as single analyses, in a deterministic order.
 
-use voussoir::lp::{self, StaticSettings};
 use voussoir::scene::Scene;
+use voussoir::statics::{self, StaticSettings};
 use voussoir::sweep;
 
 const BASE: &str = "[arch]\nshape = \"pointed\"\nradius = 2.0\neccentricity = 0.0\nthickness = 0.3\nvoussoirs = 16\n";
@@ -33,7 +33,7 @@ fn sweep_rows_equal_single_analyses() {
             .and_then(|s| s.with_override(&format!("arch.voussoirs={n}")))
             .and_then(|s| s.with_override(&format!("arch.thickness={t}")))
             .expect("valid");
-        let r = lp::analyse(
+        let r = statics::analyse(
             &voussoir::scene::build(&scene).expect("valid model"),
             &settings,
         )

@@ -1,7 +1,7 @@
 //! Settings of the static analysis, gathered in one struct with documented defaults and
 //! checked by [`StaticSettings::validate`] where an analysis of a scene starts
 //! (`crate::analysis::analyse` and `crate::thickness::analyse`, which the CLI, Python and the
-//! page's server call). The program itself ([`crate::lp::analyse`]) takes any tolerance, so
+//! page's server call). The program itself ([`crate::statics::analyse`]) takes any tolerance, so
 //! the convergence study can measure what a looser one costs in accuracy.
 
 use crate::error::AnalysisError;
@@ -33,7 +33,7 @@ pub struct StaticSettings {
     /// semicircles of 16..2000 voussoirs they are within 10% of each other, qdldl ahead
     /// beyond 256 voussoirs.
     pub linear_solver: String,
-    /// Which static program [`crate::lp::analyse`] solves. Default [`Program::Auto`].
+    /// Which static program [`crate::statics::analyse`] solves. Default [`Program::Auto`].
     pub program: Program,
     /// Solve the chain program by its active-set method first (exact, and 20 to 80 times
     /// faster than the interior point); the interior point runs when it does not finish.
@@ -44,7 +44,7 @@ pub struct StaticSettings {
 /// The static program to solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Program {
-    /// The reduced program for chains ([`crate::lp::analyse_chain`], four unknowns, with its
+    /// The reduced program for chains ([`crate::statics::analyse_chain`], four unknowns, with its
     /// exact vertex step), the full one for any other assembly.
     #[default]
     Auto,

@@ -11,6 +11,7 @@ pub mod assess;
 pub mod blocks;
 pub mod convergence;
 pub mod dem;
+pub mod dem_settings;
 pub mod drawing;
 pub mod error;
 pub mod geometry;

@@ -40,12 +40,16 @@
 
 mod body;
 pub mod dynamic;
-mod params;
+// The DEM's settings and the `[dem]` table live beside it (`crate::dem_settings`), so a scene
+// checks its `[dem]` knobs without importing the simulation.
+use crate::dem_settings as params;
 mod protocol;
 pub mod record;
 mod world;
 
-pub use params::{allowed_range, show_value, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS};
+pub use crate::dem_settings::{
+    allowed_range, show_value, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS,
+};
 pub use protocol::{Onset, Outcome, Run, Snapshot};
 
 use crate::assembly::{Assembly, Hinge};

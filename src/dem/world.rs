@@ -28,7 +28,7 @@
 //!   not seismic add force and no mass.
 
 use super::body::{Body, BodyLoads, ExtraLoads};
-use super::params::IntegrationParameters;
+use crate::dem_settings::IntegrationParameters;
 use crate::geometry::{cross, Vec2};
 use crate::model::{LoadSource, Model};
 

@@ -172,7 +172,7 @@ pub struct Scene {
     pub seismic: SeismicSpec,
     /// `[action] kind`: what lambda multiplies (default seismic).
     pub action: crate::model::Action,
-    /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem`; empty when
+    /// The raw `[dem]` table (time-stepping knobs), validated by `crate::dem_settings`; empty when
     /// the scene has none.
     pub dem: Table,
     /// `[site]`, when given: the seismic site for `voussoir assess` ([`crate::spectrum`]).
@@ -882,7 +882,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
             blocks: Vec::new(),
             joints: Vec::new(),
         };
-        let mut p = crate::dem::IntegrationParameters::for_assembly(&nothing);
+        let mut p = crate::dem_settings::IntegrationParameters::for_assembly(&nothing);
         p.apply_table(&scene.dem, &scene.origin)?;
     }
     Ok(scene)

@@ -1,6 +1,8 @@
 //! Every knob of the DEM time stepping, gathered in one struct (in the manner of rapier's
 //! `IntegrationParameters`), with defaults derived from the geometry of the assembly so that
 //! no scene needs tuning, overridable from the scene's `[dem]` table and by builder setters.
+//! They live beside `crate::dem`, not inside it, so a scene checks its `[dem]` knobs (each
+//! against [`allowed_range`]) without importing the simulation.
 //!
 //! The defaults are chosen from three scales of the structure: its size `L`
 //! (`Assembly::size`), its total weight `W` and the gravity time `T = sqrt(L / g)`:

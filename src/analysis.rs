@@ -62,9 +62,31 @@ impl Default for Options {
     }
 }
 
+/// Largest chain (joints) the exhaustive kinematic search may be asked to take: its cost
+/// grows as joints^3.6 (176 ms at 129 joints, docs/performance.md), so 1000 joints is about
+/// five minutes on one thread and 2000 about an hour. Above it the certified bound or the
+/// local search answer.
+pub const MAX_EXHAUSTIVE_JOINTS: usize = 1000;
+
 impl Options {
     pub fn direction(&self) -> Direction {
         self.static_settings.direction
+    }
+
+    /// Check every setting (the static program's, and the exhaustive search's size), naming
+    /// the one out of range.
+    pub fn validate(&self) -> Result<(), AnalysisError> {
+        self.static_settings.validate()?;
+        if self.kinematic_max_joints > MAX_EXHAUSTIVE_JOINTS {
+            return Err(AnalysisError::Settings {
+                setting: "kinematic_max_joints (--kinematic-max-joints)".to_string(),
+                value: self.kinematic_max_joints.to_string(),
+                allowed: format!(
+                    "at most {MAX_EXHAUSTIVE_JOINTS}: the exhaustive search's cost grows as joints^3.6 (about five minutes at 1000 joints, an hour at 2000); above the limit the certified bound and the local search answer"
+                ),
+            });
+        }
+        Ok(())
     }
 }
 
@@ -156,7 +178,7 @@ pub fn direction_for(scene: &Scene, asked: Option<Direction>) -> Result<Directio
 
 /// Analyse a scene.
 pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, AnalysisError> {
-    options.static_settings.validate()?;
+    options.validate()?;
     if options.direction() == Direction::Left {
         seismic_only(
             scene,
@@ -918,4 +940,29 @@ pub fn assess_directions(
         governing,
         restricted: only.is_some(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn options_name_the_setting_out_of_range() {
+        assert!(Options::default().validate().is_ok());
+        let big = Options {
+            kinematic_max_joints: MAX_EXHAUSTIVE_JOINTS + 1,
+            ..Options::default()
+        };
+        let e = big.validate().expect_err("refused").to_string();
+        assert!(
+            e.contains("--kinematic-max-joints") && e.contains("1001"),
+            "{e}"
+        );
+        let loose = Options {
+            static_settings: StaticSettings::default().tolerance(1e-3),
+            ..Options::default()
+        };
+        let e = loose.validate().expect_err("refused").to_string();
+        assert!(e.contains("tolerance"), "{e}");
+    }
 }

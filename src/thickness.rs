@@ -317,8 +317,8 @@ pub fn analyse(
     scene: &Scene,
     options: &crate::analysis::Options,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
+    options.validate()?;
     let settings = &options.static_settings;
-    settings.validate()?;
     let max_joints = options.kinematic_max_joints;
     let lower = min_thickness(scene, settings)?;
     let joints = crate::scene::build(scene)?.assembly.joints.len();

@@ -130,6 +130,20 @@ impl AppliedLoad {
         }
     }
 
+    /// The fill's weight `weight` (N) over `block`, at the centroid `point` of its region
+    /// `region` (kept for drawings), with a seismic mass of that weight when `seismic`.
+    pub fn fill(block: usize, weight: f64, point: Vec2, region: Vec<Vec2>, seismic: bool) -> Self {
+        AppliedLoad {
+            block,
+            point,
+            force: Vec2::new(0.0, -weight),
+            seismic_weight: if seismic { weight } else { 0.0 },
+            live: false,
+            source: LoadSource::Fill,
+            region: Some(region),
+        }
+    }
+
     /// The same load marked live (see [`AppliedLoad::live`]): it then carries no seismic mass.
     pub fn live(mut self, live: bool) -> Self {
         self.live = live;
@@ -153,6 +167,16 @@ impl SpreadLoad {
             seismic,
             live: false,
             source: LoadSource::Load(k),
+        }
+    }
+
+    /// A fill of weight density `density` (N/m^2 in the plane) up to `y = level`, kept whole.
+    pub fn fill(level: f64, density: f64, seismic: bool) -> Self {
+        SpreadLoad {
+            kind: Spread::Fill { level, density },
+            seismic,
+            live: false,
+            source: LoadSource::Fill,
         }
     }
 

@@ -22,7 +22,7 @@ use super::{piers, LoadSpec, Scene, VoussoirShape};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, SpreadLoad};
 
 thread_local! {
     /// Models built on this thread ([`build`] calls): see [`builds_on_this_thread`].
@@ -281,15 +281,7 @@ fn build_loads(
     }
     if let Some(fill) = &scene.fill {
         let gamma = fill.unit_weight * scene.material.depth;
-        case.add_spread(SpreadLoad {
-            kind: Spread::Fill {
-                level: fill.level,
-                density: gamma,
-            },
-            seismic: fill.seismic,
-            live: false,
-            source: LoadSource::Fill,
-        });
+        case.add_spread(SpreadLoad::fill(fill.level, gamma, fill.seismic));
         let g = &arch.geometry;
         for j in 0..g.voussoirs() {
             let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
@@ -303,16 +295,13 @@ fn build_loads(
             else {
                 continue;
             };
-            let w = gamma * area;
-            case.add(AppliedLoad {
-                block: arch.first + j,
-                point: centroid,
-                force: Vec2::new(0.0, -w),
-                seismic_weight: if fill.seismic { w } else { 0.0 },
-                live: false,
-                source: LoadSource::Fill,
-                region: Some(region),
-            });
+            case.add(AppliedLoad::fill(
+                arch.first + j,
+                gamma * area,
+                centroid,
+                region,
+                fill.seismic,
+            ));
         }
     }
     Ok(case)

@@ -22,7 +22,7 @@ use crate::assembly::{Assembly, BlockKind};
 use crate::blocks::{self, BlockError, Detected, Polygons, Units};
 use crate::error::SceneError;
 use crate::geometry::{cross, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, Spread, SpreadLoad};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Model, SpreadLoad};
 use std::path::{Path, PathBuf};
 use toml::Value;
 
@@ -341,15 +341,7 @@ pub(super) fn build_model(
     }
     if let Some(fill) = fill {
         let gamma = fill.unit_weight * depth;
-        case.add_spread(SpreadLoad {
-            kind: Spread::Fill {
-                level: fill.level,
-                density: gamma,
-            },
-            seismic: fill.seismic,
-            live: false,
-            source: LoadSource::Fill,
-        });
+        case.add_spread(SpreadLoad::fill(fill.level, gamma, fill.seismic));
         let regions = fill_regions(&assembly, fill.level, tol);
         if regions.is_empty() {
             return Err(SceneError::OutOfRange {
@@ -360,16 +352,13 @@ pub(super) fn build_model(
             });
         }
         for (block, area, centroid, region) in regions {
-            let w = gamma * area;
-            case.add(AppliedLoad {
+            case.add(AppliedLoad::fill(
                 block,
-                point: centroid,
-                force: Vec2::new(0.0, -w),
-                seismic_weight: if fill.seismic { w } else { 0.0 },
-                live: false,
-                source: LoadSource::Fill,
-                region: Some(region),
-            });
+                gamma * area,
+                centroid,
+                region,
+                fill.seismic,
+            ));
         }
     }
     Ok(Model {

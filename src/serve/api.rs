@@ -108,6 +108,20 @@ impl From<AnalysisError> for ApiError {
                 key: None,
                 kind: "invalid_assembly",
             },
+            // What the request asked for does not apply (a direction for a live action) or is
+            // out of range: the client's to change, not a failure of the server.
+            e @ AnalysisError::NotForAction { .. } => ApiError {
+                status: StatusCode::BAD_REQUEST,
+                message: e.to_string(),
+                key: None,
+                kind: "not_for_action",
+            },
+            e @ AnalysisError::Settings { .. } => ApiError {
+                status: StatusCode::BAD_REQUEST,
+                message: e.to_string(),
+                key: None,
+                kind: "settings",
+            },
             other => ApiError {
                 status: StatusCode::INTERNAL_SERVER_ERROR,
                 message: other.to_string(),

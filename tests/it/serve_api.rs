@@ -1334,3 +1334,31 @@ fn an_upper_bound_that_ignores_crushing_is_marked_rigid() {
     rigid["arch"]["thickness"] = json!(0.5);
     assert_eq!(said(&rigid).0, json!(false));
 }
+
+/// A live scene (`[action] kind = "live"`): analysed as the CLI does (the adequacy factor,
+/// `action: "live"`, live loads labelled as multiplied), and a direction for it is the
+/// client's mistake, a 400 naming the action, not a server failure.
+#[test]
+fn a_live_scene_is_analysed_and_a_direction_for_it_refused() {
+    let s = state();
+    let scene = scene_json("live_load_arch.toml");
+    let (status, body) = post(&s, "/api/analyze", &json!({ "scene": scene }));
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["action"], "live");
+    let lib = library_lambda(
+        &Scene::from_file(std::path::Path::new(&data("live_load_arch.toml"))).expect("scene"),
+        Direction::Right,
+    );
+    assert_eq!(body["lambda_lower"].as_f64(), lib.lower.lambda);
+    assert!(body["svg"].as_str().expect("svg").contains("λ × 20 kN"));
+    let answer = post(
+        &s,
+        "/api/analyze",
+        &json!({ "scene": scene, "direction": "left" }),
+    );
+    refused(&answer, StatusCode::BAD_REQUEST, "not_for_action", None);
+    assert!(answer.1["error"]
+        .as_str()
+        .expect("message")
+        .contains("live"));
+}

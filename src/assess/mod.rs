@@ -55,6 +55,8 @@ pub enum AssessError {
     NoZero(String),
     #[error("the seismic load does no work on the mechanism")]
     NoSeismicWork,
+    #[error("the capacity curve does not yet follow tie rods ({count} in the scene) through the finite motion of the mechanism, so the structure with ties is not assessed rather than assessed without them; the static and kinematic multipliers with the ties are given by `voussoir analyze`")]
+    Ties { count: usize },
 }
 
 /// `(F, point, seismic weight)` of a load.
@@ -284,6 +286,7 @@ impl Linkage {
             assembly,
             loads: model.loads.moved(&moves),
             strength: model.strength,
+            ties: model.ties.clone(),
         }
     }
 }
@@ -482,6 +485,11 @@ pub fn capacity(
 ) -> Result<Capacity, AssessError> {
     if settings.points < 3 {
         return Err(AssessError::TooFewPoints(settings.points));
+    }
+    if !model.ties.is_empty() {
+        return Err(AssessError::Ties {
+            count: model.ties.len(),
+        });
     }
     let linkage = Linkage::new(&model.assembly, mechanism)?;
     let rest = linkage

@@ -771,6 +771,11 @@ pub fn continuous(
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
     let start = Instant::now();
+    if !model.ties.is_empty() {
+        return Err(KinematicError::Ties {
+            count: model.ties.len(),
+        });
+    }
     if model.strength.is_finite() {
         return Err(KinematicError::FiniteStrength {
             compressive_strength: model.strength.compressive,

@@ -87,6 +87,52 @@ pub(crate) struct Chain {
     size: f64,
     /// Whether both ends are supported.
     closed: bool,
+    /// Tie rods, with the place of their anchored blocks along the chain.
+    ties: Vec<ChainTie>,
+}
+
+/// A tie rod of a chain: the tie, and for each anchor (from, to) the number of chain joints
+/// before its block (`slot`: block b of the full chain lies after joints 0..=b, so
+/// `slot = b + 1`; None for the ground). A mechanism's body k, between its active joints
+/// `js[k]` and `js[k + 1]`, holds the block when `js[k] < slot <= js[k + 1]`.
+#[derive(Debug, Clone)]
+struct ChainTie {
+    tie: crate::model::Tie,
+    slots: [Option<usize>; 2],
+}
+
+impl ChainTie {
+    /// The tie's dissipation (`crate::interaction::tie`) in the motion `m` of the active joints
+    /// `js` (chain order, `count` of them): body twists are the running sums of the relative
+    /// twists; the bodies before the first active joint, and after the last on a two-support
+    /// chain, are fixed.
+    fn dissipation(&self, js: &[usize], m: &super::Motion, closed: bool) -> f64 {
+        let twist_of = |slot: Option<usize>| -> super::Twist {
+            let Some(slot) = slot else { return [0.0; 3] };
+            // Active joints before the block.
+            let k = js.partition_point(|&j| j < slot);
+            if k == 0 || (closed && k == js.len()) {
+                return [0.0; 3];
+            }
+            let mut t = [0.0; 3];
+            for r in &m.rel[..k] {
+                for (tc, rc) in t.iter_mut().zip(r) {
+                    *tc += rc;
+                }
+            }
+            t
+        };
+        let twists = [twist_of(self.slots[0]), twist_of(self.slots[1])];
+        let rate = self.tie.elongation_rate(|block, q| {
+            let t = if block == self.tie.from.block {
+                twists[0]
+            } else {
+                twists[1]
+            };
+            super::velocity(t, q)
+        });
+        self.tie.dissipation(rate)
+    }
 }
 
 impl Chain {
@@ -109,6 +155,14 @@ impl Chain {
             pre,
             size: a.size(),
             closed,
+            ties: model
+                .ties
+                .iter()
+                .map(|t| ChainTie {
+                    tie: t.clone(),
+                    slots: [t.from.block.map(|b| b + 1), t.to.block.map(|b| b + 1)],
+                })
+                .collect(),
         }
     }
 
@@ -139,6 +193,7 @@ impl Chain {
             pre,
             size,
             closed: true,
+            ties: Vec::new(),
         }
     }
 
@@ -160,6 +215,15 @@ impl Chain {
             pre: keep.iter().map(|&j| self.pre[j]).collect(),
             size: self.size,
             closed: true,
+            // Block b lies after the kept joints `<= b`: its slot counts them.
+            ties: self
+                .ties
+                .iter()
+                .map(|t| ChainTie {
+                    tie: t.tie.clone(),
+                    slots: t.slots.map(|s| s.map(|s| keep.partition_point(|&j| j < s))),
+                })
+                .collect(),
         }
     }
 
@@ -205,8 +269,17 @@ impl Chain {
             bodies[count - 1] = self.body(js[count - 1], self.pre.len() - 1);
             count
         };
-        let (ax, g) = motion_work(&m, &bodies[..nbodies]);
+        let (ax, mut g) = motion_work(&m, &bodies[..nbodies]);
+        for t in &self.ties {
+            g += t.dissipation(&js[..count], &m, self.closed);
+        }
         Some((ax, g, m))
+    }
+
+    /// Whether the chain has tie rods (the searches' closed forms then hand every admissible
+    /// mechanism to [`Chain::evaluate`], which adds their dissipation).
+    fn has_ties(&self) -> bool {
+        !self.ties.is_empty()
     }
 }
 
@@ -725,6 +798,11 @@ fn two_open(chain: &Chain) -> Extremes<Key> {
 fn two_hinges_one_open(chain: &Chain, parallel: bool) -> Extremes<Key> {
     let n = chain.joints();
     let per_open = |o: usize| {
+        if chain.has_ties() {
+            let mut sink = Dissipating::new(chain);
+            two_hinges_one_open_at(chain, o, &mut sink);
+            return sink.inner;
+        }
         let mut ext = Extremes::new();
         two_hinges_one_open_at(chain, o, &mut ext);
         ext
@@ -926,6 +1004,43 @@ impl Sink for Extremes<Key> {
     }
 }
 
+/// The sink of a chain with tie rods: the closed forms of the families give the work of
+/// the loads only, so every admissible mechanism they find is valued again by
+/// [`Chain::evaluate`], which adds the ties' dissipation (`lambda = (G + D)/A`), before the
+/// extremes see it. Nothing is pruned on the loads' work alone, since `D` may change the
+/// order.
+struct Dissipating<'a> {
+    chain: &'a Chain,
+    inner: Extremes<Key>,
+}
+
+impl<'a> Dissipating<'a> {
+    fn new(chain: &'a Chain) -> Self {
+        Dissipating {
+            chain,
+            inner: Extremes::new(),
+        }
+    }
+}
+
+impl Sink for Dissipating<'_> {
+    #[inline]
+    fn wants(&self, _ax: f64, _g: f64) -> bool {
+        true
+    }
+    fn take(&mut self, _ax: f64, _g: f64, key: Key) {
+        if let Some((ax, g, _)) = self.chain.evaluate(&key) {
+            if self.inner.wants(ax, g) {
+                self.inner.take(ax, g, key);
+            }
+        }
+    }
+    #[inline]
+    fn count(&mut self, n: u64) {
+        self.inner.count(n);
+    }
+}
+
 /// Index of the triple p < q < r in the combinatorial number system.
 struct TripleIndex {
     c2: Vec<usize>,
@@ -1016,6 +1131,11 @@ fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
     }
     let tables = FourTables::new(chain, parallel);
     let per_d = |d: usize| {
+        if chain.has_ties() {
+            let mut sink = Dissipating::new(chain);
+            four_hinges_at(chain, &tables, d, &mut sink);
+            return sink.inner;
+        }
         let mut ext = Extremes::new();
         four_hinges_at(chain, &tables, d, &mut ext);
         ext

@@ -108,6 +108,8 @@ pub enum KinematicError {
     NotCertified(String),
     #[error("the continuous model puts rigid hinges on the intrados and extrados, so it does not model a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); it is not run rather than report the rigid arch's multiplier as the crushing one")]
     FiniteStrength { compressive_strength: f64 },
+    #[error("the continuous model's hinges fall anywhere on the ring, between the blocks a tie rod is anchored on, so it does not model tie rods ({count} in the scene); it is not run rather than report the untied arch's multiplier")]
+    Ties { count: usize },
 }
 
 /// Default half-width (joints) of the window of the local search around each static hinge.

@@ -12,63 +12,18 @@ pub use action::Action;
 pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
+pub use crate::interaction::{Strength, Tie, TieForce};
 
 /// Blocks and joints with their loads.
 #[derive(Debug, Clone)]
 pub struct Model {
     pub assembly: Assembly,
     pub loads: LoadCase,
-    /// Compressive strength of the joints ([`Strength::rigid`] is Heyman's infinite strength).
+    /// Compressive strength of the joints ([`Strength::rigid`] is Heyman's infinite strength):
+    /// the crushing interaction.
     pub strength: Strength,
-}
-
-/// Finite compressive strength of the joints: a rectangular stress block of intensity `fc`
-/// over the out-of-plane depth `d` (RING's crushing model; Gilbert, 2007). A joint of length
-/// `L` then carries a resultant `N` at eccentricity `e` from its midpoint only if
-/// `N <= fc d L` and `|N e| <= N L/2 - N^2/(2 fc d)`: the compressed zone `a = N/(fc d)` lies
-/// inside the joint, and the resultant at its centre, `a/2` from the joint's end.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Strength {
-    /// Compressive strength fc (Pa); `f64::INFINITY` for rigid (uncrushable) joints.
-    pub compressive: f64,
-    /// Out-of-plane depth d (m) over which the stress block acts.
-    pub depth: f64,
-}
-
-impl Strength {
-    /// Infinite compressive strength (Heyman's assumption).
-    pub fn rigid() -> Strength {
-        Strength {
-            compressive: f64::INFINITY,
-            depth: 1.0,
-        }
-    }
-
-    /// Whether the strength is finite (the static program then has second-order cones).
-    pub fn is_finite(&self) -> bool {
-        self.compressive.is_finite()
-    }
-
-    /// The force per unit joint length a fully compressed joint carries, `fc d` (N/m);
-    /// infinite for rigid joints.
-    pub fn line_capacity(&self) -> f64 {
-        self.compressive * self.depth
-    }
-
-    /// Width `a = N/(fc d)` of the compressed zone under a resultant `n` (m); 0 when rigid.
-    pub fn compressed_zone(&self, n: f64) -> f64 {
-        if self.is_finite() {
-            n.max(0.0) / self.line_capacity()
-        } else {
-            0.0
-        }
-    }
-}
-
-impl Default for Strength {
-    fn default() -> Self {
-        Strength::rigid()
-    }
+    /// Tie rods (`crate::interaction::tie`), in the scene's order.
+    pub ties: Vec<Tie>,
 }
 
 impl Model {
@@ -79,12 +34,19 @@ impl Model {
             assembly,
             loads,
             strength: Strength::rigid(),
+            ties: Vec::new(),
         }
     }
 
     /// The same model with joints of compressive strength `strength`.
     pub fn with_strength(mut self, strength: Strength) -> Model {
         self.strength = strength;
+        self
+    }
+
+    /// The same model with tie rods `ties`.
+    pub fn with_ties(mut self, ties: Vec<Tie>) -> Model {
+        self.ties = ties;
         self
     }
 
@@ -101,6 +63,13 @@ impl Model {
                 s.compressive, s.depth
             )));
         }
+        for (k, t) in self.ties.iter().enumerate() {
+            if let Some(problem) = t.problem(self.assembly.blocks.len()) {
+                return Err(crate::error::AnalysisError::Other(format!(
+                    "tie {k}: {problem}"
+                )));
+            }
+        }
         Ok(())
     }
 
@@ -110,7 +79,42 @@ impl Model {
             assembly: self.assembly.mirrored(),
             loads: self.loads.mirrored(),
             strength: self.strength,
+            ties: self
+                .ties
+                .iter()
+                .map(|t| {
+                    let nb = self.assembly.blocks.len();
+                    let flip = |a: crate::interaction::Anchor| crate::interaction::Anchor {
+                        block: a.block.map(|b| nb - 1 - b),
+                        point: crate::geometry::mirror(a.point),
+                    };
+                    Tie {
+                        from: flip(t.from),
+                        to: flip(t.to),
+                        ..t.clone()
+                    }
+                })
+                .collect(),
         }
+    }
+
+    /// [`equilibrium_residual`] with the ties' forces `ties` (N, in tie order) as well.
+    pub fn equilibrium_residual(
+        &self,
+        forces: &[JointForce],
+        ties: &[f64],
+        lambda: f64,
+        sign: f64,
+    ) -> f64 {
+        residuals(
+            &self.assembly,
+            &self.loads,
+            forces,
+            &self.ties,
+            ties,
+            lambda,
+            sign,
+        )
     }
 }
 
@@ -121,6 +125,18 @@ pub fn equilibrium_residual(
     assembly: &Assembly,
     loads: &LoadCase,
     forces: &[JointForce],
+    lambda: f64,
+    sign: f64,
+) -> f64 {
+    residuals(assembly, loads, forces, &[], &[], lambda, sign)
+}
+
+fn residuals(
+    assembly: &Assembly,
+    loads: &LoadCase,
+    forces: &[JointForce],
+    ties: &[Tie],
+    tie_forces: &[f64],
     lambda: f64,
     sign: f64,
 ) -> f64 {
@@ -146,6 +162,18 @@ pub fn equilibrium_residual(
                 res[b][1] += s * force.y;
                 // The couple of a resultant offset toward p2 turns clockwise: u x n = -1.
                 res[b][2] += s * (crate::geometry::cross(mid - g, force) - f.m) / size;
+            }
+        }
+    }
+    for (t, &f) in ties.iter().zip(tie_forces) {
+        let e = t.direction();
+        for (anchor, s) in [(t.from, 1.0), (t.to, -1.0)] {
+            if let Some(b) = anchor.block {
+                let g = loads.reference(b);
+                let force = s * f * e;
+                res[b][0] += force.x;
+                res[b][1] += force.y;
+                res[b][2] += crate::geometry::cross(anchor.point - g, force) / size;
             }
         }
     }

@@ -278,6 +278,53 @@ pub struct AnalysisReport {
     pub continuous_hinges: Option<Vec<ContinuousHinge>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous_note: Option<String>,
+    /// The tie rods (`[[ties]]`), in the scene's order, with their forces at collapse.
+    pub ties: Vec<TieReport>,
+}
+
+/// A tie rod and its force in the static solution at collapse.
+#[derive(Debug, Clone, Serialize)]
+pub struct TieReport {
+    pub index: usize,
+    /// Anchor points (m).
+    pub from: [f64; 2],
+    pub to: [f64; 2],
+    /// The anchored blocks (assembly order), null for the ground.
+    pub from_block: Option<usize>,
+    pub to_block: Option<usize>,
+    /// Yield force and prestress (N).
+    pub capacity: f64,
+    pub prestress: f64,
+    /// Tension at collapse (N), null when the structure does not collapse.
+    pub force: Option<f64>,
+    /// Whether the tie has yielded at collapse (its force at the capacity), null without
+    /// collapse.
+    pub yielded: Option<bool>,
+}
+
+impl TieReport {
+    /// The ties of `model` with the forces of `r`.
+    pub fn all(model: &Model, r: &StaticResult) -> Vec<TieReport> {
+        model
+            .ties
+            .iter()
+            .enumerate()
+            .map(|(index, t)| {
+                let f = r.ties.get(index);
+                TieReport {
+                    index,
+                    from: xy(t.from.point),
+                    to: xy(t.to.point),
+                    from_block: t.from.block,
+                    to_block: t.to.block,
+                    capacity: t.capacity,
+                    prestress: t.prestress,
+                    force: f.map(|f| f.force),
+                    yielded: f.map(|f| f.yielded),
+                }
+            })
+            .collect()
+    }
 }
 
 /// The tilting table's angle (degrees) that loads the blocks as `lambda` does: `atan(lambda)`,
@@ -459,6 +506,7 @@ impl AnalysisReport {
             lambda_continuous: None,
             continuous_hinges: None,
             continuous_note: None,
+            ties: TieReport::all(model, r),
         }
     }
 }

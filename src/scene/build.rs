@@ -57,6 +57,14 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
                 &scene.origin,
             )?;
             model.loads = model.loads.with_action(scene.action);
+            let tol = b.detected.tolerance;
+            model.ties = super::ties::anchor_ties(
+                &scene.ties,
+                &model.assembly,
+                |p| super::user_blocks::first_containing(&model.assembly, p, tol),
+                tol,
+                &scene.origin,
+            )?;
             return Ok(model);
         }
         (None, None) => {
@@ -69,10 +77,19 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
     };
     let (assembly, arch) = build_assembly(scene, a)?;
     let loads = build_loads(scene, &assembly, &arch)?;
+    let tol = 1e-9 * assembly.size();
+    let ties = super::ties::anchor_ties(
+        &scene.ties,
+        &assembly,
+        |p| containing_block(&assembly, &arch, p, tol),
+        tol,
+        &scene.origin,
+    )?;
     Ok(Model {
         assembly,
         loads,
         strength,
+        ties,
     })
 }
 

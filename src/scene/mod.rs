@@ -7,6 +7,7 @@
 
 mod build;
 mod piers;
+pub mod ties;
 pub mod units;
 mod user_blocks;
 pub use build::{build, builds_on_this_thread};
@@ -166,6 +167,8 @@ pub struct Scene {
     pub material: Material,
     /// Loads beyond self-weight (`[[loads]]`), in file order.
     pub loads: Vec<LoadSpec>,
+    /// Tie rods (`[[ties]]`), in file order.
+    pub ties: Vec<ties::TieSpec>,
     /// `[fill]`, when given.
     pub fill: Option<FillSpec>,
     /// `[seismic]` (defaults: horizontal ground motion only).
@@ -359,7 +362,11 @@ pub use crate::overrides::parse_assignment;
 fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
     // One entry of `[[loads]]`, as the scene's errors name it: `loads[1].intensity`.
     if let Some(rest) = key.strip_prefix("loads[") {
-        return set_load(table, key, rest, value);
+        return set_entry(table, "loads", key, rest, value);
+    }
+    // One entry of `[[ties]]`: `ties[0].capacity`.
+    if let Some(rest) = key.strip_prefix("ties[") {
+        return set_entry(table, "ties", key, rest, value);
     }
     let parts: Vec<&str> = key.split('.').collect();
     // One pier of a portal is set with three parts: `piers.left.height`.
@@ -398,31 +405,43 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     Ok(())
 }
 
-/// Set `loads[N].KEY` (`rest` is `N].KEY`) in the `[[loads]]` entry N (counted from 0).
-fn set_load(table: &mut Table, key: &str, rest: &str, value: Value) -> Result<(), String> {
+/// Set `LIST[N].KEY` (`rest` is `N].KEY`) in the entry N (counted from 0) of the array of
+/// tables `list` (`[[loads]]`, `[[ties]]`).
+fn set_entry(
+    table: &mut Table,
+    list: &str,
+    key: &str,
+    rest: &str,
+    value: Value,
+) -> Result<(), String> {
+    let example = if list == "ties" {
+        "capacity"
+    } else {
+        "intensity"
+    };
     let form = || {
-        format!("key `{key}` must be loads[N].KEY, e.g. loads[0].intensity (N counts the [[loads]] from 0)")
+        format!("key `{key}` must be {list}[N].KEY, e.g. {list}[0].{example} (N counts the [[{list}]] from 0)")
     };
     let (index, name) = rest.split_once("].").ok_or_else(form)?;
     let index: usize = index.trim().parse().map_err(|_| form())?;
     if name.is_empty() || name.contains('.') {
         return Err(form());
     }
-    let count = match table.get("loads") {
+    let count = match table.get(list) {
         Some(Value::Array(items)) => items.len(),
         _ => 0,
     };
-    let Some(Value::Array(items)) = table.get_mut("loads") else {
-        return Err(format!("`{key}`: the scene has no [[loads]]"));
+    let Some(Value::Array(items)) = table.get_mut(list) else {
+        return Err(format!("`{key}`: the scene has no [[{list}]]"));
     };
     match items.get_mut(index) {
         Some(Value::Table(t)) => {
             t.insert(name.to_string(), value);
             Ok(())
         }
-        Some(_) => Err(format!("`loads[{index}]` is not a table in the scene")),
+        Some(_) => Err(format!("`{list}[{index}]` is not a table in the scene")),
         None => Err(format!(
-            "`{key}`: the scene has {count} [[loads]] (loads[0] to loads[{}])",
+            "`{key}`: the scene has {count} [[{list}]] ({list}[0] to {list}[{}])",
             count.saturating_sub(1)
         )),
     }
@@ -430,6 +449,7 @@ fn set_load(table: &mut Table, key: &str, rest: &str, value: Value) -> Result<()
 
 const SECTIONS: &[&str] = &[
     "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site", "blocks", "action",
+    "ties",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -837,6 +857,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
     };
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
     let loads = parse_loads(&table, origin)?;
+    let ties = ties::parse_ties(&table, origin)?;
     let fill = match section(&table, "fill", origin)? {
         Some(t) => Some(parse_fill(Section::new("fill", t, origin), arch.as_ref())?),
         None => None,
@@ -864,6 +885,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         piers,
         material,
         loads,
+        ties,
         fill,
         seismic,
         action,
@@ -1149,29 +1171,40 @@ fn parse_piers(s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
     Ok(piers)
 }
 
-fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError> {
-    let items = match table.get("loads") {
+/// The tables of the array of tables `list` (`[[loads]]`, `[[ties]]`), empty when absent;
+/// anything else there is an error naming the key.
+fn entries<'a>(table: &'a Table, list: &str, origin: &str) -> Result<Vec<&'a Table>, SceneError> {
+    let items = match table.get(list) {
         None => return Ok(Vec::new()),
         Some(Value::Array(a)) => a,
         Some(v) => {
             return Err(SceneError::WrongType {
                 origin: origin.to_string(),
-                key: "loads".to_string(),
+                key: list.to_string(),
                 value: v.to_string(),
-                expected: "a list of [[loads]] tables".to_string(),
+                expected: format!("a list of [[{list}]] tables"),
             })
         }
     };
-    let mut loads = Vec::with_capacity(items.len());
-    for (k, item) in items.iter().enumerate() {
-        let Value::Table(t) = item else {
-            return Err(SceneError::WrongType {
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, item)| match item {
+            Value::Table(t) => Ok(t),
+            _ => Err(SceneError::WrongType {
                 origin: origin.to_string(),
-                key: format!("loads[{k}]"),
+                key: format!("{list}[{k}]"),
                 value: item.to_string(),
-                expected: "a [[loads]] table".to_string(),
-            });
-        };
+                expected: format!("a [[{list}]] table"),
+            }),
+        })
+        .collect()
+}
+
+fn parse_loads(table: &Table, origin: &str) -> Result<Vec<LoadSpec>, SceneError> {
+    let items = entries(table, "loads", origin)?;
+    let mut loads = Vec::with_capacity(items.len());
+    for (k, t) in items.into_iter().enumerate() {
         let mut s = Section::new(format!("loads[{k}]"), t, origin);
         let (allowed, context) = keys_of_kind(t, "type", LOAD_KEYS, LOAD_TYPE_KEYS);
         s.check_known(&allowed, &context)?;

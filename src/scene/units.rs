@@ -78,10 +78,10 @@ pub fn dimension_of(key: &str) -> Option<Dimension> {
     Some(match name {
         "thickness" | "radius" | "span" | "rise" | "eccentricity" | "depth" | "level"
         | "height" | "width" | "bottom_width" | "top_width" | "from_x" | "to_x" | "ground_y"
-        | "at" => Dimension::Length,
+        | "at" | "from" | "to" => Dimension::Length,
         "compressive_strength" => Dimension::Stress,
         "unit_weight" => Dimension::UnitWeight,
-        "force" => Dimension::Force,
+        "force" | "capacity" | "prestress" => Dimension::Force,
         "intensity" => Dimension::ForcePerLength,
         _ => return None,
     })
@@ -137,7 +137,7 @@ pub fn to_si(table: &mut Table) {
     for (name, section) in table.iter_mut() {
         match section {
             Value::Table(t) => convert_table(t, name == "piers"),
-            // [[loads]]
+            // [[loads]], [[ties]]
             Value::Array(items) => {
                 for item in items {
                     if let Value::Table(t) = item {

@@ -365,6 +365,7 @@ pub(super) fn build_model(
         assembly,
         loads: case,
         strength,
+        ties: Vec::new(),
     })
 }
 
@@ -435,7 +436,7 @@ fn fill_regions(assembly: &Assembly, level: f64, tol: f64) -> Vec<(usize, f64, V
 }
 
 /// The first block in source order whose (convex, counter-clockwise) outline holds `p`.
-fn first_containing(assembly: &Assembly, p: Vec2, tol: f64) -> Option<usize> {
+pub(super) fn first_containing(assembly: &Assembly, p: Vec2, tol: f64) -> Option<usize> {
     let source = |i: usize| match assembly.blocks[i].kind {
         BlockKind::User(s) => s,
         _ => i,

@@ -629,7 +629,7 @@ impl ChainProgram {
 pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
     // The active set solves linear programs only: with crushing cones the conic stand test
     // decides.
-    if !model.assembly.is_chain() || model.strength.is_finite() {
+    if declines(model).is_some() || model.strength.is_finite() {
         return None;
     }
     let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, sign, None);
@@ -642,7 +642,7 @@ pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
 /// multipliers equilibrium allows. None when the model is not a chain or the method does not
 /// decide (the interior point then does).
 pub(super) fn stands_at_rest(model: &Model) -> Option<bool> {
-    if !model.assembly.is_chain() || model.strength.is_finite() {
+    if declines(model).is_some() || model.strength.is_finite() {
         return None;
     }
     let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, 1.0, None);
@@ -710,6 +710,39 @@ fn active_set_result(
     Some(result)
 }
 
+/// Why the chain program does not represent a model; the dispatcher of [`super::analyse`]
+/// then runs the full program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Declined {
+    /// The assembly is not a chain of blocks between two supports.
+    NotAChain,
+    /// Tie rods join blocks that are not neighbours in the chain: the three redundants of a
+    /// chain no longer describe every equilibrium.
+    Ties,
+}
+
+impl Declined {
+    pub fn words(self) -> &'static str {
+        match self {
+            Declined::NotAChain => {
+                "the reduced static program needs a chain of blocks between two supports"
+            }
+            Declined::Ties => "the reduced static program does not model tie rods",
+        }
+    }
+}
+
+/// Whether the chain program represents `model` (crushing included, by its conic form).
+pub fn declines(model: &Model) -> Option<Declined> {
+    if !model.assembly.is_chain() {
+        Some(Declined::NotAChain)
+    } else if !model.ties.is_empty() {
+        Some(Declined::Ties)
+    } else {
+        None
+    }
+}
+
 /// Static analysis of a chain (joint k joins block k - 1, or the ground, to block k, or the
 /// ground) by its reduced program in four unknowns: the same answer as [`super::analyse`]
 /// (the same statuses, multiplier, joint forces, hinges and mechanism), at a fraction of the
@@ -721,10 +754,8 @@ pub fn analyse_chain(
     let start = Instant::now();
     let (assembly, loads) = (&model.assembly, &model.loads);
     model.validate()?;
-    if !assembly.is_chain() {
-        return Err(AnalysisError::Other(
-            "the reduced static program needs a chain of blocks between two supports".into(),
-        ));
+    if let Some(why) = declines(model) {
+        return Err(AnalysisError::Other(why.words().into()));
     }
     let sign = settings.direction.sign();
     let conic_program = model.strength.is_finite();

@@ -14,7 +14,7 @@ mod chain;
 mod problem;
 mod settings;
 
-pub use chain::analyse_chain;
+pub use chain::{analyse_chain, declines, Declined};
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
@@ -22,7 +22,7 @@ pub use settings::{Program, StaticSettings};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
-use crate::model::{equilibrium_residual, Model, Strength};
+use crate::model::{Model, Strength, TieForce};
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 
@@ -72,11 +72,13 @@ pub struct StaticResult {
     /// [`analyse`] trusts such a collapse and sends the others to the full program.
     pub exact_vertex: bool,
     pub model: ModelSize,
+    /// The tie rods' forces at collapse, in tie order (empty without ties or collapse).
+    pub ties: Vec<TieForce>,
 }
 
 /// Run the static analysis of `model` (an assembly and its loads).
 pub fn analyse(model: &Model, settings: &StaticSettings) -> Result<StaticResult, AnalysisError> {
-    if settings.program == Program::Auto && model.assembly.is_chain() {
+    if settings.program == Program::Auto && chain::declines(model).is_none() {
         // The chain's program is exact when its vertex step lands; when it does not (a
         // degenerate optimum) or the interior-point solve falls short, the full program,
         // the proven path, decides.
@@ -102,10 +104,11 @@ pub fn analyse_full(
     model.validate()?;
     let sign = settings.direction.sign();
     let strength = model.strength;
-    let problem = StaticProblem::with_strength(
+    let problem = StaticProblem::with_interactions(
         assembly,
         loads,
         strength,
+        &model.ties,
         Objective::MaxLambda { sign, cap: None },
     );
     let mut sol = run(&problem, settings)?;
@@ -116,10 +119,11 @@ pub fn analyse_full(
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         // Unbounded above, or both infeasible: a capped program tells which.
-        let capped = StaticProblem::with_strength(
+        let capped = StaticProblem::with_interactions(
             assembly,
             loads,
             strength,
+            &model.ties,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
@@ -135,7 +139,8 @@ pub fn analyse_full(
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let lambda = sol.x[0];
             let forces = read_forces(assembly, &problem, &sol.x);
-            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+            let tension = read_ties(&problem, &sol.x);
+            let residual = model.equilibrium_residual(&forces, &tension, lambda, sign);
             check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
             result = result.read_solution(
                 assembly,
@@ -147,6 +152,14 @@ pub fn analyse_full(
                 lambda_capped,
                 || read_mechanism(assembly, &problem, &sol.z),
             );
+            if result.status == Status::Collapse {
+                result.ties = model
+                    .ties
+                    .iter()
+                    .zip(&tension)
+                    .map(|(t, &f)| t.force_of(f))
+                    .collect();
+            }
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;
@@ -196,7 +209,9 @@ fn stands_at_zero(
     result: StaticResult,
 ) -> Result<StaticResult, AnalysisError> {
     if result.status == Status::CannotStand
-        || (model.loads.is_self_weight_only() && mirror_symmetric(&model.assembly))
+        || (model.loads.is_self_weight_only()
+            && model.ties.is_empty()
+            && mirror_symmetric(&model.assembly))
     {
         return Ok(result);
     }
@@ -250,6 +265,7 @@ impl StaticResult {
             solver_status,
             exact_vertex: false,
             model,
+            ties: Vec::new(),
         }
     }
 
@@ -407,6 +423,14 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
         .collect()
 }
 
+/// The ties' tensions (N), in tie order.
+fn read_ties(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
+    p.tie_columns
+        .iter()
+        .map(|&c| x[c] * p.force_scale)
+        .collect()
+}
+
 /// What the joint forces say about each joint: hinges, sliding joints, open joints.
 #[derive(Debug, Default)]
 struct JointStates {
@@ -546,8 +570,13 @@ pub fn stands_at_rest(model: &Model, settings: &StaticSettings) -> Result<bool, 
 fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
     let (assembly, loads) = (&model.assembly, &model.loads);
     model.validate()?;
-    let problem =
-        StaticProblem::with_strength(assembly, loads, model.strength, Objective::MinTension);
+    let problem = StaticProblem::with_interactions(
+        assembly,
+        loads,
+        model.strength,
+        &model.ties,
+        Objective::MinTension,
+    );
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -561,7 +590,7 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
     let tau = sol.x[0];
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
-    let residual = equilibrium_residual(assembly, loads, &forces, 0.0, 1.0);
+    let residual = model.equilibrium_residual(&forces, &read_ties(&problem, &sol.x), 0.0, 1.0);
     let stands = tau <= 0.0;
     let hinges = if stands {
         classify_joints(assembly, model.strength, &forces, settings.hinge_tolerance).hinges

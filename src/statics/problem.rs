@@ -33,7 +33,7 @@
 //! optimum changes sign cleanly as the thickness crosses the minimum.
 
 use crate::assembly::Assembly;
-use crate::geometry::{cross, Vec2};
+use crate::interaction::{contact, crushing, Rows, Tie};
 use crate::model::{LoadCase, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
@@ -51,6 +51,8 @@ pub struct StaticProblem {
     pub force_scale: f64,
     /// Joints with friction rows, in row order.
     pub friction_joints: Vec<usize>,
+    /// Column of each tie's tension (over the force scale), in tie order.
+    pub tie_columns: Vec<usize>,
     /// Number of equality rows (3 per block).
     pub equality_rows: usize,
     /// Number of inequality rows.
@@ -69,9 +71,10 @@ pub enum Objective {
     MinTension,
 }
 
-/// Column of a joint unknown: 0 = c1, 1 = c2, 2 = V.
+/// Column of a joint unknown: 0 = c1, 1 = c2, 2 = V (the contacts' columns come first, after
+/// the multiplier).
 pub fn column(joint: usize, which: usize) -> usize {
-    1 + 3 * joint + which
+    contact::column_from(1, joint, which)
 }
 
 impl StaticProblem {
@@ -89,27 +92,28 @@ impl StaticProblem {
         strength: Strength,
         objective: Objective,
     ) -> StaticProblem {
+        Self::with_interactions(assembly, loads, strength, &[], objective)
+    }
+
+    /// The program with every interaction: the contacts, their crushing cones when
+    /// `strength` is finite, and the tie rods `ties`.
+    pub fn with_interactions(
+        assembly: &Assembly,
+        loads: &LoadCase,
+        strength: Strength,
+        ties: &[Tie],
+        objective: Objective,
+    ) -> StaticProblem {
         let (sign, lambda_cap, relax) = match objective {
             Objective::MaxLambda { sign, cap } => (sign, cap, false),
             Objective::MinTension => (0.0, None, true),
         };
-        let nb = assembly.blocks.len();
-        let nj = assembly.joints.len();
-        let ls = assembly.size();
         let fs = loads.force_scale();
-        let nvar = 1 + 3 * nj;
-
-        let mut rows = Vec::new();
-        let mut cols = Vec::new();
-        let mut vals = Vec::new();
-        let mut push = |r: usize, c: usize, v: f64| {
-            rows.push(r);
-            cols.push(c);
-            vals.push(v);
-        };
-
-        let mut b = vec![0.0; 3 * nb];
-        for i in 0..nb {
+        let mut rows = Rows::new(assembly, fs, relax);
+        let ls = rows.length_scale;
+        // The loads: the action times lambda (column 0) and the permanent loads (the
+        // right-hand side).
+        for i in 0..assembly.blocks.len() {
             if !relax {
                 let s = loads.variable(i, sign);
                 for (k, v) in [s.force.x / fs, s.force.y / fs, s.moment / (fs * ls)]
@@ -117,120 +121,85 @@ impl StaticProblem {
                     .enumerate()
                 {
                     if v != 0.0 {
-                        push(3 * i + k, 0, v);
+                        rows.equality.push((3 * i + k, 0, v));
                     }
                 }
             }
             let p = loads.permanent(i);
-            b[3 * i] = -p.force.x / fs;
-            b[3 * i + 1] = -p.force.y / fs;
-            b[3 * i + 2] = -p.moment / (fs * ls);
+            rows.b_equality[3 * i] = -p.force.x / fs;
+            rows.b_equality[3 * i + 1] = -p.force.y / fs;
+            rows.b_equality[3 * i + 2] = -p.moment / (fs * ls);
         }
-        for (j, jt) in assembly.joints.iter().enumerate() {
-            let n = jt.normal();
-            let u = jt.tangent();
-            let m = jt.midpoint();
-            for (side, s) in [(jt.to, 1.0), (jt.from, -1.0)] {
-                let Some(blk) = side else { continue };
-                let g = assembly.blocks[blk].centroid;
-                let r = |p: Vec2| (p - g) / ls;
-                let entries = [(0, jt.p1, n), (1, jt.p2, n), (2, m, u)];
-                for (which, point, dir) in entries {
-                    let c = column(j, which);
-                    push(3 * blk, c, s * dir.x);
-                    push(3 * blk + 1, c, s * dir.y);
-                    push(3 * blk + 2, c, s * cross(r(point), dir));
-                }
-            }
-        }
-        let equality_rows = 3 * nb;
-        let mut row = equality_rows;
-        // With crushing cones `c >= 0` follows from the cones (c + 1 >= |c - 1|): the rows
-        // are left out, since a nearly parallel duplicate of a strong material's cone splits
-        // its dual between the two and costs the interior point accuracy.
-        if !strength.is_finite() {
-            for j in 0..nj {
-                push(row, column(j, 0), -1.0);
-                push(row + 1, column(j, 1), -1.0);
-                row += 2;
-            }
-        }
-        let mut friction_joints = Vec::new();
-        for (j, jt) in assembly.joints.iter().enumerate() {
-            if jt.friction.is_finite() {
-                for sv in [1.0, -1.0] {
-                    push(row, column(j, 0), -jt.friction);
-                    push(row, column(j, 1), -jt.friction);
-                    push(row, column(j, 2), sv);
-                    row += 1;
-                }
-                friction_joints.push(j);
-            }
+        // The interactions, each in its own file. With crushing cones `c >= 0` follows from
+        // the cones (c + 1 >= |c - 1|): the contacts leave those rows out, since a nearly
+        // parallel duplicate of a strong material's cone splits its dual between the two
+        // and costs the interior point accuracy.
+        let (first, friction_joints) =
+            contact::static_rows(assembly, &mut rows, strength.is_finite());
+        crushing::static_rows(assembly, strength, &mut rows, first);
+        let tie_columns = ties.iter().map(|t| t.static_rows(&mut rows)).collect();
+        if let Some(cap) = lambda_cap {
+            rows.nonnegative(vec![(0, 1.0)], cap, false);
         }
         if relax {
-            for r in equality_rows..row {
-                push(r, 0, -1.0);
-            }
+            // tau >= -1 keeps the phase-one program bounded.
+            rows.nonnegative(vec![(0, -1.0)], 1.0, false);
         }
-        if lambda_cap.is_some() || relax {
-            // lambda <= cap, or tau >= -1 (keeps the phase-one program bounded).
-            push(row, 0, if relax { -1.0 } else { 1.0 });
+        Self::assemble(rows, friction_joints, tie_columns, relax)
+    }
+
+    /// Clarabel's standard form of `rows`: the zero cone, the nonnegative cone, the
+    /// second-order cones, in that order.
+    fn assemble(
+        rows: Rows,
+        friction_joints: Vec<usize>,
+        tie_columns: Vec<usize>,
+        relax: bool,
+    ) -> StaticProblem {
+        let nvar = rows.columns();
+        let equality_rows = rows.b_equality.len();
+        let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+        for &(row, col, val) in &rows.equality {
+            r.push(row);
+            c.push(col);
+            v.push(val);
+        }
+        let mut b = rows.b_equality;
+        let mut row = equality_rows;
+        for (entries, rhs) in rows.nonnegative.iter().chain(rows.cones.iter().flatten()) {
+            for &(col, val) in entries {
+                r.push(row);
+                c.push(col);
+                v.push(val);
+            }
+            b.push(*rhs);
             row += 1;
         }
-        let inequality_rows = row - equality_rows;
-        b.resize(row, 0.0);
-        if let Some(cap) = lambda_cap {
-            b[row - 1] = cap;
-        }
-        if relax {
-            b[row - 1] = 1.0;
-        }
-        let mut cone_rows = 0;
-        if strength.is_finite() {
-            // Per joint and end: `2 c kappa >= N^2` divided by kappa, i.e.
-            // s = [c + 1, c - 1, sqrt2 N / sqrt(kappa)] in the second-order cone (c + tau in
-            // place of c in the phase-one program). Written with kappa itself the cone's rows
-            // would hold c +- kappa, and at a strong material (kappa ~ 1e6 and more) c would
-            // drown in round-off of kappa; c and N are O(1) here (forces over the weight).
-            for (j, jt) in assembly.joints.iter().enumerate() {
-                let kappa = strength.line_capacity() * jt.length() / fs;
-                let w = std::f64::consts::SQRT_2 / kappa.sqrt();
-                for which in 0..2 {
-                    for (k, kb) in [(0, 1.0), (1, -1.0)] {
-                        push(row + k, column(j, which), -1.0);
-                        if relax {
-                            push(row + k, 0, -1.0);
-                        }
-                        b.push(kb);
-                    }
-                    push(row + 2, column(j, 0), -w);
-                    push(row + 2, column(j, 1), -w);
-                    b.push(0.0);
-                    row += 3;
-                    cone_rows += 3;
-                }
-            }
-        }
-        let a = csc_from_triplets(row, nvar, &rows, &cols, &vals);
+        let inequality_rows = rows.nonnegative.len();
+        let cone_rows = 3 * rows.cones.len();
+        let a = csc_from_triplets(row, nvar, &r, &c, &v);
         let mut q = vec![0.0; nvar];
         q[0] = if relax { 1.0 } else { -1.0 };
+        let mut cones = vec![SupportedConeT::ZeroConeT(equality_rows)];
+        if inequality_rows > 0 {
+            // None with crushing cones, infinite friction, no tie and no cap.
+            cones.push(SupportedConeT::NonnegativeConeT(inequality_rows));
+        }
+        cones.extend(
+            rows.cones
+                .iter()
+                .map(|_| SupportedConeT::SecondOrderConeT(3)),
+        );
         StaticProblem {
             p: CscMatrix::zeros((nvar, nvar)),
             q,
             a,
             b,
-            cones: {
-                let mut cones = vec![SupportedConeT::ZeroConeT(equality_rows)];
-                if inequality_rows > 0 {
-                    // None with crushing cones, infinite friction and no cap.
-                    cones.push(SupportedConeT::NonnegativeConeT(inequality_rows));
-                }
-                cones.extend((0..cone_rows / 3).map(|_| SupportedConeT::SecondOrderConeT(3)));
-                cones
-            },
-            length_scale: ls,
-            force_scale: fs,
+            cones,
+            length_scale: rows.length_scale,
+            force_scale: rows.force_scale,
             friction_joints,
+            tie_columns,
             equality_rows,
             inequality_rows,
             cone_rows,

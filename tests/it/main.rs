@@ -34,3 +34,4 @@ mod static_bound;
 mod studies;
 mod svg;
 mod sweep;
+mod ties;

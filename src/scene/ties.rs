@@ -1,0 +1,160 @@
+//! `[[ties]]`: tie rods, read from the scene and anchored on the built assembly.
+//!
+//! ```toml
+//! [[ties]]
+//! from = [-1.1, 1.0]     # m: anchored on the block containing this point
+//! to = [1.1, 1.0]        # m: on another block, or the ground (at or below the structure's base)
+//! capacity = 40000.0     # N: the force at which it yields
+//! prestress = 0.0        # N, default 0, at most capacity: carried at lambda = 0
+//! ```
+
+use super::{short, Section, MAX_FORCE, MAX_LENGTH};
+use crate::assembly::Assembly;
+use crate::error::SceneError;
+use crate::geometry::Vec2;
+use crate::interaction::Anchor;
+use crate::model::Tie;
+use toml::{Table, Value};
+
+/// A tie as the user wrote it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TieSpec {
+    pub from: [f64; 2],
+    pub to: [f64; 2],
+    /// The yield force (N).
+    pub capacity: f64,
+    pub prestress: f64,
+}
+
+const TIE_KEYS: &[&str] = &["from", "to", "capacity", "prestress"];
+
+/// The `[[ties]]` list of a scene (empty when absent).
+pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, SceneError> {
+    let items = super::entries(table, "ties", origin)?;
+    let mut ties = Vec::with_capacity(items.len());
+    for (k, t) in items.into_iter().enumerate() {
+        let mut s = Section::new(format!("ties[{k}]"), t, origin);
+        s.check_known(TIE_KEYS, "")?;
+        let point = |s: &mut Section, key: &'static str, what: &str| {
+            let p = s.pair(key, what)?;
+            if p.iter().any(|c| c.abs() > MAX_LENGTH) {
+                return Err(s.out_of_range(
+                    key,
+                    format!("[{}, {}]", short(p[0]), short(p[1])),
+                    &format!("coordinates must lie within +-{MAX_LENGTH:e} m"),
+                ));
+            }
+            Ok(p)
+        };
+        let from = point(
+            &mut s,
+            "from",
+            "anchor point [x, y] in metres, inside a block",
+        )?;
+        let to = point(
+            &mut s,
+            "to",
+            "anchor point [x, y] in metres, inside another block or at or below the structure's base (the ground)",
+        )?;
+        if from == to {
+            return Err(s.out_of_range(
+                "to",
+                format!("[{}, {}]", to[0], to[1]),
+                "must differ from `from`: a tie has a length",
+            ));
+        }
+        if matches!(t.get("capacity"), Some(Value::String(c)) if c.trim() == "design") {
+            return Err(s.out_of_range(
+                "capacity",
+                "\"design\"",
+                "a number in N (SI), e.g. 40000 or \"40 kN\": a capacity to be designed is sized by `voussoir retrofit`, which voussoir does not have yet",
+            ));
+        }
+        let capacity = s.finite("capacity", "the force at which the tie yields, in N")?;
+        if !(0.0..=MAX_FORCE).contains(&capacity) {
+            return Err(s.out_of_range(
+                "capacity",
+                short(capacity),
+                &format!("must be from 0 to {MAX_FORCE:e} N"),
+            ));
+        }
+        let prestress = s.opt_f64("prestress")?.unwrap_or(0.0);
+        if !(prestress.is_finite() && (0.0..=capacity).contains(&prestress)) {
+            return Err(s.out_of_range(
+                "prestress",
+                short(prestress),
+                &format!("must be from 0 to the capacity, {} N", short(capacity)),
+            ));
+        }
+        s.finish("")?;
+        ties.push(TieSpec {
+            from,
+            to,
+            capacity,
+            prestress,
+        });
+    }
+    Ok(ties)
+}
+
+/// The ties of a scene anchored on `assembly`: each anchor on the block `locate` finds for
+/// its point, or the ground when the point lies at or below the structure's base (its lowest
+/// point, within `tol`); any other point is an error naming the key.
+pub(super) fn anchor_ties(
+    specs: &[TieSpec],
+    assembly: &Assembly,
+    locate: impl Fn(Vec2) -> Option<usize>,
+    tol: f64,
+    origin: &str,
+) -> Result<Vec<Tie>, SceneError> {
+    let base = assembly
+        .blocks
+        .iter()
+        .flat_map(|b| b.polygon.iter())
+        .fold(f64::INFINITY, |m, p| m.min(p.y));
+    let error = |k: usize, key: &str, p: [f64; 2], allowed: String| SceneError::OutOfRange {
+        origin: origin.to_string(),
+        key: format!("ties[{k}].{key}"),
+        value: format!("[{}, {}]", short(p[0]), short(p[1])),
+        allowed,
+    };
+    let mut ties = Vec::with_capacity(specs.len());
+    for (k, spec) in specs.iter().enumerate() {
+        let anchor = |key: &str, p: [f64; 2]| -> Result<Anchor, SceneError> {
+            let point = Vec2::new(p[0], p[1]);
+            let block = match locate(point) {
+                Some(b) => Some(b),
+                None if point.y <= base + tol => None,
+                None => {
+                    return Err(error(
+                        k,
+                        key,
+                        p,
+                        format!(
+                            "the point lies outside every block and above the ground (the structure's base is at y = {}): an anchor is a point of a block, or of the ground at or below the base",
+                            short(base)
+                        ),
+                    ))
+                }
+            };
+            Ok(Anchor { block, point })
+        };
+        let (from, to) = (anchor("from", spec.from)?, anchor("to", spec.to)?);
+        let tie = Tie {
+            from,
+            to,
+            capacity: spec.capacity,
+            prestress: spec.prestress,
+        };
+        if let Some(problem) = tie.problem(assembly.blocks.len()) {
+            return Err(error(
+                k,
+                "to",
+                spec.to,
+                format!("the tie is not well placed: {problem}"),
+            ));
+        }
+        ties.push(tie);
+    }
+    Ok(ties)
+}

@@ -1,0 +1,356 @@
+//! Tie rods (`[[ties]]`, `voussoir::interaction::tie`): closed forms derived here for a tied
+//! block (rocking, sliding, prestress), agreement of the static and kinematic bounds on a
+//! tied portal, invariances, the methods that refuse ties, and bad input.
+
+use crate::common;
+
+use voussoir::analysis::{self, KinematicMode, Options};
+use voussoir::geometry::Vec2;
+use voussoir::interaction::{Anchor, Tie};
+use voussoir::kinematic::{self, KinematicSettings};
+use voussoir::model::Model;
+use voussoir::scene::Scene;
+use voussoir::statics::{self, Direction, StaticSettings, Status};
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml_str(text, "ties-test.toml")
+        .unwrap_or_else(|e| panic!("valid test scene rejected: {e}\n{text}"))
+}
+
+/// A block b x h (on x in [-b/2, b/2], y in [0, h]) with a horizontal tie at height `ht`
+/// from a fixed wall (the ground) on `side` (-1 left, +1 right) to the block's face.
+fn tied_block(b: f64, h: f64, mu: f64, ht: f64, side: f64, capacity: f64, prestress: f64) -> Model {
+    let wall = Anchor {
+        block: None,
+        point: Vec2::new(side * (0.5 * b + 0.5), ht),
+    };
+    let face = Anchor {
+        block: Some(0),
+        point: Vec2::new(side * 0.5 * b, ht),
+    };
+    Model::self_weight(common::single_block(b, h, mu)).with_ties(vec![Tie {
+        from: wall,
+        to: face,
+        capacity,
+        prestress,
+    }])
+}
+
+fn lambda_static(m: &Model) -> f64 {
+    let r = statics::analyse(m, &StaticSettings::default()).expect("static analysis solves");
+    assert_eq!(r.status, Status::Collapse);
+    let residual = r.equilibrium_residual;
+    assert!(
+        residual <= 1e-9 * m.assembly.total_weight(),
+        "residual {residual}"
+    );
+    r.lambda.expect("collapse")
+}
+
+fn lambda_kinematic(m: &Model) -> f64 {
+    let r = kinematic::analyse(m, &KinematicSettings::default()).expect("kinematic search runs");
+    assert_eq!(r.status, Status::Collapse);
+    r.lambda_upper.expect("collapse")
+}
+
+/// Rocking about the right toe with the tie on the left (the side the load comes from):
+/// moments about the toe, `lambda W h/2 = W b/2 + S ht`, so
+/// `lambda = (W b/2 + S ht) / (W h/2)`; the tie yields.
+#[test]
+fn tied_block_rocks_at_the_closed_form() {
+    let (b, h) = (0.4, 1.5);
+    let w = common::single_block(b, h, f64::INFINITY).total_weight();
+    for ht in [0.3, 0.75, 1.5] {
+        for s in [0.0, 0.1 * w, 0.4 * w] {
+            let m = tied_block(b, h, f64::INFINITY, ht, -1.0, s, 0.0);
+            let expected = (w * b / 2.0 + s * ht) / (w * h / 2.0);
+            let (ls, lk) = (lambda_static(&m), lambda_kinematic(&m));
+            assert!(
+                (ls - expected).abs() <= 1e-9 * expected,
+                "ht {ht}, S {s}: static {ls}, closed form {expected}"
+            );
+            assert!(
+                (lk - expected).abs() <= 1e-9 * expected,
+                "ht {ht}, S {s}: kinematic {lk}, closed form {expected}"
+            );
+            let r = statics::analyse(&m, &StaticSettings::default()).expect("solves");
+            if s > 0.0 {
+                assert!(
+                    r.ties[0].yielded,
+                    "the tie yields at collapse: {:?}",
+                    r.ties[0]
+                );
+                assert!((r.ties[0].force - s).abs() <= 1e-6 * s);
+            }
+        }
+    }
+}
+
+/// With finite friction the block may slide first: horizontally `lambda W = V + S` with
+/// `|V| <= mu W` (the tie is horizontal, so N = W), so sliding caps lambda at `mu + S/W`;
+/// the static bound is the smaller of the two closed forms, and the kinematic search
+/// (rotations only) keeps the rocking value, an upper bound.
+#[test]
+fn tied_block_slides_at_the_closed_form() {
+    let (b, h, ht) = (0.6, 1.2, 0.9);
+    let w = common::single_block(b, h, f64::INFINITY).total_weight();
+    let s = 0.15 * w;
+    let rocking = (w * b / 2.0 + s * ht) / (w * h / 2.0);
+    for mu in [0.2, 0.4, 0.6, 0.9] {
+        let m = tied_block(b, h, mu, ht, -1.0, s, 0.0);
+        let expected = rocking.min(mu + s / w);
+        let ls = lambda_static(&m);
+        assert!(
+            (ls - expected).abs() <= 1e-8 * expected,
+            "mu {mu}: static {ls}, closed form {expected}"
+        );
+        let lk = lambda_kinematic(&m);
+        assert!((lk - rocking).abs() <= 1e-9 * rocking && lk >= ls * (1.0 - 1e-9));
+    }
+}
+
+/// A prestressed tie on the far side (toward which the block overturns) shortens in the
+/// mechanism: it only ever helps the overturning with its least force, the prestress P,
+/// so `lambda W h/2 + P ht = W b/2`; the capacity plays no part.
+#[test]
+fn prestressed_tie_on_the_far_side_pulls_at_its_prestress() {
+    let (b, h, ht) = (0.5, 1.0, 0.6);
+    let w = common::single_block(b, h, f64::INFINITY).total_weight();
+    for (p, c) in [(0.0, 0.2 * w), (0.1 * w, 0.2 * w), (0.3 * w, 5.0 * w)] {
+        let m = tied_block(b, h, f64::INFINITY, ht, 1.0, c, p);
+        let expected = (w * b / 2.0 - p * ht) / (w * h / 2.0);
+        let (ls, lk) = (lambda_static(&m), lambda_kinematic(&m));
+        assert!(
+            (ls - expected).abs() <= 1e-9 * expected,
+            "P {p}: static {ls}, closed form {expected}"
+        );
+        assert!(
+            (lk - expected).abs() <= 1e-9 * expected,
+            "P {p}: kinematic {lk}, closed form {expected}"
+        );
+    }
+}
+
+/// The bundled portal with a tie between its springings at `capacity` (N).
+fn tied_portal(capacity: f64, y: f64) -> String {
+    let portal = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    format!("{portal}\n[[ties]]\nfrom = [-1.0, {y}]\nto = [1.0, {y}]\ncapacity = {capacity}\n")
+}
+
+fn analyse(
+    text: &str,
+    kinematic: KinematicMode,
+    direction: Option<Direction>,
+) -> analysis::SceneAnalysis {
+    let options = Options {
+        kinematic,
+        static_settings: StaticSettings::default().direction(direction.unwrap_or(Direction::Right)),
+        ..Options::default()
+    };
+    analysis::analyse(&scene(text), &options).unwrap_or_else(|e| panic!("analysis: {e}\n{text}"))
+}
+
+/// A tie of no capacity changes nothing; a tie that yields at collapse gives static =
+/// kinematic (the certified mechanism and the exhaustive search) to 1e-8, at several
+/// heights; lambda grows with the capacity.
+#[test]
+fn tied_portal_bounds_agree_while_the_tie_yields() {
+    let portal = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    let bare = analyse(&portal, KinematicMode::Certified, None)
+        .lower
+        .lambda
+        .expect("collapse");
+    let zero = analyse(&tied_portal(0.0, -0.05), KinematicMode::Certified, None);
+    // The bare portal is solved by the chain program, the tied one by the full program:
+    // equal to the interior point's accuracy.
+    let zero = zero.lower.lambda.expect("collapse");
+    assert!(
+        (zero - bare).abs() <= 1e-9 * bare,
+        "a tie of capacity 0 is no tie: {zero} vs {bare}"
+    );
+    for y in [-0.05, -0.4] {
+        let mut last = bare;
+        for capacity in [250.0, 500.0, 1000.0, 1500.0, 2000.0] {
+            for mode in [KinematicMode::Certified, KinematicMode::Exhaustive] {
+                let a = analyse(&tied_portal(capacity, y), mode, None);
+                let lower = a.lower.lambda.expect("collapse");
+                assert!(
+                    a.lower.ties[0].yielded,
+                    "capacity {capacity} at y = {y}: the tie yields"
+                );
+                let upper = a.lambda_upper().expect("upper bound");
+                assert!(
+                    (upper - lower).abs() <= 1e-8 * lower,
+                    "capacity {capacity} at y = {y} ({mode:?}): static {lower}, kinematic {upper}"
+                );
+                assert!(lower > last, "lambda grows with the capacity");
+                assert!(a.lower.equilibrium_residual <= 1e-6 * a.model.assembly.total_weight());
+            }
+            last = analyse(&tied_portal(capacity, y), KinematicMode::Certified, None)
+                .lower
+                .lambda
+                .expect("collapse");
+        }
+    }
+}
+
+/// Once the tie no longer yields, its force settles and lambda stops growing (another
+/// mechanism, in which the tie does not stretch, governs); the kinematic search still
+/// bounds it from above.
+#[test]
+fn tied_portal_saturates_when_the_tie_stops_yielding() {
+    let strong = analyse(
+        &tied_portal(20000.0, -0.05),
+        KinematicMode::Exhaustive,
+        None,
+    );
+    let stronger = analyse(
+        &tied_portal(50000.0, -0.05),
+        KinematicMode::Exhaustive,
+        None,
+    );
+    let (l1, l2) = (
+        strong.lower.lambda.expect("collapse"),
+        stronger.lower.lambda.expect("collapse"),
+    );
+    assert!(!strong.lower.ties[0].yielded && !stronger.lower.ties[0].yielded);
+    assert!((l1 - l2).abs() <= 1e-7 * l1, "{l1} vs {l2}");
+    let f = strong.lower.ties[0].force;
+    assert!(f > 2000.0 && f < 20000.0, "tie force {f}");
+    assert!(strong.lambda_upper().expect("upper bound") >= l1 * (1.0 - 1e-9));
+}
+
+/// The mirror image of a tied portal loaded to the left is the same structure loaded to the
+/// right: equal multipliers.
+#[test]
+fn tied_portal_is_mirror_symmetric() {
+    let text = tied_portal(1200.0, -0.3);
+    let right = analyse(&text, KinematicMode::Certified, Some(Direction::Right));
+    let left = analyse(&text, KinematicMode::Certified, Some(Direction::Left));
+    let (r, l) = (
+        right.lower.lambda.expect("collapse"),
+        left.lower.lambda.expect("collapse"),
+    );
+    assert!((r - l).abs() <= 1e-9 * r, "right {r}, left {l}");
+}
+
+/// The JSON lists each tie with its force, capacity and whether it yielded.
+#[test]
+fn json_lists_the_ties() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("tied.toml");
+    std::fs::write(&path, tied_portal(1000.0, -0.05)).expect("write scene");
+    let out = common::voussoir()
+        .args(["analyze", "--json"])
+        .arg(&path)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let tie = &v["ties"][0];
+    assert_eq!(tie["capacity"], 1000.0);
+    assert_eq!(tie["yielded"], true);
+    let force = tie["force"].as_f64().expect("force");
+    assert!((force - 1000.0).abs() <= 1e-6 * 1000.0, "force {force}");
+}
+
+/// The methods that do not model ties refuse them rather than answer for the untied
+/// structure.
+#[test]
+fn methods_without_ties_refuse_them() {
+    let s = scene(&tied_portal(1000.0, -0.05));
+    let model = voussoir::scene::build(&s).expect("builds");
+    let dem = voussoir::dem::collapse_multiplier(
+        &model,
+        &voussoir::dem_settings::IntegrationParameters::for_model(&model),
+        0.01,
+        &mut |_| {},
+    );
+    assert!(
+        matches!(dem, Err(voussoir::dem::DemError::Ties { count: 1 })),
+        "the DEM refuses ties"
+    );
+    let continuous = analysis::continuous(&s, Direction::Right);
+    assert!(matches!(
+        continuous,
+        Err(kinematic::KinematicError::Ties { count: 1 })
+    ));
+}
+
+fn refused(extra: &str) -> String {
+    let portal = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    let text = format!("{portal}\n[[ties]]\n{extra}\n");
+    let err = Scene::from_toml_str(&text, "ties-test.toml")
+        .and_then(|s| voussoir::scene::build(&s).map(|_| ()))
+        .expect_err("refused");
+    err.to_string()
+}
+
+#[test]
+fn bad_ties_are_refused_naming_the_key() {
+    let cases = [
+        (
+            "from = [-5.0, 0.5]\nto = [1.0, -0.05]\ncapacity = 1000.0",
+            "ties[0].from",
+            "outside every block",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [-1.0, -0.2]\ncapacity = 1000.0",
+            "ties[0].to",
+            "both anchors are on block",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = -5.0",
+            "ties[0].capacity",
+            "from 0",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = 100.0\nprestress = 200.0",
+            "ties[0].prestress",
+            "capacity",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = \"design\"",
+            "ties[0].capacity",
+            "retrofit",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]",
+            "ties[0].capacity",
+            "capacity",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = 10.0\nstrength = 3",
+            "ties[0].strength",
+            "allowed",
+        ),
+        (
+            "from = [-1.0, -0.05]\nto = [-1.0, -0.05]\ncapacity = 10.0",
+            "ties[0].to",
+            "differ",
+        ),
+    ];
+    for (extra, key, words) in cases {
+        let message = refused(extra);
+        assert!(
+            message.contains(key) && message.contains(words),
+            "{extra}: {message}"
+        );
+    }
+}
+
+/// Units: `capacity = "2 kN"` and anchors in millimetres read as SI.
+#[test]
+fn tie_keys_take_units() {
+    let si = analyse(&tied_portal(2000.0, -0.05), KinematicMode::Certified, None);
+    let portal = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    let text = format!(
+        "{portal}\n[[ties]]\nfrom = [\"-1000 mm\", \"-50 mm\"]\nto = [\"1000 mm\", \"-50 mm\"]\ncapacity = \"2 kN\"\n"
+    );
+    let units = analyse(&text, KinematicMode::Certified, None);
+    assert_eq!(si.lower.lambda, units.lower.lambda);
+}

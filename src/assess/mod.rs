@@ -131,6 +131,7 @@ impl Linkage {
             Family::TwoHingesOneOpen => "two-hinges-and-one-open-joint",
             Family::TwoOpen => "two-open-joints",
             Family::OneHinge => "one-hinge",
+            Family::HingesWithHeldTies => "tied",
         };
         let point = |k: usize| Vec2::new(mechanism.hinges[k].x, mechanism.hinges[k].y);
         let omega = |b: usize| mechanism.velocities.get(b).map_or(0.0, |v| v[2]);

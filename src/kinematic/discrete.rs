@@ -325,10 +325,17 @@ pub fn analyse(
         key,
         candidates,
         settings,
-        (Search::Exhaustive, nj, None),
+        (
+            Search::Exhaustive,
+            nj,
+            chain.has_ties().then(|| TIED_FAMILIES.to_string()),
+        ),
         start,
     ))
 }
+
+/// What the exhaustive search covers on a chain with tie rods.
+const TIED_FAMILIES: &str = "with tie rods the search covers the hinge families of the chain, each valued with the ties' dissipation; a tie that keeps its length at collapse (a force below its capacity) makes the collapse mechanism one of more hinges, outside those families, so lambda_upper is then an upper bound above the collapse multiplier (the certified mechanism, the default, covers that case)";
 
 /// Whether the model is a two-support chain (true) or a one-support column (false).
 fn chain_kind(model: &Model) -> Result<bool, KinematicError> {
@@ -507,6 +514,12 @@ pub fn certify(
             around.sliding.len()
         )));
     }
+    // Ties whose force lies strictly between their bounds do not stretch in the collapse
+    // mechanism: each is one more constraint, met by one more hinge.
+    let held = held_ties(model, around);
+    if !held.is_empty() {
+        return certify_held(model, around, settings, &held, start);
+    }
     // A joint that carries nothing opens completely: with one open joint the mechanism has two
     // hinges (two bodies), with two open joints none (one body lifts off). Either way the
     // vertex has four tight rows (an open joint's two no-tension rows, two per hinge).
@@ -565,6 +578,202 @@ pub fn certify(
         (Search::Certified, 4, Some(note)),
         start,
     ))
+}
+
+/// The ties whose force in the static solution lies strictly between the prestress and the
+/// capacity (beyond the solver's accuracy): in the collapse mechanism they keep their length.
+fn held_ties(model: &Model, around: &StaticResult) -> Vec<usize> {
+    model
+        .ties
+        .iter()
+        .zip(&around.ties)
+        .enumerate()
+        .filter(|(_, (t, f))| {
+            let slack = crate::interaction::tie::YIELD_TOLERANCE * t.capacity.max(f.force);
+            f.force > t.prestress + slack && f.force < t.capacity - slack
+        })
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// [`certify`] when tie rods `held` keep their length at collapse: a chain between two
+/// supports with `4 + held` hinges at the static solution's hinges moves with one degree of
+/// freedom when its bodies' twists close (three equations) and no held tie stretches (one
+/// equation each). With rotations `c_k` about the hinges `h_k`, body i turns with the twist
+/// `sum_{k <= i} c_k (1, h_y, -h_x)`; the equations are linear in `c`, and the mechanism is
+/// the null vector of their `(3 + t) x (4 + t)` matrix, its signed maximal minors. It is
+/// admissible when every hinge opens on its free side (one common orientation), and its
+/// multiplier is `(G + D)/A` with `D` the yielding ties' dissipation.
+fn certify_held(
+    model: &Model,
+    around: &StaticResult,
+    settings: &KinematicSettings,
+    held: &[usize],
+    start: Instant,
+) -> Result<KinematicResult, KinematicError> {
+    let not = |why: String| KinematicError::NotCertified(why);
+    if !around.open.is_empty() {
+        return Err(not(format!(
+            "the static solution has {} open joints besides {} ties that keep their length",
+            around.open.len(),
+            held.len()
+        )));
+    }
+    let wanted = 4 + held.len();
+    let items = hinges_from_forces(model, around, wanted)?;
+    let chain = Chain::new(model, settings.direction.sign(), true);
+    let js: Vec<usize> = items.iter().map(|&(j, _)| j).collect();
+    let points: Vec<Vec2> = items.iter().map(|&(j, e)| chain.p[e as usize][j]).collect();
+    let m = points.len();
+    // The twist of the body holding block slot `slot` when only hinge k turns, at unit rate.
+    let unit_twist = |slot: Option<usize>, k: usize| -> super::Twist {
+        let Some(slot) = slot else { return [0.0; 3] };
+        let before = js.partition_point(|&j| j < slot);
+        if before == 0 || before == m || k >= before {
+            [0.0; 3]
+        } else {
+            super::rot(points[k])
+        }
+    };
+    let rate_of = |t: &ChainTie, twist: &dyn Fn(Option<usize>) -> super::Twist| {
+        let tw = [twist(t.slots[0]), twist(t.slots[1])];
+        t.tie.elongation_rate(|block, q| {
+            let i = usize::from(block != t.tie.from.block);
+            super::velocity(tw[i], q)
+        })
+    };
+    let rows = 3 + held.len();
+    let mut a = nalgebra::DMatrix::<f64>::zeros(rows, m);
+    for k in 0..m {
+        let r = super::rot(points[k]);
+        for (row, v) in r.iter().enumerate() {
+            a[(row, k)] = *v;
+        }
+        for (i, &t) in held.iter().enumerate() {
+            a[(3 + i, k)] = rate_of(&chain.ties[t], &|slot| unit_twist(slot, k));
+        }
+    }
+    // The null vector by signed maximal minors.
+    let mut c: Vec<f64> = (0..m)
+        .map(|k| {
+            let minor = a.clone().remove_column(k);
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            sign * minor.determinant()
+        })
+        .collect();
+    let cmax = c.iter().fold(0.0_f64, |s, x| s.max(x.abs()));
+    if !(cmax > 0.0 && cmax.is_finite()) {
+        return Err(not(
+            "the hinges and the ties that keep their length lock the chain".into(),
+        ));
+    }
+    let tol = ADMISSIBLE_TOL * cmax;
+    // A hinge at p2 turns positively, at p1 negatively (times one common orientation).
+    let wants = |k: usize| if items[k].1 == 1 { 1.0 } else { -1.0 };
+    let sigma = if (0..m).all(|k| wants(k) * c[k] >= -tol) {
+        1.0
+    } else if (0..m).all(|k| wants(k) * c[k] <= tol) {
+        -1.0
+    } else {
+        return Err(not(
+            "the mechanism of the static hinges with the held ties is not admissible".into(),
+        ));
+    };
+    for x in &mut c {
+        *x *= sigma / cmax;
+    }
+    let body_twist = |i: usize| -> super::Twist {
+        let mut t = [0.0; 3];
+        for k in 0..=i {
+            let r = super::rot(points[k]);
+            for (tc, rc) in t.iter_mut().zip(r) {
+                *tc += c[k] * rc;
+            }
+        }
+        t
+    };
+    let (mut ax, mut g) = (0.0, 0.0);
+    for i in 0..m - 1 {
+        let (wa, wg) = super::work(body_twist(i), chain.body(js[i], js[i + 1]));
+        ax += wa;
+        g += wg;
+    }
+    let twist_of = |slot: Option<usize>| -> super::Twist {
+        let Some(slot) = slot else { return [0.0; 3] };
+        let before = js.partition_point(|&j| j < slot);
+        if before == 0 || before == m {
+            [0.0; 3]
+        } else {
+            body_twist(before - 1)
+        }
+    };
+    let d: f64 = chain
+        .ties
+        .iter()
+        .map(|t| t.tie.dissipation(rate_of(t, &twist_of)))
+        .sum();
+    if ax <= 0.0 {
+        return Err(not(
+            "the seismic load does no work on the mechanism of the static hinges".into(),
+        ));
+    }
+    let lambda = (g + d) / ax;
+    let assembly = &model.assembly;
+    let mut velocities: Vec<[f64; 3]> = (0..assembly.blocks.len())
+        .map(|b| {
+            let t = twist_of(Some(b + 1));
+            let v = super::velocity(t, assembly.blocks[b].centroid);
+            [v.x, v.y, t[0]]
+        })
+        .collect();
+    let vmax = velocities
+        .iter()
+        .fold(0.0_f64, |s, v| s.max((v[0] * v[0] + v[1] * v[1]).sqrt()));
+    if vmax > 0.0 {
+        for v in &mut velocities {
+            for x in v.iter_mut() {
+                *x /= vmax;
+            }
+        }
+    }
+    let hinges = items
+        .iter()
+        .zip(&c)
+        .filter(|(_, ck)| ck.abs() > tol / cmax)
+        .map(|(&(j, e), _)| {
+            Hinge::at(
+                assembly,
+                j,
+                if e == 0 { JointEnd::P1 } else { JointEnd::P2 },
+            )
+        })
+        .collect();
+    let note = format!(
+        "certified: the mechanism of the static hinges (joints {}) with tie{} {} keeping its length has lambda = {lambda:.10} by virtual work",
+        js.iter().map(|j| j.to_string()).collect::<Vec<_>>().join(", "),
+        if held.len() == 1 { "" } else { "s" },
+        held.iter().map(|t| t.to_string()).collect::<Vec<_>>().join(", "),
+    );
+    Ok(KinematicResult {
+        status: Status::Collapse,
+        lambda_upper: Some(lambda),
+        lambda_signed: Some(lambda),
+        lambda_needed: None,
+        mechanism: Some(Mechanism {
+            family: Family::HingesWithHeldTies,
+            hinges,
+            open: Vec::new(),
+            velocities,
+            lambda,
+        }),
+        direction: settings.direction,
+        candidates: 1,
+        admissible: 1,
+        wall_time_s: start.elapsed().as_secs_f64(),
+        search: Search::Certified,
+        searched_joints: wanted,
+        note: Some(note),
+    })
 }
 
 /// The `wanted` hinges of a static solution at collapse, read from where its resultants touch

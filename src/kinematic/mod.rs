@@ -180,6 +180,9 @@ pub enum Family {
     TwoHingesOneOpen,
     /// Two joints that open completely: one body lifts off.
     TwoOpen,
+    /// Four hinges and one more per tie rod that keeps its length (a force between its
+    /// prestress and its capacity): the certified mechanism of a tied chain.
+    HingesWithHeldTies,
     /// A single hinge of a one-support chain (column, cantilever).
     OneHinge,
 }

@@ -71,6 +71,7 @@ pub fn family_words(f: Family) -> &'static str {
         Family::TwoHingesOneOpen => "two hinges and an opening joint",
         Family::TwoOpen => "two opening joints",
         Family::OneHinge => "one hinge",
+        Family::HingesWithHeldTies => "hinges, with tie rods that keep their length",
     }
 }
 

@@ -220,6 +220,37 @@ fn tied_portal_saturates_when_the_tie_stops_yielding() {
     assert!(strong.lambda_upper().expect("upper bound") >= l1 * (1.0 - 1e-9));
 }
 
+/// A tie that no longer yields keeps its length at collapse: the certified mechanism then has
+/// one hinge more than four (`Family::HingesWithHeldTies`), and it meets the static bound to
+/// 1e-8 on a grid of capacities and heights, yielded or not.
+#[test]
+fn tied_portal_certified_bound_meets_the_static_one_on_a_grid() {
+    for y in [-0.05, -0.2, -0.4] {
+        for capacity in [300.0, 1800.0, 2200.0, 3000.0, 5000.0, 20000.0] {
+            let a = analyse(&tied_portal(capacity, y), KinematicMode::Certified, None);
+            let lower = a.lower.lambda.expect("collapse");
+            let upper = a.lambda_upper().expect("upper bound");
+            assert_eq!(
+                a.kinematic_search,
+                Some(voussoir::kinematic::Search::Certified)
+            );
+            assert!(
+                (upper - lower).abs() <= 1e-8 * lower,
+                "capacity {capacity} at y = {y}: static {lower}, certified {upper}"
+            );
+            let k = a.upper.as_ref().expect("kinematic result");
+            let family = k.mechanism.as_ref().expect("mechanism").family;
+            let held = !a.lower.ties[0].yielded;
+            assert_eq!(
+                family == voussoir::kinematic::Family::HingesWithHeldTies,
+                held,
+                "capacity {capacity} at y = {y}: family {family:?}, tie {:?}",
+                a.lower.ties[0]
+            );
+        }
+    }
+}
+
 /// The mirror image of a tied portal loaded to the left is the same structure loaded to the
 /// right: equal multipliers.
 #[test]

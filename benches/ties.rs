@@ -1,0 +1,76 @@
+//! Tie rods (issue 24's benchmark): the static bound and the upper bound of a portal with 0, 1
+//! and 4 ties at n = 64 and 1000 voussoirs, as `analyze` runs them. Plain `harness = false`
+//! program printing a Markdown table; run with `cargo bench --bench ties`. Target: no more than
+//! 2x the tie-free time (not met yet: the chain program in four unknowns declines tied models,
+//! so they go to the full conic program; see docs/performance.md).
+
+use std::time::Instant;
+
+use voussoir::analysis::{self, KinematicMode, Options};
+use voussoir::scene::Scene;
+
+/// Median wall time (s) of `reps` runs of `f` (after one warm-up run), and its last result.
+fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut out = f();
+    let mut v = Vec::new();
+    for _ in 0..reps.max(1) {
+        let t = Instant::now();
+        out = f();
+        v.push(t.elapsed().as_secs_f64());
+    }
+    v.sort_by(f64::total_cmp);
+    (v[v.len() / 2], out)
+}
+
+fn main() {
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("thread pool");
+    println!("Tie rods (`analysis::analyse`), portal R = 1 m, t = 0.2 m on 1 m piers of 4 courses, ties between the piers at y = -0.05, -0.3, -0.55, -0.8 m of 500 N each, one thread, median\n");
+    println!("| n | ties | upper bound | lambda_lower | lambda_upper | program | total ms |");
+    println!("|---:|---:|---|---:|---:|---|---:|");
+    for n in [64usize, 1000] {
+        for ties in [0usize, 1, 4] {
+            let mut text = format!(
+                "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = {n}\n[piers]\nheight = 1.0\nwidth = 0.4\ncourses = 4\n"
+            );
+            for y in [-0.05, -0.3, -0.55, -0.8].iter().take(ties) {
+                text.push_str(&format!(
+                    "[[ties]]\nfrom = [-1.0, {y}]\nto = [1.0, {y}]\ncapacity = 500.0\n"
+                ));
+            }
+            let scene = Scene::from_toml_str(&text, "bench").expect("valid scene");
+            let modes: &[KinematicMode] = if n <= 64 {
+                &[KinematicMode::Certified, KinematicMode::Exhaustive]
+            } else {
+                &[KinematicMode::Certified]
+            };
+            for &mode in modes {
+                let options = Options {
+                    kinematic: mode,
+                    ..Options::default()
+                };
+                let reps = if mode == KinematicMode::Exhaustive {
+                    3
+                } else {
+                    (20_000 / n).clamp(5, 200)
+                };
+                let (ta, a) = one.install(|| time(reps, || analysis::analyse(&scene, &options)));
+                let a = a.expect("analysis");
+                println!(
+                    "| {n} | {ties} | {} | {:.9} | {:.9} | {} | {:.3} |",
+                    a.kinematic_search.map_or("none", |k| k.as_str()),
+                    a.lower.lambda.unwrap_or(f64::NAN),
+                    a.lambda_upper().unwrap_or(f64::NAN),
+                    if a.lower.exact_vertex {
+                        "chain (active set)"
+                    } else {
+                        "full (Clarabel)"
+                    },
+                    ta * 1e3
+                );
+            }
+        }
+    }
+}

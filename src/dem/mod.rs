@@ -92,8 +92,6 @@ pub enum DemError {
     Interrupted { steps: u64 },
     #[error("the DEM models rigid contacts (point contacts at the block corners, with no cap on the normal force), so it cannot check a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); run it without that key for the rigid structure, or rely on the static program, which models crushing")]
     FiniteStrength { compressive_strength: f64 },
-    #[error("the DEM does not yet model tie rods ({count} in the scene); it is not run rather than check the structure without them")]
-    Ties { count: usize },
 }
 
 /// Set by [`request_interrupt`] (the command line's Ctrl-C handler), read by every DEM time
@@ -213,11 +211,6 @@ fn check_model(model: &Model) -> Result<(), DemError> {
         // Never a silent rigid run presented as the crushing one.
         return Err(DemError::FiniteStrength {
             compressive_strength: model.strength.compressive,
-        });
-    }
-    if !model.ties.is_empty() {
-        return Err(DemError::Ties {
-            count: model.ties.len(),
         });
     }
     let nb = model.assembly.blocks.len();

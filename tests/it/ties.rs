@@ -289,22 +289,41 @@ fn json_lists_the_ties() {
     assert!((force - 1000.0).abs() <= 1e-6 * 1000.0, "force {force}");
 }
 
+/// The DEM, with its ties as elastic-perfectly-plastic bars as stiff as its contacts, brackets
+/// the static multiplier of the tied portal, whether the tie yields (1 kN) or keeps its
+/// length (5 kN).
+#[test]
+fn dem_bracket_contains_the_tied_static_value() {
+    for capacity in [1000.0, 5000.0] {
+        let s = scene(&tied_portal(capacity, -0.05));
+        let model = voussoir::scene::build(&s).expect("builds");
+        let lower = statics::analyse(&model, &StaticSettings::default())
+            .expect("solves")
+            .lambda
+            .expect("collapse");
+        let dem = voussoir::dem::collapse_multiplier(
+            &model,
+            &voussoir::dem_settings::IntegrationParameters::for_model(&model),
+            0.01,
+            &mut |_| {},
+        )
+        .expect("DEM runs");
+        let (lo, hi) = (
+            dem.lambda_stands.expect("a standing run"),
+            dem.lambda_collapses.expect("a collapsing run"),
+        );
+        assert!(
+            lo <= lower && lower <= hi,
+            "capacity {capacity}: static {lower} outside the DEM bracket [{lo}, {hi}]"
+        );
+    }
+}
+
 /// The methods that do not model ties refuse them rather than answer for the untied
 /// structure.
 #[test]
 fn methods_without_ties_refuse_them() {
     let s = scene(&tied_portal(1000.0, -0.05));
-    let model = voussoir::scene::build(&s).expect("builds");
-    let dem = voussoir::dem::collapse_multiplier(
-        &model,
-        &voussoir::dem_settings::IntegrationParameters::for_model(&model),
-        0.01,
-        &mut |_| {},
-    );
-    assert!(
-        matches!(dem, Err(voussoir::dem::DemError::Ties { count: 1 })),
-        "the DEM refuses ties"
-    );
     let continuous = analysis::continuous(&s, Direction::Right);
     assert!(matches!(
         continuous,

@@ -56,6 +56,18 @@ pub fn of_drawing(
     })
 }
 
+/// A scene before any analysis (Python's `Scene._repr_svg_`): its blocks and loads, the
+/// horizontal load toward +x.
+pub fn scene(scene: &Scene, model: &crate::model::Model) -> Result<Figure, SvgError> {
+    let drawing = Drawing {
+        title: shape_title(scene),
+        load: Some(Direction::Right),
+        loads: Some(&model.loads),
+        ..Default::default()
+    };
+    of_drawing("structure", &model.assembly, &drawing)
+}
+
 /// The drawing of one analysis, as `voussoir analyze --svg` writes it and `voussoir serve`
 /// returns it: the blocks, the thrust line, the hinges, the sliding joints, the mechanism and
 /// the loads, under the analysis's title.

@@ -78,14 +78,12 @@ impl Section {
 
     /// A sentence about the heading's result.
     pub fn line(&mut self, text: impl Into<String>) -> &mut Self {
-        self.blocks.push(Block::Line(text.into()));
-        self
+        self.push(Block::Line(text.into()))
     }
 
     /// One item of a list under the last line (a hinge, a joint).
     pub fn item(&mut self, text: impl Into<String>) -> &mut Self {
-        self.blocks.push(Block::Item(text.into()));
-        self
+        self.push(Block::Item(text.into()))
     }
 
     /// Several items.
@@ -96,25 +94,26 @@ impl Section {
 
     /// A statement that stands beside the heading, not under it (a rule, a verdict).
     pub fn statement(&mut self, text: impl Into<String>) -> &mut Self {
-        self.blocks.push(Block::Statement(text.into()));
-        self
+        self.push(Block::Statement(text.into()))
     }
 
     /// A warning the reader must not miss.
     pub fn warning(&mut self, text: impl Into<String>) -> &mut Self {
-        self.blocks.push(Block::Warning(text.into()));
-        self
+        self.push(Block::Warning(text.into()))
     }
 
     /// Key-value rows.
     pub fn rows(&mut self, rows: Vec<Row>) -> &mut Self {
-        self.blocks.push(Block::Rows(rows));
-        self
+        self.push(Block::Rows(rows))
     }
 
     /// A table.
     pub fn table(&mut self, table: Table) -> &mut Self {
-        self.blocks.push(Block::Table(table));
+        self.push(Block::Table(table))
+    }
+
+    fn push(&mut self, block: Block) -> &mut Self {
+        self.blocks.push(block);
         self
     }
 }
@@ -246,6 +245,11 @@ impl Column {
             align: Align::Left,
             gap: 1,
         }
+    }
+
+    /// Right-aligned columns, one space apart: `(header, width)` each.
+    pub fn right_all(columns: &[(&str, usize)]) -> Vec<Column> {
+        columns.iter().map(|&(h, w)| Column::right(h, w)).collect()
     }
 
     /// The same column `gap` spaces after the previous one.

@@ -57,7 +57,7 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                         sec.line(format!("rotational mechanisms only: {words}"));
                     }
                     if let Some(note) = &k.note {
-                        sec.line(format!("{note}"));
+                        sec.line(note.clone());
                     }
                     if let Some(m) = &k.mechanism {
                         let joints = m
@@ -565,14 +565,17 @@ pub fn pulse_curve(scene: &Scene, model: &Model, rep: PulseCurveReport) -> Docum
         })
         .collect();
     sec.table(Table {
-        columns: vec![
-            Column::left("shape", 6),
-            Column::right("T (s)", 9),
-            Column::right("survives", 14),
-            Column::right("collapses", 14),
-            Column::right("(g)", 9),
-            Column::right("runs", 5),
-        ],
+        columns: [
+            vec![Column::left("shape", 6)],
+            Column::right_all(&[
+                ("T (s)", 9),
+                ("survives", 14),
+                ("collapses", 14),
+                ("(g)", 9),
+                ("runs", 5),
+            ]),
+        ]
+        .concat(),
         rows,
     });
     sec.line(format!(
@@ -813,28 +816,31 @@ pub fn convergence(c: Convergence) -> Document {
         })
         .collect();
     let order = |o: Option<f64>| o.map_or("-".to_string(), |x| format!("{x:.2}"));
-    doc.section("Refinement")
-        .table(Table {
-            columns: vec![
-                Column::right("n", 6),
-                Column::right("joints", 6),
-                Column::right("lower", 10),
-                Column::right("rel err", 10),
-                Column::right("ms", 10),
-                Column::right("iter", 5),
-                Column::right("upper", 10),
-                Column::right("rel err", 10),
-                Column::right("ms", 10),
-                Column::left("note", 0).gap(2),
-            ],
-            rows,
-        })
-        .statement(format!(
-            "fitted order (slope of log|error| on log n): lower {}, upper {}; static time grows as n^{} (n >= 64)",
-            order(c.order_lower),
-            order(c.order_upper),
-            order(c.lower_time_exponent)
-        ));
+    let sec = doc.section("Refinement");
+    sec.table(Table {
+        columns: [
+            Column::right_all(&[
+                ("n", 6),
+                ("joints", 6),
+                ("lower", 10),
+                ("rel err", 10),
+                ("ms", 10),
+                ("iter", 5),
+                ("upper", 10),
+                ("rel err", 10),
+                ("ms", 10),
+            ]),
+            vec![Column::left("note", 0).gap(2)],
+        ]
+        .concat(),
+        rows,
+    });
+    sec.statement(format!(
+        "fitted order (slope of log|error| on log n): lower {}, upper {}; static time grows as n^{} (n >= 64)",
+        order(c.order_lower),
+        order(c.order_upper),
+        order(c.lower_time_exponent)
+    ));
     if !c.tolerances.is_empty() {
         let rows = c
             .tolerances
@@ -866,16 +872,19 @@ pub fn convergence(c: Convergence) -> Document {
             .collect();
         doc.section("Clarabel tolerance (static program)")
             .table(Table {
-                columns: vec![
-                    Column::right("tol", 8),
-                    Column::right("n", 6),
-                    Column::right("lower", 12),
-                    Column::right("diff", 10),
-                    Column::right("resid/W", 10),
-                    Column::right("iter", 5),
-                    Column::right("ms", 9),
-                    Column::left("", 0).gap(2),
-                ],
+                columns: [
+                    Column::right_all(&[
+                        ("tol", 8),
+                        ("n", 6),
+                        ("lower", 12),
+                        ("diff", 10),
+                        ("resid/W", 10),
+                        ("iter", 5),
+                        ("ms", 9),
+                    ]),
+                    vec![Column::left("", 0).gap(2)],
+                ]
+                .concat(),
                 rows,
             });
     }
@@ -917,22 +926,25 @@ pub fn convergence(c: Convergence) -> Document {
             })
             .collect();
         doc.section(heading).table(Table {
-            columns: vec![
-                Column::right("tol", 7),
-                Column::right("dt x", 5),
-                Column::right("k x", 6),
-                Column::right("dt (s)", 9),
-                Column::right("stands", 9),
-                Column::right("collapses", 9),
-                Column::right("static", 9),
-                Column::right("err", 9),
-                Column::right("brackets", 8),
-                Column::right("runs", 5),
-                Column::right("steps", 9),
-                Column::right("steps/s", 9),
-                Column::right("s", 7),
-                Column::left("", 0).gap(2),
-            ],
+            columns: [
+                Column::right_all(&[
+                    ("tol", 7),
+                    ("dt x", 5),
+                    ("k x", 6),
+                    ("dt (s)", 9),
+                    ("stands", 9),
+                    ("collapses", 9),
+                    ("static", 9),
+                    ("err", 9),
+                    ("brackets", 8),
+                    ("runs", 5),
+                    ("steps", 9),
+                    ("steps/s", 9),
+                    ("s", 7),
+                ]),
+                vec![Column::left("", 0).gap(2)],
+            ]
+            .concat(),
             rows,
         });
     }

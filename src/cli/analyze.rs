@@ -74,11 +74,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             );
         }
     }
-    draw(args.svg.as_deref(), || {
+    let figure = draw(args.svg.as_deref(), || {
         report::figures::analysis(&scene, &a, options.direction())
     })?;
-    Ok(super::print(
-        &report::documents::analysis(&scene, &a),
-        args.json,
-    ))
+    let mut doc = report::documents::analysis(&scene, &a);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

@@ -78,17 +78,18 @@ pub fn run(args: Args) -> Result<String, Error> {
         || scene.origin.clone(),
         |n| n.to_string_lossy().into_owned(),
     );
-    draw(args.svg.as_deref(), || {
-        figures::assessment_capacity(&all, &title)
-    })?;
-    draw(args.adrs_svg.as_deref(), || {
-        figures::assessment_adrs(&all, &title)
-    })?;
-    draw(args.mechanism_svg.as_deref(), || {
-        figures::assessment_mechanism(&all, &title, args.at)
-    })?;
-    Ok(super::print(
-        &documents::assessment(&scene, &all),
-        args.json,
-    ))
+    let figures = [
+        draw(args.svg.as_deref(), || {
+            figures::assessment_capacity(&all, &title)
+        })?,
+        draw(args.adrs_svg.as_deref(), || {
+            figures::assessment_adrs(&all, &title)
+        })?,
+        draw(args.mechanism_svg.as_deref(), || {
+            figures::assessment_mechanism(&all, &title, args.at)
+        })?,
+    ];
+    let mut doc = documents::assessment(&scene, &all);
+    doc.figures.extend(figures.into_iter().flatten());
+    Ok(super::print(&doc, args.json))
 }

@@ -48,11 +48,13 @@ pub fn run(args: Args) -> Result<String, Error> {
     })
     .map_err(|e| Error::Analysis(AnalysisError::Other(e.to_string())))?;
     bar.finish_and_clear();
-    draw(args.svg.as_deref(), || {
+    let figure = draw(args.svg.as_deref(), || {
         report::figures::convergence(&scene, &c)
     })?;
     if let Some(path) = &args.csv {
         write_atomically(path, |b| c.write_csv(b).map_err(|e| e.to_string()))?;
     }
-    Ok(super::print(&report::documents::convergence(c), args.json))
+    let mut doc = report::documents::convergence(c);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

@@ -261,13 +261,12 @@ fn run_pulse_curve(
             PulseArg::Rect => "rect",
         })
         .collect();
-    draw(Some(path), || {
+    let figure = draw(Some(path), || {
         report::figures::pulse_curve(scene, &rep, &names)
     })?;
-    Ok(super::print(
-        &report::documents::pulse_curve(scene, &curve.model, rep),
-        args.json,
-    ))
+    let mut doc = report::documents::pulse_curve(scene, &curve.model, rep);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }
 
 fn run_dynamic(
@@ -431,11 +430,10 @@ pub fn run(args: Args) -> Result<String, Error> {
         })?;
     }
     let rep = report::DemReport::of(&scene, &d);
-    draw(args.svg.as_deref(), || {
+    let figure = draw(args.svg.as_deref(), || {
         report::figures::dem(&scene, &d, &rep)
     })?;
-    Ok(super::print(
-        &report::documents::dem(&scene, &d.model, rep),
-        args.json,
-    ))
+    let mut doc = report::documents::dem(&scene, &d.model, rep);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

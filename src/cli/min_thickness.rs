@@ -45,11 +45,15 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     let t = thickness::analyse(&scene, &options)?;
     let m = &t.lower;
+    let mut figure = None;
     if let Some(path) = &args.svg {
         match report::figures::min_thickness(&scene, m)
             .map_err(|e| super::figure_error(path)(e.into()))?
         {
-            Some(figure) => write_figure(path, &figure)?,
+            Some(drawn) => {
+                write_figure(path, &drawn)?;
+                figure = Some(drawn);
+            }
             None => eprintln!(
                 "note: no minimum thickness ({}): {} not written",
                 match m.search.outcome {
@@ -61,8 +65,7 @@ pub fn run(args: Args) -> Result<String, Error> {
             ),
         }
     }
-    Ok(super::print(
-        &report::documents::min_thickness(&scene, &model, &t),
-        args.json,
-    ))
+    let mut doc = report::documents::min_thickness(&scene, &model, &t);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

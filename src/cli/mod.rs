@@ -136,15 +136,17 @@ pub fn figure_error(path: &Path) -> impl Fn(FigureError) -> Error + '_ {
     }
 }
 
-/// Draw the figure `figure` to `path` when the command was given one: the figures a command
-/// draws are chosen in `report::figures`, the command only says where they go.
+/// Draw the figure `figure` to `path` when the command was given one, and return it for the
+/// command's document: the figures a command draws are chosen in `report::figures`, the
+/// command only says where they go.
 pub fn draw<E: Into<FigureError>>(
     path: Option<&Path>,
     figure: impl FnOnce() -> Result<Figure, E>,
-) -> Result<(), Error> {
-    let Some(path) = path else { return Ok(()) };
+) -> Result<Option<Figure>, Error> {
+    let Some(path) = path else { return Ok(None) };
     let figure = figure().map_err(|e| figure_error(path)(e.into()))?;
-    write_figure(path, &figure)
+    write_figure(path, &figure)?;
+    Ok(Some(figure))
 }
 
 /// The document printed as the flags ask: the JSON contract with `--json`, the text

@@ -29,7 +29,6 @@ use std::time::Instant;
 
 use crate::analysis::KINEMATIC_DEFAULT_MAX_JOINTS;
 use crate::dem::{self, IntegrationParameters};
-use crate::drawing::chart::{Chart, Series};
 use crate::kinematic::{self, KinematicSettings};
 use crate::model::Model;
 use crate::scene::Scene;
@@ -586,14 +585,6 @@ fn dem_row(
     }
 }
 
-fn opt(v: Option<f64>, digits: usize) -> String {
-    v.map_or("-".to_string(), |x| format!("{x:.digits$}"))
-}
-
-fn pct(v: Option<f64>) -> String {
-    v.map_or("-".to_string(), |x| format!("{x:+.2e}"))
-}
-
 impl Convergence {
     /// The refinement table as CSV (one row per voussoir count).
     pub fn write_csv<W: std::io::Write>(&self, w: W) -> Result<(), csv::Error> {
@@ -634,147 +625,5 @@ impl Convergence {
         }
         out.flush()?;
         Ok(())
-    }
-
-    /// log10 of the relative error of each bound against log10 n (the chart module has linear
-    /// axes only, so the logarithms are plotted; a slope of -2 is second-order convergence).
-    pub fn chart(&self, title: &str) -> Chart {
-        let series = |name: &str, f: fn(&RefinementRow) -> Option<f64>| {
-            Series::new(
-                name,
-                self.refinement.iter().map(|r| {
-                    (
-                        (r.voussoirs as f64).log10(),
-                        f(r).filter(|e| *e != 0.0).map(|e| e.abs().log10()),
-                    )
-                }),
-            )
-        };
-        let mut s = vec![series("static lower bound", |r| r.error_lower)];
-        if self.refinement.iter().any(|r| r.error_upper.is_some()) {
-            s.push(series("kinematic upper bound", |r| r.error_upper));
-        }
-        Chart {
-            title: title.to_string(),
-            x_label: "log10 (number of voussoirs n)".into(),
-            y_label: "log10 |lambda_n / lambda_continuous - 1|".into(),
-            legend_title: None,
-            series: s,
-        }
-    }
-
-    /// A plain-text report: the three tables and the fitted orders.
-    pub fn summary(&self) -> String {
-        let mut s = String::new();
-        s.push_str(&format!("Convergence study of {}\n", self.origin));
-        match (self.lambda_continuous, self.continuous_time_s) {
-            (Some(l), Some(t)) => s.push_str(&format!(
-                "continuous model: lambda = {l:.6} ({:.1} ms); errors are relative to it\n",
-                t * 1e3
-            )),
-            _ => s.push_str(&format!(
-                "continuous model: none ({}); no errors computed\n",
-                self.continuous_note.as_deref().unwrap_or("not run")
-            )),
-        }
-        s.push_str("\nRefinement\n");
-        s.push_str(&format!(
-            "{:>6} {:>6} {:>10} {:>10} {:>10} {:>5} {:>10} {:>10} {:>10}  {}\n",
-            "n", "joints", "lower", "rel err", "ms", "iter", "upper", "rel err", "ms", "note"
-        ));
-        for r in &self.refinement {
-            s.push_str(&format!(
-                "{:>6} {:>6} {:>10} {:>10} {:>10.3} {:>5} {:>10} {:>10} {:>10}  {}\n",
-                r.voussoirs,
-                r.joints,
-                opt(r.lambda_lower, 6),
-                pct(r.error_lower),
-                r.lower_time_s * 1e3,
-                r.lower_iterations,
-                opt(r.lambda_upper, 6),
-                pct(r.error_upper),
-                r.upper_time_s
-                    .map_or("-".into(), |t| format!("{:.3}", t * 1e3)),
-                r.error.as_deref().or(r.upper_note.as_deref()).unwrap_or("")
-            ));
-        }
-        let order = |o: Option<f64>| o.map_or("-".to_string(), |x| format!("{x:.2}"));
-        s.push_str(&format!(
-            "fitted order (slope of log|error| on log n): lower {}, upper {}; static time grows as n^{} (n >= 64)\n",
-            order(self.order_lower),
-            order(self.order_upper),
-            order(self.lower_time_exponent)
-        ));
-        if !self.tolerances.is_empty() {
-            s.push_str("\nClarabel tolerance (static program)\n");
-            s.push_str(&format!(
-                "{:>8} {:>6} {:>12} {:>10} {:>10} {:>5} {:>9}\n",
-                "tol", "n", "lower", "diff", "resid/W", "iter", "ms"
-            ));
-            for r in &self.tolerances {
-                s.push_str(&format!(
-                    "{:>8.0e} {:>6} {:>12} {:>10} {:>10} {:>5} {:>9.3}{}\n",
-                    r.tolerance,
-                    r.voussoirs,
-                    opt(r.lambda_lower, 9),
-                    r.difference.map_or("-".into(), |d| if d == 0.0 {
-                        "0".into()
-                    } else {
-                        format!("{d:.1e}")
-                    }),
-                    r.residual_over_weight
-                        .map_or("-".into(), |d| format!("{d:.1e}")),
-                    r.iterations,
-                    r.time_s * 1e3,
-                    r.error
-                        .as_deref()
-                        .map_or(String::new(), |e| format!("  {e}"))
-                ));
-            }
-        }
-        if !self.dem.is_empty() {
-            s.push_str(&format!(
-                "\nDEM (n = {}, bracket searches started at lambda = {}; error against the static value of the same n)\n",
-                self.dem[0].voussoirs, self.dem_start
-            ));
-            s.push_str(&format!(
-                "{:>7} {:>5} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>5} {:>9} {:>9} {:>7}\n",
-                "tol",
-                "dt x",
-                "k x",
-                "dt (s)",
-                "stands",
-                "collapses",
-                "static",
-                "err",
-                "brackets",
-                "runs",
-                "steps",
-                "steps/s",
-                "s"
-            ));
-            for r in &self.dem {
-                s.push_str(&format!(
-                    "{:>7} {:>5} {:>6} {:>9.2e} {:>9} {:>9} {:>9} {:>9} {:>8} {:>5} {:>9} {:>9.0} {:>7.2}{}\n",
-                    r.case.tolerance,
-                    r.case.time_step_factor,
-                    r.case.stiffness_factor,
-                    r.time_step_s,
-                    opt(r.lambda_stands, 5),
-                    opt(r.lambda_collapses, 5),
-                    opt(r.lambda_static, 5),
-                    pct(r.error),
-                    r.brackets_static.map_or("-", |b| if b { "yes" } else { "no" }),
-                    r.runs,
-                    r.steps,
-                    r.steps_per_s,
-                    r.time_s,
-                    r.error_message
-                        .as_deref()
-                        .map_or(String::new(), |e| format!("  {e}"))
-                ));
-            }
-        }
-        s
     }
 }

@@ -25,7 +25,6 @@
 //! ...
 //! ```
 
-use crate::drawing::chart::{Chart, Series};
 use crate::error::SceneError;
 use crate::scene::Scene;
 use crate::statics::StaticSettings;
@@ -247,7 +246,7 @@ impl Study {
 
     /// A chart-axis error of the sweep layer (`--x ...`) as an error of the study file's
     /// `x` or `series` key.
-    fn chart_error(&self, e: SceneError) -> SceneError {
+    pub fn chart_error(&self, e: SceneError) -> SceneError {
         match e {
             SceneError::BadChart {
                 option,
@@ -263,8 +262,9 @@ impl Study {
         }
     }
 
-    /// Run every case (in parallel) and return the rows and the chart.
-    pub fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<(Vec<SweepRow>, Chart), SceneError> {
+    /// Run every case (in parallel) and return the rows (their chart is
+    /// `report::figures::study_chart`).
+    pub fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Vec<SweepRow>, SceneError> {
         let settings = StaticSettings::default();
         let options = crate::analysis::Options {
             continuous: self.continuous,
@@ -294,25 +294,7 @@ impl Study {
             },
             progress,
         );
-        let mut chart = sweep::chart_of(
-            &self.variations,
-            &rows,
-            &self.x,
-            self.series.as_deref(),
-            &self.title,
-            self.plot_ratio.then_some("lambda_ratio"),
-        )
-        .map_err(|e| self.chart_error(e))?;
-        if let Some(baseline) = self.baseline {
-            if self.plot_ratio {
-                chart.y_label = format!("lambda / lambda of the {}", baseline.describe());
-            } else {
-                chart
-                    .series
-                    .push(baseline_series(&rows, &self.x, &self.variations, baseline));
-            }
-        }
-        Ok((rows, chart))
+        Ok(rows)
     }
 }
 
@@ -327,38 +309,6 @@ impl Study {
     ) -> Result<(), csv::Error> {
         sweep::write_csv_with(out, &self.variations, rows, false)
     }
-}
-
-/// The line of the baseline's multiplier against `x` on a chart of `lambda_lower`: one point
-/// per distinct x (cases that differ only in the series key share their baseline when the
-/// baseline does not depend on it, e.g. the semicircle of equal span for several e/R at the
-/// same t/span).
-fn baseline_series(
-    rows: &[SweepRow],
-    x: &str,
-    variations: &[Variation],
-    baseline: Baseline,
-) -> Series {
-    let x_index = variations.iter().position(|v| v.key == x);
-    let mut points: Vec<(f64, Option<f64>)> = Vec::new();
-    for r in rows {
-        let xv = match x_index {
-            Some(i) => r.values[i]
-                .as_float()
-                .or(r.values[i].as_integer().map(|n| n as f64)),
-            None => r.ratios.iter().find(|(n, _)| *n == x).map(|(_, v)| *v),
-        };
-        let Some(xv) = xv else { continue };
-        let lb = r
-            .extra
-            .iter()
-            .find(|(n, _)| *n == "lambda_baseline")
-            .and_then(|(_, v)| *v);
-        if !points.iter().any(|(px, _)| *px == xv) {
-            points.push((xv, lb));
-        }
-    }
-    Series::new(baseline.describe(), points)
 }
 
 /// The semicircular arch of the same centreline span, thickness, voussoirs, voussoir shape,

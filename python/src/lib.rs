@@ -423,15 +423,10 @@ impl Scene {
     /// Jupyter shows it inline. A scene whose blocks cannot be built raises the library's
     /// error.
     fn _repr_svg_(&self, py: Python<'_>) -> PyResult<String> {
-        use voussoir::drawing::svg::{structure_svg, Drawing};
         let model = voussoir::scene::build(&self.inner).map_err(|e| scene_error(py, &e))?;
-        let drawing = Drawing {
-            title: report::shape_title(&self.inner),
-            load: Some(Direction::Right),
-            loads: Some(&model.loads),
-            ..Default::default()
-        };
-        structure_svg(&model.assembly, &drawing).map_err(|e| PyValueError::new_err(e.to_string()))
+        report::figures::scene(&self.inner, &model)
+            .map(|f| f.svg)
+            .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     fn __repr__(&self) -> String {
@@ -665,29 +660,13 @@ fn assess_svg(
             only,
         )?;
         let title = report::shape_title(&lib_scene);
-        let chart = if which == "capacity" {
-            voussoir::assess::pictures::capacity_chart(
-                &all.directions
-                    .iter()
-                    .map(|a| (&a.capacity, &a.verdict))
-                    .collect::<Vec<_>>(),
-                all.governing,
-                &title,
-            )
+        // The same figures as `voussoir assess --svg` and `--adrs-svg` draw.
+        let figure = if which == "capacity" {
+            report::figures::assessment_capacity(&all, &title)
         } else {
-            let a = all.governing();
-            let words = match a.capacity.direction {
-                Direction::Right => "load to the right",
-                Direction::Left => "load to the left",
-            };
-            let note = if all.directions.len() > 1 {
-                format!("{words}, governing")
-            } else {
-                format!("{words} only")
-            };
-            voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title, &note)
+            report::figures::assessment_adrs(&all, &title)
         };
-        Ok(voussoir::drawing::chart::chart_svg(&chart).map_err(|e| e.to_string()))
+        Ok(figure.map(|f| f.svg).map_err(|e| e.to_string()))
     })?;
     out.map_err(|e: LibAnalysisError| analysis_error(py, &e))?
         .map_err(PyValueError::new_err)

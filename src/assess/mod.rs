@@ -29,8 +29,6 @@
 //! Mechanisms with a joint that opens completely (families other than four hinges or one
 //! hinge) have no finite motion fixed by their hinges alone and are refused.
 
-pub mod pictures;
-
 use crate::assembly::Assembly;
 use crate::geometry::Vec2;
 use crate::kinematic::{det3, rot, velocity, Family, Mechanism};

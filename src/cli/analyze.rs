@@ -1,6 +1,6 @@
 //! `voussoir analyze`: the collapse multiplier of a scene by both bounds.
 
-use super::{json, write_atomically, Dir, Format, SceneArgs};
+use super::{draw, write_atomically, Dir, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::Error;
 use voussoir::report;
@@ -74,17 +74,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             );
         }
     }
-    if let Some(path) = &args.svg {
-        let text =
-            report::analysis_svg(&scene, &a, options.direction()).map_err(|e| Error::Output {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
-        super::write_text(path, &text)?;
-    }
-    Ok(if args.json {
-        json(&report::AnalysisReport::new(&scene, &a))
-    } else {
-        report::analysis_summary(&scene, &a)
-    })
+    let figure = draw(args.svg.as_deref(), || {
+        report::figures::analysis(&scene, &a, options.direction())
+    })?;
+    let mut doc = report::documents::analysis(&scene, &a);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

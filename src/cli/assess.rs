@@ -1,11 +1,9 @@
 //! `voussoir assess`: the seismic verdict of a scene's governing mechanism at its `[site]`.
 
-use super::{json, write_chart, write_svg, Dir, SceneArgs};
+use super::{draw, Dir, SceneArgs};
 use voussoir::analysis;
-use voussoir::drawing::svg::{Drawing, Placements};
 use voussoir::error::{AnalysisError, Error};
-use voussoir::outcome::Direction;
-use voussoir::report::assessment::{assessment_summary, AssessmentReport};
+use voussoir::report::{documents, figures};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -75,78 +73,23 @@ pub fn run(args: Args) -> Result<String, Error> {
         &assess,
         args.direction.map(Into::into),
     )?;
-    let a = all.governing();
     // The file name: the origin also lists the overrides, too long for a chart title.
     let title = args.scene.scene.file_name().map_or_else(
         || scene.origin.clone(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let dir_words = match a.capacity.direction {
-        Direction::Right => "load to the right",
-        Direction::Left => "load to the left",
-    };
-    let note = if all.directions.len() > 1 {
-        format!("{dir_words}, governing")
-    } else {
-        format!("{dir_words} only")
-    };
-    if let Some(path) = &args.svg {
-        write_chart(
-            path,
-            &voussoir::assess::pictures::capacity_chart(
-                &all.directions
-                    .iter()
-                    .map(|a| (&a.capacity, &a.verdict))
-                    .collect::<Vec<_>>(),
-                all.governing,
-                &title,
-            ),
-        )?;
-    }
-    if let Some(path) = &args.adrs_svg {
-        write_chart(
-            path,
-            &voussoir::assess::pictures::adrs_chart(&a.capacity, &a.verdict, &title, &note),
-        )?;
-    }
-    if let Some(path) = &args.mechanism_svg {
-        let model = &a.analysis.model;
-        let u = args.at * a.capacity.rotation0;
-        let Some((config, alpha)) = a.capacity.at(model, u) else {
-            return Err(Error::Analysis(AnalysisError::Other(format!(
-                "the mechanism cannot reach a rotation of {u} rad"
-            ))));
-        };
-        let moves = a.capacity.linkage.placements(&model.assembly, &config);
-        let d_k = a.capacity.d_k(model, &config);
-        let hinges = a
-            .analysis
-            .upper
-            .as_ref()
-            .ok()
-            .and_then(|k| k.mechanism.as_ref())
-            .map(|m| m.hinges.clone())
-            .unwrap_or_default();
-        let drawing = Drawing {
-            title: format!(
-                "{title} ({note})\nmechanism turned by {u:.4} rad: control displacement dₖ = {:.1} mm, α = {alpha:.4} (α₀ = {:.4})",
-                1e3 * d_k,
-                a.capacity.alpha0
-            ),
-            hinges: &hinges,
-            moved: Some(Placements {
-                moves: &moves,
-                label: format!("moved (true scale), α = {alpha:.4}"),
-            }),
-            load: Some(a.capacity.direction),
-            loads: Some(&model.loads),
-            ..Default::default()
-        };
-        write_svg(path, &model.assembly, &drawing)?;
-    }
-    Ok(if args.json {
-        json(&AssessmentReport::new(&scene, &all))
-    } else {
-        assessment_summary(&scene, &all)
-    })
+    let figures = [
+        draw(args.svg.as_deref(), || {
+            figures::assessment_capacity(&all, &title)
+        })?,
+        draw(args.adrs_svg.as_deref(), || {
+            figures::assessment_adrs(&all, &title)
+        })?,
+        draw(args.mechanism_svg.as_deref(), || {
+            figures::assessment_mechanism(&all, &title, args.at)
+        })?,
+    ];
+    let mut doc = documents::assessment(&scene, &all);
+    doc.figures.extend(figures.into_iter().flatten());
+    Ok(super::print(&doc, args.json))
 }

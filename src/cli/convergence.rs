@@ -1,6 +1,6 @@
 //! `voussoir convergence`: speed against accuracy for one scene.
 
-use super::{json, progress_spinner, write_atomically, write_chart, Format, SceneArgs};
+use super::{draw, progress_spinner, write_atomically, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
@@ -48,15 +48,13 @@ pub fn run(args: Args) -> Result<String, Error> {
     })
     .map_err(|e| Error::Analysis(AnalysisError::Other(e.to_string())))?;
     bar.finish_and_clear();
-    if let Some(path) = &args.svg {
-        let title = format!(
-            "{}: convergence with the number of voussoirs",
-            report::shape_title(&scene)
-        );
-        write_chart(path, &c.chart(&title))?;
-    }
+    let figure = draw(args.svg.as_deref(), || {
+        report::figures::convergence(&scene, &c)
+    })?;
     if let Some(path) = &args.csv {
         write_atomically(path, |b| c.write_csv(b).map_err(|e| e.to_string()))?;
     }
-    Ok(if args.json { json(&c) } else { c.summary() })
+    let mut doc = report::documents::convergence(c);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

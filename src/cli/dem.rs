@@ -1,13 +1,11 @@
 //! `voussoir dem`: the collapse multiplier bracketed by discrete-element runs.
 
-use super::{json, progress_bar, write_chart, write_svg, write_text, Format, SceneArgs};
+use super::{draw, progress_bar, write_text, Format, SceneArgs};
 use voussoir::analysis::{self, DemOptions};
 use voussoir::dem;
 use voussoir::dem::record::{
     self, AccelUnit, Component, Excitation, GroundInput, Pulse, PulseShape, RecordError,
 };
-use voussoir::drawing::chart::{Chart, Series};
-use voussoir::drawing::svg::{self, Drawing};
 use voussoir::error::{AnalysisError, Error};
 use voussoir::report;
 
@@ -254,69 +252,21 @@ fn run_pulse_curve(
     let csv_path = path.with_extension("csv");
     // Written whole through a temporary, as every output (super::write_atomically).
     super::write_atomically(&csv_path, |buf| {
-        let err = |e: &dyn std::fmt::Display| e.to_string();
-        let mut w = csv::Writer::from_writer(buf);
-        w.write_record([
-            "shape",
-            "period_s",
-            "amplitude_survives_m_s2",
-            "amplitude_collapses_m_s2",
-            "amplitude_collapses_g",
-            "runs",
-        ])
-        .map_err(|e| err(&e))?;
-        for p in &rep.points {
-            w.write_record([
-                p.shape.to_string(),
-                format!("{}", p.period),
-                format!("{:.6}", p.amplitude_survives),
-                p.amplitude_collapses
-                    .map_or(String::new(), |a| format!("{a:.6}")),
-                p.amplitude_collapses.map_or(String::new(), |a| {
-                    format!("{:.6}", a / record::STANDARD_GRAVITY)
-                }),
-                p.runs.to_string(),
-            ])
-            .map_err(|e| err(&e))?;
-        }
-        w.flush().map_err(|e| err(&e))?;
-        Ok(())
+        report::csv::write_pulse_curve_csv(buf, &rep).map_err(|e| e.to_string())
     })?;
-    let series = pulses
+    let names: Vec<&str> = pulses
         .iter()
-        .map(|&p| {
-            let name = match p {
-                PulseArg::Sine => "sine",
-                PulseArg::Rect => "rect",
-            };
-            Series::new(
-                format!("{name} pulse"),
-                rep.points.iter().filter(|q| q.shape == name).map(|q| {
-                    (
-                        q.period,
-                        q.amplitude_collapses.map(|a| a / record::STANDARD_GRAVITY),
-                    )
-                }),
-            )
+        .map(|&p| match p {
+            PulseArg::Sine => "sine",
+            PulseArg::Rect => "rect",
         })
         .collect();
-    let chart = Chart {
-        title: format!(
-            "Minimum collapse amplitude of one pulse (DEM, to {:.1}%): {}",
-            100.0 * args.tolerance,
-            scene.origin
-        ),
-        x_label: "pulse period T (s)".to_string(),
-        y_label: "amplitude (g)".to_string(),
-        legend_title: Some("pulse".to_string()),
-        series,
-    };
-    write_chart(path, &chart)?;
-    Ok(if args.json {
-        json(&rep)
-    } else {
-        report::pulse_curve_summary(scene, &curve.model, &rep)
-    })
+    let figure = draw(Some(path), || {
+        report::figures::pulse_curve(scene, &rep, &names)
+    })?;
+    let mut doc = report::documents::pulse_curve(scene, &curve.model, rep);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }
 
 fn run_dynamic(
@@ -328,11 +278,10 @@ fn run_dynamic(
     if args.ida {
         let (model, r) = analysis::dem_ida(scene, motion, &settings, args.tolerance)?;
         let rep = report::IdaReport::new(motion, &r, args.tolerance);
-        return Ok(if args.json {
-            json(&rep)
-        } else {
-            report::ida_summary(scene, &model, &rep)
-        });
+        return Ok(super::print(
+            &report::documents::ida(scene, &model, rep),
+            args.json,
+        ));
     }
     if args.animation.is_some() {
         settings.frames_every = Some(report::animation::frame_interval(
@@ -343,28 +292,7 @@ fn run_dynamic(
     let d = analysis::dem_dynamic(scene, motion, &settings)?;
     if let Some(path) = &args.history {
         super::write_atomically(path, |buf| {
-            let err = |e: &dyn std::fmt::Display| e.to_string();
-            let mut w = csv::Writer::from_writer(buf);
-            w.write_record([
-                "time_s",
-                "ground_acceleration_m_s2",
-                "displacement_m",
-                "rotation_rad",
-                "ground_acceleration_vertical_m_s2",
-            ])
-            .map_err(|e| err(&e))?;
-            for h in &d.result.history {
-                w.write_record([
-                    format!("{:.6}", h.time),
-                    format!("{:.6e}", h.ground_acceleration),
-                    format!("{:.9e}", h.displacement),
-                    format!("{:.9e}", h.rotation),
-                    format!("{:.6e}", h.ground_acceleration_vertical),
-                ])
-                .map_err(|e| err(&e))?;
-            }
-            w.flush().map_err(|e| err(&e))?;
-            Ok(())
+            report::csv::write_history_csv(buf, &d.result.history).map_err(|e| e.to_string())
         })?;
     }
     let rep = report::DynamicReport::new(scene, &d);
@@ -378,11 +306,10 @@ fn run_dynamic(
         })?;
         write_text(path, &page)?;
     }
-    Ok(if args.json {
-        json(&rep)
-    } else {
-        report::dynamic_summary(scene, &d.model, &rep)
-    })
+    Ok(super::print(
+        &report::documents::dynamic(scene, &d.model, rep),
+        args.json,
+    ))
 }
 
 /// Let Ctrl-C stop a DEM run cleanly: the first sets the DEM's interrupt flag (the running
@@ -496,49 +423,17 @@ pub fn run(args: Args) -> Result<String, Error> {
         bar.set_position((f.clamp(0.0, 1.0) * 1000.0) as u64)
     })?;
     bar.finish_and_clear();
-    let (model, result) = (&d.model, &d.result);
-    let assembly = &model.assembly;
     if let Some(dir) = &args.snapshots {
-        dem::write_snapshots(dir, result).map_err(|e| Error::Output {
+        dem::write_snapshots(dir, &d.result).map_err(|e| Error::Output {
             path: dir.clone(),
             message: e.to_string(),
         })?;
     }
     let rep = report::DemReport::of(&scene, &d);
-    if let Some(path) = &args.svg {
-        // Collapse is detected at a small displacement: amplify it so the mechanism shows,
-        // and say so.
-        let placed = result.final_placements(assembly);
-        let (moves, amp) = placed
-            .as_ref()
-            .map_or((Vec::new(), 1.0), |p| p.amplified(assembly, 0.1));
-        let amp_note = if amp > 1.0 {
-            format!(", displacements x{amp:.1}")
-        } else {
-            String::new()
-        };
-        let label = match (&placed, result.lambda_collapses) {
-            (Some(p), Some(l)) => format!(
-                "at t = {:.3} s of the run at lambda = {l:.4}{amp_note}",
-                p.time
-            ),
-            (Some(p), None) => format!("at t = {:.3} s of the last run{amp_note}", p.time),
-            _ => String::new(),
-        };
-        let drawing = Drawing {
-            title: report::dem_drawing_title(&scene, &rep, d.lower.status),
-            moved: (!moves.is_empty()).then_some(svg::Placements {
-                moves: &moves,
-                label,
-            }),
-            loads: Some(&model.loads),
-            ..Default::default()
-        };
-        write_svg(path, assembly, &drawing)?;
-    }
-    Ok(if args.json {
-        json(&rep)
-    } else {
-        report::dem_summary(&scene, model, &rep)
-    })
+    let figure = draw(args.svg.as_deref(), || {
+        report::figures::dem(&scene, &d, &rep)
+    })?;
+    let mut doc = report::documents::dem(&scene, &d.model, rep);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

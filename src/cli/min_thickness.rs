@@ -1,8 +1,7 @@
 //! `voussoir min-thickness`: the thinnest ring that stands under its permanent loads.
 
-use super::{json, write_svg, Format, SceneArgs};
+use super::{write_figure, Format, SceneArgs};
 use voussoir::analysis;
-use voussoir::drawing::svg::Drawing;
 use voussoir::error::Error;
 use voussoir::report;
 use voussoir::statics::StaticSettings;
@@ -46,23 +45,16 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     let t = thickness::analyse(&scene, &options)?;
     let m = &t.lower;
+    let mut figure = None;
     if let Some(path) = &args.svg {
-        match (&m.at_minimum, m.search.min_thickness) {
-            (Some((at, stand)), Some(t)) => {
-                let drawing = Drawing {
-                    title: format!(
-                        "{} at its minimum thickness t_min = {t:.6} m\nthrust line under the permanent loads (lambda = 0), {} hinges",
-                        report::shape_title(&scene),
-                        stand.hinges.len()
-                    ),
-                    forces: Some(&stand.forces),
-                    hinges: &stand.hinges,
-                    loads: Some(&at.loads),
-                    ..Default::default()
-                };
-                write_svg(path, &at.assembly, &drawing)?;
+        match report::figures::min_thickness(&scene, m)
+            .map_err(|e| super::figure_error(path)(e.into()))?
+        {
+            Some(drawn) => {
+                write_figure(path, &drawn)?;
+                figure = Some(drawn);
             }
-            _ => eprintln!(
+            None => eprintln!(
                 "note: no minimum thickness ({}): {} not written",
                 match m.search.outcome {
                     thickness::ThicknessOutcome::NeverStands =>
@@ -73,10 +65,7 @@ pub fn run(args: Args) -> Result<String, Error> {
             ),
         }
     }
-    let rep = report::MinThicknessReport::new(&scene, &model, &t);
-    Ok(if args.json {
-        json(&rep)
-    } else {
-        report::min_thickness_summary(&scene, &model, m, &rep)
-    })
+    let mut doc = report::documents::min_thickness(&scene, &model, &t);
+    doc.figures.extend(figure);
+    Ok(super::print(&doc, args.json))
 }

@@ -1,5 +1,7 @@
 //! The commands of the `voussoir` binary, one file each: every command parses its arguments,
-//! calls the library's analysis layer ([`voussoir::analysis`]) and returns what to print.
+//! calls the library's analysis layer ([`voussoir::analysis`]), asks `report::documents` for
+//! its result document and `report::figures` for the figures its flags name, and returns the
+//! document printed as the flags ask ([`print`]).
 //! This module holds what they share: reading the scene, the output files ([`outputs`]:
 //! checked before any work, written whole or not at all), and the progress bar.
 
@@ -16,9 +18,8 @@ pub mod sweep;
 
 pub use outputs::{write_atomically, write_text, Format, Outputs};
 use std::path::{Path, PathBuf};
-use voussoir::assembly::Assembly;
-use voussoir::drawing::svg::{self, Drawing};
-use voussoir::error::{Error, SceneError};
+use voussoir::error::{AnalysisError, Error, SceneError};
+use voussoir::report::{self, figures::FigureError, Document, Figure};
 use voussoir::scene::{BlockSource, Scene};
 
 /// Direction of the horizontal acceleration, as the command line names it.
@@ -118,27 +119,47 @@ impl SceneArgs {
     }
 }
 
-/// Draw a chart to an SVG file.
-pub fn write_chart(path: &Path, chart: &voussoir::drawing::chart::Chart) -> Result<(), Error> {
-    let text = voussoir::drawing::chart::chart_svg(chart).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    write_text(path, &text)
+/// Write a figure (its SVG) to `path`.
+pub fn write_figure(path: &Path, figure: &Figure) -> Result<(), Error> {
+    write_text(path, &figure.svg)
 }
 
-/// Draw a structure to an SVG file.
-pub fn write_svg(path: &Path, assembly: &Assembly, drawing: &Drawing) -> Result<(), Error> {
-    let text = svg::structure_svg(assembly, drawing).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    write_text(path, &text)
+/// A figure that could not be drawn, as the error of the file it was for.
+pub fn figure_error(path: &Path) -> impl Fn(FigureError) -> Error + '_ {
+    move |e| match e {
+        FigureError::Chart(e) => Error::Scene(e),
+        FigureError::Unreachable(_) => Error::Analysis(AnalysisError::Other(e.to_string())),
+        FigureError::Svg(e) => Error::Output {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        },
+    }
 }
 
-/// Pretty JSON of a report.
-pub fn json<T: serde::Serialize>(value: &T) -> String {
-    serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+/// Draw the figure `figure` to `path` when the command was given one, and return it for the
+/// command's document: the figures a command draws are chosen in `report::figures`, the
+/// command only says where they go.
+pub fn draw<E: Into<FigureError>>(
+    path: Option<&Path>,
+    figure: impl FnOnce() -> Result<Figure, E>,
+) -> Result<Option<Figure>, Error> {
+    let Some(path) = path else { return Ok(None) };
+    let figure = figure().map_err(|e| figure_error(path)(e.into()))?;
+    write_figure(path, &figure)?;
+    Ok(Some(figure))
+}
+
+/// The document printed as the flags ask: the JSON contract with `--json`, the text
+/// otherwise.
+pub fn print(doc: &Document, json: bool) -> String {
+    report::print(
+        doc,
+        if json {
+            report::Format::Json
+        } else {
+            report::Format::Text
+        },
+    )
 }
 
 /// A progress bar on stderr when it is a terminal, hidden otherwise.

@@ -1,6 +1,6 @@
 //! `voussoir study`: a parametric study file (data/studies/*.toml) to a CSV and a chart.
 
-use super::{progress_bar, write_atomically, write_chart, Format, Outputs};
+use super::{draw, progress_bar, write_atomically, Format, Outputs};
 use voussoir::error::Error;
 
 #[derive(clap::Args)]
@@ -44,7 +44,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         .check()?;
     let total = st.cases();
     let bar = progress_bar(total as u64, "study");
-    let (rows, chart) = st.run(&|| bar.inc(1))?;
+    let rows = st.run(&|| bar.inc(1))?;
     bar.finish_and_clear();
     let mut buf = Vec::new();
     st.write_csv(&mut buf, &rows).map_err(|e| Error::Output {
@@ -55,7 +55,9 @@ pub fn run(args: Args) -> Result<String, Error> {
         *b = buf;
         Ok(())
     })?;
-    write_chart(&svg_path, &chart)?;
+    draw(Some(&svg_path), || {
+        voussoir::report::figures::study(&st, &rows)
+    })?;
     let failed = rows.iter().filter(|r| r.status == "error").count();
     Ok(format!(
         "{}: {} cases{} -> {} and {}",

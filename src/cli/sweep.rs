@@ -1,10 +1,9 @@
 //! `voussoir sweep`: the cartesian product of varied scene keys, solved in parallel.
 
-use super::{progress_bar, write_atomically, write_chart, Format, SceneArgs};
+use super::{draw, progress_bar, write_atomically, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::{Error, SceneError};
 use voussoir::report;
-use voussoir::scene::Scene;
 use voussoir::sweep;
 
 #[derive(clap::Args)]
@@ -82,30 +81,6 @@ fn chart_x(args: &Args, variations: &[sweep::Variation]) -> Result<Option<String
     }
 }
 
-/// The chart's title: the structure the cases share ("semicircular arch"), or, when the
-/// varied keys change the shape's own words (an embrace, an eccentricity, the shape itself),
-/// the kind of arch they all are ("circular arch"), or just "arch" / "portal".
-fn chart_title(base: &Scene, cases: &[(Vec<toml::Value>, Result<Scene, SceneError>)]) -> String {
-    let scenes: Vec<&Scene> = cases.iter().filter_map(|(_, s)| s.as_ref().ok()).collect();
-    let same = |f: &dyn Fn(&Scene) -> String| scenes.iter().all(|s| f(s) == f(base));
-    let structure = |s: &Scene| if s.piers.is_some() { "portal" } else { "arch" }.to_string();
-    let shape_name = |s: &Scene| {
-        s.arch
-            .as_ref()
-            .map_or("blocks", |a| a.shape.name())
-            .to_string()
-    };
-    if same(&|s| report::shape_title(s)) {
-        report::shape_title(base)
-    } else if same(&shape_name) && same(&structure) {
-        format!("{} {}", shape_name(base), structure(base))
-    } else if same(&structure) {
-        structure(base)
-    } else {
-        "arch and portal".to_string()
-    }
-}
-
 pub fn run(args: Args) -> Result<String, Error> {
     let scene = args.scene.load()?;
     let variations = args
@@ -135,14 +110,10 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     let rows = plan.run(&options, args.run_dem, &|| bar.inc(1));
     bar.finish_and_clear();
-    if let (Some(path), Some(x)) = (&args.svg, &x) {
-        let title = format!(
-            "{}: collapse multiplier against {}",
-            chart_title(&scene, cases),
-            sweep::key_label(x)
-        );
-        let chart = sweep::chart(variations, &rows, x, args.series.as_deref(), &title)?;
-        write_chart(path, &chart)?;
+    if let Some(x) = &x {
+        draw(args.svg.as_deref(), || {
+            report::figures::sweep(&scene, &plan, &rows, x, args.series.as_deref())
+        })?;
     }
     let mut buf = Vec::new();
     sweep::write_csv(&mut buf, variations, &rows).map_err(|e| Error::Output {

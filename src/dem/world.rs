@@ -1,4 +1,4 @@
-//! The DEM world and its time-stepping pipeline. One step is four named stages:
+//! The DEM world and its time-stepping pipeline. One step is five named stages:
 //!
 //! 1. [`World::broad_phase`]: candidate pairs of bodies whose bounding boxes (grown by a
 //!    margin) overlap, by sort-and-sweep along x; redone only when some body has moved by
@@ -11,7 +11,7 @@
 //!    `N = max(0, kn d - cn vn)` (no tension, no cohesion; released as soon as the vertex
 //!    leaves the edge), incremental shear force `S <- S - ks vt dt` capped by Coulomb
 //!    `|S| <= mu N`.
-//! 3b. [`World::tie_forces`]: tie rods (`crate::interaction::tie`) as elastic-perfectly-plastic
+//! 4. [`World::tie_forces`]: tie rods (`crate::interaction::tie`) as elastic-perfectly-plastic
 //!    bars between their body-fixed anchors: tension `T = P + k (L - L0 - dp)` (prestress `P`
 //!    ramped with gravity), no compression (a slack bar carries nothing), yield at the
 //!    capacity `C`, where the plastic elongation `dp` grows. Its stiffness `k` is the
@@ -21,7 +21,7 @@
 //!    lets it stretch about 2 mm per metre before it yields, and the mechanism softens
 //!    geometrically meanwhile: on the bundled portal tied between its springings at 1 kN the
 //!    DEM then collapsed 7 % below the limit analyses' multiplier.
-//! 4. [`World::integrate`]: symplectic Euler (the central-difference scheme of UDEC) on each
+//! 5. [`World::integrate`]: symplectic Euler (the central-difference scheme of UDEC) on each
 //!    block's centroid and rotation, with Cundall's local damping `F <- F - alpha |F| sign(v)`
 //!    per degree of freedom.
 //!
@@ -269,7 +269,7 @@ impl World {
         w
     }
 
-    /// One time step: the four stages of the pipeline.
+    /// One time step: the five stages of the pipeline.
     pub fn step(&mut self) {
         if moved(&self.bodies, &self.broad_pos, 0.5 * self.margin) {
             self.broad_phase();
@@ -443,7 +443,7 @@ impl World {
         }
     }
 
-    /// Stage 3b: tie rods, elastic-perfectly-plastic bars (module docs), added to the contact
+    /// Stage 4: tie rods, elastic-perfectly-plastic bars (module docs), added to the contact
     /// forces.
     pub fn tie_forces(&mut self) {
         let gravity = self.load.gravity;
@@ -454,7 +454,7 @@ impl World {
             };
             let (a, b) = (at(0), at(1));
             let length = (b - a).norm();
-            if !(length > 0.0) {
+            if length.is_nan() || length <= 0.0 {
                 bar.force = 0.0;
                 continue;
             }
@@ -481,7 +481,7 @@ impl World {
         }
     }
 
-    /// Stage 4: loads, local damping and symplectic Euler on every free block.
+    /// Stage 5: loads, local damping and symplectic Euler on every free block.
     pub fn integrate(&mut self) {
         let alpha = self.local_damping;
         let dt = self.dt;

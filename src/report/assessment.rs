@@ -1,6 +1,6 @@
-//! The printers of `voussoir assess`: its JSON report ([`AssessmentReport`], a contract for
-//! scripts: later versions add fields, never rename them) and its text summary
-//! ([`assessment_summary`]).
+//! The JSON report of `voussoir assess` ([`AssessmentReport`], a contract for scripts: later
+//! versions add fields, never rename them); its document is
+//! [`super::documents::assessment`].
 
 use crate::analysis::Assessment;
 use crate::analysis::SiteAssessment;
@@ -11,7 +11,6 @@ use crate::report::SceneReport;
 use crate::scene::Scene;
 use crate::spectrum::Site;
 use serde::Serialize;
-use std::fmt::Write;
 
 /// `[site]` as the verdict used it (defaults filled in), keys as in the scene.
 #[derive(Debug, Serialize)]
@@ -312,7 +311,7 @@ impl AssessmentReport {
     }
 }
 
-fn direction_words(d: Direction) -> &'static str {
+pub(crate) fn direction_words(d: Direction) -> &'static str {
     match d {
         Direction::Right => "load toward the right",
         Direction::Left => "load toward the left",
@@ -320,7 +319,7 @@ fn direction_words(d: Direction) -> &'static str {
 }
 
 /// The verdict over the directions, in one line.
-fn verdict_line(all: &Assessment) -> String {
+pub(crate) fn verdict_line(all: &Assessment) -> String {
     let g = all.governing();
     let d = direction_words(g.capacity.direction);
     if all.restricted {
@@ -333,7 +332,7 @@ fn verdict_line(all: &Assessment) -> String {
     }
 }
 
-fn verdict_word(c: &Check) -> &'static str {
+pub(crate) fn verdict_word(c: &Check) -> &'static str {
     if c.passes {
         "satisfied"
     } else {
@@ -341,161 +340,9 @@ fn verdict_word(c: &Check) -> &'static str {
     }
 }
 
-fn ag_text(ag: Option<f64>) -> String {
+pub(crate) fn ag_text(ag: Option<f64>) -> String {
     match ag {
         Some(ag) => format!("{ag:.4} g"),
         None => format!("more than {} g", crate::assess::AG_SEARCH_MAX),
     }
-}
-
-/// The lines of one direction.
-fn direction_summary(t: &mut String, a: &SiteAssessment) {
-    let (c, v, s) = (&a.capacity, &a.verdict, &a.site);
-    let _ = writeln!(
-        t,
-        "Load toward the {}: governing mechanism alpha0 = lambda = {:.6} (static lower bound {}), bodies {}",
-        match c.direction {
-            Direction::Right => "right",
-            Direction::Left => "left",
-        },
-        c.alpha0,
-        a.analysis
-            .lower
-            .lambda
-            .map_or("none".to_string(), |l| format!("{l:.6}")),
-        c.linkage
-            .bodies()
-            .iter()
-            .map(|r| format!("blocks {}-{}", r.start, r.end.saturating_sub(1)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
-    let m = &c.mass;
-    let _ = writeln!(
-        t,
-        "  Participating mass: M* = {:.1} kg, e* = {:.4} (of {:.1} N of seismic weight on the moving blocks)",
-        m.m_star, m.e_star, m.seismic_weight
-    );
-    let _ = writeln!(
-        t,
-        "  Capacity curve ({} points): control point = centroid of block {}, d_k0 = {:.2} mm, d0* = {:.2} mm",
-        c.curve.len(),
-        c.control_block,
-        1e3 * c.d_k0,
-        1e3 * c.d0_star
-    );
-    let _ = writeln!(
-        t,
-        "    a0* = alpha0 g/(e* FC) = {:.4} m/s^2 (FC = {}), du* = 0.4 d0* = {:.2} mm, ds* = {:.2} mm, as* = {:.4} m/s^2, Ts = {:.3} s",
-        c.a0_star,
-        s.fc,
-        1e3 * v.du_star,
-        1e3 * v.ds_star,
-        v.as_star,
-        v.ts
-    );
-    let (lin, nonlin) = if s.elevated() {
-        (
-            "a0* >= max(ag S/q, Se(T1) psi gamma/q)",
-            "du* >= max(SDe(Ts), amplified at Z)",
-        )
-    } else {
-        ("a0* >= ag S/q", "du* >= SDe(Ts)")
-    };
-    let _ = writeln!(
-        t,
-        "  Linear check ({lin}): {:.4} vs {:.4} m/s^2, ratio {:.3}: {}; largest passing ag = {}",
-        v.linear.capacity,
-        v.linear.demand,
-        v.linear.ratio,
-        verdict_word(&v.linear),
-        ag_text(v.linear.ag_max)
-    );
-    let _ = writeln!(
-        t,
-        "  Nonlinear check ({nonlin}): {:.2} vs {:.2} mm, ratio {:.3}: {}; largest passing ag = {}",
-        1e3 * v.nonlinear.capacity,
-        1e3 * v.nonlinear.demand,
-        v.nonlinear.ratio,
-        verdict_word(&v.nonlinear),
-        ag_text(v.nonlinear.ag_max)
-    );
-    let _ = writeln!(
-        t,
-        "  This direction {}; largest passing ag = {}",
-        v.text(),
-        ag_text(v.ag_max())
-    );
-}
-
-/// The text `voussoir assess` prints: the site, each direction assessed, the rule and the
-/// verdict of the governing direction.
-pub fn assessment_summary(scene: &Scene, all: &Assessment) -> String {
-    let g = all.governing();
-    let (v, s) = (&g.verdict, &g.site);
-    let sp = &v.spectrum;
-    let mut t = String::new();
-    let _ = writeln!(t, "Scene: {}", scene.origin);
-    let _ = writeln!(
-        t,
-        "Site: ag = {} g, soil {}, topography {}, F0 = {}, Tc* = {} s, q = {}{}",
-        s.ag,
-        s.soil.as_str(),
-        s.topography.as_str(),
-        s.f0,
-        s.tc_star,
-        s.q,
-        if s.elevated() {
-            format!(
-                ", Z = {} m of H = {} m, T1 = {} s",
-                s.z,
-                s.h.unwrap_or(f64::NAN),
-                s.t1.unwrap_or(f64::NAN)
-            )
-        } else {
-            String::new()
-        }
-    );
-    let _ = writeln!(
-        t,
-        "  spectrum: S = SS ST = {:.3} x {:.2}, TB = {:.3} s, TC = {:.3} s, TD = {:.3} s",
-        sp.ss, sp.st, sp.tb, sp.tc, sp.td
-    );
-    for a in &all.directions {
-        direction_summary(&mut t, a);
-    }
-    let _ = writeln!(
-        t,
-        "(The capacity curve keeps the hinges at their joints, as the code method does; past about a third of d_k0 a real arch may move a hinge: docs/assessment.md)"
-    );
-    let _ = writeln!(t, "Rule: {RULE}.");
-    let words = direction_words(g.capacity.direction);
-    if all.restricted {
-        let _ = writeln!(
-            t,
-            "Direction: only the {words} was assessed (--direction); the other direction is not covered by this verdict"
-        );
-    } else {
-        let other = all
-            .directions
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != all.governing)
-            .map(|(_, a)| {
-                format!(
-                    "{} {}",
-                    direction_words(a.capacity.direction),
-                    ag_text(a.verdict.ag_max())
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(", ");
-        let _ = writeln!(
-            t,
-            "Governing direction: the {words} (largest passing ag {}; {other})",
-            ag_text(v.ag_max())
-        );
-    }
-    let _ = writeln!(t, "Verdict: the mechanism {}", verdict_line(all));
-    t
 }

@@ -960,3 +960,13 @@ impl PulseCurveReport {
         }
     }
 }
+
+/// The JSON printer: the document's data (the JSON contract of its command), pretty-printed.
+pub fn print(doc: &super::Document) -> String {
+    pretty(&doc.data)
+}
+
+/// Pretty JSON of any serializable value.
+pub fn pretty<T: Serialize>(value: &T) -> String {
+    serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+}

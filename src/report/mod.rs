@@ -1,41 +1,41 @@
-//! What the CLI prints, one file per format: the JSON contract ([`json`]), the thrust-line
-//! CSV ([`csv`]), the human summaries and titles ([`summary`]) and the animation of a dynamic
-//! run ([`animation`]).
+//! What the commands answer and how it is printed. Each command's result becomes one
+//! [`Document`] ([`documents`]: sections, key-value rows, tables; the JSON contract's data
+//! with it), with the drawings and charts chosen in one place ([`figures`]); one printer per
+//! format turns it into output: [`text`] (the terminal), [`json`] (the JSON contract, its
+//! serde structs in [`json`] and [`assessment`]), [`csv`] (the thrust line and the
+//! document's tables). [`words`] holds the words they share; [`animation`] the HTML page of a
+//! dynamic run.
 
 pub mod animation;
 pub mod assessment;
 pub mod csv;
+pub mod document;
+pub mod documents;
+pub mod figures;
 pub mod json;
-pub mod summary;
+pub mod text;
+pub mod words;
 
 pub use self::csv::write_thrust_csv;
 pub use crate::geometry::trim;
+pub use document::{Data, Document, Figure};
+pub use figures::{analysis_svg, dem_drawing_title, drawing_title};
 pub use json::*;
-pub use summary::*;
+pub use words::*;
 
-/// The drawing of one analysis, as `voussoir analyze --svg` writes it and `voussoir serve`
-/// returns it: the blocks, the thrust line, the hinges, the sliding joints, the mechanism and
-/// the loads, under the analysis's title.
-pub fn analysis_svg(
-    scene: &crate::scene::Scene,
-    a: &crate::analysis::SceneAnalysis,
-    direction: crate::outcome::Direction,
-) -> Result<String, crate::drawing::svg::SvgError> {
-    use crate::drawing::svg::{structure_svg, Drawing, Mechanism};
-    let result = &a.lower;
-    let drawing = Drawing {
-        title: drawing_title(scene, a),
-        forces: result.forces.as_deref(),
-        hinges: &result.hinges,
-        sliding: &result.sliding,
-        mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
-            velocities: &result.mechanism,
-            amplification: None,
-        }),
-        // A live action shakes nothing: no seismic arrow; its loads are labelled as multiplied.
-        load: (a.model.loads.action() == crate::model::Action::Seismic).then_some(direction),
-        loads: Some(&a.model.loads),
-        ..Default::default()
-    };
-    structure_svg(&a.model.assembly, &drawing)
+/// How a document is printed, as the command line asks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// For a person at a terminal.
+    Text,
+    /// The JSON contract.
+    Json,
+}
+
+/// `doc` printed in `format`.
+pub fn print(doc: &Document, format: Format) -> String {
+    match format {
+        Format::Text => text::print(doc),
+        Format::Json => json::print(doc),
+    }
 }

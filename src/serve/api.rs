@@ -712,7 +712,7 @@ pub async fn sweep(
             format!("`to` = {to}: `{key}` goes up to {max} in the server (the CLI takes more: `voussoir sweep`)"),
         ));
     }
-    let label = sweep::key_label(&key);
+    let label = crate::report::figures::key_label(&key);
     // At most a few sweeps at once, and a sweep whose client has gone (the page aborts one
     // when the user moves to another parameter) stops before its next case.
     let _permit = state.sweeps.acquire().await.map_err(|e| ApiError {

@@ -110,7 +110,7 @@ fn csv_and_chart_match_rows() {
         assert!(rec[col("lambda_upper")].is_empty());
         assert!(rec[col("note")].contains("turned off"));
     }
-    let chart = c.chart("test");
+    let chart = voussoir::report::figures::convergence_chart(&c, "test");
     assert_eq!(
         chart.series.len(),
         1,

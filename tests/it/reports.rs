@@ -330,7 +330,7 @@ fn dem_title_and_counts_in_words() {
     );
     assert!(!t.contains("none"), "{t}");
     rep.runs.truncate(1);
-    let text = report::dem_summary(&s, &d.model, &rep);
+    let text = report::text::print(&report::documents::dem(&s, &d.model, rep));
     assert!(text.contains("  1 run, "), "{text}");
     assert!(!text.contains("1 runs"), "{text}");
 }

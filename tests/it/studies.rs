@@ -28,9 +28,12 @@ fn load(name: &str) -> Study {
 }
 
 fn run(study: &Study) -> (Vec<SweepRow>, Chart) {
-    study
+    let rows = study
         .run(&|| {})
-        .unwrap_or_else(|e| panic!("{}: {e}", study.output))
+        .unwrap_or_else(|e| panic!("{}: {e}", study.output));
+    let chart = voussoir::report::figures::study_chart(study, &rows)
+        .unwrap_or_else(|e| panic!("{}: {e}", study.output));
+    (rows, chart)
 }
 
 fn extra(row: &SweepRow, name: &str) -> Option<f64> {

@@ -153,10 +153,19 @@ fn the_chart_axis_must_vary() {
 
 #[test]
 fn chart_labels_are_words_with_units() {
-    assert_eq!(sweep::key_label("arch.embrace_deg"), "embrace (deg)");
-    assert_eq!(sweep::key_label("arch.thickness"), "thickness t (m)");
-    assert_eq!(sweep::key_label("t/R"), "t/R");
-    assert_eq!(sweep::key_label("dem.something"), "dem.something");
+    assert_eq!(
+        voussoir::report::figures::key_label("arch.embrace_deg"),
+        "embrace (deg)"
+    );
+    assert_eq!(
+        voussoir::report::figures::key_label("arch.thickness"),
+        "thickness t (m)"
+    );
+    assert_eq!(voussoir::report::figures::key_label("t/R"), "t/R");
+    assert_eq!(
+        voussoir::report::figures::key_label("dem.something"),
+        "dem.something"
+    );
     let base = Scene::from_toml_str(BASE, "t").expect("valid");
     let vars = vec![
         sweep::parse_variation("arch.thickness=0.2,0.3").expect("parses"),
@@ -165,7 +174,8 @@ fn chart_labels_are_words_with_units() {
     let cases = sweep::cases(&base, &vars);
     let settings = StaticSettings::default();
     let rows = sweep::run(&cases, |v, s| sweep::static_case(v, s, &settings), &|| {});
-    let chart = sweep::chart(&vars, &rows, "arch.thickness", None, "t").expect("chart");
+    let chart =
+        voussoir::report::figures::chart(&vars, &rows, "arch.thickness", None, "t").expect("chart");
     assert_eq!(chart.x_label, "thickness t (m)");
     assert_eq!(chart.legend_title.as_deref(), Some("voussoirs n"));
 }

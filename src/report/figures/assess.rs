@@ -7,7 +7,7 @@
 //! points (rest, `ds*`, `du*`, the end at α = 0) carry markers. Labels use the engineer's
 //! symbols (α₀, dₖ, m/s²), not the JSON keys.
 
-use super::{Capacity, Verdict};
+use crate::assess::{Capacity, Verdict};
 use crate::drawing::chart::{Chart, Series};
 use crate::outcome::Direction;
 

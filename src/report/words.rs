@@ -1,0 +1,377 @@
+//! The words every document and figure title uses: numbers for reading, statuses, joints,
+//! hinges, the scene and its loads in a paragraph, the structure's short name.
+
+use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
+use crate::geometry::Stereotomy;
+use crate::kinematic::Family;
+use crate::model::Model;
+use crate::outcome::Status;
+use crate::scene::{LoadSpec, Scene, VoussoirShape};
+use std::fmt::Write as _;
+
+/// Short label of a joint, e.g. `arch 3`, `left pier 0`.
+pub fn joint_label(kind: JointKind) -> String {
+    match kind {
+        JointKind::Arch(j) => format!("arch {j}"),
+        JointKind::LeftPier(j) => format!("left pier {j}"),
+        JointKind::RightPier(j) => format!("right pier {j}"),
+        JointKind::Other => "joint".to_string(),
+        JointKind::Between(a, Some(b)) => format!("blocks {a}|{b}"),
+        JointKind::Between(a, None) => format!("block {a}|ground"),
+    }
+}
+
+/// A scene value for reading: float noise such as `0.49999999999999994` (a value that went
+/// through a ratio or through radians) rounded off to 12 significant digits, then printed in
+/// the shortest form (`0.5`, `1`, `inf`).
+pub fn num(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+    format!("{rounded}")
+}
+
+/// A small dimensionless number (a relative gap or difference, a residual) in scientific
+/// notation with `digits` decimals, and exactly zero as `0` (not `0.0e0`).
+pub fn sci(x: f64, digits: usize) -> String {
+    if x == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{x:.digits$e}")
+    }
+}
+
+/// A status in words: `collapse`, `no collapse`, `cannot stand` (the JSON writes
+/// `no_collapse`, `cannot_stand`).
+pub fn status_words(status: Status) -> &'static str {
+    match status {
+        Status::Collapse => "collapse",
+        Status::NoCollapse => "no collapse",
+        Status::CannotStand => "cannot stand",
+    }
+}
+
+/// `1 run`, `3 runs`: a count with its noun in the singular or the plural.
+pub fn count(n: u64, singular: &str, plural: &str) -> String {
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
+/// The family of a kinematic mechanism in words: `four hinges`, `two hinges and an opening
+/// joint`, `two opening joints`, `one hinge`.
+pub fn family_words(f: Family) -> &'static str {
+    match f {
+        Family::FourHinges => "four hinges",
+        Family::TwoHingesOneOpen => "two hinges and an opening joint",
+        Family::TwoOpen => "two opening joints",
+        Family::OneHinge => "one hinge",
+        Family::HingesWithHeldTies => "hinges, with tie rods that keep their length",
+    }
+}
+
+/// What a mechanism through `joints` moves: `the portal` when one of them is a pier joint,
+/// `the arch` when all are arch joints, `the structure` otherwise.
+pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) -> &'static str {
+    let mut arch_only = true;
+    for j in joints {
+        match assembly.joints.get(j).map(|j| j.kind) {
+            Some(JointKind::Arch(_)) => {}
+            Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) => return "the portal",
+            _ => arch_only = false,
+        }
+    }
+    if arch_only {
+        "the arch"
+    } else {
+        "the structure"
+    }
+}
+
+/// The end of a joint a hinge sits at, in words with its name in the JSON and the CSV:
+/// `intrados (p1)`, `extrados (p2)` on the arch, `inner face (p1)`, `outer face (p2)` on a pier.
+pub fn end_words(kind: JointKind, end: JointEnd) -> &'static str {
+    if matches!(kind, JointKind::Between(..)) {
+        // A joint between the user's blocks has no intrados or faces, only its two ends.
+        return match end {
+            JointEnd::P1 => "end p1",
+            JointEnd::P2 => "end p2",
+        };
+    }
+    let pier = matches!(kind, JointKind::LeftPier(_) | JointKind::RightPier(_));
+    match (end, pier) {
+        (JointEnd::P1, false) => "intrados (p1)",
+        (JointEnd::P2, false) => "extrados (p2)",
+        (JointEnd::P1, true) => "inner face (p1)",
+        (JointEnd::P2, true) => "outer face (p2)",
+    }
+}
+
+/// The direction of a joint p1 -> p2 as the continuous model gives its sections: the polar
+/// angle in degrees (-180..180) and the angle from the vertical `|polar - 90|`.
+pub fn joint_angles_deg(assembly: &Assembly, joint: usize) -> Option<(f64, f64)> {
+    let j = assembly.joints.get(joint)?;
+    let d = j.p2 - j.p1;
+    let polar = d.y.atan2(d.x).to_degrees();
+    Some((polar, (polar - 90.0).abs()))
+}
+
+/// One item per hinge: `joint 5 (arch 5), intrados (p1), at (x, y) m, polar 146.250 deg,
+/// 56.250 deg from the vertical` (the direction p1 -> p2 of an arch joint, as the continuous
+/// model gives its sections); pier joints without the angles.
+pub fn hinge_items(assembly: &Assembly, hinges: &[Hinge]) -> Vec<String> {
+    let mut items = Vec::new();
+    for h in hinges {
+        let Some(joint) = assembly.joints.get(h.joint) else {
+            continue;
+        };
+        let angles = match (joint.kind, joint_angles_deg(assembly, h.joint)) {
+            (JointKind::Arch(_), Some((polar, vertical))) => {
+                format!(", polar {polar:.3} deg, {vertical:.3} deg from the vertical")
+            }
+            _ => String::new(),
+        };
+        // A crushing hinge sits a/2 inside the joint, at the centre of its compressed zone.
+        let inset = if h.compressed_zone > 0.0 {
+            format!(
+                ", {:.2} mm in (compressed zone {:.2} mm)",
+                1e3 * h.offset,
+                1e3 * h.compressed_zone
+            )
+        } else {
+            String::new()
+        };
+        items.push(format!(
+            "joint {:>4} ({}), {}{inset}, at ({:.4}, {:.4}) m{angles}",
+            h.joint,
+            joint_label(joint.kind),
+            end_words(joint.kind, h.end),
+            h.x,
+            h.y
+        ));
+    }
+    items
+}
+
+/// The description of the scene as lines (a document's lead).
+pub fn scene_lines(scene: &Scene, model: &Model) -> Vec<String> {
+    describe_scene(scene, model)
+        .split("\n  ")
+        .map(str::to_string)
+        .collect()
+}
+
+/// A one-paragraph description of the scene.
+pub fn describe_scene(scene: &Scene, model: &Model) -> String {
+    let assembly = &model.assembly;
+    let mut s = match (&scene.arch, &scene.blocks) {
+        (Some(a), _) => {
+            let shape = a.shape.describe();
+            let vs = match a.voussoir_shape {
+                VoussoirShape::Polygon => "polygon",
+                VoussoirShape::Curved => "curved",
+            };
+            let mut s = format!(
+                "{shape}, t = {} m, {} {vs} voussoir{}",
+                num(a.thickness),
+                a.voussoirs,
+                if a.voussoirs == 1 { "" } else { "s" }
+            );
+            match a.joints {
+                Stereotomy::Radial => {}
+                Stereotomy::Vertical => s.push_str(", vertical joints"),
+                Stereotomy::HorizontalBed { angle } => {
+                    let _ = write!(
+                        s,
+                        ", horizontal beds up to {} deg, radial joints above",
+                        num(angle.to_degrees())
+                    );
+                }
+            }
+            s
+        }
+        (None, Some(b)) => describe_blocks(b),
+        (None, None) => String::new(),
+    };
+    if let Some(p) = &scene.piers {
+        let _ = write!(s, "\n  {}", p.describe());
+    }
+    let _ = write!(
+        s,
+        "\n  {}; {}, {}, total weight {:.6} kN",
+        mu_words(scene),
+        count(assembly.blocks.len() as u64, "block", "blocks"),
+        count(assembly.joints.len() as u64, "joint", "joints"),
+        assembly.total_weight() / 1000.0
+    );
+    if !model.loads.is_self_weight_only() {
+        let _ = write!(s, "\n  {}", describe_loads(scene, model));
+    }
+    s
+}
+
+/// The user's blocks in words: where from, how many joints were found, whether a chain.
+pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
+    let d = &b.detected;
+    let between = d.assembly.joints.len() - d.supports;
+    let shape = match &d.topology {
+        crate::blocks::Topology::Chain => "a chain between two supports".to_string(),
+        crate::blocks::Topology::Column => "a chain standing on one support".to_string(),
+        crate::blocks::Topology::Other(why) => format!("not a chain: {why}"),
+    };
+    format!(
+        "{} from {} ({}): {} found between blocks and {} on the ground y = {} m (tolerance {} m); {shape}",
+        count(d.assembly.blocks.len() as u64, "user block", "user blocks"),
+        b.source_words(),
+        b.units.name(),
+        count(between as u64, "joint", "joints"),
+        count(d.supports as u64, "support", "supports"),
+        num(d.ground_y),
+        sci(d.tolerance, 1)
+    )
+}
+
+/// `mu = 0.4`, or `mu = inf (no sliding)`; with a finite compressive strength also
+/// `fc = 1 MPa (crushing)`.
+fn mu_words(scene: &Scene) -> String {
+    let mu = scene.material.friction;
+    let mut words = if mu.is_finite() {
+        format!("mu = {}", num(mu))
+    } else {
+        "mu = inf (no sliding)".to_string()
+    };
+    let fc = scene.material.compressive_strength;
+    if fc.is_finite() {
+        let _ = write!(words, ", fc = {} MPa (crushing)", num(fc / 1e6));
+    }
+    words
+}
+
+/// One or two lines on the loads beyond self-weight and their totals.
+pub fn describe_loads(scene: &Scene, model: &Model) -> String {
+    let of_kind = |line: bool| {
+        scene
+            .loads
+            .iter()
+            .filter(|l| matches!(l, LoadSpec::Line { .. }) == line)
+            .count() as u64
+    };
+    let mut parts = Vec::new();
+    if of_kind(false) > 0 {
+        parts.push(count(of_kind(false), "point load", "point loads"));
+    }
+    if of_kind(true) > 0 {
+        parts.push(count(of_kind(true), "line load", "line loads"));
+    }
+    if let Some(f) = &scene.fill {
+        parts.push(format!(
+            "fill to y = {} m ({} N/m^3{})",
+            num(f.level),
+            num(f.unit_weight),
+            if f.seismic { "" } else { ", not seismic" }
+        ));
+    }
+    let r = scene.seismic.vertical_ratio;
+    if r != 0.0 {
+        parts.push(format!("vertical seismic ratio {}", num(r)));
+    }
+    let live = scene.loads.iter().filter(|l| l.live()).count() as u64;
+    if live > 0 {
+        parts.push(format!("{live} live (multiplied by lambda)"));
+    }
+    match model.loads.action() {
+        crate::model::Action::Seismic => format!(
+            "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",
+            parts.join(", "),
+            model.loads.permanent_weight() / 1000.0,
+            model.loads.seismic_weight() / 1000.0
+        ),
+        crate::model::Action::Live => format!(
+            "loads: {}\n  permanent loads {:.6} kN down, live loads {:.6} kN (lambda multiplies the live loads: the adequacy factor; no seismic force)",
+            parts.join(", "),
+            model.loads.permanent_weight() / 1000.0,
+            model.loads.live_magnitude() / 1000.0
+        ),
+    }
+}
+
+/// How far the static bound `lower` sits below the rotational upper bound `upper`, as a
+/// fraction of the upper bound: `(upper - lower) / upper` (the JSON's `gap` is another
+/// measure, `|upper - lower| / max(1, lower)`).
+pub fn sliding_shortfall(lower: f64, upper: f64) -> Option<f64> {
+    (upper > 0.0 && upper.is_finite() && lower.is_finite()).then(|| (upper - lower) / upper)
+}
+
+/// A short name of the structure for titles, e.g. `semicircular arch` or `pointed portal`.
+pub fn shape_title(scene: &Scene) -> String {
+    let Some(arch) = &scene.arch else {
+        let n = scene
+            .blocks
+            .as_ref()
+            .map_or(0, |b| b.detected.assembly.blocks.len());
+        return format!(
+            "structure of {}",
+            count(n as u64, "user block", "user blocks")
+        );
+    };
+    let shape = arch.shape.title();
+    format!(
+        "{shape} {}",
+        if scene.piers.is_some() {
+            "portal"
+        } else {
+            "arch"
+        }
+    )
+}
+
+/// How a dynamic run's criterion calls collapse, for the summaries.
+pub fn criterion_words(criterion: crate::dem::dynamic::Criterion, displacement: f64) -> String {
+    match criterion {
+        crate::dem::dynamic::Criterion::Displacement => format!(
+            "collapse criterion: displacement (a block point moved by {displacement:.4} m, a quarter of the structure's size)"
+        ),
+        crate::dem::dynamic::Criterion::Overturning => format!(
+            "collapse criterion: overturning (the structure fell: a block point moved by {displacement:.4} m, its whole size; otherwise run until at rest)"
+        ),
+    }
+}
+
+/// How a motion along `component` acts, for the summaries.
+pub fn component_words(component: &str) -> &'static str {
+    if component == "y" {
+        ", acting vertically (upward positive)"
+    } else {
+        ", horizontal (toward +x positive)"
+    }
+}
+
+/// One line saying what a dynamic run did (the title of its animation).
+pub fn dynamic_headline(rep: &crate::report::DynamicReport) -> String {
+    let g = crate::dem::record::STANDARD_GRAVITY;
+    let what = match rep.status {
+        "cannot_stand" => "cannot stand".to_string(),
+        "collapse" => format!(
+            "collapses at t = {:.3} s",
+            rep.collapse_time.unwrap_or(f64::NAN)
+        ),
+        "undecided" => "undecided (still moving)".to_string(),
+        _ => "survives".to_string(),
+    };
+    let vertical = rep
+        .pga_vertical
+        .map_or(String::new(), |p| format!(", vertical PGA {:.3} g", p / g));
+    format!(
+        "{} (PGA {:.3} g{}{}): {what}",
+        rep.excitation,
+        rep.pga / g,
+        if rep.component == "y" {
+            ", vertical"
+        } else {
+            ""
+        },
+        vertical
+    )
+}

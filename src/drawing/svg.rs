@@ -95,6 +95,8 @@ pub mod colours {
     pub const LOAD: RGBColor = RGBColor(0x2E, 0x7D, 0x32);
     /// Seismic load direction.
     pub const SEISMIC: RGBColor = RGBColor(0x8E, 0x24, 0xAA);
+    /// Tie rods.
+    pub const TIE: RGBColor = RGBColor(0x37, 0x47, 0x4F);
 }
 
 use colours::*;
@@ -143,6 +145,10 @@ pub struct Drawing<'a> {
     pub loads: Option<&'a LoadCase>,
     /// Leave out the ground hatching under supports.
     pub hide_supports: bool,
+    /// Tie rods (`Model::ties`), drawn between their anchors.
+    pub ties: &'a [crate::model::Tie],
+    /// Their forces at collapse (`StaticResult::ties`), labelled beside them when given.
+    pub tie_forces: &'a [crate::model::TieForce],
 }
 
 impl<'a> Drawing<'a> {
@@ -229,6 +235,10 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     }
     if let Some(mk) = &marks {
         mk.world_points().iter().for_each(&mut grow);
+    }
+    for t in drawing.ties {
+        grow(&t.from.point);
+        grow(&t.to.point);
     }
     let ext = hi - lo;
     if !(ext.x.is_finite() && ext.y.is_finite() && ext.max() > 0.0) {
@@ -338,6 +348,14 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     }
     if !drawing.sliding.is_empty() {
         legend.push((Glyph::Line(SLIDING, 6, false), "sliding joint".into()));
+    }
+    if !drawing.ties.is_empty() {
+        let words = if drawing.tie_forces.is_empty() {
+            "tie rod (its capacity)"
+        } else {
+            "tie rod, its force at collapse (yielded: at its capacity)"
+        };
+        legend.push((Glyph::Line(TIE, 3, false), words.into()));
     }
     let has_supports = !drawing.hide_supports && assembly.joints.iter().any(|j| j.is_support());
     if has_supports {
@@ -535,6 +553,10 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             }
             Ok(())
         })?;
+    }
+
+    if !drawing.ties.is_empty() {
+        svg.raw("ties", &ties_svg(drawing, &frame));
     }
 
     // Everything drawn so far that the seismic arrow should not cover, in pixels.
@@ -1389,6 +1411,39 @@ fn arrow_svg(tail: Px, tip: Px, colour: RGBColor, width: f64, head: f64) -> Stri
         back.0 + half * uy,
         back.1 - half * ux,
     )
+}
+
+/// The tie rods: a line between the anchors, a dot at each, and a label above the middle
+/// with the force at collapse (or the capacity when there is no solution).
+fn ties_svg(drawing: &Drawing, frame: &Frame) -> String {
+    let mut text = String::new();
+    for (k, t) in drawing.ties.iter().enumerate() {
+        let (a, b) = (frame.pxf(t.from.point), frame.pxf(t.to.point));
+        text.push_str(&format!(
+            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" stroke-width=\"3\"/>\n",
+            a.0,
+            a.1,
+            b.0,
+            b.1,
+            hex(TIE)
+        ));
+        for p in [a, b] {
+            text.push_str(&format!(
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"4\" fill=\"{}\"/>\n",
+                p.0,
+                p.1,
+                hex(TIE)
+            ));
+        }
+        let label = match drawing.tie_forces.get(k) {
+            Some(f) if f.yielded => format!("tie {k}: {} N, yielded", sig(f.force)),
+            Some(f) => format!("tie {k}: {} N of {} N", sig(f.force), sig(t.capacity)),
+            None => format!("tie {k}: capacity {} N", sig(t.capacity)),
+        };
+        let (mx, my) = (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1));
+        text.push_str(&text_svg(mx, my - 12.0, 13.0, "middle", TIE, &label));
+    }
+    text
 }
 
 /// A label centred vertically at `(x, y)` (pixels), with a white halo so it reads over lines

@@ -12,7 +12,7 @@ pub use action::Action;
 pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
-pub use crate::interaction::{Strength, Tie, TieForce};
+pub use crate::interaction::{Anchor, Strength, Tie, TieForce};
 
 /// Blocks and joints with their loads.
 #[derive(Debug, Clone)]

@@ -208,6 +208,10 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                 let list: Vec<String> = r.sliding.iter().map(|j| j.to_string()).collect();
                 sec.line(format!("sliding joints (|V| = mu N): {}", list.join(", ")));
             }
+            if !r.ties.is_empty() {
+                sec.line("tie rods at collapse:");
+                sec.items(tie_items(model, &r.ties));
+            }
             sec.line(format!(
                 "equilibrium residual {} N ({} of the weight)",
                 sci(r.equilibrium_residual, 2),
@@ -260,6 +264,41 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
         count(r.model.constraints as u64, "constraint", "constraints"),
         r.solve_time_s * 1e3
     ));
+}
+
+/// One line per tie rod: its force at collapse, whether it yielded, and where it is anchored.
+fn tie_items(model: &Model, forces: &[crate::model::TieForce]) -> Vec<String> {
+    let anchor = |a: &crate::model::Anchor| {
+        let on = a
+            .block
+            .map_or("the ground".to_string(), |b| format!("block {b}"));
+        format!("({}, {}) m on {on}", num(a.point.x), num(a.point.y))
+    };
+    model
+        .ties
+        .iter()
+        .zip(forces)
+        .enumerate()
+        .map(|(k, (t, f))| {
+            let state = if f.yielded {
+                "yielded".to_string()
+            } else if f.force <= t.prestress * (1.0 + 1e-6) {
+                "at its prestress".to_string()
+            } else {
+                format!(
+                    "{:.0} % of its capacity, keeps its length",
+                    100.0 * f.force / t.capacity
+                )
+            };
+            format!(
+                "tie {k}: {:.1} N of {} N ({state}), from {} to {}",
+                f.force,
+                num(t.capacity),
+                anchor(&t.from),
+                anchor(&t.to)
+            )
+        })
+        .collect()
 }
 
 /// The name of the arch's size (`R`, `span/2`), or `size` for the user's blocks.

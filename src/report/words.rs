@@ -281,6 +281,9 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
     if live > 0 {
         parts.push(format!("{live} live (multiplied by lambda)"));
     }
+    if !model.ties.is_empty() {
+        parts.push(count(model.ties.len() as u64, "tie rod", "tie rods"));
+    }
     match model.loads.action() {
         crate::model::Action::Seismic => format!(
             "loads: {}\n  permanent loads {:.6} kN down, seismic masses {:.6} kN (lambda multiplies the seismic forces)",

@@ -12,8 +12,8 @@ use super::{short, Section, MAX_FORCE, MAX_LENGTH};
 use crate::assembly::Assembly;
 use crate::error::SceneError;
 use crate::geometry::Vec2;
-use crate::interaction::Anchor;
-use crate::model::Tie;
+
+use crate::model::{Anchor, Tie};
 use toml::{Table, Value};
 
 /// A tie as the user wrote it.

@@ -63,6 +63,7 @@ pub fn scene(scene: &Scene, model: &crate::model::Model) -> Result<Figure, SvgEr
         title: shape_title(scene),
         load: Some(Direction::Right),
         loads: Some(&model.loads),
+        ties: &model.ties,
         ..Default::default()
     };
     of_drawing("structure", &model.assembly, &drawing)
@@ -89,6 +90,8 @@ pub fn analysis_svg(
         // A live action shakes nothing: no seismic arrow; its loads are labelled as multiplied.
         load: (a.model.loads.action() == crate::model::Action::Seismic).then_some(direction),
         loads: Some(&a.model.loads),
+        ties: &a.model.ties,
+        tie_forces: &result.ties,
         ..Default::default()
     };
     structure_svg(&a.model.assembly, &drawing)

@@ -186,6 +186,17 @@ pub fn analyse(scene: &Scene, options: &Options) -> Result<SceneAnalysis, Analys
         )?;
     }
     let model = crate::scene::build(scene)?;
+    analyse_model(scene, model, options)
+}
+
+/// [`analyse`] of a model already built from `scene` (a retrofit design's, whose tie
+/// capacities it set).
+pub fn analyse_model(
+    scene: &Scene,
+    model: Model,
+    options: &Options,
+) -> Result<SceneAnalysis, AnalysisError> {
+    options.validate()?;
     let lower = statics::analyse(&model, &options.static_settings)?;
     let (mut upper, kinematic_search) = upper_bound(&model, &lower, options);
     if model.strength.is_finite() && kinematic_search != Some(Search::Certified) {

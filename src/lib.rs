@@ -21,6 +21,7 @@ pub mod model;
 pub mod outcome;
 pub mod overrides;
 pub mod report;
+pub mod retrofit;
 pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;

@@ -39,6 +39,9 @@ enum Command {
     /// Seismic verdict of the governing mechanism at a site (NTC 2018 / Circolare 2019
     /// C8.7.1: participating mass, capacity curve, linear and nonlinear kinematic checks)
     Assess(cli::assess::Args),
+    /// Retrofit design: the smallest capacities of the ties marked capacity = "design" that
+    /// give a target multiplier, the steel bars that carry them, and the structure re-analysed
+    Retrofit(cli::retrofit::Args),
     /// The arch explorer in the browser: a local page with sliders, the thrust line and the
     /// mechanism redrawn live, on a JSON API (127.0.0.1 only)
     #[cfg(feature = "serve")]
@@ -54,6 +57,7 @@ fn main() -> ExitCode {
         Command::MinThickness(a) => cli::min_thickness::run(a),
         Command::Convergence(a) => cli::convergence::run(a),
         Command::Assess(a) => cli::assess::run(a),
+        Command::Retrofit(a) => cli::retrofit::run(a),
         #[cfg(feature = "serve")]
         Command::Serve(a) => cli::serve::run(a),
     };

@@ -11,6 +11,7 @@ pub mod convergence;
 pub mod dem;
 pub mod min_thickness;
 pub mod outputs;
+pub mod retrofit;
 #[cfg(feature = "serve")]
 pub mod serve;
 pub mod study;

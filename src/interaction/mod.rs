@@ -118,4 +118,38 @@ impl Rows {
     pub fn cone(&mut self, rows: [Row; 3]) {
         self.cones.push(rows);
     }
+
+    /// Append the rows of `other` (built for the same assembly and scales), sharing its
+    /// first `shared` columns (the multiplier and any unknowns common to both) and giving
+    /// its other columns new indices after these: two load directions of one design.
+    pub fn append_copy(&mut self, other: Rows, shared: usize) {
+        let offset = self.columns - shared;
+        let map = |c: usize| if c < shared { c } else { c + offset };
+        let row0 = self.b_equality.len();
+        self.equality.extend(
+            other
+                .equality
+                .iter()
+                .map(|&(r, c, v)| (row0 + r, map(c), v)),
+        );
+        self.b_equality.extend(other.b_equality);
+        let remap = |(entries, rhs): &Row| -> Row {
+            (entries.iter().map(|&(c, v)| (map(c), v)).collect(), *rhs)
+        };
+        self.nonnegative.extend(other.nonnegative.iter().map(remap));
+        self.cones.extend(
+            other
+                .cones
+                .iter()
+                .map(|c| [remap(&c[0]), remap(&c[1]), remap(&c[2])]),
+        );
+        self.columns += other.columns - shared;
+    }
+
+    /// Fix unknown `column` at `value` (one more equality row).
+    pub fn fix_column(&mut self, column: usize, value: f64) {
+        let row = self.b_equality.len();
+        self.equality.push((row, column, 1.0));
+        self.b_equality.push(value);
+    }
 }

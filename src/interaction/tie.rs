@@ -97,16 +97,32 @@ impl Tie {
     /// The tie's part of the static program: its unknown (the tension over the force scale),
     /// its pull on both anchored blocks and its bounds `P <= T <= C`. Returns its column.
     pub fn static_rows(&self, rows: &mut Rows) -> usize {
-        let col = rows.add_columns(1);
-        let e = self.direction();
-        rows.force_on(self.from.block, col, e, self.from.point, 1.0);
-        rows.force_on(self.to.block, col, e, self.to.point, -1.0);
+        let col = self.pull(rows);
         let fs = rows.force_scale;
         // Bounds, not relaxed by the phase-one program: a tie is no joint that could be
         // asked to carry tension (it always does), and the interval has an interior when
         // C > P.
         rows.nonnegative(vec![(col, -1.0)], -self.prestress / fs, false);
         rows.nonnegative(vec![(col, 1.0)], self.capacity / fs, false);
+        col
+    }
+
+    /// [`Tie::static_rows`] with its capacity an unknown, column `capacity` (over the force
+    /// scale), as a retrofit design sizes it: `P <= T <= C`. Returns the tension's column.
+    pub fn static_rows_designed(&self, rows: &mut Rows, capacity: usize) -> usize {
+        let col = self.pull(rows);
+        let fs = rows.force_scale;
+        rows.nonnegative(vec![(col, -1.0)], -self.prestress / fs, false);
+        rows.nonnegative(vec![(col, 1.0), (capacity, -1.0)], 0.0, false);
+        col
+    }
+
+    /// The tension's column and its pull on both anchored blocks.
+    fn pull(&self, rows: &mut Rows) -> usize {
+        let col = rows.add_columns(1);
+        let e = self.direction();
+        rows.force_on(self.from.block, col, e, self.from.point, 1.0);
+        rows.force_on(self.to.block, col, e, self.to.point, -1.0);
         col
     }
 

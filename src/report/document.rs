@@ -287,4 +287,5 @@ pub enum Data {
     Ida(Box<super::IdaReport>),
     PulseCurve(Box<super::PulseCurveReport>),
     Convergence(Box<crate::convergence::Convergence>),
+    Retrofit(Box<super::retrofit::RetrofitReport>),
 }

@@ -13,6 +13,7 @@ pub mod document;
 pub mod documents;
 pub mod figures;
 pub mod json;
+pub mod retrofit;
 pub mod text;
 pub mod words;
 

@@ -37,8 +37,27 @@ pub fn builds_on_this_thread() -> u64 {
 }
 
 /// Build the assembly and load case of a scene: the one place a scene becomes a model, run
-/// once per analysis (a [`Scene`] holds values only).
+/// once per analysis (a [`Scene`] holds values only). A tie whose capacity is `"design"` is
+/// refused: only a retrofit design sizes it ([`build_for_design`]).
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
+    if let Some(k) = scene.ties.iter().position(|t| t.capacity.is_none()) {
+        return Err(SceneError::OutOfRange {
+            origin: scene.origin.clone(),
+            key: format!("ties[{k}].capacity"),
+            value: "\"design\"".into(),
+            allowed: "a number in N for an analysis: a capacity to be designed is sized by `voussoir retrofit` (run that, or give the capacity)".into(),
+        });
+    }
+    build_model(scene)
+}
+
+/// [`build`] for a retrofit design: the ties whose capacity is `"design"` get their
+/// prestress as capacity for now; the design sizes them.
+pub fn build_for_design(scene: &Scene) -> Result<Model, SceneError> {
+    build_model(scene)
+}
+
+fn build_model(scene: &Scene) -> Result<Model, SceneError> {
     BUILDS.with(|b| b.set(b.get() + 1));
     let strength = crate::model::Strength {
         compressive: scene.material.compressive_strength,

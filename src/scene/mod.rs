@@ -10,7 +10,7 @@ mod piers;
 pub mod ties;
 pub mod units;
 mod user_blocks;
-pub use build::{build, builds_on_this_thread};
+pub use build::{build, build_for_design, builds_on_this_thread};
 pub use piers::{Pier, PierProfile, Piers};
 pub use user_blocks::{BlockSource, BlocksSpec};
 
@@ -94,7 +94,13 @@ pub struct Material {
     /// Compressive strength fc (Pa) of the joints, a rectangular stress block over `depth`;
     /// `f64::INFINITY` (the default) means joints cannot crush.
     pub compressive_strength: f64,
+    /// Design yield strength of tie steel (Pa), for choosing bars in a retrofit design.
+    /// Default 391e6 (B450C: 450 MPa over the partial factor 1.15).
+    pub tie_design_strength: f64,
 }
+
+/// Default `material.tie_design_strength` (Pa): B450C, 450 MPa over 1.15.
+pub const DEFAULT_TIE_DESIGN_STRENGTH: f64 = 391e6;
 
 /// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
 /// [`crate::scene::build`]).
@@ -467,7 +473,13 @@ const SHAPE_KEYS: &[(&str, &[&str])] = &[
     ("pointed", &["radius", "eccentricity"]),
     ("basket", &["span", "rise", "side_angle_deg"]),
 ];
-const MATERIAL_KEYS: &[&str] = &["unit_weight", "depth", "friction", "compressive_strength"];
+const MATERIAL_KEYS: &[&str] = &[
+    "unit_weight",
+    "depth",
+    "friction",
+    "compressive_strength",
+    "tie_design_strength",
+];
 const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic", "live"];
 const ACTION_KEYS: &[&str] = &["kind"];
 const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
@@ -1434,12 +1446,18 @@ fn parse_material(mut s: Section) -> Result<Material, SceneError> {
             "must be a stress > 0 in Pa (for example 1e6 for 1 MPa), or inf for joints that cannot crush",
         ));
     }
+    let tie_design_strength = s.positive(
+        "tie_design_strength",
+        Some(DEFAULT_TIE_DESIGN_STRENGTH),
+        "the design yield strength of tie steel in Pa",
+    )?;
     s.finish("")?;
     Ok(Material {
         unit_weight,
         depth,
         friction,
         compressive_strength,
+        tie_design_strength,
     })
 }
 

@@ -21,12 +21,14 @@ use toml::{Table, Value};
 pub struct TieSpec {
     pub from: [f64; 2],
     pub to: [f64; 2],
-    /// The yield force (N).
-    pub capacity: f64,
+    /// The yield force (N); None for `capacity = "design"`, sized by `voussoir retrofit`.
+    pub capacity: Option<f64>,
     pub prestress: f64,
+    /// Cost per newton of capacity in a retrofit design (default 1).
+    pub cost: f64,
 }
 
-const TIE_KEYS: &[&str] = &["from", "to", "capacity", "prestress"];
+const TIE_KEYS: &[&str] = &["from", "to", "capacity", "prestress", "cost"];
 
 /// The `[[ties]]` list of a scene (empty when absent).
 pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, SceneError> {
@@ -63,27 +65,39 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must differ from `from`: a tie has a length",
             ));
         }
-        if matches!(t.get("capacity"), Some(Value::String(c)) if c.trim() == "design") {
-            return Err(s.out_of_range(
+        let capacity = if matches!(t.get("capacity"), Some(Value::String(c)) if c.trim() == "design")
+        {
+            s.string("capacity", None)?;
+            None
+        } else {
+            let c = s.finite(
                 "capacity",
-                "\"design\"",
-                "a number in N (SI), e.g. 40000 or \"40 kN\": a capacity to be designed is sized by `voussoir retrofit`, which voussoir does not have yet",
-            ));
-        }
-        let capacity = s.finite("capacity", "the force at which the tie yields, in N")?;
-        if !(0.0..=MAX_FORCE).contains(&capacity) {
-            return Err(s.out_of_range(
-                "capacity",
-                short(capacity),
-                &format!("must be from 0 to {MAX_FORCE:e} N"),
-            ));
-        }
+                "the force at which the tie yields, in N, or \"design\"",
+            )?;
+            if !(0.0..=MAX_FORCE).contains(&c) {
+                return Err(s.out_of_range(
+                    "capacity",
+                    short(c),
+                    &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
+                ));
+            }
+            Some(c)
+        };
         let prestress = s.opt_f64("prestress")?.unwrap_or(0.0);
-        if !(prestress.is_finite() && (0.0..=capacity).contains(&prestress)) {
+        let most = capacity.unwrap_or(MAX_FORCE);
+        if !(prestress.is_finite() && (0.0..=most).contains(&prestress)) {
             return Err(s.out_of_range(
                 "prestress",
                 short(prestress),
-                &format!("must be from 0 to the capacity, {} N", short(capacity)),
+                &format!("must be from 0 to the capacity, {} N", short(most)),
+            ));
+        }
+        let cost = s.opt_f64("cost")?.unwrap_or(1.0);
+        if !(cost.is_finite() && cost > 0.0) {
+            return Err(s.out_of_range(
+                "cost",
+                short(cost),
+                "must be a finite number > 0 (the cost of one newton of capacity, relative to the other ties)",
             ));
         }
         s.finish("")?;
@@ -92,6 +106,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
             to,
             capacity,
             prestress,
+            cost,
         });
     }
     Ok(ties)
@@ -140,10 +155,12 @@ pub(super) fn anchor_ties(
             Ok(Anchor { block, point })
         };
         let (from, to) = (anchor("from", spec.from)?, anchor("to", spec.to)?);
+        // A capacity to be designed starts at its least value, the prestress; the retrofit
+        // design sizes it (a plain analysis refuses it, `super::build`).
         let tie = Tie {
             from,
             to,
-            capacity: spec.capacity,
+            capacity: spec.capacity.unwrap_or(spec.prestress),
             prestress: spec.prestress,
         };
         if let Some(problem) = tie.problem(assembly.blocks.len()) {

@@ -79,7 +79,7 @@ pub fn dimension_of(key: &str) -> Option<Dimension> {
         "thickness" | "radius" | "span" | "rise" | "eccentricity" | "depth" | "level"
         | "height" | "width" | "bottom_width" | "top_width" | "from_x" | "to_x" | "ground_y"
         | "at" | "from" | "to" => Dimension::Length,
-        "compressive_strength" => Dimension::Stress,
+        "compressive_strength" | "tie_design_strength" => Dimension::Stress,
         "unit_weight" => Dimension::UnitWeight,
         "force" | "capacity" | "prestress" => Dimension::Force,
         "intensity" => Dimension::ForcePerLength,

@@ -11,6 +11,7 @@
 //! blocks, i.e. the collapse mechanism.
 
 mod chain;
+pub mod design;
 mod problem;
 mod settings;
 

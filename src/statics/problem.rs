@@ -108,9 +108,51 @@ impl StaticProblem {
             Objective::MaxLambda { sign, cap } => (sign, cap, false),
             Objective::MinTension => (0.0, None, true),
         };
-        let fs = loads.force_scale();
-        let mut rows = Rows::new(assembly, fs, relax);
-        let ls = rows.length_scale;
+        let mut rows = Rows::new(assembly, loads.force_scale(), relax);
+        let (friction_joints, tie_columns) =
+            program_rows(assembly, loads, strength, ties, sign, &[], &mut rows);
+        if let Some(cap) = lambda_cap {
+            rows.nonnegative(vec![(0, 1.0)], cap, false);
+        }
+        if relax {
+            // tau >= -1 keeps the phase-one program bounded.
+            rows.nonnegative(vec![(0, -1.0)], 1.0, false);
+        }
+        Self::assemble(rows, friction_joints, tie_columns, relax)
+    }
+
+    /// Clarabel's standard form of `rows`, maximising column 0 (or minimising the phase-one
+    /// relaxation).
+    pub(crate) fn assemble(
+        rows: Rows,
+        friction_joints: Vec<usize>,
+        tie_columns: Vec<usize>,
+        relax: bool,
+    ) -> StaticProblem {
+        let mut q = vec![0.0; rows.columns()];
+        q[0] = if relax { 1.0 } else { -1.0 };
+        Self::assemble_with(rows, q, friction_joints, tie_columns)
+    }
+}
+
+/// The rows of the static program, without its objective and its own bounds on column 0: the
+/// loads (the action toward `sign` times column 0, the permanent loads on the right-hand
+/// side) and every interaction. `design[k]`, when given for tie k, is the column of its
+/// capacity, an unknown of a retrofit design (`crate::statics::design`). Returns the joints
+/// with friction rows and the ties' columns.
+pub(crate) fn program_rows(
+    assembly: &Assembly,
+    loads: &LoadCase,
+    strength: Strength,
+    ties: &[Tie],
+    sign: f64,
+    design: &[Option<usize>],
+    rows: &mut Rows,
+) -> (Vec<usize>, Vec<usize>) {
+    let relax = rows.relax;
+    let fs = rows.force_scale;
+    let ls = rows.length_scale;
+    {
         // The loads: the action times lambda (column 0) and the permanent loads (the
         // right-hand side).
         for i in 0..assembly.blocks.len() {
@@ -134,27 +176,28 @@ impl StaticProblem {
         // the cones (c + 1 >= |c - 1|): the contacts leave those rows out, since a nearly
         // parallel duplicate of a strong material's cone splits its dual between the two
         // and costs the interior point accuracy.
-        let (first, friction_joints) =
-            contact::static_rows(assembly, &mut rows, strength.is_finite());
-        crushing::static_rows(assembly, strength, &mut rows, first);
-        let tie_columns = ties.iter().map(|t| t.static_rows(&mut rows)).collect();
-        if let Some(cap) = lambda_cap {
-            rows.nonnegative(vec![(0, 1.0)], cap, false);
-        }
-        if relax {
-            // tau >= -1 keeps the phase-one program bounded.
-            rows.nonnegative(vec![(0, -1.0)], 1.0, false);
-        }
-        Self::assemble(rows, friction_joints, tie_columns, relax)
+        let (first, friction_joints) = contact::static_rows(assembly, rows, strength.is_finite());
+        crushing::static_rows(assembly, strength, rows, first);
+        let tie_columns = ties
+            .iter()
+            .enumerate()
+            .map(|(k, t)| match design.get(k).copied().flatten() {
+                Some(capacity) => t.static_rows_designed(rows, capacity),
+                None => t.static_rows(rows),
+            })
+            .collect();
+        (friction_joints, tie_columns)
     }
+}
 
-    /// Clarabel's standard form of `rows`: the zero cone, the nonnegative cone, the
-    /// second-order cones, in that order.
-    fn assemble(
+impl StaticProblem {
+    /// Clarabel's standard form of `rows` with the objective `q` (minimised): the zero cone,
+    /// the nonnegative cone, the second-order cones, in that order.
+    pub(crate) fn assemble_with(
         rows: Rows,
+        q: Vec<f64>,
         friction_joints: Vec<usize>,
         tie_columns: Vec<usize>,
-        relax: bool,
     ) -> StaticProblem {
         let nvar = rows.columns();
         let equality_rows = rows.b_equality.len();
@@ -178,8 +221,6 @@ impl StaticProblem {
         let inequality_rows = rows.nonnegative.len();
         let cone_rows = 3 * rows.cones.len();
         let a = csc_from_triplets(row, nvar, &r, &c, &v);
-        let mut q = vec![0.0; nvar];
-        q[0] = if relax { 1.0 } else { -1.0 };
         let mut cones = vec![SupportedConeT::ZeroConeT(equality_rows)];
         if inequality_rows > 0 {
             // None with crushing cones, infinite friction, no tie and no cap.

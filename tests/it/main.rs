@@ -29,6 +29,7 @@ mod piers;
 mod proptest_scenes;
 mod reduced;
 mod reports;
+mod retrofit;
 mod serve_api;
 mod static_bound;
 mod studies;

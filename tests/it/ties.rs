@@ -268,20 +268,7 @@ fn tied_portal_is_mirror_symmetric() {
 /// The JSON lists each tie with its force, capacity and whether it yielded.
 #[test]
 fn json_lists_the_ties() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let path = dir.path().join("tied.toml");
-    std::fs::write(&path, tied_portal(1000.0, -0.05)).expect("write scene");
-    let out = common::voussoir()
-        .args(["analyze", "--json"])
-        .arg(&path)
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let v = common::json_of(&["analyze", "--json"], &tied_portal(1000.0, -0.05));
     let tie = &v["ties"][0];
     assert_eq!(tie["capacity"], 1000.0);
     assert_eq!(tie["yielded"], true);

@@ -80,6 +80,27 @@ pub fn voussoir() -> assert_cmd::Command {
     assert_cmd::Command::cargo_bin("voussoir").expect("binary built")
 }
 
+/// The scene `text` written to a file in a fresh temporary directory (kept alive by the
+/// returned guard).
+pub fn scene_file(text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, text).expect("write scene");
+    (dir, path)
+}
+
+/// The JSON that `voussoir ARGS SCENE` prints for the scene `text`; the command must succeed.
+pub fn json_of(args: &[&str], text: &str) -> serde_json::Value {
+    let (_dir, path) = scene_file(text);
+    let out = voussoir().args(args).arg(&path).output().expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON")
+}
+
 /// Housner's rigid rocking block (1963), integrated directly: a block b x h on rigid ground
 /// under the horizontal ground acceleration `ground(t)` (m/s^2) with gravity `g`, rotating
 /// about one base corner at a time (Makris & Roussos 2000; Zhang & Makris 2001, "Rocking

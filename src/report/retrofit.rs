@@ -1,0 +1,153 @@
+//! `voussoir retrofit`: its JSON object and its document.
+
+use super::document::{Data, Document};
+use super::{num, scene_lines, AnalysisReport};
+use crate::retrofit::{Bar, Retrofit};
+use crate::scene::Scene;
+use serde::Serialize;
+
+/// `retrofit --json`.
+#[derive(Debug, Serialize)]
+pub struct RetrofitReport {
+    /// The multiplier the design reaches in every direction.
+    pub target_lambda: f64,
+    /// Whether tie capacities reach it.
+    pub feasible: bool,
+    /// `"seismic"` (both directions designed) or `"live"` (the adequacy factor).
+    pub action: &'static str,
+    /// The designed ties (`capacity = "design"`), in the scene's order.
+    pub ties: Vec<DesignedTieReport>,
+    /// Indices of the designed ties that are not needed (capacity 0).
+    pub not_needed: Vec<usize>,
+    /// The least static multiplier of the retrofitted structure over the directions (null
+    /// when infeasible).
+    pub lambda_lower: Option<f64>,
+    /// The largest multiplier any capacities reach in every direction (infeasible designs
+    /// only; null otherwise, or when the structure cannot stand).
+    pub best_reachable_lambda: Option<f64>,
+    /// The design strength of the bars (Pa).
+    pub tie_design_strength: f64,
+    /// The analysis of the retrofitted structure in each direction (`analyze --json`'s
+    /// object), with its `direction`.
+    pub analyses: Vec<AnalysisReport>,
+}
+
+/// One designed tie.
+#[derive(Debug, Serialize)]
+pub struct DesignedTieReport {
+    /// Index in `[[ties]]`.
+    pub index: usize,
+    /// The least capacity it needs (N), 0 when not needed.
+    pub capacity_required: f64,
+    pub needed: bool,
+    pub cost: f64,
+    /// The smallest standard bar that carries it (null when not needed or above the
+    /// largest, 40 mm).
+    pub bar: Option<Bar>,
+}
+
+impl RetrofitReport {
+    pub fn new(scene: &Scene, r: &Retrofit) -> Self {
+        RetrofitReport {
+            target_lambda: r.target,
+            feasible: r.feasible,
+            action: scene.action.as_str(),
+            ties: r
+                .ties
+                .iter()
+                .map(|t| DesignedTieReport {
+                    index: t.index,
+                    capacity_required: t.capacity,
+                    needed: t.needed,
+                    cost: t.cost,
+                    bar: t.bar,
+                })
+                .collect(),
+            not_needed: r
+                .ties
+                .iter()
+                .filter(|t| !t.needed)
+                .map(|t| t.index)
+                .collect(),
+            lambda_lower: r.lambda(),
+            best_reachable_lambda: r.best_reachable,
+            tie_design_strength: r.design_strength,
+            analyses: r
+                .analyses
+                .iter()
+                .map(|(_, a)| AnalysisReport::new(scene, a))
+                .collect(),
+        }
+    }
+}
+
+/// The document of a retrofit design.
+pub fn document(scene: &Scene, r: &Retrofit) -> Document {
+    let mut doc = Document::new(&scene.origin);
+    if let Some((_, a)) = r.analyses.first() {
+        doc.lead = scene_lines(scene, &a.model);
+    }
+    let sec = doc.untitled();
+    if r.feasible {
+        let needed: Vec<_> = r.ties.iter().filter(|t| t.needed).collect();
+        if needed.is_empty() {
+            sec.head(format!(
+                "Retrofit for lambda >= {}: no tie is needed, the structure already carries it",
+                num(r.target)
+            ));
+        } else {
+            sec.head(format!(
+                "Retrofit for lambda >= {}: the least capacities (static program, both bounds checked below)",
+                num(r.target)
+            ));
+        }
+        sec.line("designed ties:");
+        for t in &r.ties {
+            sec.item(match (t.needed, t.bar) {
+                (false, _) => format!("tie {}: not needed (capacity 0)", t.index),
+                (true, Some(b)) => format!(
+                    "tie {}: needs {:.1} N; the smallest bar that carries it: {} mm ({:.1} kN at {} MPa)",
+                    t.index,
+                    t.capacity,
+                    num(b.diameter_mm),
+                    b.capacity / 1000.0,
+                    num(r.design_strength / 1e6)
+                ),
+                (true, None) => format!(
+                    "tie {}: needs {:.1} N, more than one 40 mm bar carries",
+                    t.index, t.capacity
+                ),
+            });
+        }
+        for (d, a) in &r.analyses {
+            let dir = match d {
+                crate::outcome::Direction::Right => "toward +x",
+                crate::outcome::Direction::Left => "toward -x",
+            };
+            let lower = a
+                .lower
+                .lambda
+                .map_or("none".to_string(), |l| format!("{l:.6}"));
+            let upper = a
+                .lambda_upper()
+                .map_or("none".to_string(), |u| format!("{u:.6}"));
+            let dir = if r.analyses.len() == 1 { "" } else { dir };
+            sec.line(format!(
+                "re-analysed {dir}: lambda_lower = {lower}, lambda_upper = {upper}"
+            ));
+        }
+    } else {
+        sec.head(format!(
+            "Retrofit for lambda >= {}: NOT REACHABLE with the ties given",
+            num(r.target)
+        ));
+        match r.best_reachable {
+            Some(b) => sec.line(format!(
+                "the best these ties reach, whatever their capacity, is lambda = {b:.6} (another mechanism, which they do not restrain, governs)"
+            )),
+            None => sec.line("the structure cannot stand under its permanent loads, whatever the ties"),
+        };
+    }
+    doc.data = Some(Data::Retrofit(Box::new(RetrofitReport::new(scene, r))));
+    doc
+}

@@ -1,0 +1,141 @@
+//! The smallest tie capacities that give a target multiplier: a linear (conic, with crushing)
+//! program, the static program with each designed tie's capacity an unknown `C_i >= 0`
+//! (`P_i <= T_i <= C_i`), lambda fixed at the target in every direction asked for (one copy
+//! of the equilibrium and joint unknowns per direction, the capacities shared), minimising
+//! `sum cost_i C_i`.
+//!
+//! By the static theorem every feasible point is a set of capacities with which the structure
+//! carries the target in each direction (lambda_c >= target), and the optimum is the cheapest
+//! such set; at the optimum no positive capacity can be lowered alone (the cost would drop),
+//! so each needed tie is needed at the value found. When the target cannot be reached with
+//! any capacities the program is infeasible; [`best_reachable`] then gives the largest
+//! multiplier that capacities without bound reach in every direction.
+
+use super::problem::{program_rows, StaticProblem};
+use super::{solve_conic, StaticSettings, LAMBDA_CAP};
+use crate::error::AnalysisError;
+use crate::interaction::Rows;
+use crate::model::Model;
+use clarabel::solver::SolverStatus;
+
+/// A tie whose capacity is designed, and its cost per newton.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DesignedTie {
+    /// Index in `Model::ties`.
+    pub tie: usize,
+    pub cost: f64,
+}
+
+/// The outcome of a design.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Design {
+    /// The least capacities (N), one per designed tie, in their order.
+    Capacities(Vec<f64>),
+    /// No capacities reach the target.
+    Infeasible,
+}
+
+/// The program of a design over the directions `signs`, with `objective` choosing what is
+/// minimised: the cost of the capacities at lambda = `target`, or `-lambda` (target None).
+/// Columns: 0 lambda, 1..=d the capacities over the force scale, then each direction's own.
+fn program(
+    model: &Model,
+    designed: &[DesignedTie],
+    signs: &[f64],
+    target: Option<f64>,
+) -> (StaticProblem, usize) {
+    let (assembly, loads) = (&model.assembly, &model.loads);
+    let fs = loads.force_scale();
+    let d = designed.len();
+    let mut all = Rows::new(assembly, fs, false);
+    all.add_columns(d);
+    let mut design = vec![None; model.ties.len()];
+    for (i, t) in designed.iter().enumerate() {
+        design[t.tie] = Some(1 + i);
+    }
+    for &sign in signs {
+        let mut rows = Rows::new(assembly, fs, false);
+        rows.add_columns(d);
+        program_rows(
+            assembly,
+            loads,
+            model.strength,
+            &model.ties,
+            sign,
+            &design,
+            &mut rows,
+        );
+        all.append_copy(rows, 1 + d);
+    }
+    // The capacities are >= 0.
+    for i in 0..d {
+        all.nonnegative(vec![(1 + i, -1.0)], 0.0, false);
+    }
+    let mut q = vec![0.0; all.columns()];
+    match target {
+        Some(t) => {
+            all.fix_column(0, t);
+            for (i, dt) in designed.iter().enumerate() {
+                q[1 + i] = dt.cost;
+            }
+        }
+        None => {
+            all.nonnegative(vec![(0, 1.0)], LAMBDA_CAP, false);
+            q[0] = -1.0;
+        }
+    }
+    (
+        StaticProblem::assemble_with(all, q, Vec::new(), Vec::new()),
+        d,
+    )
+}
+
+/// The least-cost capacities of the `designed` ties (the others keep theirs) for which the
+/// static program carries lambda = `target` toward every sign of `signs`.
+pub fn smallest_capacities(
+    model: &Model,
+    designed: &[DesignedTie],
+    target: f64,
+    signs: &[f64],
+    settings: &StaticSettings,
+) -> Result<Design, AnalysisError> {
+    model.validate()?;
+    let (p, d) = program(model, designed, signs, Some(target));
+    let sol = solve_conic(&p.p, &p.q, &p.a, &p.b, &p.cones, settings)?;
+    match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Design::Capacities(
+            (0..d)
+                .map(|i| sol.x[1 + i].max(0.0) * p.force_scale)
+                .collect(),
+        )),
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            Ok(Design::Infeasible)
+        }
+        other => Err(AnalysisError::SolverFailed {
+            status: format!("{other:?} (retrofit design)"),
+            iterations: sol.iterations,
+        }),
+    }
+}
+
+/// The largest multiplier the static program carries toward every sign of `signs` when the
+/// `designed` ties may take any capacity (at most [`LAMBDA_CAP`]); None when the structure
+/// cannot stand.
+pub fn best_reachable(
+    model: &Model,
+    designed: &[DesignedTie],
+    signs: &[f64],
+    settings: &StaticSettings,
+) -> Result<Option<f64>, AnalysisError> {
+    model.validate()?;
+    let (p, _) = program(model, designed, signs, None);
+    let sol = solve_conic(&p.p, &p.q, &p.a, &p.b, &p.cones, settings)?;
+    match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Some(sol.x[0])),
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(None),
+        other => Err(AnalysisError::SolverFailed {
+            status: format!("{other:?} (best reachable multiplier)"),
+            iterations: sol.iterations,
+        }),
+    }
+}

@@ -1,0 +1,212 @@
+//! Retrofit design (`voussoir retrofit`, `voussoir::retrofit`): the designed capacities give
+//! the target multiplier when the structure is analysed again, each needed capacity is needed
+//! (0.99 of it falls short), a design that needs nothing and an unreachable target say so,
+//! and the bars carry what they must.
+
+use crate::common;
+
+use voussoir::analysis::{self, Options};
+use voussoir::retrofit::{self, bar_for};
+use voussoir::scene::Scene;
+use voussoir::statics::{Direction, StaticSettings};
+
+/// The bundled portal with ties between its piers at heights `ys`, capacities `caps`
+/// (`None`: "design") and costs `costs`.
+fn portal(ties: &[(f64, Option<f64>, f64)]) -> String {
+    let mut text = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    for (y, cap, cost) in ties {
+        let cap = cap.map_or("\"design\"".to_string(), |c| format!("{c:?}"));
+        text.push_str(&format!(
+            "\n[[ties]]\nfrom = [-1.0, {y}]\nto = [1.0, {y}]\ncapacity = {cap}\ncost = {cost}\n"
+        ));
+    }
+    text
+}
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml_str(text, "retrofit-test.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The least static multiplier over both directions of a scene with given capacities.
+fn lambda_both(text: &str) -> f64 {
+    let s = scene(text);
+    [Direction::Right, Direction::Left]
+        .iter()
+        .map(|&d| {
+            let o = Options {
+                static_settings: StaticSettings::default().direction(d),
+                ..Options::default()
+            };
+            analysis::analyse(&s, &o)
+                .expect("analysis")
+                .lower
+                .lambda
+                .expect("collapse")
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Three candidate ties of different costs: the design reaches the target (1e-6) when the
+/// scene is analysed again with its capacities, by both bounds, and each needed capacity
+/// is needed: 0.99 of it alone gives less than the target.
+#[test]
+fn designed_capacities_give_the_target_and_each_is_needed() {
+    let candidates = [(-0.05, 1.0), (-0.4, 1.5), (-0.8, 0.7)];
+    for target in [0.16, 0.2, 0.23] {
+        let text = portal(&candidates.map(|(y, c)| (y, None, c)));
+        let r = retrofit::design(&scene(&text), target, &Options::default()).expect("design");
+        assert!(r.feasible, "target {target} is reachable");
+        let lambda = r.lambda().expect("re-analysed");
+        assert!(
+            (lambda - target).abs() <= 1e-6 * target,
+            "target {target}: re-analysed {lambda}"
+        );
+        for (_, a) in &r.analyses {
+            let (l, u) = (
+                a.lower.lambda.expect("collapse"),
+                a.lambda_upper().expect("upper"),
+            );
+            assert!(
+                l >= target * (1.0 - 1e-6) && (u - l).abs() <= 1e-6 * l,
+                "{l} {u}"
+            );
+        }
+        let caps: Vec<f64> = r.ties.iter().map(|t| t.capacity).collect();
+        // The same capacities given as numbers, through the scene: the same multiplier.
+        let given = |caps: &[f64]| {
+            let ties: Vec<_> = candidates
+                .iter()
+                .zip(caps)
+                .map(|(&(y, c), &cap)| (y, Some(cap), c))
+                .collect();
+            lambda_both(&portal(&ties))
+        };
+        let again = given(&caps);
+        assert!(
+            (again - target).abs() <= 1e-6 * target,
+            "target {target}: scene with the capacities {again}"
+        );
+        for (i, t) in r.ties.iter().enumerate().filter(|(_, t)| t.needed) {
+            let mut less = caps.clone();
+            less[i] *= 0.99;
+            let short = given(&less);
+            assert!(
+                short < target * (1.0 - 1e-7),
+                "target {target}: tie {} at 0.99 x {} still gives {short}",
+                t.index,
+                t.capacity
+            );
+        }
+        assert!(r.ties.iter().any(|t| t.needed));
+    }
+}
+
+/// The cheaper tie is chosen when two ties at the same place differ in cost only.
+#[test]
+fn the_cheaper_of_two_equal_ties_is_chosen() {
+    let text = portal(&[(-0.05, None, 2.0), (-0.05, None, 1.0)]);
+    let r = retrofit::design(&scene(&text), 0.2, &Options::default()).expect("design");
+    assert!(!r.ties[0].needed && r.ties[1].needed, "{:?}", r.ties);
+}
+
+/// A target the bare structure carries needs no tie.
+#[test]
+fn a_target_already_carried_needs_no_tie() {
+    let bare = lambda_both(&portal(&[]));
+    let text = portal(&[(-0.05, None, 1.0)]);
+    let r = retrofit::design(&scene(&text), 0.9 * bare, &Options::default()).expect("design");
+    assert!(r.feasible && r.ties.iter().all(|t| !t.needed && t.capacity == 0.0));
+    let out = common::voussoir()
+        .args(["retrofit", "--target-lambda", &format!("{}", 0.9 * bare)])
+        .arg(common::scene_file(&text).1)
+        .output()
+        .expect("runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("no tie is needed"), "{stdout}");
+}
+
+/// A target above what any capacity reaches is reported as such, with the best reachable
+/// multiplier: that of a tie too strong to yield.
+#[test]
+fn an_unreachable_target_says_so_with_the_best_reachable() {
+    let text = portal(&[(-0.05, None, 1.0)]);
+    let r = retrofit::design(&scene(&text), 0.3, &Options::default()).expect("design");
+    assert!(!r.feasible);
+    let best = r.best_reachable.expect("stands");
+    let strong = lambda_both(&portal(&[(-0.05, Some(1e7), 1.0)]));
+    assert!(
+        (best - strong).abs() <= 1e-6 * strong,
+        "best {best}, strong tie {strong}"
+    );
+}
+
+/// The JSON names each designed tie, its capacity, bar and whether it is needed.
+#[test]
+fn json_of_a_retrofit() {
+    let v = common::json_of(
+        &["retrofit", "--json", "--target-lambda", "0.2"],
+        &portal(&[(-0.05, None, 1.0), (-0.8, None, 5.0)]),
+    );
+    assert_eq!(v["feasible"], true);
+    assert_eq!(v["target_lambda"], 0.2);
+    let lambda = v["lambda_lower"].as_f64().expect("lambda");
+    assert!((lambda - 0.2).abs() <= 1e-6);
+    assert_eq!(v["analyses"].as_array().map(Vec::len), Some(2));
+    let tie = &v["ties"][0];
+    assert!(tie["capacity_required"].as_f64().expect("capacity") > 0.0);
+    assert_eq!(tie["bar"]["diameter_mm"], 6.0);
+}
+
+/// Bars: the smallest standard diameter whose area times the design strength reaches the
+/// force, by hand.
+#[test]
+fn bars_are_the_smallest_that_carry_the_force() {
+    let fyd = 391e6;
+    let cap = |d: f64| std::f64::consts::PI * (d * 1e-3_f64).powi(2) / 4.0 * fyd;
+    assert_eq!(bar_for(cap(12.0), fyd).map(|b| b.diameter_mm), Some(12.0));
+    assert_eq!(
+        bar_for(cap(12.0) * 1.0001, fyd).map(|b| b.diameter_mm),
+        Some(14.0)
+    );
+    assert_eq!(bar_for(1.0, fyd).map(|b| b.diameter_mm), Some(6.0));
+    assert_eq!(bar_for(cap(40.0) * 1.01, fyd), None);
+}
+
+/// Refusals: analyze with a capacity to design, retrofit without one, a bad target.
+#[test]
+fn retrofit_refusals() {
+    let (_d1, design) = common::scene_file(&portal(&[(-0.05, None, 1.0)]));
+    let out = common::voussoir()
+        .arg("analyze")
+        .arg(&design)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("ties[0].capacity") && err.contains("retrofit"),
+        "{err}"
+    );
+    let (_d2, given) = common::scene_file(&portal(&[(-0.05, Some(1000.0), 1.0)]));
+    let out = common::voussoir()
+        .args(["retrofit", "--target-lambda", "0.2"])
+        .arg(&given)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("design"), "{err}");
+    let out = common::voussoir()
+        .args(["retrofit", "--target-lambda=-1"])
+        .arg(&design)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("target lambda"),
+        "{err}"
+    );
+    let bad_cost = portal(&[(-0.05, None, -1.0)]);
+    let e = Scene::from_toml_str(&bad_cost, "t")
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("ties[0].cost"), "{e}");
+}

@@ -55,6 +55,8 @@ pub enum AssessError {
     NoSeismicWork,
     #[error("the capacity curve does not yet follow tie rods ({count} in the scene) through the finite motion of the mechanism, so the structure with ties is not assessed rather than assessed without them; the static and kinematic multipliers with the ties are given by `voussoir analyze`")]
     Ties { count: usize },
+    #[error("the capacity curve does not yet follow bonded strips ({count} joints crossed) through the finite motion of the mechanism, so the reinforced structure is not assessed rather than assessed without them; the static and kinematic multipliers with the strips are given by `voussoir analyze`")]
+    Strips { count: usize },
 }
 
 /// `(F, point, seismic weight)` of a load.
@@ -286,6 +288,7 @@ impl Linkage {
             loads: model.loads.moved(&moves),
             strength: model.strength,
             ties: model.ties.clone(),
+            strips: model.strips.clone(),
         }
     }
 }
@@ -488,6 +491,11 @@ pub fn capacity(
     if !model.ties.is_empty() {
         return Err(AssessError::Ties {
             count: model.ties.len(),
+        });
+    }
+    if !model.strips.is_empty() {
+        return Err(AssessError::Strips {
+            count: model.strips.len(),
         });
     }
     let linkage = Linkage::new(&model.assembly, mechanism)?;

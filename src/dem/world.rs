@@ -260,6 +260,24 @@ impl World {
                         force: 0.0,
                     }
                 })
+                .chain(model.strips.iter().map(|s| {
+                    // A strip across a joint: a bar along the joint's normal from a point of
+                    // `from` just behind the reinforced end to the end on `to`, which carries
+                    // tension up to the strip's capacity.
+                    let j = &assembly.joints[s.joint];
+                    let p = s.point(assembly);
+                    let gap = 1e-3 * j.length();
+                    Bar {
+                        bodies: [j.from, j.to],
+                        anchors: [p - gap * j.normal(), p],
+                        rest_length: gap,
+                        stiffness: params.normal_stiffness,
+                        prestress: 0.0,
+                        capacity: s.capacity,
+                        plastic: 0.0,
+                        force: 0.0,
+                    }
+                }))
                 .collect(),
             unbalanced: 0.0,
             max_speed: 0.0,

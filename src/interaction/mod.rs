@@ -15,16 +15,20 @@
 //! - [`crushing`]: a finite compressive strength of the contacts, a rectangular stress block
 //!   (RING's model; Gilbert, 2007), as second-order cones on the contacts' unknowns;
 //! - [`tie`]: tie rods, a force between two anchor points in tension only, bounded by its
-//!   prestress and its capacity.
+//!   prestress and its capacity;
+//! - [`strip`]: bonded strips, a tension at a joint's reinforced end up to the strip's
+//!   capacity.
 //!
-//! A new interaction (a bonded strip) is one more file here and one more loop in the methods
-//! that take it; a method that cannot represent a kind refuses the model by a typed reason.
+//! A new interaction is one more file here and one more loop in the methods that take it; a
+//! method that cannot represent a kind refuses the model by a typed reason.
 
 pub mod contact;
 pub mod crushing;
+pub mod strip;
 pub mod tie;
 
 pub use crushing::Strength;
+pub use strip::{Strip, StripForce};
 pub use tie::{Anchor, Tie, TieForce};
 
 use crate::assembly::Assembly;

@@ -776,6 +776,11 @@ pub fn continuous(
             count: model.ties.len(),
         });
     }
+    if !model.strips.is_empty() {
+        return Err(KinematicError::Strips {
+            count: model.strips.len(),
+        });
+    }
     if model.strength.is_finite() {
         return Err(KinematicError::FiniteStrength {
             compressive_strength: model.strength.compressive,

@@ -89,6 +89,9 @@ pub(crate) struct Chain {
     closed: bool,
     /// Tie rods, with the place of their anchored blocks along the chain.
     ties: Vec<ChainTie>,
+    /// Bonded strips: the tensile capacity at each joint's ends `[p1, p2]` (N), empty
+    /// without strips.
+    strips: Vec<[f64; 2]>,
 }
 
 /// A tie rod of a chain: the tie, and for each anchor (from, to) the number of chain joints
@@ -163,6 +166,15 @@ impl Chain {
                     slots: [t.from.block.map(|b| b + 1), t.to.block.map(|b| b + 1)],
                 })
                 .collect(),
+            strips: if model.strips.is_empty() {
+                Vec::new()
+            } else {
+                let mut s = vec![[0.0; 2]; a.joints.len()];
+                for strip in &model.strips {
+                    s[strip.joint][strip.end as usize] += strip.capacity;
+                }
+                s
+            },
         }
     }
 
@@ -194,6 +206,7 @@ impl Chain {
             size,
             closed: true,
             ties: Vec::new(),
+            strips: Vec::new(),
         }
     }
 
@@ -224,6 +237,11 @@ impl Chain {
                     slots: t.slots.map(|s| s.map(|s| keep.partition_point(|&j| j < s))),
                 })
                 .collect(),
+            strips: if self.strips.is_empty() {
+                Vec::new()
+            } else {
+                keep.iter().map(|&j| self.strips[j]).collect()
+            },
         }
     }
 
@@ -273,13 +291,36 @@ impl Chain {
         for t in &self.ties {
             g += t.dissipation(&js[..count], &m, self.closed);
         }
+        if !self.strips.is_empty() {
+            for (k, &j) in js[..count].iter().enumerate() {
+                g += self.strip_dissipation(j, m.rel[k]);
+            }
+        }
         Some((ax, g, m))
     }
 
-    /// Whether the chain has tie rods (the searches' closed forms then hand every admissible
-    /// mechanism to [`Chain::evaluate`], which adds their dissipation).
+    /// The bonded strips' dissipation at joint `j` whose relative motion is the twist `rel`
+    /// (`crate::interaction::strip`): each reinforced end opening at the normal rate `vn`
+    /// dissipates its capacity times `max(vn, 0)`.
+    fn strip_dissipation(&self, j: usize, rel: super::Twist) -> f64 {
+        let Some(caps) = self.strips.get(j) else {
+            return 0.0;
+        };
+        (0..2)
+            .filter(|&e| caps[e] > 0.0)
+            .map(|e| {
+                caps[e]
+                    * super::velocity(rel, self.p[e][j])
+                        .dot(&self.normal[j])
+                        .max(0.0)
+            })
+            .sum()
+    }
+
+    /// Whether the chain has tie rods or bonded strips (the searches' closed forms then hand
+    /// every admissible mechanism to [`Chain::evaluate`], which adds their dissipation).
     fn has_ties(&self) -> bool {
-        !self.ties.is_empty()
+        !self.ties.is_empty() || !self.strips.is_empty()
     }
 }
 
@@ -711,7 +752,13 @@ fn certify_held(
         .ties
         .iter()
         .map(|t| t.tie.dissipation(rate_of(t, &twist_of)))
-        .sum();
+        .sum::<f64>()
+        + (0..m)
+            .map(|k| {
+                let r = super::rot(points[k]);
+                chain.strip_dissipation(js[k], [c[k] * r[0], c[k] * r[1], c[k] * r[2]])
+            })
+            .sum::<f64>();
     if ax <= 0.0 {
         return Err(not(
             "the seismic load does no work on the mechanism of the static hinges".into(),

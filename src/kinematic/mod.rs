@@ -110,6 +110,8 @@ pub enum KinematicError {
     FiniteStrength { compressive_strength: f64 },
     #[error("the continuous model's hinges fall anywhere on the ring, between the blocks a tie rod is anchored on, so it does not model tie rods ({count} in the scene); it is not run rather than report the untied arch's multiplier")]
     Ties { count: usize },
+    #[error("the continuous model's hinges fall anywhere on the ring, not at the joints bonded strips cross, so it does not model bonded strips ({count} joints crossed); it is not run rather than report the unreinforced arch's multiplier")]
+    Strips { count: usize },
 }
 
 /// Default half-width (joints) of the window of the local search around each static hinge.

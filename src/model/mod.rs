@@ -12,7 +12,7 @@ pub use action::Action;
 pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
-pub use crate::interaction::{Anchor, Strength, Tie, TieForce};
+pub use crate::interaction::{Anchor, Strength, Strip, StripForce, Tie, TieForce};
 
 /// Blocks and joints with their loads.
 #[derive(Debug, Clone)]
@@ -24,6 +24,8 @@ pub struct Model {
     pub strength: Strength,
     /// Tie rods (`crate::interaction::tie`), in the scene's order.
     pub ties: Vec<Tie>,
+    /// Bonded strips (`crate::interaction::strip`), one per joint a strip crosses.
+    pub strips: Vec<Strip>,
 }
 
 impl Model {
@@ -35,6 +37,7 @@ impl Model {
             loads,
             strength: Strength::rigid(),
             ties: Vec::new(),
+            strips: Vec::new(),
         }
     }
 
@@ -70,6 +73,14 @@ impl Model {
                 )));
             }
         }
+        for s in &self.strips {
+            if let Some(problem) = s.problem(&self.assembly) {
+                return Err(crate::error::AnalysisError::Other(format!(
+                    "strip of reinforcement {}: {problem}",
+                    s.source
+                )));
+            }
+        }
         Ok(())
     }
 
@@ -95,26 +106,50 @@ impl Model {
                     }
                 })
                 .collect(),
+            // The mirror numbers joint k as m - 1 - k; p1 and p2 keep their meaning.
+            strips: self
+                .strips
+                .iter()
+                .map(|s| Strip {
+                    joint: self.assembly.joints.len() - 1 - s.joint,
+                    ..*s
+                })
+                .collect(),
         }
     }
 
-    /// [`equilibrium_residual`] with the ties' forces `ties` (N, in tie order) as well.
+    /// [`equilibrium_residual`] with the ties' forces `ties` and the strips' `strips` (N, in
+    /// their orders) as well.
     pub fn equilibrium_residual(
         &self,
         forces: &[JointForce],
         ties: &[f64],
+        strips: &[f64],
         lambda: f64,
         sign: f64,
     ) -> f64 {
-        residuals(
-            &self.assembly,
-            &self.loads,
-            forces,
-            &self.ties,
-            ties,
-            lambda,
-            sign,
-        )
+        // A strip's tension is a force between its joint's sides at the reinforced end, along
+        // the joint's normal: a tie from a point of `from` just behind the end to the end on
+        // `to` (the offset is along the force, so it moves no moment).
+        let as_ties = self.strips.iter().map(|s| {
+            let j = &self.assembly.joints[s.joint];
+            let p = s.point(&self.assembly);
+            Tie {
+                from: Anchor {
+                    block: j.from,
+                    point: p - 1e-3 * j.length() * j.normal(),
+                },
+                to: Anchor {
+                    block: j.to,
+                    point: p,
+                },
+                capacity: s.capacity,
+                prestress: 0.0,
+            }
+        });
+        let all: Vec<Tie> = self.ties.iter().cloned().chain(as_ties).collect();
+        let f: Vec<f64> = ties.iter().chain(strips).copied().collect();
+        residuals(&self.assembly, &self.loads, forces, &all, &f, lambda, sign)
     }
 }
 

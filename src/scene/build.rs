@@ -109,6 +109,7 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
         loads,
         strength,
         ties,
+        strips: Vec::new(),
     })
 }
 

@@ -366,6 +366,7 @@ pub(super) fn build_model(
         loads: case,
         strength,
         ties: Vec::new(),
+        strips: Vec::new(),
     })
 }
 

@@ -719,6 +719,9 @@ pub enum Declined {
     /// Tie rods join blocks that are not neighbours in the chain: the three redundants of a
     /// chain no longer describe every equilibrium.
     Ties,
+    /// Bonded strips carry tension across joints, which the chain program's no-tension rows
+    /// do not allow.
+    Strips,
 }
 
 impl Declined {
@@ -728,6 +731,7 @@ impl Declined {
                 "the reduced static program needs a chain of blocks between two supports"
             }
             Declined::Ties => "the reduced static program does not model tie rods",
+            Declined::Strips => "the reduced static program does not model bonded strips",
         }
     }
 }
@@ -738,6 +742,8 @@ pub fn declines(model: &Model) -> Option<Declined> {
         Some(Declined::NotAChain)
     } else if !model.ties.is_empty() {
         Some(Declined::Ties)
+    } else if !model.strips.is_empty() {
+        Some(Declined::Strips)
     } else {
         None
     }

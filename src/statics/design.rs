@@ -61,6 +61,7 @@ fn program(
             loads,
             model.strength,
             &model.ties,
+            &model.strips,
             sign,
             &design,
             &mut rows,

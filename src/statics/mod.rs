@@ -23,7 +23,7 @@ pub use settings::{Program, StaticSettings};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
-use crate::model::{Model, Strength, TieForce};
+use crate::model::{Model, Strength, StripForce, TieForce};
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 
@@ -75,6 +75,9 @@ pub struct StaticResult {
     pub model: ModelSize,
     /// The tie rods' forces at collapse, in tie order (empty without ties or collapse).
     pub ties: Vec<TieForce>,
+    /// The bonded strips' forces at collapse, in strip order (empty without strips or
+    /// collapse).
+    pub strips: Vec<StripForce>,
 }
 
 /// Run the static analysis of `model` (an assembly and its loads).
@@ -110,6 +113,7 @@ pub fn analyse_full(
         loads,
         strength,
         &model.ties,
+        &model.strips,
         Objective::MaxLambda { sign, cap: None },
     );
     let mut sol = run(&problem, settings)?;
@@ -125,6 +129,7 @@ pub fn analyse_full(
             loads,
             strength,
             &model.ties,
+            &model.strips,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
@@ -141,7 +146,9 @@ pub fn analyse_full(
             let lambda = sol.x[0];
             let forces = read_forces(assembly, &problem, &sol.x);
             let tension = read_ties(&problem, &sol.x);
-            let residual = model.equilibrium_residual(&forces, &tension, lambda, sign);
+            let strip_tension = read_strips(&problem, &sol.x);
+            let residual =
+                model.equilibrium_residual(&forces, &tension, &strip_tension, lambda, sign);
             check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
             result = result.read_solution(
                 assembly,
@@ -160,6 +167,21 @@ pub fn analyse_full(
                     .zip(&tension)
                     .map(|(t, &f)| t.force_of(f))
                     .collect();
+                result.strips = model
+                    .strips
+                    .iter()
+                    .zip(&strip_tension)
+                    .map(|(s, &f)| s.force_of(f))
+                    .collect();
+                // A joint whose contact resultant sits at one end is no hinge while a strip
+                // on its other end holds below its capacity: it cannot open there.
+                result.hinges.retain(|h| {
+                    !model
+                        .strips
+                        .iter()
+                        .zip(&result.strips)
+                        .any(|(s, f)| s.joint == h.joint && s.end != h.end && !f.yielded)
+                });
             }
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
@@ -212,6 +234,7 @@ fn stands_at_zero(
     if result.status == Status::CannotStand
         || (model.loads.is_self_weight_only()
             && model.ties.is_empty()
+            && model.strips.is_empty()
             && mirror_symmetric(&model.assembly))
     {
         return Ok(result);
@@ -267,6 +290,7 @@ impl StaticResult {
             exact_vertex: false,
             model,
             ties: Vec::new(),
+            strips: Vec::new(),
         }
     }
 
@@ -424,6 +448,14 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
         .collect()
 }
 
+/// The strips' tensions (N), in strip order.
+fn read_strips(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
+    p.strip_columns
+        .iter()
+        .map(|&c| x[c] * p.force_scale)
+        .collect()
+}
+
 /// The ties' tensions (N), in tie order.
 fn read_ties(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
     p.tie_columns
@@ -576,6 +608,7 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
         loads,
         model.strength,
         &model.ties,
+        &model.strips,
         Objective::MinTension,
     );
     let sol = run(&problem, settings)?;
@@ -591,7 +624,13 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
     let tau = sol.x[0];
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
-    let residual = model.equilibrium_residual(&forces, &read_ties(&problem, &sol.x), 0.0, 1.0);
+    let residual = model.equilibrium_residual(
+        &forces,
+        &read_ties(&problem, &sol.x),
+        &read_strips(&problem, &sol.x),
+        0.0,
+        1.0,
+    );
     let stands = tau <= 0.0;
     let hinges = if stands {
         classify_joints(assembly, model.strength, &forces, settings.hinge_tolerance).hinges

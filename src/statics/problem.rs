@@ -33,7 +33,7 @@
 //! optimum changes sign cleanly as the thickness crosses the minimum.
 
 use crate::assembly::Assembly;
-use crate::interaction::{contact, crushing, Rows, Tie};
+use crate::interaction::{contact, crushing, Rows, Strip, Tie};
 use crate::model::{LoadCase, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
@@ -53,6 +53,8 @@ pub struct StaticProblem {
     pub friction_joints: Vec<usize>,
     /// Column of each tie's tension (over the force scale), in tie order.
     pub tie_columns: Vec<usize>,
+    /// Column of each strip's tension (over the force scale), in strip order.
+    pub strip_columns: Vec<usize>,
     /// Number of equality rows (3 per block).
     pub equality_rows: usize,
     /// Number of inequality rows.
@@ -92,7 +94,7 @@ impl StaticProblem {
         strength: Strength,
         objective: Objective,
     ) -> StaticProblem {
-        Self::with_interactions(assembly, loads, strength, &[], objective)
+        Self::with_interactions(assembly, loads, strength, &[], &[], objective)
     }
 
     /// The program with every interaction: the contacts, their crushing cones when
@@ -102,6 +104,7 @@ impl StaticProblem {
         loads: &LoadCase,
         strength: Strength,
         ties: &[Tie],
+        strips: &[Strip],
         objective: Objective,
     ) -> StaticProblem {
         let (sign, lambda_cap, relax) = match objective {
@@ -109,8 +112,16 @@ impl StaticProblem {
             Objective::MinTension => (0.0, None, true),
         };
         let mut rows = Rows::new(assembly, loads.force_scale(), relax);
-        let (friction_joints, tie_columns) =
-            program_rows(assembly, loads, strength, ties, sign, &[], &mut rows);
+        let (friction_joints, tie_columns, strip_columns) = program_rows(
+            assembly,
+            loads,
+            strength,
+            ties,
+            strips,
+            sign,
+            &[],
+            &mut rows,
+        );
         if let Some(cap) = lambda_cap {
             rows.nonnegative(vec![(0, 1.0)], cap, false);
         }
@@ -118,7 +129,9 @@ impl StaticProblem {
             // tau >= -1 keeps the phase-one program bounded.
             rows.nonnegative(vec![(0, -1.0)], 1.0, false);
         }
-        Self::assemble(rows, friction_joints, tie_columns, relax)
+        let mut p = Self::assemble(rows, friction_joints, tie_columns, relax);
+        p.strip_columns = strip_columns;
+        p
     }
 
     /// Clarabel's standard form of `rows`, maximising column 0 (or minimising the phase-one
@@ -139,16 +152,18 @@ impl StaticProblem {
 /// loads (the action toward `sign` times column 0, the permanent loads on the right-hand
 /// side) and every interaction. `design[k]`, when given for tie k, is the column of its
 /// capacity, an unknown of a retrofit design (`crate::statics::design`). Returns the joints
-/// with friction rows and the ties' columns.
+/// with friction rows, the ties' columns and the strips'.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn program_rows(
     assembly: &Assembly,
     loads: &LoadCase,
     strength: Strength,
     ties: &[Tie],
+    strips: &[Strip],
     sign: f64,
     design: &[Option<usize>],
     rows: &mut Rows,
-) -> (Vec<usize>, Vec<usize>) {
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
     let relax = rows.relax;
     let fs = rows.force_scale;
     let ls = rows.length_scale;
@@ -186,7 +201,11 @@ pub(crate) fn program_rows(
                 None => t.static_rows(rows),
             })
             .collect();
-        (friction_joints, tie_columns)
+        let strip_columns = strips
+            .iter()
+            .map(|s| s.static_rows(assembly, rows))
+            .collect();
+        (friction_joints, tie_columns, strip_columns)
     }
 }
 
@@ -241,6 +260,7 @@ impl StaticProblem {
             force_scale: rows.force_scale,
             friction_joints,
             tie_columns,
+            strip_columns: Vec::new(),
             equality_rows,
             inequality_rows,
             cone_rows,

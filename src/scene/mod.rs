@@ -7,6 +7,7 @@
 
 mod build;
 mod piers;
+mod placement;
 pub mod ties;
 pub mod units;
 mod user_blocks;

@@ -8,8 +8,8 @@
 //! prestress = 0.0        # N, default 0, at most capacity: carried at lambda = 0
 //! ```
 
+use super::placement::Placement;
 use super::{short, Section, MAX_FORCE, MAX_LENGTH};
-use crate::assembly::Assembly;
 use crate::error::SceneError;
 use crate::geometry::Vec2;
 
@@ -112,16 +112,17 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
     Ok(ties)
 }
 
-/// The ties of a scene anchored on `assembly`: each anchor on the block `locate` finds for
-/// its point, or the ground when the point lies at or below the structure's base (its lowest
-/// point, within `tol`); any other point is an error naming the key.
+/// The ties of a scene anchored on the placement's assembly: each anchor on the block that
+/// holds its point ([`Placement::locate`]), or the ground when the point lies at or below the
+/// structure's base (its lowest point, within the placement's tolerance); any other point is
+/// an error naming the key.
 pub(super) fn anchor_ties(
     specs: &[TieSpec],
-    assembly: &Assembly,
-    locate: impl Fn(Vec2) -> Option<usize>,
-    tol: f64,
+    placement: &Placement,
     origin: &str,
 ) -> Result<Vec<Tie>, SceneError> {
+    let assembly = placement.assembly();
+    let tol = placement.tolerance();
     let base = assembly
         .blocks
         .iter()
@@ -137,7 +138,7 @@ pub(super) fn anchor_ties(
     for (k, spec) in specs.iter().enumerate() {
         let anchor = |key: &str, p: [f64; 2]| -> Result<Anchor, SceneError> {
             let point = Vec2::new(p[0], p[1]);
-            let block = match locate(point) {
+            let block = match placement.locate(point) {
                 Some(b) => Some(b),
                 None if point.y <= base + tol => None,
                 None => {

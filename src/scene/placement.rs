@@ -1,0 +1,572 @@
+//! Load placement: where the loads of `[[loads]]` and `[fill]` and the anchors of `[[ties]]`
+//! act on a built assembly, one path for the parametric arch (and piers) and for the user's
+//! blocks. A [`Placement`] knows which block holds a point (and which lies nearest, for the
+//! error), and the structure's roof: its upward-facing edges, left end first, straight or arcs
+//! of the extrados. [`place`] turns the scene's loads, fill and ties into the load case and the
+//! anchored ties through it; [`Placement::new`] builds it for either [`Structure`].
+//!
+//! The scene-key contract:
+//! - a point load acts on the block whose outline contains `at` (within the placement's
+//!   tolerance); on a joint, the first such block: in chain order for the arch (left pier from
+//!   its base, the voussoirs from left to right, right pier from its top), in source order for
+//!   the user's blocks. A curved voussoir's outline is its annular piece, a polygon voussoir's
+//!   its quadrilateral (its extrados the chord between its corners);
+//! - the roof: over the arch, every extrados edge that faces up (its corners run left to right:
+//!   below the springing line of a horseshoe arch the extrados faces down, and the load above it
+//!   rests on the voussoirs higher up) and, on a portal, the exposed part of each pier top
+//!   (outside the arch's springing); over the user's blocks, every edge of a (counter-clockwise)
+//!   outline that runs toward -x by more than the tolerance;
+//! - a line load of intensity `q` over `[from_x, to_x]`: over the arch, `q * overlap` on every
+//!   roof edge, where `overlap` is the overlap of `[from_x, to_x]` with the edge's x-range, at
+//!   the edge's point at the overlap's mid x; over the user's blocks the load rests on the top
+//!   of the structure: the range is cut at the ends of the roof edges, and each piece's load
+//!   `q * length` acts on the highest roof edge above it, at that edge's point over the piece's
+//!   mid x (an edge hidden under another block carries nothing, as the top edge above it is
+//!   higher);
+//! - a fill up to `level` weighs `unit_weight * depth * area` at its region's centroid, carried
+//!   by the block under the region. Over the arch the region of voussoir i lies above its
+//!   extrados edge (the chord for polygon voussoirs, the arc for curved ones), below the level,
+//!   between the verticals through its two extrados corners (pier tops carry no fill); over the
+//!   user's blocks it lies, for each piece between consecutive ends of the roof edges, between
+//!   the highest edge and the level (where the edge lies below it). Over an arch written as
+//!   blocks the pieces are its extrados chords, so the fill is the parametric arch's; unlike
+//!   there, a pier top or any other block top under the level is filled too;
+//! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap` (line)
+//!   or its own weight (fill) at the same point;
+//! - a tie's anchor is the block that holds its point, as a point load's is (or the ground:
+//!   [`super::ties::anchor_ties`]).
+
+use super::{ties, LoadSpec, Scene};
+use crate::assembly::{Assembly, BlockKind};
+use crate::error::SceneError;
+use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, SpreadLoad, Tie};
+
+/// Where the parametric arch's blocks sit in its assembly (see `scene::build`).
+pub(super) struct ArchLayout {
+    pub geometry: ArchGeometry,
+    /// Index of voussoir 0 in the assembly.
+    pub first: usize,
+    pub curved: bool,
+    /// Exposed pier tops `(block, x_from, x_to)` at y = 0.
+    pub pier_tops: Vec<(usize, f64, f64)>,
+}
+
+/// The structure a placement places on.
+pub(super) enum Structure {
+    /// The parametric arch (and piers), blocks in chain order.
+    Arch(ArchLayout),
+    /// The user's blocks: convex counter-clockwise outlines, in source order by their kind,
+    /// detected with the joint tolerance `tolerance` (m).
+    Blocks { tolerance: f64 },
+}
+
+/// An upward-facing edge of a structure's top: its block, its ends from left to right
+/// (`a.x < b.x`), and the arc `(centre, radius)` it lies on (a curved voussoir's extrados) or
+/// None (straight).
+struct RoofEdge {
+    block: usize,
+    a: Vec2,
+    b: Vec2,
+    arc: Option<(Vec2, f64)>,
+}
+
+impl RoofEdge {
+    /// The edge's point at abscissa `x` within its x-range.
+    fn at(&self, x: f64) -> Vec2 {
+        edge_point(self.a, self.b, self.arc, x)
+    }
+}
+
+/// A line load's share: `length` of the loaded range on `block`, acting at `point`.
+struct Piece {
+    block: usize,
+    point: Vec2,
+    length: f64,
+}
+
+/// A fill region over `block`: its area, centroid and outline.
+struct FillRegion {
+    block: usize,
+    area: f64,
+    centroid: Vec2,
+    outline: Vec<Vec2>,
+}
+
+/// How loads find the blocks of an assembly: the blocks that hold points, the roof that
+/// carries line loads and fill (see the module docs).
+pub(super) struct Placement<'a> {
+    assembly: &'a Assembly,
+    /// How far outside a block's outline a point may lie and still be on it (m).
+    tol: f64,
+    roof: Vec<RoofEdge>,
+    structure: Structure,
+}
+
+impl<'a> Placement<'a> {
+    /// The placement on `assembly`, the blocks of `structure`.
+    pub(super) fn new(assembly: &'a Assembly, structure: Structure) -> Self {
+        match structure {
+            Structure::Arch(layout) => Self::arch(assembly, layout),
+            Structure::Blocks { tolerance } => Self::blocks(assembly, tolerance),
+        }
+    }
+
+    /// The placement on the parametric arch's assembly, laid out as `layout`.
+    fn arch(assembly: &'a Assembly, layout: ArchLayout) -> Self {
+        let g = &layout.geometry;
+        let piers = layout.pier_tops.iter().map(|&(block, x0, x1)| RoofEdge {
+            block,
+            a: Vec2::new(x0, 0.0),
+            b: Vec2::new(x1, 0.0),
+            arc: None,
+        });
+        let voussoirs = (0..g.voussoirs()).filter_map(|j| {
+            let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+            (b.x > a.x).then(|| RoofEdge {
+                block: layout.first + j,
+                a,
+                b,
+                arc: layout.curved.then(|| extrados_arc(g, j)),
+            })
+        });
+        let roof = piers.chain(voussoirs).collect();
+        Placement {
+            assembly,
+            tol: 1e-9 * assembly.size(),
+            roof,
+            structure: Structure::Arch(layout),
+        }
+    }
+
+    /// The placement on the user's blocks (`assembly`, as detected with the joint tolerance
+    /// `tol`, in metres).
+    fn blocks(assembly: &'a Assembly, tol: f64) -> Self {
+        let mut roof = Vec::new();
+        for (block, b) in assembly.blocks.iter().enumerate() {
+            let m = b.polygon.len();
+            for k in 0..m {
+                // Counter-clockwise outlines: an upward-facing edge runs toward -x.
+                let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+                if a.x - c.x > tol {
+                    roof.push(RoofEdge {
+                        block,
+                        a: c,
+                        b: a,
+                        arc: None,
+                    });
+                }
+            }
+        }
+        Placement {
+            assembly,
+            tol,
+            roof,
+            structure: Structure::Blocks { tolerance: tol },
+        }
+    }
+
+    pub(super) fn assembly(&self) -> &Assembly {
+        self.assembly
+    }
+
+    /// How far outside a block a point may lie and still be on it (m).
+    pub(super) fn tolerance(&self) -> f64 {
+        self.tol
+    }
+
+    /// The block that holds `p`: the first (chain order for the arch, source order for the
+    /// user's blocks) whose outline contains it within the tolerance.
+    pub(super) fn locate(&self, p: Vec2) -> Option<usize> {
+        let order = |i: usize| match self.assembly.blocks[i].kind {
+            BlockKind::User(s) => s,
+            _ => i,
+        };
+        (0..self.assembly.blocks.len())
+            .filter(|&i| self.contains(i, p))
+            .min_by_key(|&i| order(i))
+    }
+
+    /// Whether block `i` holds `p` within the tolerance.
+    fn contains(&self, i: usize, p: Vec2) -> bool {
+        let poly = &self.assembly.blocks[i].polygon;
+        match &self.structure {
+            Structure::Arch(arch) => {
+                let j = i.wrapping_sub(arch.first);
+                if arch.curved && j < arch.geometry.voussoirs() {
+                    inside_curved(&arch.geometry, j, p, self.tol)
+                } else {
+                    inside_convex(poly, p, self.tol, orientation(poly))
+                }
+            }
+            Structure::Blocks { .. } => inside_convex(poly, p, self.tol, 1.0),
+        }
+    }
+
+    /// Why no block holds `p`, in words (the error's allowed values).
+    fn outside(&self, p: Vec2) -> String {
+        match self.structure {
+            Structure::Arch(_) => {
+                let (b, d) = nearest_block(self.assembly, p);
+                format!(
+                    "the point lies outside every block (the nearest is block {b}, {} at {d:.3e} m; a polygon voussoir's extrados is the chord between its corners)",
+                    describe(self.assembly.blocks[b].kind)
+                )
+            }
+            Structure::Blocks { .. } => "the point lies outside every block".into(),
+        }
+    }
+
+    /// What a line load must rest on, in words (the error's allowed values).
+    fn roof_words(&self) -> &'static str {
+        match self.structure {
+            Structure::Arch(_) => {
+                "the loaded length must overlap the extrados of the arch (or an exposed pier top)"
+            }
+            Structure::Blocks { .. } => "the loaded length must lie over the top of some block",
+        }
+    }
+
+    /// The shares of a line load over `[from_x, to_x]` (see the module docs).
+    fn line_pieces(&self, from_x: f64, to_x: f64) -> Vec<Piece> {
+        match self.structure {
+            Structure::Arch(_) => self
+                .roof
+                .iter()
+                .filter_map(|e| {
+                    let lo = from_x.max(e.a.x);
+                    let hi = to_x.min(e.b.x);
+                    (hi > lo).then(|| Piece {
+                        block: e.block,
+                        point: e.at(0.5 * (lo + hi)),
+                        length: hi - lo,
+                    })
+                })
+                .collect(),
+            Structure::Blocks { .. } => {
+                let mut cuts = vec![from_x, to_x];
+                for e in &self.roof {
+                    cuts.extend(
+                        [e.a.x, e.b.x]
+                            .into_iter()
+                            .filter(|&x| x > from_x && x < to_x),
+                    );
+                }
+                self.under_top(cuts)
+                    .into_iter()
+                    .map(|(x0, x1, e)| Piece {
+                        block: e.block,
+                        point: e.at(0.5 * (x0 + x1)),
+                        length: x1 - x0,
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The fill regions below `level` (see the module docs).
+    fn fill_regions(&self, level: f64) -> Vec<FillRegion> {
+        let region = |block, a, b, arc| {
+            fill_region(a, b, level, arc).map(|(area, centroid, outline)| FillRegion {
+                block,
+                area,
+                centroid,
+                outline,
+            })
+        };
+        match self.structure {
+            Structure::Arch(_) => self
+                .roof
+                .iter()
+                .filter(|e| matches!(self.assembly.blocks[e.block].kind, BlockKind::Voussoir(_)))
+                .filter_map(|e| region(e.block, e.a, e.b, e.arc))
+                .collect(),
+            Structure::Blocks { .. } => {
+                let cuts = self.roof.iter().flat_map(|e| [e.a.x, e.b.x]).collect();
+                self.under_top(cuts)
+                    .into_iter()
+                    .filter_map(|(x0, x1, e)| {
+                        let (mut a, mut b) = (e.at(x0), e.at(x1));
+                        // Keep the part of the edge below the level.
+                        if a.y >= level && b.y >= level {
+                            return None;
+                        }
+                        if a.y > level || b.y > level {
+                            let x = a.x + (level - a.y) / (b.y - a.y) * (b.x - a.x);
+                            if a.y > level {
+                                a = e.at(x);
+                            } else {
+                                b = e.at(x);
+                            }
+                        }
+                        region(e.block, a, b, None)
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The pieces `(x0, x1, edge)` between consecutive `cuts` (sorted here), each with the
+    /// highest roof edge over its mid x; pieces with no edge over them are left out.
+    fn under_top(&self, mut cuts: Vec<f64>) -> Vec<(f64, f64, &RoofEdge)> {
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        cuts.windows(2)
+            .filter(|w| w[1] - w[0] > 0.0)
+            .filter_map(|w| {
+                let x = 0.5 * (w[0] + w[1]);
+                let top = self
+                    .roof
+                    .iter()
+                    .filter(|e| e.a.x <= x && x <= e.b.x)
+                    .max_by(|e, f| e.at(x).y.total_cmp(&f.at(x).y))?;
+                Some((w[0], w[1], top))
+            })
+            .collect()
+    }
+}
+
+/// The load case of `scene` and its ties, placed on the assembly through `placement`: the
+/// self-weight, then `[[loads]]` in order, then `[fill]` (see the module docs).
+pub(super) fn place(
+    scene: &Scene,
+    placement: &Placement,
+) -> Result<(LoadCase, Vec<Tie>), SceneError> {
+    let origin = &scene.origin;
+    let mut case = LoadCase::self_weight(placement.assembly)
+        .with_vertical_ratio(scene.seismic.vertical_ratio)
+        .with_action(scene.action);
+    for (k, spec) in scene.loads.iter().enumerate() {
+        match *spec {
+            LoadSpec::Point {
+                at,
+                force,
+                seismic,
+                live,
+            } => {
+                let p = Vec2::new(at[0], at[1]);
+                let block = placement.locate(p).ok_or_else(|| SceneError::OutOfRange {
+                    origin: origin.clone(),
+                    key: format!("loads[{k}].at"),
+                    value: format!("[{}, {}]", at[0], at[1]),
+                    allowed: placement.outside(p),
+                })?;
+                let force = Vec2::new(force[0], force[1]);
+                case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
+            }
+            LoadSpec::Line {
+                from_x,
+                to_x,
+                intensity,
+                seismic,
+                live,
+            } => {
+                case.add_spread(SpreadLoad::line(k, from_x, to_x, intensity, seismic).live(live));
+                let pieces = placement.line_pieces(from_x, to_x);
+                if pieces.is_empty() {
+                    return Err(SceneError::OutOfRange {
+                        origin: origin.clone(),
+                        key: format!("loads[{k}].from_x"),
+                        value: format!("{from_x} (to_x = {to_x})"),
+                        allowed: placement.roof_words().into(),
+                    });
+                }
+                for Piece {
+                    block,
+                    point,
+                    length,
+                } in pieces
+                {
+                    let w = intensity * length;
+                    case.add(AppliedLoad {
+                        block,
+                        point,
+                        force: Vec2::new(0.0, -w),
+                        seismic_weight: if seismic { w } else { 0.0 },
+                        live,
+                        source: LoadSource::Load(k),
+                        region: None,
+                    });
+                }
+            }
+        }
+    }
+    if let Some(fill) = &scene.fill {
+        let gamma = fill.unit_weight * scene.material.depth;
+        case.add_spread(SpreadLoad::fill(fill.level, gamma, fill.seismic));
+        let regions = placement.fill_regions(fill.level);
+        if regions.is_empty() {
+            // Over the parametric arch the level is not below the crown (checked as the scene
+            // is read), so some voussoir always has a region.
+            return Err(SceneError::OutOfRange {
+                origin: origin.clone(),
+                key: "fill.level".to_string(),
+                value: fill.level.to_string(),
+                allowed: "the fill's top must lie above the top of some block".into(),
+            });
+        }
+        for r in regions {
+            case.add(AppliedLoad::fill(
+                r.block,
+                gamma * r.area,
+                r.centroid,
+                r.outline,
+                fill.seismic,
+            ));
+        }
+    }
+    let ties = ties::anchor_ties(&scene.ties, placement, origin)?;
+    Ok((case, ties))
+}
+
+/// Centre and radius of the extrados arc of voussoir `j`.
+fn extrados_arc(g: &ArchGeometry, j: usize) -> (Vec2, f64) {
+    let arc = g.arcs[j];
+    (arc.centre, arc.radius + 0.5 * g.thickness)
+}
+
+/// The point of the extrados edge from `a` to `b` (a chord, or the arc `(centre, radius)`
+/// bulging away from its centre) at abscissa `x` within the edge's x-range.
+fn edge_point(a: Vec2, b: Vec2, arc: Option<(Vec2, f64)>, x: f64) -> Vec2 {
+    if let Some((c, r)) = arc {
+        // The arc point at x on the far side of the chord from the centre.
+        let dy = (r * r - (x - c.x).powi(2)).max(0.0).sqrt();
+        let candidates = [Vec2::new(x, c.y + dy), Vec2::new(x, c.y - dy)];
+        let mid = 0.5 * (a + b);
+        let out = mid - c;
+        return if (candidates[0] - c).dot(&out) >= (candidates[1] - c).dot(&out) {
+            candidates[0]
+        } else {
+            candidates[1]
+        };
+    }
+    if a.x == b.x {
+        return 0.5 * (a + b);
+    }
+    let s = (x - a.x) / (b.x - a.x);
+    a + s * (b - a)
+}
+
+/// Area, centroid and outline of the region above the extrados edge from `a` to `b` (chord,
+/// or arc when `arc` is given), below `y = level`, between the verticals through `a` and `b`.
+/// None when the region is empty (a vertical edge).
+fn fill_region(
+    a: Vec2,
+    b: Vec2,
+    level: f64,
+    arc: Option<(Vec2, f64)>,
+) -> Option<(f64, Vec2, Vec<Vec2>)> {
+    if a.x == b.x {
+        return None;
+    }
+    let trapezoid = vec![a, b, Vec2::new(b.x, level), Vec2::new(a.x, level)];
+    let (at, ct) = polygon_area_centroid(&trapezoid);
+    let (mut area, mut moment) = (at, at * ct);
+    let mut outline = trapezoid;
+    if let Some((c, r)) = arc {
+        // The circular segment between chord and arc lies on the side away from the centre:
+        // it takes area from the fill when above the chord, adds it when below.
+        let (as_, cs) = circular_segment(c, r, a, b);
+        let chord_y = edge_point(a, b, None, cs.x).y;
+        let sign = if cs.y > chord_y { -1.0 } else { 1.0 };
+        area += sign * as_;
+        moment += sign * as_ * cs;
+        // Outline for drawings: the arc sampled from b back to a, then the level line.
+        let (ta, tb) = ((a - c).y.atan2((a - c).x), (b - c).y.atan2((b - c).x));
+        let mut d = tb - ta;
+        if d > std::f64::consts::PI {
+            d -= 2.0 * std::f64::consts::PI;
+        } else if d < -std::f64::consts::PI {
+            d += 2.0 * std::f64::consts::PI;
+        }
+        let steps = 8;
+        outline = (0..=steps)
+            .map(|i| {
+                let t = ta + d * i as f64 / steps as f64;
+                c + r * Vec2::new(t.cos(), t.sin())
+            })
+            .collect();
+        outline.push(Vec2::new(b.x, level));
+        outline.push(Vec2::new(a.x, level));
+    }
+    if area <= 0.0 {
+        return None;
+    }
+    Some((area, moment / area, outline))
+}
+
+/// The sign of a polygon's signed area: 1 counter-clockwise, -1 clockwise.
+fn orientation(poly: &[Vec2]) -> f64 {
+    let m = poly.len();
+    let mut s = 0.0;
+    for k in 0..m {
+        s += cross(poly[k], poly[(k + 1) % m]);
+    }
+    s.signum()
+}
+
+/// Whether `p` lies in the convex polygon of orientation `orient` ([`orientation`]) or within
+/// `tol` of it.
+fn inside_convex(poly: &[Vec2], p: Vec2, tol: f64, orient: f64) -> bool {
+    let m = poly.len();
+    (0..m).all(|k| {
+        let (a, b) = (poly[k], poly[(k + 1) % m]);
+        let e = b - a;
+        let len = e.norm();
+        len == 0.0 || orient * cross(e, p - a) / len >= -tol
+    })
+}
+
+/// Whether `p` lies in the exact annular piece of curved voussoir `j`.
+fn inside_curved(g: &ArchGeometry, j: usize, p: Vec2, tol: f64) -> bool {
+    let q = g.quad(j);
+    let arc = g.arcs[j];
+    let (ri, re) = (
+        arc.radius - 0.5 * g.thickness,
+        arc.radius + 0.5 * g.thickness,
+    );
+    let r = (p - arc.centre).norm();
+    // Between the two joint lines (the quad's sides p1(j)-p2(j) and p2(j+1)-p1(j+1)), and
+    // between the intrados and extrados circles.
+    let side = |a: Vec2, b: Vec2, inner: Vec2| {
+        let e = b - a;
+        let s = cross(e, inner - a).signum();
+        s * cross(e, p - a) / e.norm() >= -tol
+    };
+    let centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    side(q[0], q[1], centre) && side(q[2], q[3], centre) && r >= ri - tol && r <= re + tol
+}
+
+/// The block nearest to `p` (by distance to its outline's vertices and edges) and that
+/// distance.
+fn nearest_block(assembly: &Assembly, p: Vec2) -> (usize, f64) {
+    let mut best = (0, f64::INFINITY);
+    for (i, b) in assembly.blocks.iter().enumerate() {
+        let m = b.polygon.len();
+        for k in 0..m {
+            let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+            let e = c - a;
+            let s = if e.norm_squared() > 0.0 {
+                ((p - a).dot(&e) / e.norm_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let d = (a + s * e - p).norm();
+            if d < best.1 {
+                best = (i, d);
+            }
+        }
+    }
+    best
+}
+
+/// A block's kind in words.
+fn describe(kind: BlockKind) -> String {
+    match kind {
+        BlockKind::Voussoir(j) => format!("voussoir {j}"),
+        BlockKind::LeftPier(c) => format!("left pier course {c}"),
+        BlockKind::RightPier(c) => format!("right pier course {c}"),
+        BlockKind::Other => "a block".to_string(),
+        BlockKind::User(i) => format!("block {i}"),
+    }
+}

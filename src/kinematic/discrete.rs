@@ -319,7 +319,7 @@ impl Chain {
 
     /// Whether the chain has tie rods or bonded strips (the searches' closed forms then hand
     /// every admissible mechanism to [`Chain::evaluate`], which adds their dissipation).
-    fn has_ties(&self) -> bool {
+    fn has_dissipation(&self) -> bool {
         !self.ties.is_empty() || !self.strips.is_empty()
     }
 }
@@ -369,7 +369,7 @@ pub fn analyse(
         (
             Search::Exhaustive,
             nj,
-            chain.has_ties().then(|| TIED_FAMILIES.to_string()),
+            (!chain.ties.is_empty()).then(|| TIED_FAMILIES.to_string()),
         ),
         start,
     ))
@@ -1054,7 +1054,7 @@ fn two_open(chain: &Chain) -> Extremes<Key> {
 fn two_hinges_one_open(chain: &Chain, parallel: bool) -> Extremes<Key> {
     let n = chain.joints();
     let per_open = |o: usize| {
-        if chain.has_ties() {
+        if chain.has_dissipation() {
             let mut sink = Dissipating::new(chain);
             two_hinges_one_open_at(chain, o, &mut sink);
             return sink.inner;
@@ -1387,7 +1387,7 @@ fn four_hinges(chain: &Chain, parallel: bool) -> Extremes<Key> {
     }
     let tables = FourTables::new(chain, parallel);
     let per_d = |d: usize| {
-        if chain.has_ties() {
+        if chain.has_dissipation() {
             let mut sink = Dissipating::new(chain);
             four_hinges_at(chain, &tables, d, &mut sink);
             return sink.inner;

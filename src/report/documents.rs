@@ -212,6 +212,10 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                 sec.line("tie rods at collapse:");
                 sec.items(tie_items(model, &r.ties));
             }
+            if !r.strips.is_empty() {
+                sec.line("bonded strips at collapse:");
+                sec.items(strip_items(model, &r.strips));
+            }
             sec.line(format!(
                 "equilibrium residual {} N ({} of the weight)",
                 sci(r.equilibrium_residual, 2),
@@ -264,6 +268,55 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
         count(r.model.constraints as u64, "constraint", "constraints"),
         r.solve_time_s * 1e3
     ));
+}
+
+/// One line per bonded strip: the joints where it has debonded (reached its capacity).
+fn strip_items(model: &Model, forces: &[crate::model::StripForce]) -> Vec<String> {
+    let sources = model
+        .strips
+        .iter()
+        .map(|s| s.source)
+        .max()
+        .map_or(0, |m| m + 1);
+    (0..sources)
+        .map(|k| {
+            let mine: Vec<_> = model
+                .strips
+                .iter()
+                .zip(forces)
+                .filter(|(s, _)| s.source == k)
+                .collect();
+            let face = match mine.first().map(|(s, _)| s.end) {
+                Some(crate::assembly::JointEnd::P1) => "intrados",
+                _ => "extrados",
+            };
+            let debonded: Vec<String> = mine
+                .iter()
+                .filter(|(_, f)| f.yielded)
+                .map(|(s, _)| {
+                    format!(
+                        "{} ({})",
+                        s.joint,
+                        joint_label(model.assembly.joints[s.joint].kind)
+                    )
+                })
+                .collect();
+            let capacity = mine.first().map_or(0.0, |(s, _)| s.capacity);
+            format!(
+                "strip {k} ({face}, {} N at each of {} joints): {}",
+                num(capacity),
+                mine.len(),
+                if debonded.is_empty() {
+                    "holds everywhere (below its capacity)".to_string()
+                } else {
+                    format!(
+                        "at its capacity (debonding) at joint {}",
+                        debonded.join(", ")
+                    )
+                }
+            )
+        })
+        .collect()
 }
 
 /// One line per tie rod: its force at collapse, whether it yielded, and where it is anchored.

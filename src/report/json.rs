@@ -280,6 +280,70 @@ pub struct AnalysisReport {
     pub continuous_note: Option<String>,
     /// The tie rods (`[[ties]]`), in the scene's order, with their forces at collapse.
     pub ties: Vec<TieReport>,
+    /// The bonded strips (`[[reinforcements]]`), in the scene's order, with their force at
+    /// each joint they cross.
+    pub reinforcements: Vec<ReinforcementReport>,
+}
+
+/// A bonded strip and its forces at collapse.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReinforcementReport {
+    pub index: usize,
+    /// `intrados` or `extrados`.
+    pub face: &'static str,
+    pub from_joint: usize,
+    pub to_joint: usize,
+    /// Tensile capacity at each crossed joint (N).
+    pub tensile_capacity: f64,
+    /// The crossed joints, with the strip's tension there at collapse.
+    pub joints: Vec<StripJointReport>,
+}
+
+/// A strip's tension at one joint.
+#[derive(Debug, Clone, Serialize)]
+pub struct StripJointReport {
+    /// The joint (index in `joints`).
+    pub joint: usize,
+    /// Tension at collapse (N), null when the structure does not collapse.
+    pub force: Option<f64>,
+    /// Whether it has reached the capacity (debonded), null without collapse.
+    pub yielded: Option<bool>,
+}
+
+impl ReinforcementReport {
+    /// The strips of `scene` with the forces of `r`.
+    pub fn all(scene: &Scene, model: &Model, r: &StaticResult) -> Vec<ReinforcementReport> {
+        scene
+            .reinforcements
+            .iter()
+            .enumerate()
+            .map(|(index, spec)| ReinforcementReport {
+                index,
+                face: if spec.face == crate::assembly::JointEnd::P1 {
+                    "intrados"
+                } else {
+                    "extrados"
+                },
+                from_joint: spec.from_joint,
+                to_joint: spec.to_joint,
+                tensile_capacity: spec.tensile_capacity,
+                joints: model
+                    .strips
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.source == index)
+                    .map(|(k, s)| {
+                        let f = r.strips.get(k);
+                        StripJointReport {
+                            joint: s.joint,
+                            force: f.map(|f| f.force),
+                            yielded: f.map(|f| f.yielded),
+                        }
+                    })
+                    .collect(),
+            })
+            .collect()
+    }
 }
 
 /// A tie rod and its force in the static solution at collapse.
@@ -507,6 +571,7 @@ impl AnalysisReport {
             continuous_hinges: None,
             continuous_note: None,
             ties: TieReport::all(model, r),
+            reinforcements: ReinforcementReport::all(scene, model, r),
         }
     }
 }

@@ -68,12 +68,13 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
         }
     };
     let (loads, ties) = placement::place(scene, &Placement::new(&assembly, layout))?;
+    let strips = super::reinforcements::strips(&scene.reinforcements, &assembly, &scene.origin)?;
     Ok(Model {
         assembly,
         loads,
         strength,
         ties,
-        strips: Vec::new(),
+        strips,
     })
 }
 

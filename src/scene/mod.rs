@@ -8,6 +8,7 @@
 mod build;
 mod piers;
 mod placement;
+pub mod reinforcements;
 pub mod ties;
 pub mod units;
 mod user_blocks;
@@ -176,6 +177,8 @@ pub struct Scene {
     pub loads: Vec<LoadSpec>,
     /// Tie rods (`[[ties]]`), in file order.
     pub ties: Vec<ties::TieSpec>,
+    /// Bonded strips (`[[reinforcements]]`), in file order.
+    pub reinforcements: Vec<reinforcements::ReinforcementSpec>,
     /// `[fill]`, when given.
     pub fill: Option<FillSpec>,
     /// `[seismic]` (defaults: horizontal ground motion only).
@@ -375,6 +378,9 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     if let Some(rest) = key.strip_prefix("ties[") {
         return set_entry(table, "ties", key, rest, value);
     }
+    if let Some(rest) = key.strip_prefix("reinforcements[") {
+        return set_entry(table, "reinforcements", key, rest, value);
+    }
     let parts: Vec<&str> = key.split('.').collect();
     // One pier of a portal is set with three parts: `piers.left.height`.
     let pier_side =
@@ -421,10 +427,10 @@ fn set_entry(
     rest: &str,
     value: Value,
 ) -> Result<(), String> {
-    let example = if list == "ties" {
-        "capacity"
-    } else {
-        "intensity"
+    let example = match list {
+        "ties" => "capacity",
+        "reinforcements" => "tensile_capacity",
+        _ => "intensity",
     };
     let form = || {
         format!("key `{key}` must be {list}[N].KEY, e.g. {list}[0].{example} (N counts the [[{list}]] from 0)")
@@ -455,8 +461,18 @@ fn set_entry(
 }
 
 const SECTIONS: &[&str] = &[
-    "arch", "piers", "material", "dem", "fill", "seismic", "loads", "site", "blocks", "action",
+    "arch",
+    "piers",
+    "material",
+    "dem",
+    "fill",
+    "seismic",
+    "loads",
+    "site",
+    "blocks",
+    "action",
     "ties",
+    "reinforcements",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -647,6 +663,21 @@ impl<'a> Section<'a> {
             (Some(v), _) => Err(self.wrong_type(key, v, "a whole number")),
             (None, Some(d)) => Ok(d),
             (None, None) => Err(self.missing(key, what)),
+        }
+    }
+
+    /// A whole number >= 0 (an index), required.
+    fn index(&mut self, key: &'static str, what: &str) -> Result<usize, SceneError> {
+        self.used.insert(key);
+        let allowed = "must be a whole number >= 0";
+        match self.table.get(key) {
+            Some(Value::Integer(i)) => {
+                usize::try_from(*i).map_err(|_| self.out_of_range(key, i, allowed))
+            }
+            Some(Value::Float(x)) if x.fract() == 0.0 && (0.0..=1e9).contains(x) => Ok(*x as usize),
+            Some(Value::Float(x)) => Err(self.out_of_range(key, short(*x), allowed)),
+            Some(v) => Err(self.wrong_type(key, v, "a whole number")),
+            None => Err(self.missing(key, what)),
         }
     }
 
@@ -871,6 +902,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
     let loads = parse_loads(&table, origin)?;
     let ties = ties::parse_ties(&table, origin)?;
+    let reinforcements = reinforcements::parse(&table, origin)?;
     let fill = match section(&table, "fill", origin)? {
         Some(t) => Some(parse_fill(Section::new("fill", t, origin), arch.as_ref())?),
         None => None,
@@ -899,6 +931,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         material,
         loads,
         ties,
+        reinforcements,
         fill,
         seismic,
         action,

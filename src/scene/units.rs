@@ -81,7 +81,7 @@ pub fn dimension_of(key: &str) -> Option<Dimension> {
         | "at" | "from" | "to" => Dimension::Length,
         "compressive_strength" | "tie_design_strength" => Dimension::Stress,
         "unit_weight" => Dimension::UnitWeight,
-        "force" | "capacity" | "prestress" => Dimension::Force,
+        "force" | "capacity" | "prestress" | "tensile_capacity" => Dimension::Force,
         "intensity" => Dimension::ForcePerLength,
         _ => return None,
     })

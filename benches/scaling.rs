@@ -1,8 +1,11 @@
 //! How the cost of each method grows with the size of the model, with fitted exponents
 //! (least squares on log-log): the exhaustive hinge search against n, the continuous model,
-//! DEM time steps per second against the block count, and a sweep of 1000 cases on one and on
-//! all cores. Run with `cargo bench --bench scaling`; prints Markdown tables (the figures of
-//! docs/performance.md). The static solve has its own bench (`static_solve`).
+//! DEM time steps per second against the block count, and a sweep of 96,641 cases on 1, 2, 4,
+//! 8 and 16 threads (as many as the machine has cores; `VOUSSOIR_BENCH_THREADS=1,2,16` names
+//! others). Run with `cargo bench --bench scaling`; prints Markdown tables (the figures of
+//! docs/performance.md). `cargo bench --bench scaling -- sweep` prints the sweep's table
+//! alone; `benches/sweep_scaling.sh` times the same sweep through the CLI, process and file
+//! included. The static solve has its own bench (`static_solve`).
 
 use std::time::Instant;
 
@@ -41,6 +44,11 @@ fn exponent(points: &[(f64, f64)]) -> String {
 }
 
 fn main() {
+    // `cargo bench --bench scaling -- sweep`: the sweep table alone.
+    if std::env::args().skip(1).any(|a| a == "sweep") {
+        sweep_on_every_core();
+        return;
+    }
     // 1. Exhaustive hinge search (one thread, so the exponent is the algorithm's).
     println!("Discrete kinematic search, semicircle t/R = 0.15, one thread\n");
     println!("| n | joints | candidates | lambda_upper | ms |");
@@ -125,38 +133,92 @@ fn main() {
         exponent(&pts)
     );
 
-    // 4. A sweep of 1000 cases (static + kinematic, as `voussoir sweep` runs them).
-    println!("Sweep of 1000 cases: semicircle, n = 32, t/R 0.10..0.30 (40) x embrace 120..240 deg (25)\n");
-    println!("| threads | wall s | cases/s | collapse | cannot_stand | error |");
-    println!("|---:|---:|---:|---:|---:|---:|");
+    // 4. A sweep near the largest allowed, through the CLI's pipeline, on 1 to 16 threads.
+    sweep_on_every_core();
+}
+
+/// Thread counts of the sweep table: 1, 2, 4, 8, 16 up to the machine's cores (more threads
+/// than cores measure the scheduler, not the sweep), or the counts in VOUSSOIR_BENCH_THREADS
+/// (`1,2,16`).
+fn thread_counts() -> Vec<usize> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if let Ok(list) = std::env::var("VOUSSOIR_BENCH_THREADS") {
+        let given: Vec<usize> = list
+            .split(',')
+            .filter_map(|t| t.trim().parse().ok())
+            .filter(|&t| t > 0)
+            .collect();
+        if !given.is_empty() {
+            return given;
+        }
+    }
+    let mut counts: Vec<usize> = [1, 2, 4, 8, 16]
+        .into_iter()
+        .filter(|&t| t <= cores)
+        .collect();
+    if !counts.contains(&cores) && cores < 16 {
+        counts.push(cores);
+    }
+    counts
+}
+
+/// Issue 28's "sweeps on every core": the whole pipeline of `voussoir sweep` (the plan, the
+/// cases built and solved, the CSV, the rows freed) on a pool of 1, 2, 4, ... threads, with
+/// the time of each phase. Targets: at least 1.8x on 2 threads and 10x on 16 against one.
+fn sweep_on_every_core() {
     let base = semicircle(32);
-    let vars = [
-        sweep::parse_variation("t/R=0.1:0.295:0.005").expect("variation"),
-        sweep::parse_variation("arch.embrace_deg=120:240:5").expect("variation"),
+    let vars = vec![
+        sweep::parse_variation("t/R=0.1:0.5:0.001").expect("variation"),
+        sweep::parse_variation("arch.embrace_deg=120:240:0.5").expect("variation"),
     ];
-    let cases = sweep::cases(&base, &vars);
     let options = Options::default();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut threads = vec![1];
-    if cores > 1 {
-        threads.push(cores);
-    }
-    for th in threads {
+    println!(
+        "Sweep of {} cases (`voussoir sweep data/semicircular.toml --vary t/R=0.1:0.5:0.001 --vary arch.embrace_deg=120:240:0.5`, the CLI's pipeline without process start and file), {cores} cores, median of 3\n",
+        sweep::case_count(&vars).unwrap_or(0)
+    );
+    println!("| threads | plan s | cases s | csv s | free s | wall s | cases/s | speed-up | collapse | cannot_stand | error |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut first = None;
+    for th in thread_counts() {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(th)
             .build()
             .expect("thread pool");
-        let t = Instant::now();
-        let rows =
-            pool.install(|| sweep::run(&cases, |v, s| sweep::case(v, s, &options, false), &|| {}));
-        let wall = t.elapsed().as_secs_f64();
-        let count = |st: &str| rows.iter().filter(|r| r.status == st).count();
+        let mut runs: Vec<[f64; 5]> = Vec::new();
+        let mut counts = [0; 3];
+        for _ in 0..3 {
+            pool.install(|| {
+                let t0 = Instant::now();
+                let plan = sweep::Sweep::new(&base, vars.clone()).expect("valid sweep");
+                let t1 = Instant::now();
+                let rows = plan.run(&options, false, &|| {});
+                let t2 = Instant::now();
+                let mut csv = Vec::new();
+                sweep::write_csv(&mut csv, plan.variations(), &rows).expect("csv");
+                let t3 = Instant::now();
+                sweep::free_rows(rows);
+                let t4 = Instant::now();
+                let s = |a: Instant, b: Instant| (b - a).as_secs_f64();
+                runs.push([s(t0, t1), s(t1, t2), s(t2, t3), s(t3, t4), s(t0, t4)]);
+                // The statuses, read back from the CSV (outside the times).
+                let text = String::from_utf8_lossy(&csv);
+                let count = |st: &str| text.matches(&format!(",{st},")).count();
+                counts = [count("collapse"), count("cannot_stand"), count("error")];
+            });
+        }
+        runs.sort_by(|a, b| a[4].total_cmp(&b[4]));
+        let [plan, cases, csv, free, wall] = runs[runs.len() / 2];
+        let one = *first.get_or_insert(wall);
+        let n = sweep::case_count(&vars).unwrap_or(0) as f64;
         println!(
-            "| {th} | {wall:.2} | {:.0} | {} | {} | {} |",
-            rows.len() as f64 / wall,
-            count("collapse"),
-            count("cannot_stand"),
-            count("error")
+            "| {th} | {plan:.3} | {cases:.3} | {csv:.3} | {free:.3} | {wall:.3} | {:.0} | {:.2}x | {} | {} | {} |",
+            n / wall,
+            one / wall,
+            counts[0],
+            counts[1],
+            counts[2]
         );
     }
+    println!("\nTargets (issue 28): speed-up >= 1.8x on 2 threads, >= 10x on 16 (an idle machine of 16 cores).");
 }

@@ -270,13 +270,11 @@ impl Study {
             continuous: self.continuous,
             ..Default::default()
         };
-        sweep::check_variations(&self.scene, &self.variations)?;
-        let cases = sweep::cases(&self.scene, &self.variations);
+        let plan = sweep::Sweep::new(&self.scene, self.variations.clone())?;
         // Validate the chart keys before solving.
-        sweep::check_chart(&self.variations, &cases, &self.x, self.series.as_deref())
+        sweep::check_chart(&plan, &self.x, self.series.as_deref())
             .map_err(|e| self.chart_error(e))?;
-        let rows = sweep::run(
-            &cases,
+        let rows = plan.run_with(
             |values, scene| {
                 let mut row = sweep::case(values, scene, &options, false);
                 if let Some(baseline) = self.baseline {

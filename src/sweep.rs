@@ -27,8 +27,8 @@ pub const DERIVED_KEYS: &[&str] = &[
 
 /// Largest number of cases in one sweep (the product of the varied keys' value counts):
 /// checked before any case is built, so three long lists are refused at once rather than
-/// allocated (each case holds its scene). A case takes about a millisecond for a small arch,
-/// so this is minutes on a few cores; split a larger study into several sweeps.
+/// run for hours. A case takes 0.03 to a few milliseconds for a small arch, so this is
+/// seconds to minutes on a few cores; split a larger study into several sweeps.
 pub const MAX_CASES: usize = 100_000;
 
 /// Largest number of values of one `START:STOP:STEP` range.
@@ -488,14 +488,10 @@ pub fn ratios(scene: &Scene) -> Vec<(&'static str, f64)> {
 /// Check the chart's axes before anything is solved: `x` is a varied key, or a ratio
 /// ([`DERIVED_KEYS`]) that takes more than one value over the valid cases (a ratio the
 /// varied keys do not change would draw every line as a single dot); `series` is a varied
-/// key other than `x`. Errors name the options `--x` and `--series`.
-pub fn check_chart(
-    variations: &[Variation],
-    cases: &[(Vec<Value>, Result<Scene, SceneError>)],
-    x: &str,
-    series: Option<&str>,
-) -> Result<(), SceneError> {
-    let varied: Vec<&str> = variations.iter().map(|v| v.key.as_str()).collect();
+/// key other than `x`. Errors name the options `--x` and `--series`. A ratio's range is
+/// measured over the sweep's cases, built in parallel ([`Sweep::par_cases`]).
+pub fn check_chart(sweep: &Sweep, x: &str, series: Option<&str>) -> Result<(), SceneError> {
+    let varied: Vec<&str> = sweep.variations.iter().map(|v| v.key.as_str()).collect();
     let bad = |message: String| SceneError::BadChart {
         option: "--x".into(),
         key: x.to_string(),
@@ -512,26 +508,38 @@ pub fn check_chart(
                 crate::error::did_you_mean(x, &candidates)
             )));
         }
-        let mut values: Vec<f64> = cases
-            .iter()
-            .filter_map(|(_, s)| s.as_ref().ok())
-            .filter_map(|s| ratios(s).into_iter().find(|(n, _)| *n == x))
-            .map(|(_, v)| v)
-            .filter(|v| v.is_finite())
-            .collect();
-        values.sort_by(f64::total_cmp);
-        let (Some(lo), Some(hi)) = (values.first(), values.last()) else {
+        // The ratio's finite values over the valid cases, each case built by the thread that
+        // takes it (the sweep holds none).
+        let values = || {
+            sweep
+                .par_cases()
+                .filter_map(|(_, s)| s.ok())
+                .filter_map(|s| ratios(&s).into_iter().find(|(n, _)| *n == x))
+                .map(|(_, v)| v)
+                .filter(|v| v.is_finite())
+        };
+        let Some(first) = values().find_first(|_| true) else {
             return Err(bad(format!(
                 "the ratio is not defined for these cases (varied: {})",
                 varied.join(", ")
             )));
         };
-        if hi - lo <= 1e-9 * lo.abs().max(hi.abs()).max(1e-300) {
-            return Err(bad(format!(
-                "the ratio does not vary in this sweep (it is {} in every case); --x takes a varied key ({}) or a ratio that changes with them",
-                lo + 0.0,
-                varied.join(", ")
-            )));
+        // Two values apart by more than twice the tolerance of the larger show that the range
+        // exceeds its tolerance (below): the usual answer, found among the first cases taken.
+        let apart = |v: f64| (v - first).abs() > 2e-9 * v.abs().max(first.abs()).max(1e-300);
+        if !values().any(apart) {
+            // The smallest and largest value (min and max do not depend on the order the
+            // threads meet the cases in).
+            let (lo, hi) = values()
+                .map(|v| (v, v))
+                .reduce(|| (first, first), |(a, b), (c, d)| (a.min(c), b.max(d)));
+            if hi - lo <= 1e-9 * lo.abs().max(hi.abs()).max(1e-300) {
+                return Err(bad(format!(
+                    "the ratio does not vary in this sweep (it is {} in every case); --x takes a varied key ({}) or a ratio that changes with them",
+                    lo + 0.0,
+                    varied.join(", ")
+                )));
+            }
         }
     }
     if let Some(sk) = series {
@@ -554,52 +562,71 @@ pub fn check_chart(
     Ok(())
 }
 
-/// Every case of the sweep: the varied values of each case and its scene (or the error
-/// that made the case invalid), in order.
-pub fn cases(
-    base: &Scene,
-    variations: &[Variation],
-) -> Vec<(Vec<Value>, Result<Scene, SceneError>)> {
-    let total: usize = variations.iter().map(|v| v.values.len()).product();
+/// One case of a sweep: its varied values (in the order of the variations) and its scene, or
+/// the error that made the case invalid.
+pub type Case = (Vec<Value>, Result<Scene, SceneError>);
+
+/// Case `index` of the sweep of `variations` over `base` (the first varied key changes
+/// slowest), built on its own: the cases of a sweep need not be built in order, nor on one
+/// thread, nor all at once. `index` is below the number of cases ([`case_count`]); a larger
+/// one wraps round.
+pub fn case_at(base: &Scene, variations: &[Variation], index: usize) -> Case {
+    let mut idx = vec![0; variations.len()];
+    let mut rest = index;
+    for (i, v) in variations.iter().enumerate().rev() {
+        let n = v.values.len().max(1);
+        idx[i] = rest % n;
+        rest /= n;
+    }
+    let values: Vec<Value> = idx
+        .iter()
+        .zip(variations)
+        .filter_map(|(&i, v)| v.values.get(i).cloned())
+        .collect();
+    let pairs: Vec<(&str, &Value)> = variations
+        .iter()
+        .zip(&values)
+        .map(|(v, x)| (v.key.as_str(), x))
+        .collect();
+    let scene = apply(base, &pairs);
+    (values, scene)
+}
+
+/// Every case of the sweep ([`case_at`]), in order, built in parallel. A sweep run through
+/// [`Sweep`] never holds them all: each is built by the thread that solves it.
+pub fn cases(base: &Scene, variations: &[Variation]) -> Vec<Case> {
+    let total = case_count(variations).unwrap_or(0);
     (0..total)
-        .map(|mut k| {
-            let mut idx = vec![0; variations.len()];
-            for (i, v) in variations.iter().enumerate().rev() {
-                idx[i] = k % v.values.len();
-                k /= v.values.len();
-            }
-            let values: Vec<Value> = idx
-                .iter()
-                .zip(variations)
-                .map(|(&i, v)| v.values[i].clone())
-                .collect();
-            let pairs: Vec<(&str, &Value)> = variations
-                .iter()
-                .zip(&values)
-                .map(|(v, x)| (v.key.as_str(), x))
-                .collect();
-            let scene = apply(base, &pairs);
-            (values, scene)
-        })
+        .into_par_iter()
+        .map(|i| case_at(base, variations, i))
         .collect()
 }
 
-/// A sweep ready to run: its variations, checked against the base scene before anything is
-/// solved ([`check_variations`]), and every case built ([`cases`]). The `sweep` command and
-/// the Python package both run sweeps through it, so they give the same rows.
+/// A sweep ready to run: its base scene and its variations, checked against the scene before
+/// anything is solved ([`check_variations`]). Its cases are not built in advance: each is
+/// built from its index by the thread that solves it ([`case_at`]), so the whole sweep, from
+/// the scenes to the rows, runs in parallel, and rows come back in the order of the cases.
+/// The `sweep` command, the studies, the server and the Python package all run sweeps through
+/// it, so they give the same rows.
 #[derive(Debug)]
 pub struct Sweep {
+    base: Scene,
     variations: Vec<Variation>,
-    cases: Vec<(Vec<Value>, Result<Scene, SceneError>)>,
+    len: usize,
 }
 
 impl Sweep {
-    /// Check `variations` against `base` and build every case (invalid cases stay, as
-    /// errors, to become rows with status `error`).
+    /// Check `variations` against `base` (invalid cases stay, as errors, to become rows with
+    /// status `error`).
     pub fn new(base: &Scene, variations: Vec<Variation>) -> Result<Sweep, SceneError> {
         check_variations(base, &variations)?;
-        let cases = cases(base, &variations);
-        Ok(Sweep { variations, cases })
+        // check_variations refused a count that overflows or exceeds MAX_CASES.
+        let len = case_count(&variations).unwrap_or(0);
+        Ok(Sweep {
+            base: base.clone(),
+            variations,
+            len,
+        })
     }
 
     /// The varied keys and their values, in order (the first changes slowest).
@@ -607,29 +634,52 @@ impl Sweep {
         &self.variations
     }
 
-    /// Every case: its varied values and its scene (or why it is invalid).
-    pub fn cases(&self) -> &[(Vec<Value>, Result<Scene, SceneError>)] {
-        &self.cases
+    /// The number of cases.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the sweep has no case (never, once [`Sweep::new`] accepted it).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Case `index` ([`case_at`]).
+    pub fn case(&self, index: usize) -> Case {
+        case_at(&self.base, &self.variations, index)
+    }
+
+    /// Every case, in order, each built by the thread that takes it.
+    pub fn par_cases(&self) -> impl IndexedParallelIterator<Item = Case> + '_ {
+        (0..self.len).into_par_iter().map(|i| self.case(i))
     }
 
     /// Analyse every case by `options` (and the DEM when `dem`) in parallel, as rows in
     /// order ([`case`]); `progress` is called after each case (from worker threads).
     pub fn run(&self, options: &Options, dem: bool, progress: &(dyn Fn() + Sync)) -> Vec<SweepRow> {
-        run(
-            &self.cases,
-            |values, scene| case(values, scene, options, dem),
-            progress,
-        )
+        self.run_with(|values, scene| case(values, scene, options, dem), progress)
+    }
+
+    /// Build and analyse every case by `analyse` in parallel, keeping the order; `progress`
+    /// is called after each case (from worker threads).
+    pub fn run_with<R, F>(&self, analyse: F, progress: &(dyn Fn() + Sync)) -> Vec<R>
+    where
+        R: Send,
+        F: Fn(&[Value], &Result<Scene, SceneError>) -> R + Sync,
+    {
+        self.par_cases()
+            .map(|(values, scene)| {
+                let r = analyse(&values, &scene);
+                progress();
+                r
+            })
+            .collect()
     }
 }
 
-/// Run `analyse` on every case in parallel, keeping the order; `progress` is called after
-/// each case (from worker threads).
-pub fn run<R, F>(
-    cases: &[(Vec<Value>, Result<Scene, SceneError>)],
-    analyse: F,
-    progress: &(dyn Fn() + Sync),
-) -> Vec<R>
+/// Run `analyse` on every case of a list already built ([`cases`]) in parallel, keeping the
+/// order; `progress` is called after each case (from worker threads).
+pub fn run<R, F>(cases: &[Case], analyse: F, progress: &(dyn Fn() + Sync)) -> Vec<R>
 where
     R: Send,
     F: Fn(&[Value], &Result<Scene, SceneError>) -> R + Sync,
@@ -666,6 +716,13 @@ impl SweepRow {
     pub fn gap(&self) -> Option<f64> {
         Some((self.lambda_upper? - self.lambda_lower?).abs() / self.lambda_lower?.abs().max(1.0))
     }
+}
+
+/// Free a sweep's rows on every thread: each row holds a few small allocations, which one
+/// thread would otherwise free one by one after the parallel work (a serial tail of a large
+/// sweep).
+pub fn free_rows(rows: Vec<SweepRow>) {
+    rows.into_par_iter().for_each(drop);
 }
 
 /// Hinges as a compact string: `4:p1 15:p2 ...`.
@@ -834,13 +891,12 @@ pub fn write_csv<W: std::io::Write>(
 /// extra column ending in `_time_s`) are left out, so the file is the same on every run
 /// (the committed figures of the studies).
 pub fn write_csv_with<W: std::io::Write>(
-    out: W,
+    mut out: W,
     variations: &[Variation],
     rows: &[SweepRow],
     timings: bool,
 ) -> Result<(), csv::Error> {
     let is_timing = |name: &str| name.ends_with("_time_s");
-    let mut w = csv::Writer::from_writer(out);
     // The varied keys, then the results in the order the issue fixed (status ... solve_time_s),
     // then the optional columns, the dimensionless ratios not varied, and the error message.
     let mut header: Vec<String> = variations.iter().map(|v| v.key.clone()).collect();
@@ -875,16 +931,8 @@ pub fn write_csv_with<W: std::io::Write>(
     header.extend(extra.iter().map(|s| s.to_string()));
     header.extend(ratio_names.iter().map(|s| s.to_string()));
     header.push("error".to_string());
-    w.write_record(&header)?;
-    for r in rows {
-        let mut rec: Vec<String> = r
-            .values
-            .iter()
-            .map(|v| match v {
-                Value::String(s) => s.clone(),
-                other => other.to_string(),
-            })
-            .collect();
+    let record = |r: &SweepRow| -> Vec<String> {
+        let mut rec: Vec<String> = r.values.iter().map(value_text).collect();
         rec.push(r.status.clone());
         rec.push(opt(r.lambda_lower));
         rec.push(opt(r.lambda_upper));
@@ -905,8 +953,32 @@ pub fn write_csv_with<W: std::io::Write>(
             rec.push(opt(v));
         }
         rec.push(r.error.clone().unwrap_or_default());
-        w.write_record(&rec)?;
+        rec
+    };
+    // Each block of rows is formatted by a worker thread into its own buffer; the buffers
+    // are written in order. A CSV record's text depends on that record alone, so the bytes are
+    // those of one writer taking every row in turn.
+    out.write_all(&csv_text(std::slice::from_ref(&header))?)?;
+    let blocks: Vec<Vec<u8>> = rows
+        .par_chunks(CSV_BLOCK_ROWS)
+        .map(|block| csv_text(&block.iter().map(record).collect::<Vec<_>>()))
+        .collect::<Result<_, _>>()?;
+    for block in &blocks {
+        out.write_all(block)?;
     }
-    w.flush()?;
+    out.flush()?;
     Ok(())
+}
+
+/// Rows a CSV block formatted by one worker holds: enough to outweigh the hand-over, few
+/// enough to share a sweep's rows among many threads.
+const CSV_BLOCK_ROWS: usize = 256;
+
+/// `records` as CSV text.
+fn csv_text(records: &[Vec<String>]) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in records {
+        w.write_record(r)?;
+    }
+    w.into_inner().map_err(|e| e.into_error().into())
 }

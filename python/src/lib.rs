@@ -1006,8 +1006,7 @@ fn sweep_rows<'py>(
     let cancel = Arc::new(AtomicBool::new(false));
     let stop = Arc::clone(&cancel);
     let (plan, rows) = interruptible(py, cancel, move || {
-        let rows = sweep::run(
-            plan.cases(),
+        let rows = plan.run_with(
             |values, scene| {
                 (!stop.load(Ordering::Relaxed)).then(|| sweep::case(values, scene, &options, dem))
             },

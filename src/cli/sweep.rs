@@ -92,23 +92,27 @@ pub fn run(args: Args) -> Result<String, Error> {
     // and values, and the output paths.
     let x = chart_x(&args, &variations)?;
     let plan = sweep::Sweep::new(&scene, variations)?;
-    let (variations, cases) = (plan.variations(), plan.cases());
+    let variations = plan.variations();
     if let Some(x) = &x {
-        sweep::check_chart(variations, cases, x, args.series.as_deref())?;
+        sweep::check_chart(&plan, x, args.series.as_deref())?;
     }
     args.scene
         .outputs(&scene)
         .output("--csv", args.csv.as_deref(), Format::Csv)
         .output("--svg", args.svg.as_deref(), Format::Svg)
         .check()?;
-    let bar = progress_bar(cases.len() as u64, "sweep");
+    let bar = progress_bar(plan.len() as u64, "sweep");
     let options = analysis::Options {
         continuous: args.continuous,
         kinematic_max_joints: args.kinematic_max_joints,
         kinematic: args.kinematic.into(),
         ..analysis::Options::default()
     };
-    let rows = plan.run(&options, args.run_dem, &|| bar.inc(1));
+    // A hidden bar (stderr not a terminal) is not ticked: every case would touch its shared
+    // counter.
+    let tick = || bar.inc(1);
+    let progress: &(dyn Fn() + Sync) = if bar.is_hidden() { &|| {} } else { &tick };
+    let rows = plan.run(&options, args.run_dem, progress);
     bar.finish_and_clear();
     if let Some(x) = &x {
         draw(args.svg.as_deref(), || {
@@ -120,16 +124,20 @@ pub fn run(args: Args) -> Result<String, Error> {
         path: args.csv.clone().unwrap_or_else(|| "stdout".into()),
         message: e.to_string(),
     })?;
+    let (count, failed) = (
+        rows.len(),
+        rows.iter().filter(|r| r.status == "error").count(),
+    );
+    sweep::free_rows(rows);
     match &args.csv {
         Some(path) => {
             write_atomically(path, |b| {
                 *b = buf;
                 Ok(())
             })?;
-            let failed = rows.iter().filter(|r| r.status == "error").count();
             Ok(format!(
                 "{} cases written to {}{}",
-                rows.len(),
+                count,
                 path.display(),
                 if failed > 0 {
                     format!(" ({failed} with status error)")
@@ -138,6 +146,8 @@ pub fn run(args: Args) -> Result<String, Error> {
                 }
             ))
         }
-        None => Ok(String::from_utf8_lossy(&buf).into_owned()),
+        // The CSV is UTF-8 (the keys, values and messages are Rust strings): no copy.
+        None => Ok(String::from_utf8(buf)
+            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())),
     }
 }

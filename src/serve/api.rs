@@ -727,8 +727,7 @@ pub async fn sweep(
         let sweep = Sweep::new(&scene, vec![Variation { key, values }])
             .map_err(|e| ApiError::from(e).about("key"))?;
         let options = options(dir);
-        Ok(sweep::run(
-            sweep.cases(),
+        Ok(sweep.run_with(
             |values, case| {
                 (!cancelled.load(Ordering::Relaxed)).then(|| sweep_row(values, case, &options))
             },

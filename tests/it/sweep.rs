@@ -137,17 +137,17 @@ fn the_chart_axis_must_vary() {
         sweep::parse_variation("t/R=0.1,0.2").expect("parses"),
         sweep::parse_variation("arch.voussoirs=8,16").expect("parses"),
     ];
-    let cases = sweep::cases(&base, &vars);
+    let plan = sweep::Sweep::new(&base, vars).expect("valid");
     // Varied keys, and ratios the varied keys change.
-    assert!(sweep::check_chart(&vars, &cases, "t/R", Some("arch.voussoirs")).is_ok());
-    assert!(sweep::check_chart(&vars, &cases, "arch.voussoirs", None).is_ok());
-    assert!(sweep::check_chart(&vars, &cases, "t/span", None).is_ok());
+    assert!(sweep::check_chart(&plan, "t/R", Some("arch.voussoirs")).is_ok());
+    assert!(sweep::check_chart(&plan, "arch.voussoirs", None).is_ok());
+    assert!(sweep::check_chart(&plan, "t/span", None).is_ok());
     // e/R is 0 in every case; h/R has no piers; nonsense is nothing.
     for x in ["e/R", "h/R", "rise/span", "arch.thickness", "nonsense"] {
-        let e = sweep::check_chart(&vars, &cases, x, None).expect_err(x);
+        let e = sweep::check_chart(&plan, x, None).expect_err(x);
         assert!(e.to_string().starts_with(&format!("--x {x}: ")), "{e}");
     }
-    let e = sweep::check_chart(&vars, &cases, "t/R", Some("t/R")).expect_err("series = x");
+    let e = sweep::check_chart(&plan, "t/R", Some("t/R")).expect_err("series = x");
     assert!(e.to_string().starts_with("--series t/R: "), "{e}");
 }
 
@@ -301,4 +301,73 @@ fn swept_values_and_ratios_print_as_written() {
         // Full precision: the CSV reads back as the very number.
         assert_eq!(Some(lower), r.lambda_lower);
     }
+}
+
+/// The CSV of `plan`'s rows solved on a pool of `threads` threads, without the wall times.
+fn csv_on(threads: usize, plan: &sweep::Sweep, options: &voussoir::analysis::Options) -> String {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool");
+    pool.install(|| {
+        let rows = plan.run(options, false, &|| {});
+        let mut buf = Vec::new();
+        sweep::write_csv_with(&mut buf, plan.variations(), &rows, false).expect("csv");
+        String::from_utf8(buf).expect("utf-8")
+    })
+}
+
+#[test]
+fn rows_and_csv_bytes_do_not_depend_on_the_thread_count() {
+    let base = Scene::from_toml_str(BASE, "t").expect("valid");
+    // Invalid cases first (an eccentricity beyond the radius): the header's extra column
+    // comes from the first row that has it. 3 x 61 x 4 = 732 cases: several blocks of rows
+    // for the CSV's workers.
+    let variations = vec![
+        sweep::parse_variation("arch.eccentricity=2.5,0,0.4").expect("valid"),
+        sweep::parse_variation("t/R=0.05:0.2:0.0025").expect("valid"),
+        sweep::parse_variation("arch.voussoirs=6,8,12,16").expect("valid"),
+    ];
+    let plan = sweep::Sweep::new(&base, variations).expect("valid");
+    assert_eq!(plan.len(), 3 * 61 * 4);
+    let options = voussoir::analysis::Options {
+        continuous: true,
+        ..Default::default()
+    };
+    let one = csv_on(1, &plan, &options);
+    for threads in [2, 7] {
+        assert!(
+            csv_on(threads, &plan, &options) == one,
+            "{threads} threads: the CSV differs from one thread's"
+        );
+    }
+    // Every record, in the order of the cases, with the fields of the header (the error
+    // rows' continuous column empty).
+    let mut reader = csv::Reader::from_reader(one.as_bytes());
+    let header = reader.headers().expect("header").clone();
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let records: Vec<csv::StringRecord> =
+        reader.records().collect::<Result<_, _>>().expect("records");
+    assert_eq!(records.len(), plan.len());
+    let mut errors = 0;
+    for (k, rec) in records.iter().enumerate() {
+        let (values, scene) = plan.case(k);
+        for (i, v) in values.iter().enumerate() {
+            assert_eq!(rec[i], v.to_string(), "row {k}");
+        }
+        assert_eq!(rec.len(), header.len(), "row {k}");
+        if scene.is_err() {
+            errors += 1;
+            assert_eq!(&rec[col("status")], "error", "row {k}");
+            assert_eq!(&rec[col("lambda_continuous")], "", "row {k}");
+        } else {
+            assert_ne!(
+                &rec[col("status")],
+                "error",
+                "row {k}: {:?}",
+                &rec[col("error")]
+            );
+        }
+    }
+    assert_eq!(errors, 61 * 4);
 }

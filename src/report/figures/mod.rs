@@ -279,7 +279,7 @@ pub fn sweep(
     x: &str,
     series: Option<&str>,
 ) -> Result<Figure, FigureError> {
-    let title = sweep_title(scene, plan.cases(), x);
+    let title = sweep_title(scene, plan, x);
     Ok(of_chart(
         "chart",
         &chart(plan.variations(), rows, x, series, &title)?,

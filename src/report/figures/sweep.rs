@@ -6,7 +6,8 @@ use crate::drawing::chart::{Chart, Series};
 use crate::error::SceneError;
 use crate::scene::Scene;
 use crate::study::{Baseline, Study};
-use crate::sweep::{SweepRow, Variation, DERIVED_KEYS};
+use crate::sweep::{Sweep, SweepRow, Variation, DERIVED_KEYS};
+use rayon::prelude::*;
 use toml::Value;
 
 /// How charts name a key: a readable name with its unit (`thickness t (m)`, `embrace
@@ -175,13 +176,13 @@ pub fn chart_of(
 /// varied keys change the shape's own words (an embrace, an eccentricity, the shape itself),
 /// the kind of arch they all are ("circular arch"), or just "arch" / "portal"; then what is
 /// drawn against what.
-pub fn sweep_title(
-    base: &Scene,
-    cases: &[(Vec<Value>, Result<Scene, SceneError>)],
-    x: &str,
-) -> String {
-    let scenes: Vec<&Scene> = cases.iter().filter_map(|(_, s)| s.as_ref().ok()).collect();
-    let same = |f: &dyn Fn(&Scene) -> String| scenes.iter().all(|s| f(s) == f(base));
+pub fn sweep_title(base: &Scene, plan: &Sweep, x: &str) -> String {
+    // The cases are built anew, in parallel: the sweep holds none of them.
+    let same = |f: &(dyn Fn(&Scene) -> String + Sync)| {
+        let wanted = f(base);
+        plan.par_cases()
+            .all(|(_, s)| s.as_ref().map_or(true, |s| f(s) == wanted))
+    };
     let structure = |s: &Scene| if s.piers.is_some() { "portal" } else { "arch" }.to_string();
     let shape_name = |s: &Scene| {
         s.arch

@@ -97,6 +97,8 @@ pub mod colours {
     pub const SEISMIC: RGBColor = RGBColor(0x8E, 0x24, 0xAA);
     /// Tie rods.
     pub const TIE: RGBColor = RGBColor(0x37, 0x47, 0x4F);
+    /// Bonded strips.
+    pub const STRIP: RGBColor = RGBColor(0x00, 0x89, 0x7B);
 }
 
 use colours::*;
@@ -149,6 +151,10 @@ pub struct Drawing<'a> {
     pub ties: &'a [crate::model::Tie],
     /// Their forces at collapse (`StaticResult::ties`), labelled beside them when given.
     pub tie_forces: &'a [crate::model::TieForce],
+    /// Bonded strips (`Model::strips`), drawn along their face.
+    pub strips: &'a [crate::model::Strip],
+    /// Their forces at collapse (`StaticResult::strips`): debonded joints are marked.
+    pub strip_forces: &'a [crate::model::StripForce],
 }
 
 impl<'a> Drawing<'a> {
@@ -348,6 +354,14 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     }
     if !drawing.sliding.is_empty() {
         legend.push((Glyph::Line(SLIDING, 6, false), "sliding joint".into()));
+    }
+    if !drawing.strips.is_empty() {
+        let words = if drawing.strip_forces.iter().any(|f| f.yielded) {
+            "bonded strip (dot: at its capacity, debonding)"
+        } else {
+            "bonded strip"
+        };
+        legend.push((Glyph::Line(STRIP, 4, false), words.into()));
     }
     if !drawing.ties.is_empty() {
         let words = if drawing.tie_forces.is_empty() {
@@ -557,6 +571,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
 
     if !drawing.ties.is_empty() {
         svg.raw("ties", &ties_svg(drawing, &frame));
+    }
+    if !drawing.strips.is_empty() {
+        svg.raw("strips", &strips_svg(assembly, drawing, &frame));
     }
 
     // Everything drawn so far that the seismic arrow should not cover, in pixels.
@@ -1411,6 +1428,46 @@ fn arrow_svg(tail: Px, tip: Px, colour: RGBColor, width: f64, head: f64) -> Stri
         back.0 + half * uy,
         back.1 - half * ux,
     )
+}
+
+/// The bonded strips: a line along the face through the reinforced ends of the joints each
+/// crosses, and a dot where it has reached its capacity.
+fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
+    let mut text = String::new();
+    let sources = drawing
+        .strips
+        .iter()
+        .map(|s| s.source)
+        .max()
+        .map_or(0, |m| m + 1);
+    for k in 0..sources {
+        let mut pts: Vec<(usize, Px)> = drawing
+            .strips
+            .iter()
+            .filter(|s| s.source == k)
+            .map(|s| (s.joint, frame.pxf(s.point(assembly))))
+            .collect();
+        pts.sort_by_key(|p| p.0);
+        let line: Vec<String> = pts
+            .iter()
+            .map(|(_, (x, y))| format!("{x:.1},{y:.1}"))
+            .collect();
+        text.push_str(&format!(
+            "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"4\" stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"{}\"/>\n",
+            hex(STRIP),
+            line.join(" ")
+        ));
+    }
+    for (s, f) in drawing.strips.iter().zip(drawing.strip_forces) {
+        if f.yielded {
+            let (x, y) = frame.pxf(s.point(assembly));
+            text.push_str(&format!(
+                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"5\" fill=\"white\" stroke=\"{}\" stroke-width=\"2.5\"/>\n",
+                hex(STRIP)
+            ));
+        }
+    }
+    text
 }
 
 /// The tie rods: a line between the anchors, a dot at each, and a label above the middle

@@ -32,6 +32,7 @@ mod reports;
 mod retrofit;
 mod serve_api;
 mod static_bound;
+mod strips;
 mod studies;
 mod svg;
 mod sweep;

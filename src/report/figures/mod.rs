@@ -64,6 +64,7 @@ pub fn scene(scene: &Scene, model: &crate::model::Model) -> Result<Figure, SvgEr
         load: Some(Direction::Right),
         loads: Some(&model.loads),
         ties: &model.ties,
+        strips: &model.strips,
         ..Default::default()
     };
     of_drawing("structure", &model.assembly, &drawing)
@@ -92,6 +93,8 @@ pub fn analysis_svg(
         loads: Some(&a.model.loads),
         ties: &a.model.ties,
         tie_forces: &result.ties,
+        strips: &a.model.strips,
+        strip_forces: &result.strips,
         ..Default::default()
     };
     structure_svg(&a.model.assembly, &drawing)

@@ -18,7 +18,18 @@ use voussoir::statics::{Direction, StaticSettings};
 
 /// Fields added to the JSON contract since the baseline, ignored in the comparison, and
 /// `file` (a block file's path, which depends on where the checkout is).
-const ADDED: &[&str] = &["action", "live_weight", "tilt_deg", "live", "file", "ties"];
+const ADDED: &[&str] = &[
+    "action",
+    "live_weight",
+    "tilt_deg",
+    "live",
+    "file",
+    "ties",
+    "friction_exact",
+    "lambda_associative",
+    "slipping_joints",
+    "friction_note",
+];
 
 /// Strip the added fields and the wall times, recursively.
 fn strip(v: &mut Value) {

@@ -881,6 +881,10 @@ test('with joints that slide at collapse the multiplier is named an upper bound'
     assert.ok(await caveat.isVisible(), 'the caveat is shown');
     assert.equal(await caveat.textContent(), cli.friction_note);
     assert.match(cli.friction_note, /upper bound of the real \(non-associative\) collapse multiplier/);
+    // The thickness chart's solid line is the static one, named for what it is.
+    await chartSettled(page);
+    assert.match(await page.locator('#v-chart .chart-legend').textContent(),
+      /solid: static, associative friction/);
     // More friction: the arch rocks (no joint slips in the mechanism), the multiplier is exact
     // again and the caveat goes.
     const mu = field(page, 'material.friction');

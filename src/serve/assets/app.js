@@ -1033,7 +1033,11 @@
     if (typeof current === 'number' && finite(currentLambda)) {
       bits.push('at ' + scaledValue(current, su) + ': λ = ' + currentLambda.toFixed(4));
     }
-    if (differs || rigid) bits.push('solid: lower bound');
+    // Where joints slide at collapse the static line is the associative multiplier, an upper
+    // bound of the real collapse (friction_exact false, docs/friction.md).
+    if (chart.rows.some((r) => r.friction_exact === false)) {
+      bits.push('solid: static, associative friction (an upper bound where joints slide)');
+    } else if (differs || rigid) bits.push('solid: lower bound');
     if (differs) bits.push('dashed: upper bound');
     if (rigid) bits.push('dotted: upper bound with rigid hinges (ignores crushing)');
     if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');

@@ -117,6 +117,12 @@ impl SceneAnalysis {
         Some((u - l).abs() / l.abs().max(1.0))
     }
 
+    /// Whether the static multiplier holds for real joints, which slide without opening
+    /// ([`statics::FrictionCheck`], docs/friction.md): every front end reads this.
+    pub fn friction(&self) -> statics::FrictionCheck {
+        self.lower.friction(&self.model.assembly)
+    }
+
     /// Whether sliding governs: finite friction somewhere, and the static bound is below the
     /// rotational upper bound. A local search's bound may exceed the least rotational
     /// multiplier, so then the static solution must also slide somewhere.

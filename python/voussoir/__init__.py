@@ -134,9 +134,15 @@ class Report:
         shown = ", ".join(
             f"{k}={self._data[k]!r}"
             for k in ("status", "outcome", "lambda_lower", "lambda_upper", "min_thickness",
-                      "lambda_dem", "governing", "passes", "verdict", "scale_collapses")
+                      "lambda_dem", "governing", "passes", "verdict", "scale_collapses",
+                      "friction_exact")
             if k in self._data
         )
+        # With joints that slip at collapse, lambda_lower is the associative multiplier, an
+        # upper bound of the real collapse multiplier: say so in words (docs/friction.md).
+        note = self._data.get("friction_note")
+        if note:
+            shown += f", friction_note={note!r}"
         return f"{type(self).__name__}({shown})"
 
 
@@ -162,6 +168,12 @@ class Result(Report):
     - ``forces``: (joints, 3) ``N, V, M`` per joint (N, N, N m), NaN without a collapse state;
     - ``eccentricity``: (joints,) ``e = M / N`` (m);
     - ``mechanism_array``: (blocks, 3) ``vx, vy, omega`` of the static collapse mechanism.
+
+    With finite friction ``friction_exact`` says whether ``lambda_lower`` is exact: when joints
+    slip in the static mechanism it is False, and ``lambda_lower`` (= ``lambda_associative``) is
+    the multiplier of associative friction, an upper bound of the real (non-associative)
+    collapse multiplier, not a safe lower bound; ``friction_note`` says so in words, and so
+    does ``repr(result)`` (docs/friction.md).
     """
 
     __slots__ = ()

@@ -169,6 +169,14 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
         Direction::Left => "toward -x (left)",
     };
     let live = model.loads.action() == crate::model::Action::Live;
+    let friction = r.friction(assembly);
+    // Without sliding in the mechanism the static multiplier is exact; with it, the
+    // associative one, an upper bound of the real collapse (docs/friction.md).
+    let bound = if friction.exact {
+        "Static (lower bound)"
+    } else {
+        "Static (associative friction)"
+    };
     match (r.status, r.lambda) {
         (Status::Collapse, Some(l)) => {
             let moving = r
@@ -188,25 +196,33 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                 String::new()
             };
             if live {
-                sec.head(format!(
-                    "Static (lower bound): adequacy factor lambda = {l:.6}"
-                ))
-                .line(format!(
-                    "{} becomes a mechanism when the live loads are {l:.4} times as given",
-                    what_moves(assembly, moving)
-                ));
+                sec.head(format!("{bound}: adequacy factor lambda = {l:.6}"))
+                    .line(format!(
+                        "{} becomes a mechanism when the live loads are {l:.4} times as given",
+                        what_moves(assembly, moving)
+                    ));
             } else {
-                sec.head(format!("Static (lower bound): collapse multiplier lambda = {l:.6}"))
+                sec.head(format!("{bound}: collapse multiplier lambda = {l:.6}"))
                     .line(format!(
                         "{} becomes a mechanism under a horizontal acceleration of {l:.4} g {dir}{vertical}",
                         what_moves(assembly, moving)
                     ));
+            }
+            if let Some(words) = friction_words(&friction, r.status) {
+                sec.line(words);
             }
             sec.line("hinges of the thrust line:");
             sec.items(hinge_items(assembly, &r.hinges));
             if !r.sliding.is_empty() {
                 let list: Vec<String> = r.sliding.iter().map(|j| j.to_string()).collect();
                 sec.line(format!("sliding joints (|V| = mu N): {}", list.join(", ")));
+            }
+            if !friction.slipping.is_empty() {
+                let list: Vec<String> = friction.slipping.iter().map(|j| j.to_string()).collect();
+                sec.line(format!(
+                    "joints that slip in the collapse mechanism: {}",
+                    list.join(", ")
+                ));
             }
             if !r.ties.is_empty() {
                 sec.line("tie rods at collapse:");
@@ -223,10 +239,10 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
             ));
         }
         (Status::NoCollapse, _) if live => {
-            sec.head("Static (lower bound): NO COLLAPSE — a thrust line fits inside the structure for any multiple of the live loads");
+            sec.head(format!("{bound}: NO COLLAPSE — a thrust line fits inside the structure for any multiple of the live loads"));
         }
         (Status::NoCollapse, _) => {
-            sec.head(format!("Static (lower bound): NO COLLAPSE — a thrust line fits inside the structure for any horizontal acceleration {dir}"));
+            sec.head(format!("{bound}: NO COLLAPSE — a thrust line fits inside the structure for any horizontal acceleration {dir}"));
         }
         _ => {
             let without = if live {
@@ -236,6 +252,11 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
             };
             sec.head(format!("Static (lower bound): CANNOT STAND — no thrust line fits inside the structure even {without}"))
                 .line("(thinner than its minimum thickness, loads too heavy or too one-sided, piers too slender, or too little friction)");
+        }
+    }
+    if r.status == Status::NoCollapse {
+        if let Some(words) = friction_words(&friction, r.status) {
+            sec.line(words);
         }
     }
     let program = if r.model.variables == 4 && r.model.equality_rows == 0 {

@@ -235,6 +235,20 @@ pub struct AnalysisReport {
     pub lambda_lower: Option<f64>,
     pub hinges: Vec<Hinge>,
     pub sliding: Vec<usize>,
+    /// Whether `lambda_lower` (or the status) holds for real joints, which slide without
+    /// opening: true with infinite friction, when the structure cannot stand, and at collapse
+    /// when no joint in contact slips in the static mechanism; false otherwise, and then
+    /// `lambda_lower` is the associative multiplier, an upper bound of the real
+    /// (non-associative) collapse multiplier, not a safe lower bound (docs/friction.md).
+    pub friction_exact: bool,
+    /// The multiplier of the associative friction joint: `lambda_lower` whenever there is one
+    /// (exact or not), null otherwise.
+    pub lambda_associative: Option<f64>,
+    /// Joints in contact that slip in the static collapse mechanism (`friction_exact` is false
+    /// when there is any).
+    pub slipping_joints: Vec<usize>,
+    /// `friction_exact` in words when it is false, null otherwise.
+    pub friction_note: Option<String>,
     pub joints: Vec<JointReport>,
     pub mechanism: Vec<[f64; 3]>,
     pub equilibrium_residual: f64,
@@ -541,11 +555,16 @@ impl AnalysisReport {
                 }
             })
             .collect();
+        let friction = r.friction(assembly);
         AnalysisReport {
             status: r.status,
             lambda_lower: r.lambda,
             hinges: r.hinges.clone(),
             sliding: r.sliding.clone(),
+            friction_exact: friction.exact,
+            lambda_associative: friction.lambda_associative,
+            friction_note: super::words::friction_words(&friction, r.status),
+            slipping_joints: friction.slipping,
             joints,
             mechanism: r.mechanism.clone(),
             equilibrium_residual: r.equilibrium_residual,

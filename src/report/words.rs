@@ -7,6 +7,7 @@ use crate::kinematic::Family;
 use crate::model::Model;
 use crate::outcome::Status;
 use crate::scene::{LoadSpec, Scene, VoussoirShape};
+use crate::statics::FrictionCheck;
 use std::fmt::Write as _;
 
 /// Short label of a joint, e.g. `arch 3`, `left pier 0`.
@@ -305,6 +306,35 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
 /// measure, `|upper - lower| / max(1, lower)`).
 pub fn sliding_shortfall(lower: f64, upper: f64) -> Option<f64> {
     (upper > 0.0 && upper.is_finite() && lower.is_finite()).then(|| (upper - lower) / upper)
+}
+
+/// What finite friction makes of a static result with status `status`, in words (None when
+/// it is exact, docs/friction.md): at collapse, how many joints slide in the associative
+/// mechanism and that the multiplier is then an upper bound of the real collapse multiplier.
+pub fn friction_words(f: &FrictionCheck, status: Status) -> Option<String> {
+    if f.exact {
+        return None;
+    }
+    Some(match status {
+        Status::Collapse => format!(
+            "associative friction: {} at collapse, so this multiplier is an upper bound of the real (non-associative) collapse multiplier, not a safe lower bound",
+            count(f.slipping.len() as u64, "joint slides", "joints slide")
+        ),
+        _ => "associative friction: real joints slide without opening (non-associative), so no collapse of the static program does not prove that the structure holds".to_string(),
+    })
+}
+
+/// The static multiplier's name in a drawing's title: the static lower bound, or with sliding
+/// joints the associative multiplier, an upper bound of the real one (docs/friction.md).
+pub fn static_bound_name(f: &FrictionCheck) -> String {
+    if f.exact {
+        "static lower bound".to_string()
+    } else {
+        format!(
+            "associative friction, an upper bound: {}",
+            count(f.slipping.len() as u64, "joint slides", "joints slide")
+        )
+    }
 }
 
 /// A short name of the structure for titles, e.g. `semicircular arch` or `pointed portal`.

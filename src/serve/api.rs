@@ -639,6 +639,7 @@ fn sweep_row(values: &[Toml], case: &Result<Scene, SceneError>, options: &Option
                 "error": null,
                 "kinematic_search": search.map(|k| k.as_str()),
                 "upper_rigid": rigid,
+                "friction_exact": a.friction().exact,
             })
         }
         Err(e) => json!({

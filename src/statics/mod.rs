@@ -12,10 +12,12 @@
 
 mod chain;
 pub mod design;
+mod friction;
 mod problem;
 mod settings;
 
 pub use chain::{analyse_chain, declines, Declined};
+pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};

@@ -859,3 +859,44 @@ test('tabbing through the sliders asks for no sweep', async () => {
     await context.close();
   }
 });
+
+test('with joints that slide at collapse the multiplier is named an upper bound', async () => {
+  // Issue 25: a thick semicircle with mu = 0.4 slides at its springing; the static program's
+  // associative friction then gives an upper bound of the real collapse multiplier.
+  const file = tempScene('sliding.toml', [
+    '[arch]', 'shape = "circular"', 'radius = 1.0', 'thickness = 0.25', 'voussoirs = 32', '',
+    '[material]', 'friction = 0.4',
+  ]);
+  const cli = analyze(file);
+  assert.equal(cli.friction_exact, false);
+  assert.equal(cli.lambda_associative, cli.lambda_lower);
+  const other = await startServer(file);
+  const { page, context, problems } = await openPage(browser, other.url);
+  try {
+    assertShows(await shown(page), cli, 'sliding');
+    assert.equal(await page.locator('#v-lambda-relation').textContent(), '≤');
+    assert.equal(await page.locator('#v-lower-name').textContent(), 'upper bound');
+    assert.equal(await page.locator('#v-lower-how').textContent(), 'associative friction');
+    const caveat = page.locator('#v-friction');
+    assert.ok(await caveat.isVisible(), 'the caveat is shown');
+    assert.equal(await caveat.textContent(), cli.friction_note);
+    assert.match(cli.friction_note, /upper bound of the real \(non-associative\) collapse multiplier/);
+    // The thickness chart's solid line is the static one, named for what it is.
+    await chartSettled(page);
+    assert.match(await page.locator('#v-chart .chart-legend').textContent(),
+      /solid: static, associative friction/);
+    // More friction: the arch rocks (no joint slips in the mechanism), the multiplier is exact
+    // again and the caveat goes.
+    const mu = field(page, 'material.friction');
+    await mu.number.fill('1');
+    await mu.number.press('Enter');
+    await settled(page);
+    assert.ok(!(await caveat.isVisible()), 'no caveat when nothing slides');
+    assert.equal(await page.locator('#v-lower-name').textContent(), 'lower bound');
+    assert.notEqual(await page.locator('#v-lambda-relation').textContent(), '≤');
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+    await other.stop();
+  }
+});

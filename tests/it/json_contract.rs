@@ -76,6 +76,11 @@ fn analyze_fields() {
             "kinematic_search",
             "lambda_continuous",
             "continuous_hinges",
+            // Issue 25 (associative friction: whether lambda_lower is exact).
+            "friction_exact",
+            "lambda_associative",
+            "slipping_joints",
+            "friction_note",
         ],
         "analyze",
     );

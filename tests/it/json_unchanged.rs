@@ -26,6 +26,10 @@ const ADDED: &[&str] = &[
     "file",
     "ties",
     "reinforcements",
+    "friction_exact",
+    "lambda_associative",
+    "slipping_joints",
+    "friction_note",
 ];
 
 /// Strip the added fields and the wall times, recursively.

@@ -11,7 +11,7 @@ pub use self::assess::{adrs_chart, capacity_chart};
 pub use self::sweep::{chart, chart_of, key_label, study_chart, sweep_title};
 
 use super::document::Figure;
-use super::words::{num, shape_title};
+use super::words::{num, shape_title, static_bound_name};
 use super::{DemReport, PulseCurveReport};
 use crate::analysis::{Assessment, DemAnalysis, SceneAnalysis};
 use crate::assembly::Assembly;
@@ -338,7 +338,12 @@ pub fn convergence(scene: &Scene, c: &Convergence) -> Result<Figure, SvgError> {
 /// the engineer (λ and the bound's name), not with the JSON keys.
 pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
     let lower = match (a.lower.status, a.lower.lambda) {
-        (Status::Collapse, Some(l)) => format!("λ (static lower bound) = {l:.4}"),
+        (Status::Collapse, Some(l)) => {
+            format!("λ ({}) = {l:.4}", static_bound_name(&a.friction()))
+        }
+        (Status::NoCollapse, _) if !a.friction().exact => {
+            "no collapse with associative friction: a thrust line fits at any λ (not a proof with real friction)".to_string()
+        }
         (Status::NoCollapse, _) => "no collapse: a thrust line fits at any λ".to_string(),
         _ => "cannot stand: no thrust line fits".to_string(),
     };

@@ -704,7 +704,8 @@
     }
     drawChart();
     announce((STATUS_WORDS[result.status] || String(result.status || '')) + ', lambda '
-      + fmt(result.lambda_lower, 4));
+      + fmt(result.lambda_lower, 4)
+      + (result.friction_exact === false ? ', an upper bound (associative friction)' : ''));
   }
 
   function parseSvg(text) {
@@ -739,7 +740,18 @@
     // lambda_c is certified when the bounds meet; otherwise it lies between them.
     const apart = typeof r.lambda_upper === 'number' && typeof r.lambda_lower === 'number'
       && !(typeof r.gap === 'number' && r.gap < 1e-6);
-    $('v-lambda-relation').textContent = apart ? '≥' : '=';
+    // With finite friction the static multiplier is exact only when no joint slides in its
+    // mechanism; otherwise it is the associative one, an upper bound of the real collapse
+    // (friction_exact false, friction_note in words).
+    const associative = r.friction_exact === false;
+    $('v-lambda-relation').textContent = associative ? '≤' : (apart ? '≥' : '=');
+    $('v-lower-name').textContent = associative ? 'upper bound' : 'lower bound';
+    const lowerHow = $('v-lower-how');
+    lowerHow.textContent = associative ? 'associative friction' : 'static';
+    lowerHow.title = associative ? (r.friction_note || '') : '';
+    const caveat = $('v-friction');
+    caveat.textContent = associative ? (r.friction_note || '') : '';
+    caveat.hidden = !associative;
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);
     // An upper bound from rigid hinges on a structure that crushes is the rigid structure's.
@@ -1021,7 +1033,11 @@
     if (typeof current === 'number' && finite(currentLambda)) {
       bits.push('at ' + scaledValue(current, su) + ': λ = ' + currentLambda.toFixed(4));
     }
-    if (differs || rigid) bits.push('solid: lower bound');
+    // Where joints slide at collapse the static line is the associative multiplier, an upper
+    // bound of the real collapse (friction_exact false, docs/friction.md).
+    if (chart.rows.some((r) => r.friction_exact === false)) {
+      bits.push('solid: static, associative friction (an upper bound where joints slide)');
+    } else if (differs || rigid) bits.push('solid: lower bound');
     if (differs) bits.push('dashed: upper bound');
     if (rigid) bits.push('dotted: upper bound with rigid hinges (ignores crushing)');
     if (chart.rows.some((r) => r.status === 'cannot_stand')) bits.push('red: cannot stand');

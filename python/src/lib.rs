@@ -579,6 +579,20 @@ fn min_thickness_json(
     to_json(&report::MinThicknessReport::new(&lib_scene, &model, &t))
 }
 
+/// `retrofit --json` of a scene, as JSON text: the least capacities of the ties marked
+/// `capacity = "design"` that give lambda >= `target_lambda`, the structure analysed again.
+#[pyfunction]
+#[pyo3(signature = (scene, target_lambda))]
+fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<String> {
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, r) = interruptible(py, Arc::default(), move || {
+        let r = voussoir::retrofit::design(&lib_scene, target_lambda, &Options::default());
+        (lib_scene, r)
+    })?;
+    let r = r.map_err(|e| analysis_error(py, &e))?;
+    to_json(&report::retrofit::RetrofitReport::new(&lib_scene, &r))
+}
+
 /// `dem --json` of a scene, as JSON text. The bracket search runs on a worker thread: Ctrl-C
 /// raises `KeyboardInterrupt` at once, and the run in progress finishes on its thread (the
 /// library's DEM has no stop flag yet) with its result dropped.
@@ -1034,6 +1048,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
+    m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;
     m.add_function(wrap_pyfunction!(assess_json, m)?)?;

@@ -42,12 +42,14 @@ __all__ = [
     "Result",
     "MinThicknessResult",
     "DemResult",
+    "RetrofitResult",
     "AssessResult",
     "DynamicResult",
     "IdaResult",
     "PulseCurveResult",
     "analyze",
     "min_thickness",
+    "retrofit",
     "dem",
     "assess",
     "dem_dynamic",
@@ -214,6 +216,24 @@ class MinThicknessResult(Report):
     ``min_thickness_kinematic``, ...)."""
 
     __slots__ = ()
+
+
+class RetrofitResult(Report):
+    """The result of :func:`retrofit`: the fields of ``voussoir retrofit --json``
+    (``target_lambda``, ``feasible``, ``ties`` with each designed tie's ``capacity_required``,
+    ``needed`` and ``bar``, ``not_needed``, ``lambda_lower``, ``best_reachable_lambda``,
+    ``analyses``: the retrofitted structure analysed in each direction)."""
+
+    __slots__ = ()
+
+
+def retrofit(scene: Scene, target_lambda: float) -> RetrofitResult:
+    """The smallest capacities of the scene's ties marked ``capacity = "design"`` for which
+    the structure carries ``target_lambda`` (both directions of a seismic action), the
+    smallest standard steel bar for each, and the structure analysed again with them, as
+    ``voussoir retrofit --target-lambda L --json`` (docs/retrofit.md). An unreachable target
+    gives ``feasible = False`` and ``best_reachable_lambda``."""
+    return RetrofitResult(json.loads(_voussoir.retrofit_json(scene, target_lambda)))
 
 
 class DemResult(Report):

@@ -79,6 +79,9 @@ def min_thickness_json(
 ) -> str:
     """``voussoir min-thickness --json`` of a scene, as JSON text."""
 
+def retrofit_json(scene: Scene, target_lambda: float) -> str:
+    """``voussoir retrofit --json`` of a scene, as JSON text."""
+
 def dem_json(scene: Scene, tolerance: float = 0.01, from_static: bool = False) -> str:
     """``voussoir dem --json`` of a scene, as JSON text."""
 

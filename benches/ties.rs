@@ -73,4 +73,26 @@ fn main() {
             }
         }
     }
+
+    println!("\nRetrofit design (`retrofit::design`, target 0.2 in both directions) of the same portal at n = 64 with 3 candidate ties (y = -0.05, -0.4, -0.8 m; costs 1, 1.5, 0.7), one thread, median\n");
+    println!("| n | candidates | needed | lambda re-analysed | design + re-analysis ms |");
+    println!("|---:|---:|---:|---:|---:|");
+    let mut text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 64\n[piers]\nheight = 1.0\nwidth = 0.4\ncourses = 4\n".to_string();
+    for (y, cost) in [(-0.05, 1.0), (-0.4, 1.5), (-0.8, 0.7)] {
+        text.push_str(&format!(
+            "[[ties]]\nfrom = [-1.0, {y}]\nto = [1.0, {y}]\ncapacity = \"design\"\ncost = {cost}\n"
+        ));
+    }
+    let scene = Scene::from_toml_str(&text, "bench").expect("valid scene");
+    let (t, r) = one.install(|| {
+        time(20, || {
+            voussoir::retrofit::design(&scene, 0.2, &Options::default()).expect("design")
+        })
+    });
+    println!(
+        "| 64 | 3 | {} | {:.9} | {:.2} |",
+        r.ties.iter().filter(|t| t.needed).count(),
+        r.lambda().unwrap_or(f64::NAN),
+        t * 1e3
+    );
 }

@@ -236,7 +236,10 @@ fn every_preset_analyses_to_the_library_value_in_both_directions() {
             assert_eq!(bare["svg"], wrapped["svg"], "{name}");
             by_direction.push(expected.lower.lambda.expect("every preset collapses"));
         }
-        let symmetric = matches!(name, "circular" | "pointed" | "basket" | "portal");
+        let symmetric = matches!(
+            name,
+            "circular" | "pointed" | "basket" | "portal" | "tied_portal"
+        );
         let differ = (by_direction[0] - by_direction[1]).abs();
         if symmetric {
             assert!(differ < 1e-9, "{name}: {by_direction:?}");
@@ -244,6 +247,42 @@ fn every_preset_analyses_to_the_library_value_in_both_directions() {
             assert!(differ > 1e-3, "{name}: {by_direction:?}");
         }
     }
+}
+
+/// The tied portal's capacity slider: the page's analysis with `ties[0].capacity` set is the
+/// library's with the same override, and its JSON lists the tie's force; the tie shows in the
+/// drawing.
+#[test]
+fn the_tie_capacity_slider_analyses_as_the_library() {
+    let s = state();
+    let mut scene = scene_json("tied_portal.toml");
+    for capacity in [0.0, 800.0, 5000.0] {
+        scene["ties"][0]["capacity"] = json!(capacity);
+        let (status, answer) = post(&s, "/api/analyze", &json!({"scene": scene}));
+        assert_eq!(status, StatusCode::OK, "{answer}");
+        let lib = Scene::from_file_with_overrides(
+            std::path::Path::new(&data("tied_portal.toml")),
+            &[format!("ties[0].capacity={capacity}")],
+        )
+        .expect("scene with the override");
+        let expected = library_lambda(&lib, Direction::Right);
+        assert_eq!(
+            answer["lambda_lower"].as_f64(),
+            expected.lower.lambda,
+            "{capacity}"
+        );
+        let force = answer["ties"][0]["force"].as_f64().expect("tie force");
+        assert!((0.0..=capacity * (1.0 + 1e-9)).contains(&force), "{force}");
+        assert!(answer["svg"].as_str().expect("svg").contains("tie 0"));
+    }
+    let params = get_json(&s, "/api/parameters");
+    let slider = params["parameters"]
+        .as_array()
+        .expect("parameters")
+        .iter()
+        .find(|p| p["key"] == "ties[0].capacity")
+        .expect("the tie slider");
+    assert_eq!(slider["shapes"], json!(["tied_portal"]));
 }
 
 #[test]

@@ -1260,14 +1260,18 @@ impl Sink for Extremes<Key> {
     }
 }
 
-/// The sink of a chain with tie rods: the closed forms of the families give the work of
-/// the loads only, so every admissible mechanism they find is valued again by
-/// [`Chain::evaluate`], which adds the ties' dissipation (`lambda = (G + D)/A`), before the
-/// extremes see it. Nothing is pruned on the loads' work alone, since `D` may change the
-/// order.
+/// The sink of a chain with tie rods or bonded strips: the closed forms of the families give
+/// the work of the loads only, so every admissible mechanism they may want is valued again by
+/// [`Chain::evaluate`], which adds the dissipation `D` (`lambda = (G + D)/A`), before the
+/// extremes see it. When no tie is prestressed, `D >= 0` for every mechanism, so a mechanism
+/// the extremes do not want on the loads' work alone (`G > best A` for `A > 0`,
+/// `G >= needed A` for `A < 0`, `G >= 0` for `A = 0`) is not wanted with `D` added either, and
+/// is pruned before its key is valued; a prestress (`D` of either sign) turns that off.
 struct Dissipating<'a> {
     chain: &'a Chain,
     inner: Extremes<Key>,
+    /// Whether every mechanism's dissipation is >= 0 (no prestressed tie).
+    nonnegative: bool,
 }
 
 impl<'a> Dissipating<'a> {
@@ -1275,14 +1279,15 @@ impl<'a> Dissipating<'a> {
         Dissipating {
             chain,
             inner: Extremes::new(),
+            nonnegative: chain.ties.iter().all(|t| t.tie.prestress == 0.0),
         }
     }
 }
 
 impl Sink for Dissipating<'_> {
     #[inline]
-    fn wants(&self, _ax: f64, _g: f64) -> bool {
-        true
+    fn wants(&self, ax: f64, g: f64) -> bool {
+        !self.nonnegative || self.inner.wants(ax, g)
     }
     fn take(&mut self, _ax: f64, _g: f64, key: Key) {
         if let Some((ax, g, _)) = self.chain.evaluate(&key) {

@@ -111,12 +111,18 @@ fn tied_block_slides_at_the_closed_form() {
 
 /// A prestressed tie on the far side (toward which the block overturns) shortens in the
 /// mechanism: it only ever helps the overturning with its least force, the prestress P,
-/// so `lambda W h/2 + P ht = W b/2`; the capacity plays no part.
+/// so `lambda W h/2 + P ht = W b/2`; the capacity plays no part (also when it equals the
+/// prestress: a fixed force, whose two bounds leave the interior point no interior).
 #[test]
 fn prestressed_tie_on_the_far_side_pulls_at_its_prestress() {
     let (b, h, ht) = (0.5, 1.0, 0.6);
     let w = common::single_block(b, h, f64::INFINITY).total_weight();
-    for (p, c) in [(0.0, 0.2 * w), (0.1 * w, 0.2 * w), (0.3 * w, 5.0 * w)] {
+    for (p, c) in [
+        (0.0, 0.2 * w),
+        (0.1 * w, 0.2 * w),
+        (0.3 * w, 5.0 * w),
+        (0.2 * w, 0.2 * w),
+    ] {
         let m = tied_block(b, h, f64::INFINITY, ht, 1.0, c, p);
         let expected = (w * b / 2.0 - p * ht) / (w * h / 2.0);
         let (ls, lk) = (lambda_static(&m), lambda_kinematic(&m));

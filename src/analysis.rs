@@ -390,6 +390,7 @@ fn continuous_of(
 /// The continuous model's minimum thickness of a scene (all else fixed, lambda = 0).
 pub fn continuous_min_thickness(scene: &Scene) -> Result<kinematic::MinThickness, KinematicError> {
     let thickness = scene.parametric("the continuous model")?.thickness;
+    scene.thickness_may_vary()?;
     kinematic::continuous_min_thickness(thickness, scene.max_thickness(), |t| {
         continuous(&scene.with_thickness(t)?, Direction::Right)
     })

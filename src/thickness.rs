@@ -51,6 +51,7 @@ where
     F: FnMut(&Scene) -> Result<bool, AnalysisError>,
 {
     scene.parametric("the minimum-thickness search")?;
+    scene.thickness_may_vary()?;
     let t_max = scene.max_thickness();
     let mut evaluations = 0;
     let mut test = |t: f64| -> Result<bool, AnalysisError> {

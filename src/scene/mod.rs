@@ -269,6 +269,23 @@ impl Scene {
         })
     }
 
+    /// Whether a search over the arch's thickness may vary this scene: not with tie rods,
+    /// which are anchored at fixed points while the voussoirs and the piers (a portal's
+    /// piers stand under the intrados) move with the thickness, so at another thickness an
+    /// anchor may lie in another block or in none. Refused, naming the key, rather than
+    /// searched with ties that no longer sit where the user put them.
+    pub fn thickness_may_vary(&self) -> Result<(), SceneError> {
+        match self.ties.first() {
+            None => Ok(()),
+            Some(t) => Err(SceneError::OutOfRange {
+                origin: self.origin.clone(),
+                key: "ties[0].from".into(),
+                value: format!("[{}, {}]", t.from[0], t.from[1]),
+                allowed: "a fixed anchor, which a search over the arch's thickness would leave behind (the voussoirs and the piers move with the thickness): the minimum thickness is not searched with [[ties]]; analyse each thickness with `voussoir analyze --set arch.thickness=...`, or remove the ties for the untied structure's minimum".into(),
+            }),
+        }
+    }
+
     /// The TOML table behind this scene (overrides included).
     pub fn table(&self) -> &Table {
         &self.table

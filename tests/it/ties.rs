@@ -386,6 +386,21 @@ fn bad_ties_are_refused_naming_the_key() {
     }
 }
 
+/// The minimum-thickness search moves the voussoirs and piers while tie anchors are fixed
+/// points: it is refused, naming the key, by the static and the continuous search alike.
+#[test]
+fn min_thickness_refuses_ties() {
+    let s = scene(&tied_portal(1000.0, -0.05));
+    let e = voussoir::thickness::analyse(&s, &Options::default())
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("ties[0].from") && e.contains("thickness"), "{e}");
+    let e = analysis::continuous_min_thickness(&s)
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("ties[0].from"), "{e}");
+}
+
 /// Units: `capacity = "2 kN"` and anchors in millimetres read as SI.
 #[test]
 fn tie_keys_take_units() {

@@ -488,12 +488,20 @@ pub fn dem(scene: &Scene, model: &Model, rep: DemReport) -> Document {
             } else {
                 ""
             };
+            // With sliding joints the static program's multiplier is the associative one, an
+            // upper bound of the real collapse (docs/friction.md), which the DEM's Coulomb
+            // contacts (no dilatancy) may well fall below.
+            let bound = if rep.friction_exact == Some(false) {
+                "the static multiplier (associative friction, an upper bound of the real collapse)"
+            } else {
+                "the static lower bound"
+            };
             if let (Some(l), Some(d)) = (rep.lambda_lower_simulated, rep.relative_difference) {
                 let inside = rep.static_inside_bracket == Some(true);
                 if inside {
-                    sec.line(format!("the static lower bound{shape} {l:.6} lies inside the DEM bracket: they agree to within its width (narrow it with --tolerance)"));
+                    sec.line(format!("{bound}{shape} {l:.6} lies inside the DEM bracket: they agree to within its width (narrow it with --tolerance)"));
                 } else {
-                    sec.line(format!("the static lower bound{shape} {l:.6} lies outside the DEM bracket: the DEM differs by {:+.2}%",
+                    sec.line(format!("{bound}{shape} {l:.6} lies outside the DEM bracket: the DEM differs by {:+.2}%",
                         100.0 * d));
                 }
             }

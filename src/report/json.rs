@@ -702,6 +702,10 @@ pub struct DemReport {
     pub lambda_dem: Option<f64>,
     /// The static lower bound of the scene's own assembly.
     pub lambda_lower: Option<f64>,
+    /// Added: whether `lambda_lower` is exact for real (non-associative) joints, as
+    /// `analyze --json`'s `friction_exact` (docs/friction.md); null when no static result was
+    /// compared.
+    pub friction_exact: Option<bool>,
     /// `(lambda_dem - lambda_lower_simulated) / lambda_lower_simulated`: the DEM against the
     /// static bound of the shapes it simulated.
     pub relative_difference: Option<f64>,
@@ -757,6 +761,7 @@ impl DemReport {
     pub fn of(scene: &Scene, d: &crate::analysis::DemAnalysis) -> Self {
         let mut rep = DemReport::new(scene, &d.model, &d.result, d.lower.lambda);
         rep.compare_with(d.lower_simulated, d.chord_polygons);
+        rep.friction_exact = Some(d.lower.friction(&d.model.assembly).exact);
         rep
     }
 
@@ -802,6 +807,7 @@ impl DemReport {
             lambda_collapses: r.lambda_collapses,
             lambda_dem: r.lambda_dem,
             lambda_lower,
+            friction_exact: None,
             relative_difference: match (r.lambda_dem, lambda_lower) {
                 (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
                 _ => None,

@@ -168,3 +168,35 @@ fn the_analysis_layer_reads_the_same_check() {
     assert_eq!(f, a.lower.friction(&a.model.assembly));
     assert!(!f.exact && a.sliding_governs());
 }
+
+/// The DEM's comparison line names the static multiplier for what it is: the static lower
+/// bound when friction is exact, the associative multiplier (an upper bound) when the block
+/// slides; its JSON carries `friction_exact` as `analyze` does.
+#[test]
+fn the_dem_comparison_says_which_static_multiplier_it_is() {
+    for (mu, exact) in [("0.5", false), ("1.5", true)] {
+        let (_dir, path) = crate::common::scene_file(&block_text(mu));
+        let json = crate::common::json_of(&["dem", "--json", "--from-static"], &block_text(mu));
+        assert_eq!(json["friction_exact"], exact, "mu = {mu}");
+        let out = crate::common::voussoir()
+            .args(["dem", "--from-static"])
+            .arg(&path)
+            .output()
+            .expect("runs");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(
+            text.contains("the static multiplier (associative friction, an upper bound"),
+            !exact,
+            "mu = {mu}: {text}"
+        );
+        let line = text
+            .lines()
+            .find(|l| l.contains("the DEM bracket"))
+            .expect("a comparison line");
+        assert_eq!(
+            line.trim_start().starts_with("the static lower bound"),
+            exact,
+            "mu = {mu}: {line}"
+        );
+    }
+}

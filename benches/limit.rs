@@ -6,7 +6,9 @@
 //! 100-joint chain <= 50 ms; the 2,000-case sweep >= 20,000 cases/s on two threads; a live
 //! action (the adequacy factor) at n = 64 and 1000 costs about what a seismic one does.
 
-use std::time::Instant;
+mod common;
+
+use common::median as time;
 
 use voussoir::analysis::{self, Options};
 use voussoir::convergence::loglog_slope;
@@ -19,19 +21,6 @@ fn semicircle(n: usize) -> Scene {
         "bench",
     )
     .expect("valid scene")
-}
-
-/// Median wall time (s) of `reps` runs of `f` (after one warm-up run), and its last result.
-fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut out = f();
-    let mut v = Vec::new();
-    for _ in 0..reps.max(1) {
-        let t = Instant::now();
-        out = f();
-        v.push(t.elapsed().as_secs_f64());
-    }
-    v.sort_by(f64::total_cmp);
-    (v[v.len() / 2], out)
 }
 
 fn main() {

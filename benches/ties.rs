@@ -4,23 +4,12 @@
 //! 2x the tie-free time (not met yet: the chain program in four unknowns declines tied models,
 //! so they go to the full conic program; see docs/performance.md).
 
-use std::time::Instant;
+mod common;
+
+use common::median as time;
 
 use voussoir::analysis::{self, KinematicMode, Options};
 use voussoir::scene::Scene;
-
-/// Median wall time (s) of `reps` runs of `f` (after one warm-up run), and its last result.
-fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut out = f();
-    let mut v = Vec::new();
-    for _ in 0..reps.max(1) {
-        let t = Instant::now();
-        out = f();
-        v.push(t.elapsed().as_secs_f64());
-    }
-    v.sort_by(f64::total_cmp);
-    (v[v.len() / 2], out)
-}
 
 fn main() {
     let one = rayon::ThreadPoolBuilder::new()

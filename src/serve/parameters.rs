@@ -8,6 +8,13 @@
 
 use serde::Serialize;
 
+/// The slider ranges of the portals (bare and tied): a 1 m arch on 1 m piers.
+const PORTAL_RANGES: &[(&str, f64, f64)] = &[
+    ("arch.thickness", 0.05, 0.5),
+    ("piers.height", 0.2, 6.0),
+    ("piers.width", 0.1, 2.0),
+];
+
 /// The scene the page opens with when `voussoir serve` is given none.
 pub const DEFAULT_SCENE: &str = include_str!("../../data/semicircular.toml");
 
@@ -111,21 +118,13 @@ pub const PRESETS: &[Preset] = &[
         name: "portal",
         label: "Portal (arch on piers)",
         toml: include_str!("../../data/portal.toml"),
-        ranges: &[
-            ("arch.thickness", 0.05, 0.5),
-            ("piers.height", 0.2, 6.0),
-            ("piers.width", 0.1, 2.0),
-        ],
+        ranges: PORTAL_RANGES,
     },
     Preset {
         name: "tied_portal",
         label: "Portal with a tie rod",
         toml: include_str!("../../data/tied_portal.toml"),
-        ranges: &[
-            ("arch.thickness", 0.05, 0.5),
-            ("piers.height", 0.2, 6.0),
-            ("piers.width", 0.1, 2.0),
-        ],
+        ranges: PORTAL_RANGES,
     },
     Preset {
         name: "loaded_portal",

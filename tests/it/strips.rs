@@ -130,21 +130,7 @@ fn reinforced_portal_bounds_agree() {
 fn dem_bracket_contains_the_reinforced_static_value() {
     let s = Scene::from_toml_str(&portal("intrados", 0, 32, 500.0), "t").expect("scene");
     let model = voussoir::scene::build(&s).expect("builds");
-    let lower = statics::analyse(&model, &StaticSettings::default())
-        .expect("solves")
-        .lambda
-        .expect("collapse");
-    let dem = voussoir::dem::collapse_multiplier(
-        &model,
-        &voussoir::dem_settings::IntegrationParameters::for_model(&model),
-        0.01,
-        &mut |_| {},
-    )
-    .expect("DEM runs");
-    let (lo, hi) = (
-        dem.lambda_stands.expect("standing run"),
-        dem.lambda_collapses.expect("collapsing run"),
-    );
+    let (lower, lo, hi) = common::static_and_dem_bracket(&model);
     assert!(
         lo <= lower && lower <= hi,
         "static {lower} outside [{lo}, {hi}]"

@@ -290,21 +290,7 @@ fn dem_bracket_contains_the_tied_static_value() {
     for capacity in [1000.0, 5000.0] {
         let s = scene(&tied_portal(capacity, -0.05));
         let model = voussoir::scene::build(&s).expect("builds");
-        let lower = statics::analyse(&model, &StaticSettings::default())
-            .expect("solves")
-            .lambda
-            .expect("collapse");
-        let dem = voussoir::dem::collapse_multiplier(
-            &model,
-            &voussoir::dem_settings::IntegrationParameters::for_model(&model),
-            0.01,
-            &mut |_| {},
-        )
-        .expect("DEM runs");
-        let (lo, hi) = (
-            dem.lambda_stands.expect("a standing run"),
-            dem.lambda_collapses.expect("a collapsing run"),
-        );
+        let (lower, lo, hi) = common::static_and_dem_bracket(&model);
         assert!(
             lo <= lower && lower <= hi,
             "capacity {capacity}: static {lower} outside the DEM bracket [{lo}, {hi}]"

@@ -215,3 +215,24 @@ pub fn housner_minimum_amplitude(
     }
     hi
 }
+
+/// The static multiplier of `model` and the DEM's bracket `[stands, collapses]` to 1 %, from
+/// the DEM's own start.
+pub fn static_and_dem_bracket(model: &Model) -> (f64, f64, f64) {
+    let lower = voussoir::statics::analyse(model, &voussoir::statics::StaticSettings::default())
+        .expect("the static program solves")
+        .lambda
+        .expect("collapse");
+    let dem = voussoir::dem::collapse_multiplier(
+        model,
+        &voussoir::dem_settings::IntegrationParameters::for_model(model),
+        0.01,
+        &mut |_| {},
+    )
+    .expect("DEM runs");
+    (
+        lower,
+        dem.lambda_stands.expect("a standing run"),
+        dem.lambda_collapses.expect("a collapsing run"),
+    )
+}

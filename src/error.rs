@@ -361,4 +361,7 @@ pub enum Error {
     Analysis(#[from] AnalysisError),
     #[error("cannot write {path}: {message}")]
     Output { path: PathBuf, message: String },
+    /// A validation case could not be computed (`voussoir validate`).
+    #[error("validation: {0}")]
+    Validation(String),
 }

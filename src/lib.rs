@@ -30,3 +30,4 @@ pub mod statics;
 pub mod study;
 pub mod sweep;
 pub mod thickness;
+pub mod validation;

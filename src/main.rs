@@ -46,6 +46,9 @@ enum Command {
     /// mechanism redrawn live, on a JSON API (127.0.0.1 only)
     #[cfg(feature = "serve")]
     Serve(cli::serve::Args),
+    /// Validation: every published or independent result voussoir is compared with,
+    /// recomputed now (--markdown writes docs/validation.md)
+    Validate(cli::validate::Args),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Command::Convergence(a) => cli::convergence::run(a),
         Command::Assess(a) => cli::assess::run(a),
         Command::Retrofit(a) => cli::retrofit::run(a),
+        Command::Validate(a) => cli::validate::run(a),
         #[cfg(feature = "serve")]
         Command::Serve(a) => cli::serve::run(a),
     };

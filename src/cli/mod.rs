@@ -16,6 +16,7 @@ pub mod retrofit;
 pub mod serve;
 pub mod study;
 pub mod sweep;
+pub mod validate;
 
 pub use outputs::{write_atomically, write_text, Format, Outputs};
 use std::path::{Path, PathBuf};

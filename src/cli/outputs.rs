@@ -30,6 +30,7 @@ pub enum Format {
     Json,
     #[allow(dead_code)]
     Html,
+    Markdown,
 }
 
 impl Format {
@@ -40,6 +41,7 @@ impl Format {
             Format::Csv => "csv",
             Format::Json => "json",
             Format::Html => "html",
+            Format::Markdown => "md",
         }
     }
 
@@ -50,6 +52,7 @@ impl Format {
             Format::Csv => "a CSV table",
             Format::Json => "a JSON document",
             Format::Html => "an HTML page",
+            Format::Markdown => "a Markdown page",
         }
     }
 

@@ -3,7 +3,7 @@
 //! with it), with the drawings and charts chosen in one place ([`figures`]); one printer per
 //! format turns it into output: [`text`] (the terminal), [`json`] (the JSON contract, its
 //! serde structs in [`json`] and [`assessment`]), [`csv`] (the thrust line and the
-//! document's tables). [`words`] holds the words they share; [`animation`] the HTML page of a
+//! document's tables), [`markdown`] (a page, such as docs/validation.md). [`words`] holds the words they share; [`animation`] the HTML page of a
 //! dynamic run.
 
 pub mod animation;
@@ -13,8 +13,10 @@ pub mod document;
 pub mod documents;
 pub mod figures;
 pub mod json;
+pub mod markdown;
 pub mod retrofit;
 pub mod text;
+pub mod validation;
 pub mod words;
 
 pub use self::csv::write_thrust_csv;

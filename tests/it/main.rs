@@ -38,3 +38,4 @@ mod studies;
 mod svg;
 mod sweep;
 mod ties;
+mod validation;

@@ -1,0 +1,75 @@
+//! `voussoir validate`: the validation cases as a document (docs/validation.md is this
+//! document printed by [`super::markdown`]).
+
+use super::document::{Column, Document, Table, Value};
+use crate::validation::Case;
+
+/// The lead of the validation page: what it is and how it is made.
+const LEAD: &[&str] = &[
+    "Every published or independent result voussoir is compared with: the structure, the \
+     source of the reference value, voussoir's value, their difference and the tolerance the \
+     reference's own precision allows. A closed form is a value derived by hand for the case, \
+     independent of the programs that compute it.",
+    "This page is generated: `cargo run --release -- validate --markdown docs/validation.md` \
+     recomputes every case through the same analyses the commands run (a few seconds) and \
+     rewrites it; `tests/it/validation.rs` fails when a case leaves its \
+     tolerance.",
+];
+
+/// The validation cases as a document.
+pub fn document(cases: &[Case], version: &str) -> Document {
+    let mut doc = Document::new("Validation");
+    doc.lead = LEAD.iter().map(|s| s.to_string()).collect();
+    let agree = cases.iter().filter(|c| c.agrees()).count();
+    let summary = doc.section(format!(
+        "Summary: {agree} of {} cases within tolerance (voussoir {version})",
+        cases.len()
+    ));
+    summary.table(Table {
+        columns: vec![
+            Column::left("case", 26),
+            Column::left("reference", 11).gap(2),
+            Column::right("expected", 10),
+            Column::right("voussoir", 10),
+            Column::right("difference", 10),
+            Column::right("tolerance", 9),
+            Column::left("agrees", 6).gap(2),
+        ],
+        rows: cases
+            .iter()
+            .map(|c| {
+                vec![
+                    Value::text(c.id),
+                    Value::text(c.reference.as_str()),
+                    Value::number(c.expected, 6),
+                    Value::number(c.computed, 6),
+                    Value::Scientific {
+                        value: c.difference(),
+                        digits: 1,
+                    },
+                    Value::Scientific {
+                        value: c.tolerance,
+                        digits: 0,
+                    },
+                    Value::text(if c.agrees() { "yes" } else { "NO" }),
+                ]
+            })
+            .collect(),
+    });
+    let details = doc.section("The cases");
+    for c in cases {
+        details.item(format!(
+            "{}: {}; {}. Reference: {} ({}), {}. voussoir: {:.6} ({:+.3} %). {}",
+            c.id,
+            c.structure,
+            c.quantity,
+            c.expected,
+            c.reference.as_str(),
+            c.source,
+            c.computed,
+            100.0 * c.relative(),
+            c.note
+        ));
+    }
+    doc
+}

@@ -26,6 +26,13 @@
 //!    scene is assessed with the load toward the right and toward the left (each its own
 //!    governing mechanism) and the worse direction governs ([`Assessment::governing`]).
 //!
+//! Tie rods move with their blocks: at each configuration a tie that has lengthened carries its
+//! capacity (rigid-plastic, as in the limit analyses, so `alpha0` is the kinematic multiplier
+//! with the ties), until its stretch passes its ultimate strain (`ties[].ultimate_strain`,
+//! default 7.5 %, B450C's `A_gt`) and it has broken; a tie that has shortened has gone slack
+//! ([`crate::model::Tie::power_moved`]). Mechanisms that hold a tie at its length
+//! (`Family::HingesWithHeldTies`) and bonded strips are refused.
+//!
 //! Mechanisms with a joint that opens completely (families other than four hinges or one
 //! hinge) have no finite motion fixed by their hinges alone and are refused.
 
@@ -53,9 +60,7 @@ pub enum AssessError {
     NoZero(String),
     #[error("the seismic load does no work on the mechanism")]
     NoSeismicWork,
-    #[error("the capacity curve does not yet follow tie rods ({count} in the scene) through the finite motion of the mechanism, so the structure with ties is not assessed rather than assessed without them; the static and kinematic multipliers with the ties are given by `voussoir analyze`")]
-    Ties { count: usize },
-    #[error("the capacity curve does not yet follow bonded strips ({count} joints crossed) through the finite motion of the mechanism, so the reinforced structure is not assessed rather than assessed without them; the static and kinematic multipliers with the strips are given by `voussoir analyze`")]
+    #[error("the capacity curve does not follow bonded strips ({count} joints crossed) through the finite motion of the mechanism: a rigid-plastic strip debonds at the first opening of its joint, and what it carries after needs a bond-slip law this model does not have; so the reinforced structure is not assessed rather than assessed without them; the static and kinematic multipliers with the strips are given by `voussoir analyze`")]
     Strips { count: usize },
 }
 
@@ -385,6 +390,8 @@ pub struct Capacity {
     pub curve: Vec<CapacityPoint>,
     /// Seismic masses of the moving blocks: `(block, force, point, seismic weight)`.
     loads: Vec<(usize, Load)>,
+    /// The tie rods along the curve, in `[[ties]]` order.
+    pub ties: Vec<TieOnCurve>,
 }
 
 /// The seismic masses and permanent loads of the moving blocks, by block.
@@ -469,7 +476,91 @@ fn alpha_of(
         g -= force.dot(&v);
         a += seismic * dir.dot(&v);
     }
+    // Tie rods, carried by their blocks (rigid-plastic, broken past their ultimate strain).
+    let place = placing(linkage, config);
+    let speed = |b: Option<usize>, p: Vec2| {
+        b.and_then(|b| linkage.body_of(b))
+            .map_or(Vec2::zeros(), |k| velocity(config.twists[k], p))
+    };
+    for tie in &model.ties {
+        g += tie.power_moved(place, speed);
+    }
     g / a
+}
+
+/// Where configuration `config` moves a point of block `b` (None: the ground; a block that
+/// is not in the mechanism stays).
+fn placing<'a>(
+    linkage: &'a Linkage,
+    config: &'a Configuration,
+) -> impl Fn(Option<usize>, Vec2) -> Vec2 + Copy + 'a {
+    move |b: Option<usize>, p: Vec2| {
+        b.and_then(|b| linkage.body_of(b))
+            .map_or(p, |k| config.motions[k].apply(p))
+    }
+}
+
+/// What a tie rod does along the capacity curve.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TieOnCurve {
+    /// Index in `[[ties]]`.
+    pub index: usize,
+    /// `true` when the mechanism lengthens it (it carries its capacity), `false` when it
+    /// shortens it (it goes slack).
+    pub lengthens: bool,
+    /// The force it carries from the onset of motion (N): its capacity when it lengthens, 0
+    /// when it goes slack.
+    pub force: f64,
+    /// The control displacement `d_k` (m) at which it breaks (its stretch reaches
+    /// `ultimate_strain` times its length); None when it does not break before `d_k0`.
+    pub breaks_at_d_k: Option<f64>,
+}
+
+/// The ties along the curve of `cap`: whether each lengthens, and where it breaks (by
+/// bisection between the curve's points, to 1e-12 of the rotation).
+fn ties_on_curve(cap: &Capacity, model: &Model) -> Vec<TieOnCurve> {
+    let stretch = |tie: &crate::model::Tie, u: f64| {
+        cap.linkage
+            .configure(u)
+            .map(|c| tie.stretch_moved(placing(&cap.linkage, &c)))
+    };
+    model
+        .ties
+        .iter()
+        .enumerate()
+        .map(|(index, tie)| {
+            // The first rotation of the curve where it is broken, then the bracket.
+            let first = cap
+                .curve
+                .iter()
+                .position(|p| stretch(tie, p.rotation).is_some_and(|s| tie.broken(s)));
+            let breaks_at_d_k = first.map(|i| {
+                let (mut lo, mut hi) = (
+                    cap.curve[i.saturating_sub(1)].rotation,
+                    cap.curve[i].rotation,
+                );
+                while hi - lo > 1e-12 * cap.rotation0.max(1e-300) {
+                    let mid = 0.5 * (lo + hi);
+                    if stretch(tie, mid).is_some_and(|s| tie.broken(s)) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                cap.linkage
+                    .configure(hi)
+                    .map_or(f64::NAN, |c| cap.d_k(model, &c))
+            });
+            let ahead = cap.curve.get(1).map_or(0.0, |p| p.rotation);
+            let lengthens = stretch(tie, ahead.min(1e-6)).is_some_and(|s| s > 0.0);
+            TieOnCurve {
+                index,
+                lengthens,
+                force: if lengthens { tie.capacity } else { 0.0 },
+                breaks_at_d_k,
+            }
+        })
+        .collect()
 }
 
 /// Largest rotation (rad) the search for `alpha = 0` goes to.
@@ -487,11 +578,6 @@ pub fn capacity(
 ) -> Result<Capacity, AssessError> {
     if settings.points < 3 {
         return Err(AssessError::TooFewPoints(settings.points));
-    }
-    if !model.ties.is_empty() {
-        return Err(AssessError::Ties {
-            count: model.ties.len(),
-        });
     }
     if !model.strips.is_empty() {
         return Err(AssessError::Strips {
@@ -574,6 +660,7 @@ pub fn capacity(
         d0_star: 0.0,
         curve: Vec::new(),
         loads,
+        ties: Vec::new(),
     };
     cap.alpha0 = cap.alpha_at(model, &rest);
     if !(cap.alpha0.is_finite() && cap.alpha0 > 0.0) {
@@ -647,6 +734,7 @@ pub fn capacity(
         cap.d0_star = last.d_star;
     }
     cap.curve = curve;
+    cap.ties = ties_on_curve(&cap, model);
     Ok(cap)
 }
 

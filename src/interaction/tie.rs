@@ -34,7 +34,15 @@ pub struct Tie {
     pub capacity: f64,
     /// The force it carries at rest (N), `0 <= prestress <= capacity`.
     pub prestress: f64,
+    /// The strain at which it breaks (elongation over its length, > 0, or infinite): the
+    /// capacity curve of an assessment drops the tie once it is stretched beyond it. The limit
+    /// analyses do not need it (they are rigid-plastic at the onset of motion).
+    pub ultimate_strain: f64,
 }
+
+/// The default ultimate strain of a tie: 7.5 %, the least uniform elongation at maximum force
+/// `A_gt` of B450C reinforcing steel (NTC 2018, 11.3.2.1).
+pub const DEFAULT_ULTIMATE_STRAIN: f64 = 0.075;
 
 /// A tie's force in a solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -138,6 +146,50 @@ impl Tie {
 
     /// Elongation rate for the velocities `velocity(block, point)` of a mechanism (the
     /// ground's is zero).
+    /// The power the tie absorbs in a finite configuration of a mechanism (the capacity
+    /// curve of an assessment): `place` moves a point of a block (None: the ground) to where
+    /// the configuration has it, `velocity` gives its velocity there. Rigid-plastic with a
+    /// breaking strain: at the onset (no stretch yet) it is [`Tie::dissipation`] of the
+    /// elongation rate; stretched, the tie carries its capacity while it lengthens (its
+    /// prestress while it shortens) until its stretch passes `ultimate_strain` times its
+    /// length, when it has broken and carries nothing; shortened from rest, it has gone slack
+    /// (a prestress is an elastic stretch far smaller than any rotation the curve takes).
+    pub fn power_moved(
+        &self,
+        place: impl Fn(Option<usize>, Vec2) -> Vec2,
+        velocity: impl Fn(Option<usize>, Vec2) -> Vec2,
+    ) -> f64 {
+        let (from, to) = (
+            place(self.from.block, self.from.point),
+            place(self.to.block, self.to.point),
+        );
+        let length = self.length();
+        let now = (to - from).norm();
+        let stretch = now - length;
+        let slack = stretch < -1e-12 * length;
+        if slack || self.broken(stretch) || now.is_nan() || now <= 0.0 {
+            return 0.0;
+        }
+        let e = (to - from) / now;
+        let rate = (velocity(self.to.block, to) - velocity(self.from.block, from)).dot(&e);
+        self.dissipation(rate)
+    }
+
+    /// The stretch (m) in a finite configuration: its anchors where `place` moves them, less
+    /// its length at rest.
+    pub fn stretch_moved(&self, place: impl Fn(Option<usize>, Vec2) -> Vec2) -> f64 {
+        let (from, to) = (
+            place(self.from.block, self.from.point),
+            place(self.to.block, self.to.point),
+        );
+        (to - from).norm() - self.length()
+    }
+
+    /// Whether a stretch (m) breaks the tie (past `ultimate_strain` times its length).
+    pub fn broken(&self, stretch: f64) -> bool {
+        stretch > self.ultimate_strain * self.length()
+    }
+
     pub fn elongation_rate(&self, velocity: impl Fn(Option<usize>, Vec2) -> Vec2) -> f64 {
         let dv =
             velocity(self.to.block, self.to.point) - velocity(self.from.block, self.from.point);

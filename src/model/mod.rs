@@ -12,6 +12,7 @@ pub use action::Action;
 pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLoad, Wrench};
 
 use crate::assembly::{Assembly, JointForce};
+pub use crate::interaction::tie::DEFAULT_ULTIMATE_STRAIN;
 pub use crate::interaction::{Anchor, Strength, Strip, StripForce, Tie, TieForce};
 
 /// Blocks and joints with their loads.
@@ -145,6 +146,7 @@ impl Model {
                 },
                 capacity: s.capacity,
                 prestress: 0.0,
+                ultimate_strain: f64::INFINITY,
             }
         });
         let all: Vec<Tie> = self.ties.iter().cloned().chain(as_ties).collect();

@@ -5,7 +5,7 @@
 use crate::analysis::Assessment;
 use crate::analysis::SiteAssessment;
 use crate::assembly::Hinge;
-use crate::assess::{CapacityPoint, Check, ParticipatingMass, Satisfied, RULE};
+use crate::assess::{CapacityPoint, Check, ParticipatingMass, Satisfied, TieOnCurve, RULE};
 use crate::outcome::Direction;
 use crate::report::SceneReport;
 use crate::scene::Scene;
@@ -129,6 +129,9 @@ pub struct DirectionReport {
     pub ag_max: Option<f64>,
     /// The capacity curve from rest to `d_k0`.
     pub capacity_curve: Vec<CapacityPoint>,
+    /// Added: the tie rods along the curve (`[{index, lengthens, force, breaks_at_d_k}]`,
+    /// empty without `[[ties]]`).
+    pub ties: Vec<TieOnCurve>,
 }
 
 impl DirectionReport {
@@ -168,6 +171,7 @@ impl DirectionReport {
             verdict: v.text(),
             ag_max: v.ag_max(),
             capacity_curve: c.curve.clone(),
+            ties: c.ties.clone(),
         }
     }
 }

@@ -788,6 +788,9 @@ fn direction_section(doc: &mut Document, a: &SiteAssessment) {
         1e3 * v.ds_star,
         v.as_star,
         v.ts));
+    for tie in &c.ties {
+        t.item(crate::report::words::tie_on_curve_words(tie));
+    }
     let (lin, nonlin) = if s.elevated() {
         (
             "a0* >= max(ag S/q, Se(T1) psi gamma/q)",

@@ -408,3 +408,24 @@ pub fn dynamic_headline(rep: &crate::report::DynamicReport) -> String {
         vertical
     )
 }
+
+/// What a tie rod does along an assessment's capacity curve, in words.
+pub fn tie_on_curve_words(t: &crate::assess::TieOnCurve) -> String {
+    if !t.lengthens {
+        return format!(
+            "tie {}: the mechanism shortens it, so it goes slack and carries nothing along the curve",
+            t.index
+        );
+    }
+    let breaks = match t.breaks_at_d_k {
+        Some(d) => format!(
+            "until it breaks at d_k = {:.2} mm (its ultimate strain), then nothing",
+            1e3 * d
+        ),
+        None => "all along the curve (it does not reach its ultimate strain before d_k0)".into(),
+    };
+    format!(
+        "tie {}: lengthened by the mechanism, it carries its capacity {:.1} N {breaks}",
+        t.index, t.force
+    )
+}

@@ -6,6 +6,7 @@
 //! to = [1.1, 1.0]        # m: on another block, or the ground (at or below the structure's base)
 //! capacity = 40000.0     # N: the force at which it yields
 //! prestress = 0.0        # N, default 0, at most capacity: carried at lambda = 0
+//! ultimate_strain = 0.075 # default 7.5 % (B450C's A_gt): the stretch over its length at which it breaks
 //! ```
 
 use super::placement::Placement;
@@ -13,7 +14,7 @@ use super::{short, Section, MAX_FORCE, MAX_LENGTH};
 use crate::error::SceneError;
 use crate::geometry::Vec2;
 
-use crate::model::{Anchor, Tie};
+use crate::model::{Anchor, Tie, DEFAULT_ULTIMATE_STRAIN};
 use toml::{Table, Value};
 
 /// A tie as the user wrote it.
@@ -26,9 +27,19 @@ pub struct TieSpec {
     pub prestress: f64,
     /// Cost per newton of capacity in a retrofit design (default 1).
     pub cost: f64,
+    /// The strain at which it breaks (default [`DEFAULT_ULTIMATE_STRAIN`]); the capacity
+    /// curve of `assess` drops the tie past it.
+    pub ultimate_strain: f64,
 }
 
-const TIE_KEYS: &[&str] = &["from", "to", "capacity", "prestress", "cost"];
+const TIE_KEYS: &[&str] = &[
+    "from",
+    "to",
+    "capacity",
+    "prestress",
+    "cost",
+    "ultimate_strain",
+];
 
 /// The `[[ties]]` list of a scene (empty when absent).
 pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, SceneError> {
@@ -100,6 +111,16 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must be a finite number > 0 (the cost of one newton of capacity, relative to the other ties)",
             ));
         }
+        let ultimate_strain = s
+            .opt_f64("ultimate_strain")?
+            .unwrap_or(DEFAULT_ULTIMATE_STRAIN);
+        if ultimate_strain.is_nan() || ultimate_strain <= 0.0 {
+            return Err(s.out_of_range(
+                "ultimate_strain",
+                short(ultimate_strain),
+                "must be a number > 0, or inf (the stretch over the tie's length at which it breaks; 0.075 for B450C bars)",
+            ));
+        }
         s.finish("")?;
         ties.push(TieSpec {
             from,
@@ -107,6 +128,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
             capacity,
             prestress,
             cost,
+            ultimate_strain,
         });
     }
     Ok(ties)
@@ -163,6 +185,7 @@ pub(super) fn anchor_ties(
             to,
             capacity: spec.capacity.unwrap_or(spec.prestress),
             prestress: spec.prestress,
+            ultimate_strain: spec.ultimate_strain,
         };
         if let Some(problem) = tie.problem(assembly.blocks.len()) {
             return Err(error(

@@ -33,6 +33,7 @@ fn tied_block(b: f64, h: f64, mu: f64, ht: f64, side: f64, capacity: f64, prestr
         to: face,
         capacity,
         prestress,
+        ultimate_strain: voussoir::interaction::tie::DEFAULT_ULTIMATE_STRAIN,
     }])
 }
 
@@ -362,6 +363,11 @@ fn bad_ties_are_refused_naming_the_key() {
             "ties[0].to",
             "differ",
         ),
+        (
+            "from = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = 10.0\nultimate_strain = 0.0",
+            "ties[0].ultimate_strain",
+            "> 0",
+        ),
     ];
     for (extra, key, words) in cases {
         let message = refused(extra);
@@ -397,4 +403,99 @@ fn tie_keys_take_units() {
     );
     let units = analyse(&text, KinematicMode::Certified, None);
     assert_eq!(si.lower.lambda, units.lower.lambda);
+}
+
+/// The capacity curve of `assess` with a tie (rigid-plastic, broken past its ultimate
+/// strain), against the virtual work of the tied block derived here: the block rocks about
+/// its right toe `O` by `theta` (clockwise), its centroid at `G(theta)`, the tie's face anchor
+/// at `A(theta)`; lengthening, the tie pulls with its capacity `S`, so
+/// `alpha W dx_G = W dy_G + S dl` (power balance per unit rotation), i.e.
+/// `alpha(theta) = (W y_G' + S l') / (W x_G')`, with the derivatives taken here by central
+/// differences of the exact rotated positions (not the code's twists). Past the breaking
+/// stretch the tie carries nothing and the block's own curve remains.
+#[test]
+fn tied_block_capacity_curve_follows_virtual_work() {
+    use voussoir::assess::{self, CapacitySettings};
+    let (b, h, ht) = (0.4, 1.5, 0.75);
+    let w = common::single_block(b, h, f64::INFINITY).total_weight();
+    let s = 0.2 * w;
+    let toe = Vec2::new(0.5 * b, 0.0);
+    let wall = Vec2::new(-(0.5 * b + 0.5), ht);
+    let turned = |p: Vec2, theta: f64| {
+        // Clockwise by theta about the toe.
+        let (sn, cs) = theta.sin_cos();
+        let r = p - toe;
+        toe + Vec2::new(cs * r.x + sn * r.y, -sn * r.x + cs * r.y)
+    };
+    let centroid = Vec2::new(0.0, 0.5 * h);
+    let face = Vec2::new(-0.5 * b, ht);
+    let length = |theta: f64| (turned(face, theta) - wall).norm();
+    let l0 = length(0.0);
+    for strain in [f64::INFINITY, 0.01] {
+        let mut m = tied_block(b, h, f64::INFINITY, ht, -1.0, s, 0.0);
+        m.ties[0].ultimate_strain = strain;
+        let k = kinematic::analyse(&m, &KinematicSettings::default()).expect("kinematic");
+        let mech = k.mechanism.expect("a mechanism");
+        let settings = CapacitySettings {
+            points: 60,
+            control_block: None,
+            fc: 1.0,
+        };
+        let cap = assess::capacity(&m, &mech, Direction::Right, &settings).expect("capacity");
+        let closed0 = (w * b / 2.0 + s * ht) / (w * h / 2.0);
+        assert!(
+            (cap.alpha0 - closed0).abs() <= 1e-9 * closed0,
+            "alpha0 {} vs {closed0}",
+            cap.alpha0
+        );
+        let mut broke = false;
+        for p in &cap.curve {
+            let theta = p.rotation;
+            let d = 1e-6;
+            let fd = |f: &dyn Fn(f64) -> f64| (f(theta + d) - f(theta - d)) / (2.0 * d);
+            let xg = fd(&|t| turned(centroid, t).x);
+            let yg = fd(&|t| turned(centroid, t).y);
+            let stretch = length(theta) - l0;
+            let tie = if stretch <= strain * l0 {
+                s * fd(&length)
+            } else {
+                broke = true;
+                0.0
+            };
+            let expected = (w * yg + tie) / (w * xg);
+            // Skip the points within the difference step of the break.
+            if (stretch - strain * l0).abs() < 1e-5 {
+                continue;
+            }
+            assert!(
+                (p.alpha - expected).abs() <= 1e-7 * closed0,
+                "theta {theta}: alpha {} vs virtual work {expected} (stretch {stretch:.5} m)",
+                p.alpha
+            );
+        }
+        // The 1 % tie breaks before alpha reaches 0; the unbreakable one yields all along,
+        // and the block's weight still brings alpha to 0 (at 0.48 rad here).
+        assert_eq!(broke, strain.is_finite(), "strain {strain}");
+        // Where it breaks: the rotation at which the stretch reaches 1 %, by bisection here,
+        // and the centroid's horizontal displacement there.
+        let on_curve = cap.ties[0];
+        assert!(on_curve.lengthens && on_curve.force == s);
+        if strain.is_finite() {
+            let (mut lo, mut hi) = (0.0, cap.rotation0);
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                if length(mid) - l0 > strain * l0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let d_k = turned(centroid, hi).x - centroid.x;
+            let found = on_curve.breaks_at_d_k.expect("it breaks");
+            assert!((found - d_k).abs() <= 1e-9, "breaks at {found} vs {d_k}");
+        } else {
+            assert_eq!(on_curve.breaks_at_d_k, None);
+        }
+        assert!(cap.curve.last().is_some_and(|p| p.alpha.abs() < 1e-6));
+    }
 }

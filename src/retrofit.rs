@@ -174,3 +174,154 @@ pub fn design(scene: &Scene, target: f64, options: &Options) -> Result<Retrofit,
         }),
     }
 }
+
+/// A retrofit design for a site: the least capacities whose structure passes the NTC 2018
+/// check there ([`design_for_site`]).
+#[derive(Debug)]
+pub struct SiteRetrofit {
+    /// The design at the multiplier found (its `target`), or the infeasible design at the
+    /// largest multiplier tried.
+    pub design: Retrofit,
+    /// The assessment of the designed structure at the site (None when no capacities make
+    /// it pass).
+    pub assessment: Option<analysis::Assessment>,
+    /// The least target multiplier whose design passed (the bisection's upper end), and the
+    /// largest that failed (its lower end; None when the structure passes without new ties).
+    pub bracket: (Option<f64>, f64),
+    /// Designs and assessments computed.
+    pub evaluations: usize,
+}
+
+/// Relative width of the final bracket of the multiplier a site needs.
+pub const SITE_TARGET_TOLERANCE: f64 = 1e-3;
+
+/// The scene with the designed ties' capacities written in (so that every analysis of a
+/// scene, the assessment first, reads the retrofitted structure).
+pub fn designed_scene(scene: &Scene, r: &Retrofit) -> Scene {
+    let mut s = scene.clone();
+    for t in &r.ties {
+        if let Some(spec) = s.ties.get_mut(t.index) {
+            spec.capacity = Some(t.capacity.max(spec.prestress));
+        }
+    }
+    s
+}
+
+/// Design the scene's `"design"` ties so that the retrofitted structure passes the NTC 2018
+/// kinematic check at the scene's `[site]` (both directions, each by the linear or the
+/// nonlinear check, [`crate::assess::RULE`]).
+///
+/// The verdict is not a linear function of the capacities (the governing mechanism, its
+/// participating mass and its capacity curve change with them), so the design searches the
+/// least target multiplier lambda* whose least-capacity design ([`design`]) passes `assess`:
+/// first lambda* = its least value (the structure as it is), then a growing target until one
+/// passes (or no capacities reach it), then bisection to [`SITE_TARGET_TOLERANCE`]. A stiffer
+/// design passing at a lower target than a weaker one would escape the bisection: the
+/// passing design it returns is checked, so it passes, but it is the least only where the
+/// verdict grows with the target, as it did on every portal tried (docs/retrofit.md).
+pub fn design_for_site(
+    scene: &Scene,
+    options: &Options,
+    assess: &analysis::AssessOptions,
+) -> Result<SiteRetrofit, AnalysisError> {
+    if scene.site.is_none() {
+        return Err(AnalysisError::Other(format!(
+            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3",
+            scene.origin
+        )));
+    }
+    let mut evaluations = 0;
+    // The verdict of the least-capacity design for `target`: the design, and its assessment
+    // when feasible.
+    let mut trial =
+        |target: f64| -> Result<(Retrofit, Option<analysis::Assessment>), AnalysisError> {
+            evaluations += 1;
+            let r = design(scene, target, options)?;
+            if !r.feasible {
+                return Ok((r, None));
+            }
+            let a = analysis::assess_directions(&designed_scene(scene, &r), options, assess, None)
+                .map_err(|e| {
+                    AnalysisError::Other(format!(
+                        "assessing the design for lambda >= {target:.6}: {e}"
+                    ))
+                })?;
+            Ok((r, Some(a)))
+        };
+    let passes = |a: &Option<analysis::Assessment>| a.as_ref().is_some_and(|a| a.passes());
+    // The structure as it is: the least target (every designed capacity 0).
+    let start = LAMBDA_FLOOR;
+    let (r, a) = trial(start)?;
+    if passes(&a) {
+        return Ok(SiteRetrofit {
+            design: r,
+            assessment: a,
+            bracket: (None, start),
+            evaluations,
+        });
+    }
+    let mut lo = r.lambda().unwrap_or(start).max(start);
+    let mut hi = (2.0 * lo).max(0.05);
+    let mut found = None;
+    while hi < LAMBDA_CAP {
+        let (r, a) = trial(hi)?;
+        if !r.feasible {
+            // Past what the ties can reach: the strongest design they allow is the last
+            // chance (just below the reachable multiplier, so that it is feasible).
+            let reach = r
+                .best_reachable
+                .map(|b| b * (1.0 - 1e-6))
+                .filter(|&b| b > lo);
+            let last = match reach {
+                Some(b) => Some((b, trial(b)?)),
+                None => None,
+            };
+            match last {
+                Some((b, (r, a))) if passes(&a) => {
+                    hi = b;
+                    found = Some((r, a));
+                    break;
+                }
+                _ => {
+                    return Ok(SiteRetrofit {
+                        design: r,
+                        assessment: None,
+                        bracket: (Some(lo), hi),
+                        evaluations,
+                    })
+                }
+            }
+        }
+        if passes(&a) {
+            found = Some((r, a));
+            break;
+        }
+        lo = hi;
+        hi *= 1.5;
+    }
+    let Some(mut best) = found else {
+        return Err(AnalysisError::Other(format!(
+            "no design up to lambda = {LAMBDA_CAP} passes at the site"
+        )));
+    };
+    while hi - lo > SITE_TARGET_TOLERANCE * hi {
+        let mid = 0.5 * (lo + hi);
+        let (r, a) = trial(mid)?;
+        if passes(&a) {
+            hi = mid;
+            best = (r, a);
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(SiteRetrofit {
+        design: best.0,
+        assessment: best.1,
+        bracket: (Some(lo), hi),
+        evaluations,
+    })
+}
+
+/// The least target multiplier a site design tries: the structure as it is, every designed
+/// capacity 0 (a design needs a positive target).
+const LAMBDA_FLOOR: f64 = 1e-6;

@@ -12,8 +12,14 @@ pub struct Args {
     scene: SceneArgs,
     /// The multiplier the retrofitted structure must carry (in both directions of a seismic
     /// action; the adequacy factor of a live one)
-    #[arg(long, value_name = "LAMBDA")]
-    target_lambda: f64,
+    #[arg(long, value_name = "LAMBDA", conflicts_with = "site")]
+    target_lambda: Option<f64>,
+    /// Design for a site instead: the least capacities whose structure passes the NTC 2018
+    /// check of `voussoir assess` there. Sets a key of the scene's [site] table, e.g.
+    /// --site ag=0.25 --site soil=B (repeatable). Without --target-lambda, a scene with a
+    /// [site] table is designed for its site
+    #[arg(long = "site", value_name = "KEY=VALUE")]
+    site: Vec<String>,
     /// Print one JSON object instead of the summary
     #[arg(long)]
     json: bool,
@@ -26,7 +32,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
-    let scene = args.scene.load()?;
+    let mut scene = args.scene.load()?;
+    let sets: Vec<String> = args.site.iter().map(|s| format!("site.{s}")).collect();
+    if !sets.is_empty() {
+        scene = scene.with_overrides(&sets)?;
+    }
     args.scene
         .outputs(&scene)
         .output("--svg", args.svg.as_deref(), Format::Svg)
@@ -35,7 +45,30 @@ pub fn run(args: Args) -> Result<String, Error> {
         static_settings: StaticSettings::default().tolerance(args.tolerance),
         ..analysis::Options::default()
     };
-    let r = voussoir::retrofit::design(&scene, args.target_lambda, &options)?;
+    let (site, plain) = match args.target_lambda {
+        Some(target) => (
+            None,
+            Some(voussoir::retrofit::design(&scene, target, &options)?),
+        ),
+        None if scene.site.is_some() => (
+            Some(voussoir::retrofit::design_for_site(
+                &scene,
+                &options,
+                &analysis::AssessOptions::default(),
+            )?),
+            None,
+        ),
+        None => {
+            return Err(voussoir::error::AnalysisError::Other(format!(
+                "{}: what should the retrofit reach? Give --target-lambda L, or a site (--site ag=0.25 --site soil=B ..., or a [site] table in the scene)",
+                scene.origin
+            ))
+            .into())
+        }
+    };
+    let Some(r) = site.as_ref().map(|s| &s.design).or(plain.as_ref()) else {
+        return Err(voussoir::error::AnalysisError::Other("no design".into()).into());
+    };
     // The governing direction: the least multiplier.
     let governing = r.analyses.iter().min_by(|a, b| {
         let l = |x: &(_, analysis::SceneAnalysis)| x.1.lower.lambda.unwrap_or(f64::INFINITY);
@@ -55,7 +88,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             None
         }
     };
-    let mut doc = report::retrofit::document(&scene, &r);
+    let mut doc = match &site {
+        Some(s) => report::retrofit::site_document(&scene, s),
+        None => report::retrofit::document(&scene, r),
+    };
     doc.figures.extend(figure);
     Ok(super::print(&doc, args.json))
 }

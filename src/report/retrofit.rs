@@ -1,8 +1,9 @@
 //! `voussoir retrofit`: its JSON object and its document.
 
+use super::assessment::AssessmentReport;
 use super::document::{Data, Document};
 use super::{num, scene_lines, AnalysisReport};
-use crate::retrofit::{Bar, Retrofit};
+use crate::retrofit::{Bar, Retrofit, SiteRetrofit};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -30,6 +31,24 @@ pub struct RetrofitReport {
     /// The analysis of the retrofitted structure in each direction (`analyze --json`'s
     /// object), with its `direction`.
     pub analyses: Vec<AnalysisReport>,
+    /// Added: the design for a site (`--site`): its verdict there; null for `--target-lambda`.
+    pub site: Option<SiteDesignReport>,
+}
+
+/// `retrofit --site --json`: the design's verdict at the site.
+#[derive(Debug, Serialize)]
+pub struct SiteDesignReport {
+    /// Whether the designed structure passes there (by the code's rule, both directions).
+    pub passes: bool,
+    /// The least target multiplier whose design passed (`target_lambda`), to 0.1 %; null
+    /// when the structure passes as it is, or no capacities make it pass.
+    pub lambda_needed: Option<f64>,
+    /// The largest target multiplier whose design failed (the bracket's lower end).
+    pub lambda_failing: Option<f64>,
+    /// Designs and assessments the search computed.
+    pub evaluations: usize,
+    /// `assess --json`'s object for the designed structure (null when none passes).
+    pub assessment: Option<AssessmentReport>,
 }
 
 /// One designed tie.
@@ -77,6 +96,7 @@ impl RetrofitReport {
                 .iter()
                 .map(|(_, a)| AnalysisReport::new(scene, a))
                 .collect(),
+            site: None,
         }
     }
 }
@@ -149,5 +169,64 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
         };
     }
     doc.data = Some(Data::Retrofit(Box::new(RetrofitReport::new(scene, r))));
+    doc
+}
+
+/// The document of a retrofit design for a site: the design's own document, the search's
+/// bracket, and the verdict of the designed structure (`assess`'s words).
+pub fn site_document(scene: &Scene, r: &SiteRetrofit) -> Document {
+    let designed = crate::retrofit::designed_scene(scene, &r.design);
+    let mut doc = document(scene, &r.design);
+    // The design's heading names the target multiplier the search settled on.
+    if let Some(first) = doc.sections.first_mut() {
+        first.heading = Some(match (&r.assessment, r.bracket) {
+            (Some(_), (None, _)) => {
+                "Retrofit for the site: no tie is needed, the structure passes as it is".into()
+            }
+            (Some(_), (Some(_), hi)) => format!(
+                "Retrofit for the site: the least capacities that pass, those for lambda >= {hi:.4}"
+            ),
+            (None, (_, hi)) => format!(
+                "Retrofit for the site: NOT REACHABLE with the ties given (their strongest design fails at the site; lambda >= {hi:.4} is beyond them)"
+            ),
+        });
+    }
+    let passes = r.assessment.as_ref().is_some_and(|a| a.passes());
+    let sec = doc.section(match (&r.assessment, r.bracket) {
+        (Some(_), (None, _)) => {
+            "Site design: the structure passes at the site as it is; no tie is needed".to_string()
+        }
+        (Some(_), (Some(lo), hi)) => format!(
+            "Site design: the least capacities that pass at the site are those for lambda >= {hi:.4} (a design for lambda >= {lo:.4} fails; {} designs assessed)",
+            r.evaluations
+        ),
+        (None, _) => {
+            "Site design: NO capacities of these ties pass at the site: the strongest design they allow fails there".to_string()
+        }
+    });
+    if let Some(a) = &r.assessment {
+        sec.line(format!(
+            "the designed structure's verdict: {} (governing direction: {})",
+            a.governing().verdict.text(),
+            match a.governing().capacity.direction {
+                crate::outcome::Direction::Right => "load toward the right",
+                crate::outcome::Direction::Left => "load toward the left",
+            }
+        ));
+        let assessment = super::documents::assessment(&designed, a);
+        doc.sections.extend(assessment.sections);
+    }
+    if let Some(Data::Retrofit(report)) = doc.data.as_mut() {
+        report.site = Some(SiteDesignReport {
+            passes,
+            lambda_needed: r.assessment.as_ref().and(r.bracket.0).map(|_| r.bracket.1),
+            lambda_failing: r.bracket.0,
+            evaluations: r.evaluations,
+            assessment: r
+                .assessment
+                .as_ref()
+                .map(|a| AssessmentReport::new(&designed, a)),
+        });
+    }
     doc
 }

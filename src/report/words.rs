@@ -411,6 +411,12 @@ pub fn dynamic_headline(rep: &crate::report::DynamicReport) -> String {
 
 /// What a tie rod does along an assessment's capacity curve, in words.
 pub fn tie_on_curve_words(t: &crate::assess::TieOnCurve) -> String {
+    if t.lengthens && t.force <= 0.0 {
+        return format!(
+            "tie {}: no capacity, so it carries nothing along the curve",
+            t.index
+        );
+    }
     if !t.lengthens {
         return format!(
             "tie {}: the mechanism shortens it, so it goes slack and carries nothing along the curve",

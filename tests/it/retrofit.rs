@@ -210,3 +210,115 @@ fn retrofit_refusals() {
         .to_string();
     assert!(e.contains("ties[0].cost"), "{e}");
 }
+
+/// The portal with one tie to design, at a site of peak ground acceleration `ag`.
+fn sited(ag: f64) -> Scene {
+    let text = format!(
+        "{}\n[site]\nag = {ag}\nsoil = \"B\"\nF0 = 2.4\nTc_star = 0.3\n",
+        portal(&[(-0.05, None, 1.0)])
+    );
+    scene(&text)
+}
+
+/// The site design (NTC 2018 target): the designed structure passes `assess` at the site,
+/// checked here by assessing the scene with the designed capacities written in; the design for
+/// the bracket's lower end fails there; a site the portal passes as it is needs no tie; one no
+/// tie capacity can meet says so.
+#[test]
+fn site_design_passes_assess_and_is_least_to_the_bracket() {
+    let options = Options::default();
+    let assess = analysis::AssessOptions::default();
+    let s = sited(0.25);
+    let r = retrofit::design_for_site(&s, &options, &assess).expect("designs");
+    let a = r.assessment.as_ref().expect("a passing design");
+    assert!(a.passes());
+    let tie = &r.design.ties[0];
+    assert!(tie.needed && tie.capacity > 0.0, "{tie:?}");
+    // The verdict of the designed structure, assessed afresh as a user would.
+    let designed = retrofit::designed_scene(&s, &r.design);
+    assert_eq!(designed.ties[0].capacity, Some(tie.capacity));
+    let again = analysis::assess_directions(&designed, &options, &assess, None).expect("assess");
+    assert!(again.passes());
+    // The bracket: the design for its lower end fails at the site, within 0.1 %.
+    let (lo, hi) = (r.bracket.0.expect("a lower end"), r.bracket.1);
+    assert!(hi - lo <= retrofit::SITE_TARGET_TOLERANCE * hi, "{lo} {hi}");
+    let weaker = retrofit::design(&s, lo, &options).expect("design");
+    let weaker_scene = retrofit::designed_scene(&s, &weaker);
+    let verdict =
+        analysis::assess_directions(&weaker_scene, &options, &assess, None).expect("assess");
+    assert!(
+        !verdict.passes(),
+        "the design for lambda >= {lo} passes too"
+    );
+    assert!(weaker.ties[0].capacity < tie.capacity);
+
+    // ag = 0.15: the portal passes as it is (its largest passing ag is 0.2257 g).
+    let r = retrofit::design_for_site(&sited(0.15), &options, &assess).expect("designs");
+    assert_eq!(r.bracket.0, None);
+    assert!(!r.design.ties[0].needed);
+    assert!(r.assessment.as_ref().is_some_and(|a| a.passes()));
+
+    // ag = 0.8: the tie restrains the four-hinge mechanism only; past lambda = 0.2483
+    // another governs, and the strongest design the tie allows fails (it passes up to
+    // ag = 0.5 g by the linear check).
+    let r = retrofit::design_for_site(&sited(0.8), &options, &assess).expect("designs");
+    assert!(r.assessment.is_none());
+    assert!(!r.design.feasible);
+}
+
+/// `retrofit --site` on the command line: the JSON says the verdict; `--target-lambda` and
+/// `--site` together are refused, and neither with a scene that has no `[site]` is an error
+/// that says what to give.
+#[test]
+fn retrofit_site_from_the_command_line() {
+    let dir = std::env::temp_dir().join(format!("voussoir-retrofit-site-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join("portal.toml");
+    std::fs::write(&path, portal(&[(-0.05, None, 1.0)])).expect("write");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_voussoir"))
+            .arg("retrofit")
+            .arg(&path)
+            .args(args)
+            .output()
+            .expect("runs")
+    };
+    let out = run(&[
+        "--site",
+        "ag=0.25",
+        "--site",
+        "soil=B",
+        "--site",
+        "F0=2.4",
+        "--site",
+        "Tc_star=0.3",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(v["site"]["passes"], true);
+    assert_eq!(v["site"]["assessment"]["passes"], true);
+    assert!(v["site"]["lambda_needed"]
+        .as_f64()
+        .is_some_and(|l| l > 0.1349));
+    assert!(v["ties"][0]["capacity_required"]
+        .as_f64()
+        .is_some_and(|c| c > 0.0));
+    let both = run(&["--target-lambda", "0.2", "--site", "ag=0.25"]);
+    assert!(!both.status.success());
+    let neither = run(&[]);
+    assert!(!neither.status.success());
+    let err = String::from_utf8_lossy(&neither.stderr);
+    assert!(
+        err.contains("--target-lambda") && err.contains("--site"),
+        "{err}"
+    );
+    let plain = run(&["--target-lambda", "0.2", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&plain.stdout).expect("json");
+    assert!(v["site"].is_null());
+    std::fs::remove_dir_all(&dir).ok();
+}

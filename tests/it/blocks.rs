@@ -485,7 +485,7 @@ fn bad_block_files_get_clear_errors() {
             "DXF layer without blocks",
             format!("{}layer = \"BLOCKS\"\n", scene("b.dxf")),
             vec![("b.dxf", closed)],
-            &["no closed LWPOLYLINE", "layer `BLOCKS`", "WALLS"],
+            &["no LWPOLYLINE", "layer `BLOCKS`", "WALLS"],
         ),
         (
             "empty JSON file",

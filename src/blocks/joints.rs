@@ -6,30 +6,40 @@
 //! and an edge of the other lie on the same line, facing each other, and overlap: the joint
 //! is the overlap segment. A block edge lying on the ground line `y = ground_y` with the block
 //! above it is a support. Everything is compared within a tolerance
-//! `tol = relative_tolerance * size` (the structure's largest extent), so a scene and the same
-//! scene in millimetres find the same joints.
+//! `tol = relative_tolerance * size` (the largest extent of the blocks that move), so a scene
+//! and the same scene in millimetres find the same joints.
+//!
+//! Fixed blocks (a base, an abutment, rock) are no blocks of the assembly: a joint between a
+//! moving block and a fixed one is a support (`from` or `to` None, like the ground), labelled
+//! [`JointKind::Fixed`]. A fixed block may be non-convex, so a moving block may share several
+//! faces with it (a stepped or V-shaped seat: several supports), and its overlap test cannot
+//! be the separating-axis one: see `contact_fixed`. With fixed blocks the ground line is
+//! only where `ground_y` puts it.
 //!
 //! Broad phase: sweep and prune — the blocks' bounding boxes (grown by `tol`) sorted along the
 //! structure's longer axis; only pairs whose boxes overlap on both axes are examined (about
-//! `n k` pairs for `k` blocks across the structure, instead of `n^2 / 2`).
+//! `n k` pairs for `k` blocks across the structure, instead of `n^2 / 2`). Each fixed block is
+//! tried against the moving blocks whose boxes meet its own.
 //!
-//! Narrow phase for a pair: the separating-axis test on the edge normals of both polygons
-//! (convex polygons are disjoint iff some edge normal separates them) gives the largest gap;
-//! a gap above `tol` means apart, below `-tol` means overlapping (an error), in between
-//! touching. Touching blocks share a joint if two edges are anti-parallel and collinear within
-//! `tol` and overlap by more than `tol`; otherwise they touch at a point.
+//! Narrow phase for a pair of moving blocks: the separating-axis test on the edge normals of
+//! both polygons (convex polygons are disjoint iff some edge normal separates them) gives the
+//! largest gap; a gap above `tol` means apart, below `-tol` means overlapping (an error), in
+//! between touching. Touching blocks share a joint if two edges are anti-parallel and collinear
+//! within `tol` and overlap by more than `tol`; otherwise they touch at a point.
 //!
 //! Errors name the blocks (by their index in the source, from 0) and coordinates: a
-//! self-intersecting or non-convex outline, a block without area, two blocks that overlap, a
-//! block that touches the rest only at points, a block that touches nothing, a block below the
-//! ground, and a group of blocks that does not reach the ground.
+//! self-intersecting or non-convex outline (a fixed block may be non-convex), a block without
+//! area, two blocks that overlap, a block that touches the rest only at points, a block that
+//! touches nothing, a block below the ground, a group of blocks that reaches neither the ground
+//! nor a fixed block, and a fixed block that touches no moving block.
 //!
 //! The result is ordered for the analyses: a chain between two supports is numbered from the
 //! support furthest left (lowest x of its joint, then lowest y) to the other, block k between
 //! joints k and k + 1, as `Assembly::is_chain` expects, so the kinematic search runs on it; a
 //! chain standing on one support (a column) likewise from its support; any other structure
 //! keeps the source order (joints from the lower block index to the higher, supports last in
-//! block order).
+//! block order). The moving blocks are numbered from 0 in that order; each keeps its source
+//! index as its name ([`BlockKind::User`]).
 
 use super::{BlockError, Polygons};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
@@ -111,14 +121,7 @@ pub fn detect(
     gamma: f64,
     friction: f64,
 ) -> Result<Detected, BlockError> {
-    detect_with_fixed(
-        polygons,
-        &[],
-        ground_y,
-        relative_tolerance,
-        gamma,
-        friction,
-    )
+    detect_with_fixed(polygons, &[], ground_y, relative_tolerance, gamma, friction)
 }
 
 /// [`detect`] with the blocks `fixed` (source indices) held fixed: they are no blocks of the
@@ -153,7 +156,9 @@ pub fn detect_with_fixed(
             return Err(BlockError::Fixed {
                 index: k,
                 block: Some(f),
-                message: format!("lies in block {f}, as fixed[{first}] does: name each fixed block once"),
+                message: format!(
+                    "lies in block {f}, as fixed[{first}] does: name each fixed block once"
+                ),
             });
         }
         is_fixed[f] = true;
@@ -586,12 +591,13 @@ fn contact(pa: &[Vec2], pb: &[Vec2], tol: f64) -> Contact {
     }
     // Touching: look for collinear, facing, overlapping edges; convex blocks share at most
     // one, the longest (the first of equal ones).
-    let best = facing_edges(pa, pb, tol)
-        .into_iter()
-        .fold(None, |best: Option<(f64, Vec2, Vec2)>, e| match best {
-            Some((l, _, _)) if e.0 <= l => best,
-            _ => Some(e),
-        });
+    let best =
+        facing_edges(pa, pb, tol)
+            .into_iter()
+            .fold(None, |best: Option<(f64, Vec2, Vec2)>, e| match best {
+                Some((l, _, _)) if e.0 <= l => best,
+                _ => Some(e),
+            });
     if let Some((_, p, q)) = best {
         return Contact::Joint(p, q);
     }
@@ -673,7 +679,9 @@ fn contact_fixed(moving: &[Vec2], fixed: &[Vec2], tol: f64) -> FixedContact {
     if common.len() >= 3 {
         let (area, at) = polygon_area_centroid(&common);
         let m = moving.len();
-        let perimeter: f64 = (0..m).map(|k| (moving[(k + 1) % m] - moving[k]).norm()).sum();
+        let perimeter: f64 = (0..m)
+            .map(|k| (moving[(k + 1) % m] - moving[k]).norm())
+            .sum();
         if area > tol * perimeter {
             return FixedContact::Overlap(at, area);
         }

@@ -1,18 +1,22 @@
 //! The user's own blocks: polygons read from a file (JSON, CSV, DXF) or given inline, checked,
-//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]).
+//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]); some of
+//! them may be fixed (a base, an abutment, rock: [`detect_with_fixed`], [`blocks_at`]).
 //!
 //! A scene's `[blocks]` table (read by the scene module) names the source; this module knows the
 //! formats and the geometry, nothing of scenes:
 //! - JSON: `{"polygons": [[[x, y], [x, y], ...], ...]}`;
 //! - CSV: rows `block,x,y` (an optional header row), the vertices of a block on consecutive
 //!   rows in order; the block labels are any text, blocks numbered in order of appearance;
-//! - DXF: every closed `LWPOLYLINE` or `POLYLINE` entity (of one layer, when asked) is a block;
-//!   arc segments (bulges) are refused.
+//! - DXF: every `LWPOLYLINE` or `POLYLINE` entity (of one layer, when asked) is a block, closed
+//!   by its flag or by a last vertex that repeats the first; arc segments (bulges) are refused.
 //!
-//! Coordinates are scaled by the scene's `units` (`"m"` or `"mm"`) to metres. Outlines may run
-//! either way round and may close by repeating their first vertex; repeated vertices and
-//! vertices on a straight edge are dropped (they do not change the block), and every outline is
-//! stored counter-clockwise.
+//! Coordinates are scaled by the scene's `units` (`"m"` or `"mm"`) to metres. Outlines are
+//! mended as CAD programs and surveys write them, and the mending is counted ([`Mending`]): an
+//! open DXF polyline whose last vertex repeats its first (within 1e-12 of the structure's size)
+//! is closed there; repeated vertices and vertices on a straight edge are dropped (they do not
+//! change the block); a clockwise outline is turned counter-clockwise. Nothing else is
+//! repaired: an open polyline whose ends differ, and an outline that crosses itself (named by
+//! the two edges, by their vertices as written), are errors.
 //!
 //! Inputs are bounded before anything is allocated for them: a file larger than
 //! [`MAX_FILE_BYTES`], more than [`MAX_BLOCKS`] blocks, [`MAX_VERTICES`] vertices in all or
@@ -249,7 +253,20 @@ pub fn read_source(path: &Path, units: Units, layer: Option<&str>) -> Result<Sou
         }
         Format::Dxf => read_dxf(bytes, &name, layer)?,
     };
-    let (polygons, mending) = clean(raw, units, &name)?;
+    // An outline's error says where the outline lies in the file (the scene's messages add
+    // that only once the blocks are read).
+    let (polygons, mending) = clean(raw, units, &name).map_err(|e| match e {
+        BlockError::Block { block, message } => {
+            let place = places
+                .get(block)
+                .map_or(String::new(), |p| format!(" (block {block} is {p})"));
+            BlockError::Block {
+                block,
+                message: format!("{message}{place}"),
+            }
+        }
+        e => e,
+    })?;
     Ok(Source {
         polygons,
         places,

@@ -2103,10 +2103,16 @@ pub(crate) fn draw_legend(
                 }
             }
             Glyph::Fixed => {
-                root.draw(&Rectangle::new([(x0, yc - 7), (x1, yc + 7)], FIXED.filled()))
-                    .map_err(plot_err)?;
-                root.draw(&Rectangle::new([(x0, yc - 7), (x1, yc + 7)], GROUND.stroke_width(1)))
-                    .map_err(plot_err)?;
+                root.draw(&Rectangle::new(
+                    [(x0, yc - 7), (x1, yc + 7)],
+                    FIXED.filled(),
+                ))
+                .map_err(plot_err)?;
+                root.draw(&Rectangle::new(
+                    [(x0, yc - 7), (x1, yc + 7)],
+                    GROUND.stroke_width(1),
+                ))
+                .map_err(plot_err)?;
                 for k in 0..3 {
                     let x = x0 + 1 + 8 * k;
                     root.draw(&PathElement::new(

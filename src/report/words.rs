@@ -260,7 +260,7 @@ pub fn mending_words(m: &crate::blocks::Mending) -> String {
     let mut how = Vec::new();
     if m.closed > 0 {
         how.push(format!(
-            "{} closed on its repeated first vertex",
+            "{} closed at a repeated first vertex",
             count(m.closed as u64, "open polyline", "open polylines")
         ));
     }

@@ -59,11 +59,7 @@ pub fn of_drawing(
 /// The outlines of the scene's fixed blocks (`[blocks] fixed`), drawn behind the blocks.
 fn fixed_outlines(scene: &Scene) -> Vec<Vec<crate::geometry::Vec2>> {
     scene.blocks.as_ref().map_or_else(Vec::new, |b| {
-        b.detected
-            .fixed
-            .iter()
-            .map(|f| f.polygon.clone())
-            .collect()
+        b.detected.fixed.iter().map(|f| f.polygon.clone()).collect()
     })
 }
 

@@ -257,31 +257,24 @@ pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
 /// How the outlines were mended, in words: `3 outlines mended as read: 1 open polyline closed
 /// on its repeated first vertex, 2 turned counter-clockwise`.
 pub fn mending_words(m: &crate::blocks::Mending) -> String {
-    let mut how = Vec::new();
-    if m.closed > 0 {
-        how.push(format!(
-            "{} closed at a repeated first vertex",
-            count(m.closed as u64, "open polyline", "open polylines")
-        ));
-    }
-    if m.repeated_vertices > 0 {
-        how.push(format!(
-            "{} rid of repeated vertices",
-            count(m.repeated_vertices as u64, "outline", "outlines")
-        ));
-    }
-    if m.straight_vertices > 0 {
-        how.push(format!(
-            "{} rid of vertices on a straight edge",
-            count(m.straight_vertices as u64, "outline", "outlines")
-        ));
-    }
-    if m.reversed > 0 {
-        how.push(format!(
-            "{} turned counter-clockwise",
-            count(m.reversed as u64, "outline", "outlines")
-        ));
-    }
+    let how: Vec<String> = [
+        (
+            m.closed,
+            "open polyline",
+            "closed at a repeated first vertex",
+        ),
+        (m.repeated_vertices, "outline", "rid of repeated vertices"),
+        (
+            m.straight_vertices,
+            "outline",
+            "rid of vertices on a straight edge",
+        ),
+        (m.reversed, "outline", "turned counter-clockwise"),
+    ]
+    .into_iter()
+    .filter(|(n, _, _)| *n > 0)
+    .map(|(n, what, done)| format!("{} {done}", count(n as u64, what, &format!("{what}s"))))
+    .collect();
     format!(
         "{} mended as read: {}",
         count(m.outlines as u64, "outline", "outlines"),

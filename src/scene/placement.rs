@@ -273,11 +273,9 @@ impl<'a> Placement<'a> {
                 .filter_map(|e| {
                     let lo = from_x.max(e.a.x);
                     let hi = to_x.min(e.b.x);
-                    if !(hi > lo) {
-                        return None;
-                    }
-                    Some(Piece {
-                        block: e.block?,
+                    let block = e.block?;
+                    (hi > lo).then(|| Piece {
+                        block,
                         point: e.at(0.5 * (lo + hi)),
                         length: hi - lo,
                     })

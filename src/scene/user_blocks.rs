@@ -255,27 +255,30 @@ fn fixed_points(s: &Section) -> Result<Vec<[f64; 2]>, SceneError> {
             &format!("at most {} (blocks::MAX_BLOCKS)", blocks::MAX_BLOCKS),
         ));
     }
+    list.iter()
+        .enumerate()
+        .map(|(k, q)| match point(q) {
+            Some([x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
+            _ => Err(s.wrong_type(
+                &format!("fixed[{k}]"),
+                q,
+                "a point [x, y] of two finite numbers",
+            )),
+        })
+        .collect()
+}
+
+/// `[x, y]`: a TOML array of two numbers.
+fn point(v: &Value) -> Option<[f64; 2]> {
     let num = |x: &Value| match x {
         Value::Float(f) => Some(*f),
         Value::Integer(i) => Some(*i as f64),
         _ => None,
     };
-    list.iter()
-        .enumerate()
-        .map(|(k, q)| {
-            let key = format!("fixed[{k}]");
-            let Value::Array(xy) = q else {
-                return Err(s.wrong_type(&key, q, "a point [x, y] of two numbers"));
-            };
-            match xy.as_slice() {
-                [x, y] => match (num(x), num(y)) {
-                    (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
-                    _ => Err(s.wrong_type(&key, q, "a point [x, y] of two finite numbers")),
-                },
-                _ => Err(s.wrong_type(&key, q, "a point [x, y] of two numbers")),
-            }
-        })
-        .collect()
+    match v {
+        Value::Array(xy) if xy.len() == 2 => Some([num(&xy[0])?, num(&xy[1])?]),
+        _ => None,
+    }
 }
 
 /// `polygons = [[[x, y], ...], ...]`, counted before it is copied.
@@ -304,11 +307,6 @@ fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
             ),
         ));
     }
-    let num = |x: &Value| match x {
-        Value::Float(f) => Some(*f),
-        Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    };
     list.iter()
         .enumerate()
         .map(|(i, p)| {
@@ -316,20 +314,14 @@ fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
                 return Err(wrong(p));
             };
             pts.iter()
-                .map(|q| match q {
-                    Value::Array(xy) if xy.len() == 2 => match (num(&xy[0]), num(&xy[1])) {
-                        (Some(x), Some(y)) => Ok([x, y]),
-                        _ => Err(s.wrong_type(
+                .map(|q| {
+                    point(q).ok_or_else(|| {
+                        s.wrong_type(
                             &format!("polygons[{i}]"),
                             q,
                             "a vertex [x, y] of two numbers",
-                        )),
-                    },
-                    _ => Err(s.wrong_type(
-                        &format!("polygons[{i}]"),
-                        q,
-                        "a vertex [x, y] of two numbers",
-                    )),
+                        )
+                    })
                 })
                 .collect()
         })

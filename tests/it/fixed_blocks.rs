@@ -21,7 +21,6 @@
 use crate::common;
 
 use std::f64::consts::PI;
-use std::path::Path;
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
 use voussoir::model::Model;
@@ -158,14 +157,7 @@ fn hand_built(stepped: bool) -> Model {
     Model::self_weight(assembly)
 }
 
-fn scene_in(dir: &Path, toml: &str, files: &[(&str, &[u8])]) -> Result<Scene, String> {
-    for (name, bytes) in files {
-        std::fs::write(dir.join(name), bytes).map_err(|e| e.to_string())?;
-    }
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, toml).map_err(|e| e.to_string())?;
-    Scene::from_file(&path).map_err(|e| e.to_string())
-}
+use common::scene_in;
 
 /// The JSON block file of `polygons` (any units).
 fn json_file(polygons: &[Vec<[f64; 2]>]) -> Vec<u8> {
@@ -374,7 +366,9 @@ fn bad_fixed_points_are_refused_naming_them() {
             material()
         )
     };
-    let cases: &[(&str, &[Vec<[f64; 2]>], &[&str])] = &[
+    // (fixed points, the blocks file's polygons, words the error must contain)
+    type Case<'a> = (&'a str, &'a [Vec<[f64; 2]>], &'a [&'a str]);
+    let cases: &[Case] = &[
         (
             "[[0, -0.5], [20, 20]]",
             &polys,
@@ -486,19 +480,7 @@ fn dxf_of(outlines: &[(Vec<[f64; 2]>, Written)], layer: &str) -> Vec<u8> {
             }
             dxf::entities::EntityType::Polyline(p)
         } else {
-            let mut p = dxf::entities::LwPolyline {
-                vertices: pts
-                    .iter()
-                    .map(|q| dxf::LwPolylineVertex {
-                        x: q[0],
-                        y: q[1],
-                        ..Default::default()
-                    })
-                    .collect(),
-                ..Default::default()
-            };
-            p.set_is_closed(closed);
-            dxf::entities::EntityType::LwPolyline(p)
+            common::lwpolyline(&pts, closed)
         };
         let mut e = dxf::entities::Entity::new(specific);
         e.common.layer = layer.to_string();
@@ -686,16 +668,11 @@ fn the_bundled_skewback_example_is_current_and_analyses() {
     let blocks = s.blocks.as_ref().expect("blocks");
     assert_eq!(blocks.detected.topology, voussoir::blocks::Topology::Chain);
     assert!(blocks.mending.closed > 0 && blocks.mending.reversed > 0);
-    let out = common::voussoir()
+    common::voussoir()
         .arg("analyze")
         .arg(common::data("blocks_skewback_arch.toml"))
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+        .assert()
+        .success();
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! Scenes of the user's own blocks: the `[blocks]` table (a file or inline polygons, the
-//! ground line, the units, the DXF layer), its checks, and the structure it reads — the
-//! assembly found by [`crate::blocks::detect`], on which `scene::build` places the loads
-//! ([`super::placement`]).
+//! ground line, the units, the DXF layer, the points of the fixed blocks), its checks, and the
+//! structure it reads — the assembly found by [`crate::blocks::detect_with_fixed`], on which
+//! `scene::build` places the loads ([`super::placement`]). An error about a fixed block is
+//! the key `blocks.fixed[k]` with its point as written.
 
 use super::{Material, Section};
 use crate::blocks::{self, BlockError, Detected, Polygons, Units};

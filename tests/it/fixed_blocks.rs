@@ -402,6 +402,18 @@ fn bad_fixed_points_are_refused_naming_them() {
             &["block 9", "not convex", "name it in `fixed`"],
         ),
     ];
+    // A point on the joint between voussoirs 2 and 3 is on both outlines.
+    let (i, e) = joint(3);
+    let on_joint = format!(
+        "[[0, -0.5], [{}, {}]]",
+        0.5 * (i.x + e.x),
+        0.5 * (i.y + e.y)
+    );
+    let e = refused(&scene(&on_joint), &[("b.json", &json_file(&polys))]);
+    assert!(
+        e.contains("blocks.fixed[1]") && e.contains("on the outlines of blocks 2 and 3"),
+        "{e}"
+    );
     for (fixed, files, words) in cases {
         let e = refused(&scene(fixed), &[("b.json", &json_file(files))]);
         for w in *words {

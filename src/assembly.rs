@@ -55,6 +55,10 @@ pub enum JointKind {
     /// A joint found between the user's blocks (`[blocks]`), named by their indices in the
     /// source, the lower first; `None` is the ground.
     Between(usize, Option<usize>),
+    /// A support of the user's block `a` on the fixed block `f` (`[blocks] fixed`), both
+    /// named by their indices in the source: a joint to the ground (`from` or `to` None)
+    /// that lies on a block that does not move.
+    Fixed(usize, usize),
 }
 
 /// A plane joint between two blocks, or a block and the ground (`None`).

@@ -6,30 +6,40 @@
 //! and an edge of the other lie on the same line, facing each other, and overlap: the joint
 //! is the overlap segment. A block edge lying on the ground line `y = ground_y` with the block
 //! above it is a support. Everything is compared within a tolerance
-//! `tol = relative_tolerance * size` (the structure's largest extent), so a scene and the same
-//! scene in millimetres find the same joints.
+//! `tol = relative_tolerance * size` (the largest extent of the blocks that move), so a scene
+//! and the same scene in millimetres find the same joints.
+//!
+//! Fixed blocks (a base, an abutment, rock) are no blocks of the assembly: a joint between a
+//! moving block and a fixed one is a support (`from` or `to` None, like the ground), labelled
+//! [`JointKind::Fixed`]. A fixed block may be non-convex, so a moving block may share several
+//! faces with it (a stepped or V-shaped seat: several supports), and its overlap test cannot
+//! be the separating-axis one: see `contact_fixed`. With fixed blocks the ground line is
+//! only where `ground_y` puts it.
 //!
 //! Broad phase: sweep and prune — the blocks' bounding boxes (grown by `tol`) sorted along the
 //! structure's longer axis; only pairs whose boxes overlap on both axes are examined (about
-//! `n k` pairs for `k` blocks across the structure, instead of `n^2 / 2`).
+//! `n k` pairs for `k` blocks across the structure, instead of `n^2 / 2`). Each fixed block is
+//! tried against the moving blocks whose boxes meet its own.
 //!
-//! Narrow phase for a pair: the separating-axis test on the edge normals of both polygons
-//! (convex polygons are disjoint iff some edge normal separates them) gives the largest gap;
-//! a gap above `tol` means apart, below `-tol` means overlapping (an error), in between
-//! touching. Touching blocks share a joint if two edges are anti-parallel and collinear within
-//! `tol` and overlap by more than `tol`; otherwise they touch at a point.
+//! Narrow phase for a pair of moving blocks: the separating-axis test on the edge normals of
+//! both polygons (convex polygons are disjoint iff some edge normal separates them) gives the
+//! largest gap; a gap above `tol` means apart, below `-tol` means overlapping (an error), in
+//! between touching. Touching blocks share a joint if two edges are anti-parallel and collinear
+//! within `tol` and overlap by more than `tol`; otherwise they touch at a point.
 //!
 //! Errors name the blocks (by their index in the source, from 0) and coordinates: a
-//! self-intersecting or non-convex outline, a block without area, two blocks that overlap, a
-//! block that touches the rest only at points, a block that touches nothing, a block below the
-//! ground, and a group of blocks that does not reach the ground.
+//! self-intersecting or non-convex outline (a fixed block may be non-convex), a block without
+//! area, two blocks that overlap, a block that touches the rest only at points, a block that
+//! touches nothing, a block below the ground, a group of blocks that reaches neither the ground
+//! nor a fixed block, and a fixed block that touches no moving block.
 //!
 //! The result is ordered for the analyses: a chain between two supports is numbered from the
 //! support furthest left (lowest x of its joint, then lowest y) to the other, block k between
 //! joints k and k + 1, as `Assembly::is_chain` expects, so the kinematic search runs on it; a
 //! chain standing on one support (a column) likewise from its support; any other structure
 //! keeps the source order (joints from the lower block index to the higher, supports last in
-//! block order).
+//! block order). The moving blocks are numbered from 0 in that order; each keeps its source
+//! index as its name ([`BlockKind::User`]).
 
 use super::{BlockError, Polygons};
 use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
@@ -46,26 +56,57 @@ pub enum Topology {
     Other(String),
 }
 
+/// A block that does not move (`[blocks] fixed`): a base, an abutment, rock. Its outline may
+/// be non-convex; the moving blocks rest on it through support joints.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixedBlock {
+    /// Its index in the source (from 0).
+    pub block: usize,
+    /// Its outline (m, counter-clockwise).
+    pub polygon: Vec<Vec2>,
+    /// The support joints found on it.
+    pub supports: usize,
+}
+
 /// A structure found from polygons.
 #[derive(Debug, Clone)]
 pub struct Detected {
-    /// Blocks (kind [`BlockKind::User`]) and joints (kind [`JointKind::Between`]).
+    /// The moving blocks (kind [`BlockKind::User`]) and their joints (kind
+    /// [`JointKind::Between`], or [`JointKind::Fixed`] on a fixed block).
     pub assembly: Assembly,
     pub topology: Topology,
-    /// Joints on the ground.
+    /// Support joints: on the ground line and on the fixed blocks.
     pub supports: usize,
     /// The tolerance used (m).
     pub tolerance: f64,
-    /// The ground line's y (m).
-    pub ground_y: f64,
+    /// The ground line's y (m); None when there is none (only fixed blocks support).
+    pub ground_y: Option<f64>,
+    /// The fixed blocks, in the order they were named.
+    pub fixed: Vec<FixedBlock>,
 }
 
-/// A joint found between blocks `a` and `b` (source indices; `b = None`: the ground), from
-/// `p` to `q`.
+impl Detected {
+    /// Support joints on the ground line.
+    pub fn ground_supports(&self) -> usize {
+        self.supports - self.fixed.iter().map(|f| f.supports).sum::<usize>()
+    }
+}
+
+/// What a block touches at a point (kept to explain a block without joints).
+#[derive(Debug, Clone, Copy)]
+enum Other {
+    Block(usize),
+    Ground,
+    Fixed(usize),
+}
+
+/// A joint found between blocks `a` and `b` (indices; `b = None`: a support, on the fixed
+/// block `on` (its source index) or on the ground), from `p` to `q`.
 #[derive(Debug, Clone, Copy)]
 struct Found {
     a: usize,
     b: Option<usize>,
+    on: Option<usize>,
     p: Vec2,
     q: Vec2,
 }
@@ -80,33 +121,88 @@ pub fn detect(
     gamma: f64,
     friction: f64,
 ) -> Result<Detected, BlockError> {
+    detect_with_fixed(polygons, &[], ground_y, relative_tolerance, gamma, friction)
+}
+
+/// [`detect`] with the blocks `fixed` (source indices) held fixed: they are no blocks of the
+/// assembly, and a joint between a moving block and a fixed one is a support. With fixed
+/// blocks the ground line is only where `ground_y` says (None: no ground, the fixed blocks
+/// alone support). An error [`BlockError::Fixed`] names a fixed block by its position `k`
+/// in `fixed`.
+pub fn detect_with_fixed(
+    polygons: &Polygons,
+    fixed: &[usize],
+    ground_y: Option<f64>,
+    relative_tolerance: f64,
+    gamma: f64,
+    friction: f64,
+) -> Result<Detected, BlockError> {
     let polys = &polygons.0;
     let n = polys.len();
     if n == 0 {
         return Err(BlockError::Empty("the block list is empty".into()));
     }
-    let size = polygons.size();
+    let mut is_fixed = vec![false; n];
+    for (k, &f) in fixed.iter().enumerate() {
+        if f >= n {
+            return Err(BlockError::Fixed {
+                index: k,
+                block: None,
+                message: format!("block {f} does not exist: there are {n} blocks"),
+            });
+        }
+        if is_fixed[f] {
+            let first = fixed.iter().position(|&g| g == f).unwrap_or(k);
+            return Err(BlockError::Fixed {
+                index: k,
+                block: Some(f),
+                message: format!(
+                    "lies in block {f}, as fixed[{first}] does: name each fixed block once"
+                ),
+            });
+        }
+        is_fixed[f] = true;
+    }
+    let movers: Vec<usize> = (0..n).filter(|&i| !is_fixed[i]).collect();
+    if movers.is_empty() {
+        return Err(BlockError::Structure(format!(
+            "all {n} blocks are fixed: nothing is left to move"
+        )));
+    }
+    // The structure's size, and so the tolerance, is that of the blocks that move (a fixed
+    // rock may be as large as drawn).
+    let size = Polygons(movers.iter().map(|&i| polys[i].clone()).collect()).size();
     let tol = relative_tolerance * size;
     let (lo, _) = polygons.bounds();
-    let ground = ground_y.unwrap_or(lo.y);
+    let ground = if fixed.is_empty() {
+        Some(ground_y.unwrap_or(lo.y))
+    } else {
+        ground_y
+    };
+    let ground_words = match ground {
+        Some(g) => format!("the ground y = {g}"),
+        None => "a fixed block".to_string(),
+    };
 
-    let mut areas = Vec::with_capacity(n);
     for (i, p) in polys.iter().enumerate() {
-        check_outline(i, p, tol)?;
-        let (area, centroid) = polygon_area_centroid(p);
-        areas.push((area, centroid));
-        if let Some(v) = p.iter().find(|v| v.y < ground - tol) {
+        check_outline(i, p, tol, !is_fixed[i])?;
+        if is_fixed[i] {
+            continue;
+        }
+        if let Some(v) = ground.and_then(|g| p.iter().find(|v| v.y < g - tol)) {
             return Err(BlockError::Block {
                 block: i,
                 message: format!(
-                    "its vertex ({}, {}) lies below the ground y = {ground}; blocks rest on the ground, they do not go into it",
-                    v.x, v.y
+                    "its vertex ({}, {}) lies below the ground y = {}; blocks rest on the ground, they do not go into it",
+                    v.x,
+                    v.y,
+                    ground.unwrap_or_default()
                 ),
             });
         }
     }
 
-    // Broad phase: sweep and prune along the longer axis.
+    // Broad phase: sweep and prune along the longer axis, over the moving blocks.
     let boxes: Vec<(Vec2, Vec2)> = polys
         .iter()
         .map(|p| {
@@ -119,38 +215,42 @@ pub fn detect(
             (lo - Vec2::repeat(tol), hi + Vec2::repeat(tol))
         })
         .collect();
+    let apart = |i: usize, j: usize| {
+        (0..2).any(|c| boxes[i].0[c] > boxes[j].1[c] || boxes[j].0[c] > boxes[i].1[c])
+    };
     let (blo, bhi) = polygons.bounds();
     let axis = if bhi.x - blo.x >= bhi.y - blo.y { 0 } else { 1 };
-    let other = 1 - axis;
-    let mut order: Vec<usize> = (0..n).collect();
+    let mut order = movers.clone();
     order.sort_by(|&a, &b| boxes[a].0[axis].total_cmp(&boxes[b].0[axis]));
     let mut active: Vec<usize> = Vec::new();
     let mut found: Vec<Found> = Vec::new();
-    // Point contacts `(a, b, point)`, kept to explain a block without joints.
-    let mut points: Vec<(usize, Option<usize>, Vec2)> = Vec::new();
+    // Point contacts `(a, other, point)`, kept to explain a block without joints.
+    let mut points: Vec<(usize, Other, Vec2)> = Vec::new();
+    let overlap = |a: usize, b: usize, by: String, at: Vec2| BlockError::Pair {
+        blocks: [a, b],
+        message: format!(
+            "overlap ({by}, around ({:.6}, {:.6})); blocks may touch but not overlap",
+            at.x, at.y
+        ),
+    };
     for &i in &order {
         let start = boxes[i].0[axis];
         active.retain(|&j| boxes[j].1[axis] >= start);
         for &j in &active {
-            if boxes[i].0[other] > boxes[j].1[other] || boxes[j].0[other] > boxes[i].1[other] {
+            if apart(i, j) {
                 continue;
             }
             let (a, b) = (i.min(j), i.max(j));
             match contact(&polys[a], &polys[b], tol) {
                 Contact::Apart => {}
                 Contact::Overlap(at, depth) => {
-                    return Err(BlockError::Pair {
-                        blocks: [a, b],
-                        message: format!(
-                            "overlap (by {depth:.3e} m, around ({:.6}, {:.6})); blocks may touch but not overlap",
-                            at.x, at.y
-                        ),
-                    })
+                    return Err(overlap(a, b, format!("by {depth:.3e} m"), at))
                 }
-                Contact::Point(at) => points.push((a, Some(b), at)),
+                Contact::Point(at) => points.push((a, Other::Block(b), at)),
                 Contact::Joint(p, q) => found.push(Found {
                     a,
                     b: Some(b),
+                    on: None,
                     p,
                     q,
                 }),
@@ -158,32 +258,98 @@ pub fn detect(
         }
         active.push(i);
     }
-    // Supports: edges on the ground line with the block above.
-    for (i, p) in polys.iter().enumerate() {
-        let m = p.len();
-        let mut on_ground = false;
-        for k in 0..m {
-            let (a, b) = (p[k], p[(k + 1) % m]);
-            let flat = (a.y - ground).abs() <= tol && (b.y - ground).abs() <= tol;
-            // Counter-clockwise: an edge running to +x has the block above it.
-            if flat && b.x - a.x > tol {
-                found.push(Found {
-                    a: i,
-                    b: None,
-                    p: a,
-                    q: b,
-                });
-                on_ground = true;
+    // Supports on the fixed blocks: every face a moving block shares with one (several on a
+    // stepped or V-shaped seat).
+    let mut fixed_blocks = Vec::with_capacity(fixed.len());
+    for (k, &f) in fixed.iter().enumerate() {
+        let before = found.len();
+        let mut touches = None;
+        for &i in &movers {
+            if apart(i, f) {
+                continue;
+            }
+            match contact_fixed(&polys[i], &polys[f], tol) {
+                FixedContact::Apart => {}
+                FixedContact::Overlap(at, area) => {
+                    return Err(overlap(
+                        i.min(f),
+                        i.max(f),
+                        format!("an area of {area:.3e} m^2, block {f} being fixed"),
+                        at,
+                    ))
+                }
+                FixedContact::Point(at) => {
+                    points.push((i, Other::Fixed(f), at));
+                    touches = touches.or(Some((i, at)));
+                }
+                FixedContact::Joints(joints) => {
+                    found.extend(joints.into_iter().map(|(p, q)| Found {
+                        a: i,
+                        b: None,
+                        on: Some(f),
+                        p,
+                        q,
+                    }))
+                }
             }
         }
-        if !on_ground {
-            if let Some(v) = p.iter().find(|v| (v.y - ground).abs() <= tol) {
-                points.push((i, None, *v));
+        let supports = found.len() - before;
+        if supports == 0 {
+            let (lo, hi) = (
+                boxes[f].0 + Vec2::repeat(tol),
+                boxes[f].1 - Vec2::repeat(tol),
+            );
+            return Err(BlockError::Fixed {
+                index: k,
+                block: Some(f),
+                message: match touches {
+                    Some((i, at)) => format!(
+                        "the fixed block {f} touches the moving blocks only at a point (block {i} at ({:.6}, {:.6})); a support is a shared edge segment",
+                        at.x, at.y
+                    ),
+                    None => format!(
+                        "the fixed block {f} (spanning ({:.6}, {:.6}) to ({:.6}, {:.6})) touches no moving block: no edge of a moving block lies along one of its edges",
+                        lo.x, lo.y, hi.x, hi.y
+                    ),
+                },
+            });
+        }
+        fixed_blocks.push(FixedBlock {
+            block: f,
+            polygon: polys[f].clone(),
+            supports,
+        });
+    }
+    // Supports on the ground line: edges on it with the block above.
+    if let Some(ground) = ground {
+        for &i in &movers {
+            let p = &polys[i];
+            let m = p.len();
+            let mut on_ground = false;
+            for k in 0..m {
+                let (a, b) = (p[k], p[(k + 1) % m]);
+                let flat = (a.y - ground).abs() <= tol && (b.y - ground).abs() <= tol;
+                // Counter-clockwise: an edge running to +x has the block above it.
+                if flat && b.x - a.x > tol {
+                    found.push(Found {
+                        a: i,
+                        b: None,
+                        on: None,
+                        p: a,
+                        q: b,
+                    });
+                    on_ground = true;
+                }
+            }
+            if !on_ground {
+                if let Some(v) = p.iter().find(|v| (v.y - ground).abs() <= tol) {
+                    points.push((i, Other::Ground, *v));
+                }
             }
         }
     }
 
-    // Every block needs a joint; every group of blocks needs the ground.
+    // Every block needs a joint; every group of blocks needs a support.
     let mut degree = vec![0usize; n];
     let mut parent: Vec<usize> = (0..n).collect();
     let mut grounded = vec![false; n];
@@ -198,22 +364,28 @@ pub fn detect(
             None => grounded[f.a] = true,
         }
     }
-    if let Some(i) = (0..n).find(|&i| degree[i] == 0) {
-        let touch = points
-            .iter()
-            .find(|(a, b, _)| *a == i || *b == Some(i))
-            .map(|(a, b, at)| {
-                let other = match (*a == i, b) {
-                    (true, Some(b)) => format!("block {b}"),
-                    (true, None) => "the ground".to_string(),
-                    (false, _) => format!("block {a}"),
-                };
-                (other, *at)
-            });
+    if let Some(i) = movers.iter().copied().find(|&i| degree[i] == 0) {
+        let touch = points.iter().find_map(|&(a, b, at)| {
+            let other = match (a == i, b) {
+                (true, Other::Block(b)) => format!("block {b}"),
+                (true, Other::Ground) => "the ground".to_string(),
+                (true, Other::Fixed(f)) => format!("the fixed block {f}"),
+                (false, Other::Block(b)) if b == i => format!("block {a}"),
+                _ => return None,
+            };
+            Some((other, at))
+        });
         let (lo, hi) = (
             boxes[i].0 + Vec2::repeat(tol),
             boxes[i].1 - Vec2::repeat(tol),
         );
+        let along = match (ground, fixed.is_empty()) {
+            (Some(g), true) => format!("another block's edge or the ground y = {g}"),
+            (Some(g), false) => {
+                format!("another block's edge, a fixed block's or the ground y = {g}")
+            }
+            (None, _) => "another block's edge or a fixed block's".to_string(),
+        };
         return Err(BlockError::Block {
             block: i,
             message: match touch {
@@ -222,19 +394,21 @@ pub fn detect(
                     at.x, at.y
                 ),
                 None => format!(
-                    "it touches nothing (its outline spans ({:.6}, {:.6}) to ({:.6}, {:.6})): no edge lies along another block's edge or the ground y = {ground}",
+                    "it touches nothing (its outline spans ({:.6}, {:.6}) to ({:.6}, {:.6})): no edge lies along {along}",
                     lo.x, lo.y, hi.x, hi.y
                 ),
             },
         });
     }
-    for i in 0..n {
+    for &i in &movers {
         if grounded[i] {
             let r = root(&mut parent, i);
             grounded[r] = true;
         }
     }
-    let mut floating: Vec<usize> = (0..n)
+    let mut floating: Vec<usize> = movers
+        .iter()
+        .copied()
         .filter(|&i| {
             let r = root(&mut parent, i);
             !grounded[r]
@@ -247,22 +421,43 @@ pub fn detect(
             .flat_map(|&i| polys[i].iter())
             .fold(f64::INFINITY, |m, v| m.min(v.y));
         let list: Vec<String> = floating.iter().map(|i| i.to_string()).collect();
+        let reach = match (ground, fixed.is_empty()) {
+            (Some(_), true) => ground_words.clone(),
+            (Some(_), false) => format!("{ground_words} or a fixed block"),
+            (None, _) => "a fixed block".to_string(),
+        };
         return Err(BlockError::Structure(format!(
-            "the structure does not reach the ground y = {ground}: blocks {} (and any joined to them) rest on nothing; their lowest point is at y = {lowest}",
+            "the structure does not reach {reach}: blocks {} (and any joined to them) rest on nothing; their lowest point is at y = {lowest}",
             list.join(", ")
         )));
     }
 
-    let blocks: Vec<Block> = polys
+    // The moving blocks, renumbered from 0 in source order; a block's kind keeps its source
+    // index, which names it.
+    let mut local = vec![usize::MAX; n];
+    for (k, &i) in movers.iter().enumerate() {
+        local[i] = k;
+    }
+    let blocks: Vec<Block> = movers
         .iter()
-        .zip(&areas)
-        .enumerate()
-        .map(|(i, (p, &(area, centroid)))| Block {
-            polygon: p.clone(),
-            area,
-            centroid,
-            weight: gamma * area,
-            kind: BlockKind::User(i),
+        .map(|&i| {
+            let p = &polys[i];
+            let (area, centroid) = polygon_area_centroid(p);
+            Block {
+                polygon: p.clone(),
+                area,
+                centroid,
+                weight: gamma * area,
+                kind: BlockKind::User(i),
+            }
+        })
+        .collect();
+    let found: Vec<Found> = found
+        .into_iter()
+        .map(|f| Found {
+            a: local[f.a],
+            b: f.b.map(|b| local[b]),
+            ..f
         })
         .collect();
     let supports = found.iter().filter(|f| f.b.is_none()).count();
@@ -273,6 +468,7 @@ pub fn detect(
         supports,
         tolerance: tol,
         ground_y: ground,
+        fixed: fixed_blocks,
     })
 }
 
@@ -284,8 +480,9 @@ fn root(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-/// A self-intersecting, non-convex or flat outline is an error naming where.
-fn check_outline(i: usize, p: &[Vec2], tol: f64) -> Result<(), BlockError> {
+/// A self-intersecting or flat outline is an error naming where, and so is a non-convex one
+/// when `convex` (a moving block) asks for it.
+fn check_outline(i: usize, p: &[Vec2], tol: f64, convex: bool) -> Result<(), BlockError> {
     let m = p.len();
     let fail = |message: String| BlockError::Block { block: i, message };
     // Non-adjacent edges must not meet.
@@ -315,13 +512,16 @@ fn check_outline(i: usize, p: &[Vec2], tol: f64) -> Result<(), BlockError> {
             0.5 * area2.abs()
         )));
     }
+    if !convex {
+        return Ok(());
+    }
     // Counter-clockwise: every turn to the left.
     for k in 0..m {
         let (a, b, c) = (p[(k + m - 1) % m], p[k], p[(k + 1) % m]);
         let turn = cross(b - a, c - b);
         if turn < -1e-12 * (b - a).norm() * (c - b).norm() {
             return Err(fail(format!(
-                "it is not convex: its outline turns inward at vertex ({:.6}, {:.6}); split it into convex blocks",
+                "it is not convex: its outline turns inward at vertex ({:.6}, {:.6}); split it into convex blocks (or, if it does not move, name it in `fixed`)",
                 b.x, b.y
             )));
         }
@@ -330,7 +530,7 @@ fn check_outline(i: usize, p: &[Vec2], tol: f64) -> Result<(), BlockError> {
 }
 
 /// Where two segments cross (a point common to both), if they do.
-fn segments_cross(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> Option<Vec2> {
+pub(super) fn segments_cross(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> Option<Vec2> {
     let r = b - a;
     let s = d - c;
     let den = cross(r, s);
@@ -389,9 +589,30 @@ fn contact(pa: &[Vec2], pb: &[Vec2], tol: f64) -> Contact {
         };
         return Contact::Overlap(at, -gap);
     }
-    // Touching: look for collinear, facing, overlapping edges.
+    // Touching: look for collinear, facing, overlapping edges; convex blocks share at most
+    // one, the longest (the first of equal ones).
+    let best =
+        facing_edges(pa, pb, tol)
+            .into_iter()
+            .fold(None, |best: Option<(f64, Vec2, Vec2)>, e| match best {
+                Some((l, _, _)) if e.0 <= l => best,
+                _ => Some(e),
+            });
+    if let Some((_, p, q)) = best {
+        return Contact::Joint(p, q);
+    }
+    match nearest_contact(pa, pb, f64::INFINITY) {
+        Some(at) => Contact::Point(at),
+        None => Contact::Point(pa[0]),
+    }
+}
+
+/// Every pair of an edge of `pa` and an edge of `pb` (both counter-clockwise) that lie on one
+/// line within `tol`, run opposite ways (so the blocks lie on either side) and overlap by more
+/// than `tol`: `(overlap length, start, end)`, the overlap's ends at vertices of either.
+fn facing_edges(pa: &[Vec2], pb: &[Vec2], tol: f64) -> Vec<(f64, Vec2, Vec2)> {
     let (ma, mb) = (pa.len(), pb.len());
-    let mut best: Option<(f64, Vec2, Vec2)> = None;
+    let mut out = Vec::new();
     for k in 0..ma {
         let (a0, a1) = (pa[k], pa[(k + 1) % ma]);
         let ea = a1 - a0;
@@ -412,28 +633,70 @@ fn contact(pa: &[Vec2], pb: &[Vec2], tol: f64) -> Contact {
             let (start, p) = if s0 > 0.0 { (s0, b1) } else { (0.0, a0) };
             let (end, q) = if s1 < la { (s1, b0) } else { (la, a1) };
             let length = end - start;
-            if length > tol && best.is_none_or(|(l, _, _)| length > l) {
-                best = Some((length, p, q));
+            if length > tol {
+                out.push((length, p, q));
             }
         }
     }
-    if let Some((_, p, q)) = best {
-        return Contact::Joint(p, q);
-    }
-    // The nearest vertex of either polygon to the other is the point of contact.
-    let mut at = (f64::INFINITY, pa[0]);
+    out
+}
+
+/// The vertex of either polygon nearest to the other's outline, if within `within`.
+fn nearest_contact(pa: &[Vec2], pb: &[Vec2], within: f64) -> Option<Vec2> {
+    let mut at = (f64::INFINITY, None);
     for (p, q) in [(pa, pb), (pb, pa)] {
         for v in p {
             let d = distance_to_polygon(*v, q);
             if d < at.0 {
-                at = (d, *v);
+                at = (d, Some(*v));
             }
         }
     }
-    Contact::Point(at.1)
+    at.1.filter(|_| at.0 <= within)
 }
 
-fn distance_to_polygon(v: Vec2, p: &[Vec2]) -> f64 {
+enum FixedContact {
+    Apart,
+    /// Overlapping: a point inside both and the area they share.
+    Overlap(Vec2, f64),
+    Point(Vec2),
+    /// The shared faces, from start to end.
+    Joints(Vec<(Vec2, Vec2)>),
+}
+
+/// How a moving block (convex, counter-clockwise) meets a fixed one (counter-clockwise, of
+/// any shape). The separating-axis test needs both convex, so the overlap is measured
+/// instead: Sutherland-Hodgman clipping of the fixed outline by the convex block's
+/// half-planes gives their common region (for a non-convex subject the output may have
+/// zero-width bridges along a clipping line, which add no area, so its area and centroid are
+/// the common region's). An area above `tol` times the moving block's perimeter (a sliver
+/// deeper than `tol` along all of it) is an overlap. Otherwise every facing collinear edge
+/// pair ([`facing_edges`]) is a support joint (a block may sit on several faces of one fixed
+/// block: a stepped or V-shaped seat), and without one a vertex within `tol` of the other
+/// outline is a point contact.
+fn contact_fixed(moving: &[Vec2], fixed: &[Vec2], tol: f64) -> FixedContact {
+    let common = clip(fixed, moving);
+    if common.len() >= 3 {
+        let (area, at) = polygon_area_centroid(&common);
+        let m = moving.len();
+        let perimeter: f64 = (0..m)
+            .map(|k| (moving[(k + 1) % m] - moving[k]).norm())
+            .sum();
+        if area > tol * perimeter {
+            return FixedContact::Overlap(at, area);
+        }
+    }
+    let joints = facing_edges(moving, fixed, tol);
+    if !joints.is_empty() {
+        return FixedContact::Joints(joints.into_iter().map(|(_, p, q)| (p, q)).collect());
+    }
+    match nearest_contact(moving, fixed, tol) {
+        Some(at) => FixedContact::Point(at),
+        None => FixedContact::Apart,
+    }
+}
+
+pub(super) fn distance_to_polygon(v: Vec2, p: &[Vec2]) -> f64 {
     let m = p.len();
     (0..m)
         .map(|k| {
@@ -445,8 +708,8 @@ fn distance_to_polygon(v: Vec2, p: &[Vec2]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The part of convex polygon `subject` inside convex counter-clockwise `clipper`
-/// (Sutherland–Hodgman).
+/// The part of polygon `subject` inside convex counter-clockwise `clipper`
+/// (Sutherland–Hodgman; for a non-convex subject see [`contact_fixed`]).
 fn clip(subject: &[Vec2], clipper: &[Vec2]) -> Vec<Vec2> {
     let mut out = subject.to_vec();
     let m = clipper.len();
@@ -498,21 +761,28 @@ fn arrange(blocks: Vec<Block>, found: &[Found], friction: f64) -> (Assembly, Top
             // The first of the blocks with the most joints.
             .max_by(|a, b| a.1.len().cmp(&b.1.len()).then(b.0.cmp(&a.0)))
             .unwrap_or((0, &incident[0]));
-        // The neighbours in index order, the ground last.
-        let mut neighbours: Vec<Option<usize>> = inc
+        // The neighbours in index order, the supports last (the fixed blocks, then the
+        // ground).
+        let mut neighbours: Vec<(bool, Option<usize>, Option<usize>)> = inc
             .iter()
             .map(|&k| match (found[k].a == i, found[k].b) {
-                (true, b) => b,
-                (false, _) => Some(found[k].a),
+                (true, None) => (true, found[k].on, None),
+                (true, Some(b)) => (false, None, Some(source(&blocks, b))),
+                (false, _) => (false, None, Some(source(&blocks, found[k].a))),
             })
             .collect();
-        neighbours.sort_by_key(|b| (b.is_none(), *b));
+        neighbours.sort_by_key(|&(support, on, b)| (support, on.is_none(), on, b));
         let others: Vec<String> = neighbours
             .iter()
-            .map(|b| b.map_or("ground".to_string(), |b| b.to_string()))
+            .map(|&(_, on, b)| match (on, b) {
+                (_, Some(b)) => b.to_string(),
+                (Some(f), None) => format!("fixed {f}"),
+                (None, None) => "ground".to_string(),
+            })
             .collect();
         Topology::Other(format!(
-            "block {i} has {} joints (with {})",
+            "block {} has {} joints (with {})",
+            source(&blocks, i),
             inc.len(),
             others.join(", ")
         ))
@@ -527,7 +797,12 @@ fn arrange(blocks: Vec<Block>, found: &[Found], friction: f64) -> (Assembly, Top
             n - (found.len() - supports.len())
         ))
     } else {
-        Topology::Other(format!("{} blocks rest on the ground", supports.len()))
+        let on = if found.iter().any(|f| f.on.is_some()) {
+            "supports"
+        } else {
+            "the ground"
+        };
+        Topology::Other(format!("{} blocks rest on {on}", supports.len()))
     };
     match topology {
         Topology::Chain | Topology::Column => {
@@ -601,6 +876,14 @@ fn arrange(blocks: Vec<Block>, found: &[Found], friction: f64) -> (Assembly, Top
     }
 }
 
+/// A block's index in the source (its name).
+fn source(blocks: &[Block], i: usize) -> usize {
+    match blocks[i].kind {
+        BlockKind::User(s) => s,
+        _ => i,
+    }
+}
+
 fn mid(f: &Found) -> Vec2 {
     0.5 * (f.p + f.q)
 }
@@ -643,11 +926,14 @@ fn orient(
     if !toward_to {
         std::mem::swap(&mut p1, &mut p2);
     }
-    // The label names the two blocks by their source indices, the lower first.
-    let kind = match (from_src, to_src) {
-        (Some(a), Some(b)) => JointKind::Between(a.min(b), Some(a.max(b))),
-        (Some(a), None) | (None, Some(a)) => JointKind::Between(a, None),
-        (None, None) => JointKind::Other,
+    // The label names the two blocks by their source indices, the lower first; a support
+    // names the fixed block it rests on.
+    let name = |b: Option<usize>| b.map(|b| source(blocks, b));
+    let kind = match (name(from_src), name(to_src), f.on) {
+        (Some(a), Some(b), _) => JointKind::Between(a.min(b), Some(a.max(b))),
+        (Some(a), None, Some(on)) | (None, Some(a), Some(on)) => JointKind::Fixed(a, on),
+        (Some(a), None, None) | (None, Some(a), None) => JointKind::Between(a, None),
+        (None, None, _) => JointKind::Other,
     };
     Joint {
         p1,

@@ -1,18 +1,22 @@
 //! The user's own blocks: polygons read from a file (JSON, CSV, DXF) or given inline, checked,
-//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]).
+//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]); some of
+//! them may be fixed (a base, an abutment, rock: [`detect_with_fixed`], [`blocks_at`]).
 //!
 //! A scene's `[blocks]` table (read by the scene module) names the source; this module knows the
 //! formats and the geometry, nothing of scenes:
 //! - JSON: `{"polygons": [[[x, y], [x, y], ...], ...]}`;
 //! - CSV: rows `block,x,y` (an optional header row), the vertices of a block on consecutive
 //!   rows in order; the block labels are any text, blocks numbered in order of appearance;
-//! - DXF: every closed `LWPOLYLINE` or `POLYLINE` entity (of one layer, when asked) is a block;
-//!   arc segments (bulges) are refused.
+//! - DXF: every `LWPOLYLINE` or `POLYLINE` entity (of one layer, when asked) is a block, closed
+//!   by its flag or by a last vertex that repeats the first; arc segments (bulges) are refused.
 //!
-//! Coordinates are scaled by the scene's `units` (`"m"` or `"mm"`) to metres. Outlines may run
-//! either way round and may close by repeating their first vertex; repeated vertices and
-//! vertices on a straight edge are dropped (they do not change the block), and every outline is
-//! stored counter-clockwise.
+//! Coordinates are scaled by the scene's `units` (`"m"` or `"mm"`) to metres. Outlines are
+//! mended as CAD programs and surveys write them, and the mending is counted ([`Mending`]): an
+//! open DXF polyline whose last vertex repeats its first (within 1e-12 of the structure's size)
+//! is closed there; repeated vertices and vertices on a straight edge are dropped (they do not
+//! change the block); a clockwise outline is turned counter-clockwise. Nothing else is
+//! repaired: an open polyline whose ends differ, and an outline that crosses itself (named by
+//! the two edges, by their vertices as written), are errors.
 //!
 //! Inputs are bounded before anything is allocated for them: a file larger than
 //! [`MAX_FILE_BYTES`], more than [`MAX_BLOCKS`] blocks, [`MAX_VERTICES`] vertices in all or
@@ -20,7 +24,7 @@
 
 pub mod joints;
 
-pub use joints::{detect, Detected, Topology};
+pub use joints::{detect, detect_with_fixed, Detected, FixedBlock, Topology};
 
 use crate::error::excerpt;
 use crate::geometry::{cross, Vec2};
@@ -111,6 +115,14 @@ pub enum BlockError {
     /// A problem between blocks, or of the structure as a whole.
     #[error("{0}")]
     Structure(String),
+    /// A problem of the fixed block named `index`-th (`[blocks] fixed[index]`): its point lies
+    /// in no block, or the block touches nothing. `block`: the block it names, if any.
+    #[error("{message}")]
+    Fixed {
+        index: usize,
+        block: Option<usize>,
+        message: String,
+    },
 }
 
 impl BlockError {
@@ -119,6 +131,7 @@ impl BlockError {
         match self {
             BlockError::Block { block, .. } => vec![*block],
             BlockError::Pair { blocks, .. } => blocks.to_vec(),
+            BlockError::Fixed { block, .. } => block.iter().copied().collect(),
             _ => Vec::new(),
         }
     }
@@ -171,7 +184,7 @@ impl Polygons {
 /// Read the blocks of a file, its format told by its extension; `layer` selects the DXF
 /// layer (ignored by the other formats). Coordinates are multiplied by `units.scale()`.
 pub fn read_file(path: &Path, units: Units, layer: Option<&str>) -> Result<Polygons, BlockError> {
-    read_file_with_places(path, units, layer).map(|(p, _)| p)
+    read_source(path, units, layer).map(|s| s.polygons)
 }
 
 /// [`read_file`], with where each block is in the file ([`Places`]), for messages.
@@ -180,6 +193,21 @@ pub fn read_file_with_places(
     units: Units,
     layer: Option<&str>,
 ) -> Result<(Polygons, Places), BlockError> {
+    read_source(path, units, layer).map(|s| (s.polygons, s.places))
+}
+
+/// Blocks as read from their source: the outlines, where each lies in the source, and how
+/// they were mended on the way ([`Mending`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Source {
+    pub polygons: Polygons,
+    pub places: Places,
+    pub mending: Mending,
+}
+
+/// [`read_file`], with the places of the blocks in the file and how their outlines were
+/// mended.
+pub fn read_source(path: &Path, units: Units, layer: Option<&str>) -> Result<Source, BlockError> {
     let format = Format::of_path(path).ok_or_else(|| {
         BlockError::Format(format!(
             "{}: unknown block file type (the extension must be .json, .csv or .dxf)",
@@ -217,17 +245,56 @@ pub fn read_file_with_places(
         Format::Json => {
             let raw = read_json(bytes, &name)?;
             let places = (0..raw.len()).map(|i| format!("polygons[{i}]")).collect();
-            (raw, places)
+            (closed_outlines(raw), places)
         }
-        Format::Csv => read_csv(bytes, &name)?,
+        Format::Csv => {
+            let (raw, places) = read_csv(bytes, &name)?;
+            (closed_outlines(raw), places)
+        }
         Format::Dxf => read_dxf(bytes, &name, layer)?,
     };
-    Ok((clean(raw, units, &name)?, places))
+    // An outline's error says where the outline lies in the file (the scene's messages add
+    // that only once the blocks are read).
+    let (polygons, mending) = clean(raw, units, &name).map_err(|e| match e {
+        BlockError::Block { block, message } => {
+            let place = places
+                .get(block)
+                .map_or(String::new(), |p| format!(" (block {block} is {p})"));
+            BlockError::Block {
+                block,
+                message: format!("{message}{place}"),
+            }
+        }
+        e => e,
+    })?;
+    Ok(Source {
+        polygons,
+        places,
+        mending,
+    })
 }
 
 /// Blocks given inline (`polygons = [[[x, y], ...], ...]`), in `units`.
 pub fn from_vertices(raw: Vec<Vec<[f64; 2]>>, units: Units) -> Result<Polygons, BlockError> {
-    clean(raw, units, "polygons")
+    from_vertices_mended(raw, units).map(|(p, _)| p)
+}
+
+/// [`from_vertices`], with how the outlines were mended.
+pub fn from_vertices_mended(
+    raw: Vec<Vec<[f64; 2]>>,
+    units: Units,
+) -> Result<(Polygons, Mending), BlockError> {
+    clean(closed_outlines(raw), units, "polygons")
+}
+
+/// Outlines of a format without open polylines (JSON, CSV, inline): each closes on itself.
+fn closed_outlines(raw: Vec<Vec<[f64; 2]>>) -> Vec<RawOutline> {
+    raw.into_iter()
+        .map(|points| RawOutline {
+            points,
+            open: false,
+        })
+        .collect()
 }
 
 fn count_limits(blocks: usize, vertices: usize) -> Result<(), BlockError> {
@@ -355,7 +422,11 @@ fn first_data_line(bytes: &[u8], at: &csv::Position) -> u64 {
     }
 }
 
-fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, BlockError> {
+fn read_dxf(
+    bytes: &[u8],
+    name: &str,
+    layer: Option<&str>,
+) -> Result<(Vec<RawOutline>, Places), BlockError> {
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
         .map_err(|e| BlockError::Format(format!("{name}: not a readable DXF file: {e}")))?;
     let mut blocks = Vec::new();
@@ -385,15 +456,8 @@ fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, B
         let at = points.first().map_or(String::new(), |p| {
             format!(" starting at ({}, {})", p[0], p[1])
         });
-        if !closed {
-            return Err(BlockError::Block {
-                block: index,
-                message: format!(
-                    "the polyline{at} (handle {:X}, layer `{}`) is open; each block must be a closed polyline",
-                    entity.common.handle.0, entity.common.layer
-                ),
-            });
-        }
+        // An open polyline is a block when it ends on its first vertex, as CAD often writes
+        // a closed outline; `clean` checks that and counts it as mended.
         if bulge {
             return Err(BlockError::Block {
                 block: index,
@@ -405,7 +469,10 @@ fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, B
         }
         vertices += points.len();
         count_limits(index + 1, vertices)?;
-        blocks.push(points);
+        blocks.push(RawOutline {
+            points,
+            open: !closed,
+        });
         places.push(format!(
             "handle {:X}, layer `{}`",
             entity.common.handle.0, entity.common.layer
@@ -421,31 +488,70 @@ fn read_dxf(bytes: &[u8], name: &str, layer: Option<&str>) -> Result<Outlines, B
             _ => String::new(),
         };
         return Err(BlockError::Empty(format!(
-            "{name} has no closed LWPOLYLINE or POLYLINE entity{hint}"
+            "{name} has no LWPOLYLINE or POLYLINE entity{hint}"
         )));
     }
     Ok((blocks, places))
 }
 
-/// Check the counts and numbers, scale to metres, drop repeated and straight-angle vertices,
-/// and turn every outline counter-clockwise. `name` names the source in messages.
-fn clean(raw: Vec<Vec<[f64; 2]>>, units: Units, name: &str) -> Result<Polygons, BlockError> {
+/// How the outlines were mended as they were read (docs/geometry.md, "Drawings as CAD writes
+/// them"): each count is a number of outlines. Nothing else is ever repaired: an outline that
+/// crosses itself, or an open polyline whose ends differ, is an error.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Mending {
+    /// Outlines changed in any of the ways below.
+    pub outlines: usize,
+    /// Open DXF polylines (no closed flag) whose last vertex repeats the first: closed there.
+    pub closed: usize,
+    /// Outlines with a vertex repeating the one before it (or a closing copy of the first)
+    /// dropped.
+    pub repeated_vertices: usize,
+    /// Outlines with a vertex on the straight line between its neighbours dropped.
+    pub straight_vertices: usize,
+    /// Outlines given clockwise, turned counter-clockwise.
+    pub reversed: usize,
+}
+
+impl Mending {
+    /// Whether any outline was mended.
+    pub fn any(&self) -> bool {
+        self.outlines > 0
+    }
+}
+
+/// One outline as read: its vertices in the source's units, and whether it came as an open
+/// polyline (a DXF polyline without the closed flag), which must then end where it started.
+struct RawOutline {
+    points: Vec<[f64; 2]>,
+    open: bool,
+}
+
+/// Check the counts and numbers, scale to metres, close open outlines that end on their first
+/// vertex, drop repeated and straight-angle vertices, refuse outlines that cross themselves,
+/// and turn every outline counter-clockwise, counting what was mended. `name` names the
+/// source in messages.
+fn clean(
+    raw: Vec<RawOutline>,
+    units: Units,
+    name: &str,
+) -> Result<(Polygons, Mending), BlockError> {
     if raw.is_empty() {
         return Err(BlockError::Empty(format!("{name} holds no polygon")));
     }
-    count_limits(raw.len(), raw.iter().map(Vec::len).sum())?;
+    count_limits(raw.len(), raw.iter().map(|r| r.points.len()).sum())?;
     let scale = units.scale();
     let limit = MAX_COORDINATE;
-    let mut out = Vec::with_capacity(raw.len());
-    for (i, poly) in raw.into_iter().enumerate() {
+    let mut scaled = Vec::with_capacity(raw.len());
+    for (i, poly) in raw.iter().enumerate() {
         let fail = |message: String| BlockError::Block { block: i, message };
-        if poly.len() > MAX_BLOCK_VERTICES {
+        if poly.points.len() > MAX_BLOCK_VERTICES {
             return Err(fail(format!(
                 "{} vertices is more than the {MAX_BLOCK_VERTICES} a block may have",
-                poly.len()
+                poly.points.len()
             )));
         }
         if let Some((k, p)) = poly
+            .points
             .iter()
             .enumerate()
             .find(|(_, p)| !(p[0].is_finite() && p[1].is_finite()))
@@ -456,6 +562,7 @@ fn clean(raw: Vec<Vec<[f64; 2]>>, units: Units, name: &str) -> Result<Polygons, 
             )));
         }
         let pts: Vec<Vec2> = poly
+            .points
             .iter()
             .map(|p| Vec2::new(p[0] * scale, p[1] * scale))
             .collect();
@@ -469,78 +576,209 @@ fn clean(raw: Vec<Vec<[f64; 2]>>, units: Units, name: &str) -> Result<Polygons, 
                 p.x, p.y
             )));
         }
-        out.push(simplify(pts));
+        scaled.push(pts);
     }
-    // Tolerance for dropping vertices: relative to the whole structure.
-    let polys = Polygons(out);
-    let tol = 1e-12 * polys.size().max(f64::MIN_POSITIVE);
-    let polys: Vec<Vec<Vec2>> = polys
-        .0
-        .into_iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let p = drop_straight(p, tol);
-            if p.len() < 3 {
-                return Err(BlockError::Block {
-                    block: i,
-                    message: format!(
-                        "its outline has {} distinct vertices, not enough for a block (at least 3 not on one line)",
-                        p.len()
-                    ),
-                });
+    // Tolerance for repeated and straight vertices: relative to the whole structure.
+    let size = Polygons(scaled.clone()).size();
+    let tol = 1e-12 * size.max(f64::MIN_POSITIVE);
+    let mut mending = Mending::default();
+    let mut out = Vec::with_capacity(raw.len());
+    for (i, (pts, poly)) in scaled.into_iter().zip(&raw).enumerate() {
+        let fail = |message: String| BlockError::Block { block: i, message };
+        // In the source's units, for messages.
+        let at = |k: usize| {
+            let p = poly.points[k];
+            format!("({}, {})", p[0], p[1])
+        };
+        // Each vertex with its index in the source.
+        let mut v: Vec<(Vec2, usize)> = pts.into_iter().enumerate().map(|(k, p)| (p, k)).collect();
+        let mut closed = false;
+        if poly.open {
+            let ends = v.first().zip(v.last()).map(|(a, b)| (b.0 - a.0).norm());
+            match ends {
+                Some(d) if d <= tol && v.len() > 1 => {
+                    v.pop();
+                    closed = true;
+                }
+                _ => {
+                    let last = poly.points.len().saturating_sub(1);
+                    return Err(fail(format!(
+                        "the polyline is open and its last vertex {} does not repeat its first {}; each block must be a closed polyline (the closed flag set, or the first vertex repeated at the end)",
+                        at(last),
+                        at(0)
+                    )));
+                }
             }
-            Ok(counter_clockwise(p))
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(Polygons(polys))
-}
-
-/// Drop exactly repeated consecutive vertices (and a closing copy of the first).
-fn simplify(mut pts: Vec<Vec2>) -> Vec<Vec2> {
-    pts.dedup();
-    while pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
+        }
+        let before = v.len();
+        v.dedup_by(|b, a| b.0 == a.0);
+        while v.len() > 1 && v.first().map(|p| p.0) == v.last().map(|p| p.0) {
+            v.pop();
+        }
+        let mut repeated = v.len() < before;
+        let (v, near, straight) = drop_straight(v, tol);
+        repeated |= near;
+        if v.len() < 3 {
+            return Err(fail(format!(
+                "its outline has {} distinct vertices, not enough for a block (at least 3 not on one line)",
+                v.len()
+            )));
+        }
+        // A self-intersecting outline is refused, never repaired: which block is meant is
+        // the user's to say. The edges are named by their vertices in the source.
+        let m = v.len();
+        for k in 0..m {
+            for l in k + 2..m {
+                if k == 0 && l == m - 1 {
+                    continue;
+                }
+                let (a, b) = (v[k], v[(k + 1) % m]);
+                let (c, d) = (v[l], v[(l + 1) % m]);
+                if let Some(x) = joints::segments_cross(a.0, b.0, c.0, d.0) {
+                    return Err(fail(format!(
+                        "its outline intersects itself: the edge from vertex {} {} to vertex {} {} crosses the edge from vertex {} {} to vertex {} {} at ({:.6}, {:.6}) (vertices numbered from 0 as written)",
+                        a.1,
+                        at(a.1),
+                        b.1,
+                        at(b.1),
+                        c.1,
+                        at(c.1),
+                        d.1,
+                        at(d.1),
+                        x.x / scale,
+                        x.y / scale
+                    )));
+                }
+            }
+        }
+        let mut p: Vec<Vec2> = v.into_iter().map(|(p, _)| p).collect();
+        let reversed = signed_area2(&p) < 0.0;
+        if reversed {
+            p.reverse();
+        }
+        mending.closed += usize::from(closed);
+        mending.repeated_vertices += usize::from(repeated);
+        mending.straight_vertices += usize::from(straight);
+        mending.reversed += usize::from(reversed);
+        mending.outlines += usize::from(closed || repeated || straight || reversed);
+        out.push(p);
     }
-    pts
+    Ok((Polygons(out), mending))
 }
 
-/// Drop vertices within `tol` of the line through their neighbours, and near-repeats.
-fn drop_straight(mut pts: Vec<Vec2>, tol: f64) -> Vec<Vec2> {
+/// Drop vertices within `tol` of the one before (near-repeats) and vertices within `tol` of
+/// the line through their neighbours; says whether each kind was dropped.
+fn drop_straight(mut pts: Vec<(Vec2, usize)>, tol: f64) -> (Vec<(Vec2, usize)>, bool, bool) {
+    let (mut near, mut straight) = (false, false);
     loop {
         let m = pts.len();
         if m < 3 {
-            return pts;
+            return (pts, near, straight);
         }
-        let drop = (0..m).find(|&k| {
-            let (a, b, c) = (pts[(k + m - 1) % m], pts[k], pts[(k + 1) % m]);
+        let drop = (0..m).find_map(|k| {
+            let (a, b, c) = (pts[(k + m - 1) % m].0, pts[k].0, pts[(k + 1) % m].0);
             let ac = c - a;
             let len = ac.norm();
-            (b - a).norm() <= tol
-                || (len > tol
+            if (b - a).norm() <= tol {
+                Some((k, true))
+            } else {
+                (len > tol
                     && cross(ac, b - a).abs() <= tol * len
                     && (b - a).dot(&ac) > 0.0
                     && (c - b).dot(&ac) > 0.0)
+                    .then_some((k, false))
+            }
         });
         match drop {
-            Some(k) => {
+            Some((k, repeat)) => {
                 pts.remove(k);
+                if repeat {
+                    near = true;
+                } else {
+                    straight = true;
+                }
             }
-            None => return pts,
+            None => return (pts, near, straight),
         }
     }
+}
+
+/// The block each of `points` (m) lies in, by its source index: the points of `[blocks]
+/// fixed`. A point lies in a block when it is inside its outline (any simple outline: the
+/// crossing-number test) or within `tol` (m) of it. A point in no block, or on the outlines
+/// of two, is an error [`BlockError::Fixed`] naming it by its position and saying which block
+/// lies nearest (at a distance in `units`).
+pub fn blocks_at(
+    polygons: &Polygons,
+    points: &[Vec2],
+    tol: f64,
+    units: Units,
+) -> Result<Vec<usize>, BlockError> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| {
+            let distance: Vec<f64> = polygons.0.iter().map(|q| joints::distance_to_polygon(p, q)).collect();
+            let holding: Vec<usize> = (0..polygons.len())
+                .filter(|&i| distance[i] <= tol || inside_outline(&polygons.0[i], p))
+                .collect();
+            match holding.as_slice() {
+                [one] => Ok(*one),
+                [] => {
+                    let (near, d) = distance
+                        .iter()
+                        .copied()
+                        .enumerate()
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                        .unwrap_or((0, f64::NAN));
+                    Err(BlockError::Fixed {
+                        index: k,
+                        block: Some(near),
+                        message: format!(
+                            "the point lies outside every block: the nearest is block {near}, {} {} away; a fixed point lies inside the block that does not move",
+                            crate::geometry::trim(d / units.scale()),
+                            units.name()
+                        ),
+                    })
+                }
+                [a, b, ..] => Err(BlockError::Fixed {
+                    index: k,
+                    block: None,
+                    message: format!(
+                        "the point lies on the outlines of blocks {a} and {b}; give a point inside the one block that does not move"
+                    ),
+                }),
+            }
+        })
+        .collect()
+}
+
+/// Distance from `p` to the outline `poly` (m).
+pub fn distance_to_outline(p: Vec2, poly: &[Vec2]) -> f64 {
+    joints::distance_to_polygon(p, poly)
+}
+
+/// Whether `p` lies inside the simple polygon `poly` (crossing number: a ray toward +x crosses
+/// the outline an odd number of times).
+pub fn inside_outline(poly: &[Vec2], p: Vec2) -> bool {
+    let m = poly.len();
+    let mut odd = false;
+    for k in 0..m {
+        let (a, b) = (poly[k], poly[(k + 1) % m]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if x > p.x {
+                odd = !odd;
+            }
+        }
+    }
+    odd
 }
 
 /// Twice the signed area (positive counter-clockwise).
 pub fn signed_area2(pts: &[Vec2]) -> f64 {
     let m = pts.len();
     (0..m).map(|k| cross(pts[k], pts[(k + 1) % m])).sum()
-}
-
-fn counter_clockwise(mut pts: Vec<Vec2>) -> Vec<Vec2> {
-    if signed_area2(&pts) < 0.0 {
-        pts.reverse();
-    }
-    pts
 }
 
 #[cfg(test)]

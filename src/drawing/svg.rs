@@ -8,6 +8,8 @@
 //!   numbered 1, 2, ... in the order given (chain order, the order of the text summary);
 //! - sliding joints as thick orange segments;
 //! - supports: ground hatching on the ground side of every joint to the ground;
+//! - fixed blocks (`[blocks] fixed`: a base, an abutment) shaded grey and hatched, behind the
+//!   blocks, their support joints hatched like the ground's;
 //! - the collapse mechanism as dashed outlines of the displaced blocks: a point `p` of block
 //!   `i` moves by `A (v_i + omega_i x (p - c_i))` (first-order rigid-body displacement,
 //!   `omega x r = (-omega r_y, omega r_x)`; first order keeps the blocks on either side of a
@@ -85,6 +87,8 @@ pub mod colours {
     pub const MOVED: RGBColor = RGBColor(0x3A, 0x7C, 0xC8);
     /// Ground and its hatching.
     pub const GROUND: RGBColor = RGBColor(0x40, 0x40, 0x40);
+    /// Fixed blocks (hatched with `GROUND`).
+    pub const FIXED: RGBColor = RGBColor(0xD4, 0xD4, 0xD4);
     /// Text.
     pub const TEXT: RGBColor = RGBColor(0x10, 0x10, 0x10);
     /// Fill region.
@@ -147,6 +151,8 @@ pub struct Drawing<'a> {
     pub loads: Option<&'a LoadCase>,
     /// Leave out the ground hatching under supports.
     pub hide_supports: bool,
+    /// The outlines of the fixed blocks (any shape), drawn grey and hatched behind the blocks.
+    pub fixed: &'a [Vec<Vec2>],
     /// Tie rods (`Model::ties`), drawn between their anchors.
     pub ties: &'a [crate::model::Tie],
     /// Their forces at collapse (`StaticResult::ties`), labelled beside them when given.
@@ -233,6 +239,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         .iter()
         .flat_map(|b| b.polygon.iter())
         .for_each(&mut grow);
+    drawing.fixed.iter().flatten().for_each(&mut grow);
     if let Some(m) = &mech {
         m.edges.iter().flat_map(|(a, b)| [a, b]).for_each(&mut grow);
     }
@@ -375,6 +382,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     if has_supports {
         legend.push((Glyph::Ground, "support".into()));
     }
+    if !drawing.fixed.is_empty() {
+        legend.push((Glyph::Fixed, "fixed block (does not move)".into()));
+    }
     if let Some(m) = &mech {
         legend.push((
             Glyph::Mechanism,
@@ -423,6 +433,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     })?;
     if let Some(mk) = marks.as_ref().filter(|m| !m.fill.is_empty()) {
         svg.raw("fill", &fill_svg(&mk.fill, &frame, size));
+    }
+    if !drawing.fixed.is_empty() {
+        svg.raw("fixed-blocks", &fixed_svg(drawing.fixed, &frame));
     }
     if has_supports {
         svg.layer("supports", |root| {
@@ -1333,6 +1346,32 @@ fn interpolate(path: &[Vec2], x: f64) -> f64 {
 /// The fill: every region shaded, hatched over the whole, and the outline of the union
 /// (its level and end walls: the region edges no other region shares that are horizontal
 /// or vertical; the rest lies on the extrados, under the blocks).
+/// The fixed blocks: each outline shaded grey, hatched and outlined in the ground's colour.
+fn fixed_svg(outlines: &[Vec<Vec2>], frame: &Frame) -> String {
+    let (fill, edge) = (hex(FIXED), hex(GROUND));
+    let mut out = format!(
+        "<defs><pattern id=\"fixed-hatch\" patternUnits=\"userSpaceOnUse\" width=\"7\" \
+         height=\"7\" patternTransform=\"rotate(-45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" \
+         y2=\"7\" stroke=\"{edge}\" stroke-width=\"0.8\"/></pattern></defs>\n"
+    );
+    for o in outlines {
+        let pts: Vec<String> = o
+            .iter()
+            .map(|p| {
+                let (x, y) = frame.pxf(*p);
+                format!("{x:.1},{y:.1}")
+            })
+            .collect();
+        let pts = pts.join(" ");
+        out.push_str(&format!(
+            "<polygon class=\"fixed-block\" fill=\"{fill}\" stroke=\"none\" points=\"{pts}\"/>\n\
+             <polygon fill=\"url(#fixed-hatch)\" stroke=\"{edge}\" stroke-width=\"1.5\" \
+             stroke-linejoin=\"round\" points=\"{pts}\"/>\n"
+        ));
+    }
+    out
+}
+
 fn fill_svg(regions: &[Vec<Vec2>], frame: &Frame, size: f64) -> String {
     let fill = hex(FILL);
     let edge = hex(FILL_EDGE);
@@ -1938,6 +1977,8 @@ pub(crate) enum Glyph {
     Ground,
     /// Shaded, hatched fill region.
     Fill,
+    /// A fixed block: grey, hatched.
+    Fixed,
     /// An arrow of this colour, pointing left when true.
     Arrow(RGBColor, bool),
 }
@@ -2056,6 +2097,26 @@ pub(crate) fn draw_legend(
                     let x = x0 + 2 + 6 * k;
                     root.draw(&PathElement::new(
                         vec![(x, yc - 4), (x - 6, yc + 3)],
+                        GROUND.stroke_width(1),
+                    ))
+                    .map_err(plot_err)?;
+                }
+            }
+            Glyph::Fixed => {
+                root.draw(&Rectangle::new(
+                    [(x0, yc - 7), (x1, yc + 7)],
+                    FIXED.filled(),
+                ))
+                .map_err(plot_err)?;
+                root.draw(&Rectangle::new(
+                    [(x0, yc - 7), (x1, yc + 7)],
+                    GROUND.stroke_width(1),
+                ))
+                .map_err(plot_err)?;
+                for k in 0..3 {
+                    let x = x0 + 1 + 8 * k;
+                    root.draw(&PathElement::new(
+                        vec![(x, yc - 6), (x + 12, yc + 6)],
                         GROUND.stroke_width(1),
                     ))
                     .map_err(plot_err)?;

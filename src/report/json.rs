@@ -92,10 +92,10 @@ pub struct BlocksReport {
     pub blocks: usize,
     /// Joints found between blocks.
     pub joints: usize,
-    /// Joints found on the ground.
+    /// Joints found on the ground (and, added, on the fixed blocks).
     pub supports: usize,
-    /// y of the ground line (m).
-    pub ground_y: f64,
+    /// y of the ground line (m); null when there is none (added: only fixed blocks support).
+    pub ground_y: Option<f64>,
     /// The joint tolerance (m).
     pub tolerance: f64,
     /// Whether the blocks form a chain (between two supports, or on one): the kinematic
@@ -103,6 +103,22 @@ pub struct BlocksReport {
     pub chain: bool,
     /// Why not, when not.
     pub not_a_chain: Option<String>,
+    /// Added: the fixed blocks (`[blocks] fixed`), each with its point as written, the block
+    /// it names (its index in the source) and the support joints found on it.
+    pub fixed: Vec<FixedReport>,
+    /// Added: how many outlines were mended as they were read, and how.
+    pub mended: crate::blocks::Mending,
+}
+
+/// A fixed block in the JSON `scene.blocks.fixed`.
+#[derive(Debug, Serialize)]
+pub struct FixedReport {
+    /// The point of `[blocks] fixed`, in the blocks' units.
+    pub point: [f64; 2],
+    /// The block it lies in (index in the source).
+    pub block: usize,
+    /// Support joints found on it.
+    pub supports: usize,
 }
 
 impl BlocksReport {
@@ -124,6 +140,17 @@ impl BlocksReport {
                 crate::blocks::Topology::Other(why) => Some(why.clone()),
                 _ => None,
             },
+            fixed: d
+                .fixed
+                .iter()
+                .zip(&b.fixed)
+                .map(|(f, &point)| FixedReport {
+                    point,
+                    block: f.block,
+                    supports: f.supports,
+                })
+                .collect(),
+            mended: b.mending,
         }
     }
 }

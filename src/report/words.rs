@@ -19,6 +19,7 @@ pub fn joint_label(kind: JointKind) -> String {
         JointKind::Other => "joint".to_string(),
         JointKind::Between(a, Some(b)) => format!("blocks {a}|{b}"),
         JointKind::Between(a, None) => format!("block {a}|ground"),
+        JointKind::Fixed(a, f) => format!("block {a}|fixed {f}"),
     }
 }
 
@@ -94,7 +95,7 @@ pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) 
 /// The end of a joint a hinge sits at, in words with its name in the JSON and the CSV:
 /// `intrados (p1)`, `extrados (p2)` on the arch, `inner face (p1)`, `outer face (p2)` on a pier.
 pub fn end_words(kind: JointKind, end: JointEnd) -> &'static str {
-    if matches!(kind, JointKind::Between(..)) {
+    if matches!(kind, JointKind::Between(..) | JointKind::Fixed(..)) {
         // A joint between the user's blocks has no intrados or faces, only its two ends.
         return match end {
             JointEnd::P1 => "end p1",
@@ -213,7 +214,8 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
     s
 }
 
-/// The user's blocks in words: where from, how many joints were found, whether a chain.
+/// The user's blocks in words: where from, how many joints were found (on the ground and on
+/// each fixed block), whether a chain, and how the outlines were mended.
 pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
     let d = &b.detected;
     let between = d.assembly.joints.len() - d.supports;
@@ -222,15 +224,61 @@ pub fn describe_blocks(b: &crate::scene::BlocksSpec) -> String {
         crate::blocks::Topology::Column => "a chain standing on one support".to_string(),
         crate::blocks::Topology::Other(why) => format!("not a chain: {why}"),
     };
-    format!(
-        "{} from {} ({}): {} found between blocks and {} on the ground y = {} m (tolerance {} m); {shape}",
+    let mut supports = Vec::new();
+    if let Some(g) = d.ground_y {
+        supports.push(format!(
+            "{} on the ground y = {} m",
+            count(d.ground_supports() as u64, "support", "supports"),
+            num(g)
+        ));
+    }
+    for f in &d.fixed {
+        supports.push(format!(
+            "{} on the fixed block {}",
+            count(f.supports as u64, "support", "supports"),
+            f.block
+        ));
+    }
+    let mut s = format!(
+        "{} from {} ({}): {} found between blocks and {} (tolerance {} m); {shape}",
         count(d.assembly.blocks.len() as u64, "user block", "user blocks"),
         b.source_words(),
         b.units.name(),
         count(between as u64, "joint", "joints"),
-        count(d.supports as u64, "support", "supports"),
-        num(d.ground_y),
+        supports.join(" and "),
         sci(d.tolerance, 1)
+    );
+    if b.mending.any() {
+        let _ = write!(s, "\n  {}", mending_words(&b.mending));
+    }
+    s
+}
+
+/// How the outlines were mended, in words: `3 outlines mended as read: 1 open polyline closed
+/// on its repeated first vertex, 2 turned counter-clockwise`.
+pub fn mending_words(m: &crate::blocks::Mending) -> String {
+    let how: Vec<String> = [
+        (
+            m.closed,
+            "open polyline",
+            "closed at a repeated first vertex",
+        ),
+        (m.repeated_vertices, "outline", "rid of repeated vertices"),
+        (
+            m.straight_vertices,
+            "outline",
+            "rid of vertices on a straight edge",
+        ),
+        (m.reversed, "outline", "turned counter-clockwise"),
+    ]
+    .into_iter()
+    .filter(|(n, _, _)| *n > 0)
+    .map(|(n, what, done)| format!("{} {done}", count(n as u64, what, &format!("{what}s"))))
+    .collect();
+    format!(
+        "{} mended as read: {}",
+        count(m.outlines as u64, "outline", "outlines"),
+        how.join(", ")
     )
 }
 

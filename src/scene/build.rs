@@ -57,6 +57,12 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
             b.detected.assembly.clone(),
             Structure::Blocks {
                 tolerance: b.detected.tolerance,
+                fixed: b
+                    .detected
+                    .fixed
+                    .iter()
+                    .map(|f| (f.block, f.polygon.clone()))
+                    .collect(),
             },
         ),
         (None, None) => {

@@ -367,11 +367,11 @@ impl Scene {
     }
 
     /// The arch's own size: R for circular and pointed arches, span/2 for basket arches; the
-    /// structure's largest extent for the user's blocks.
+    /// largest extent of the user's blocks that move (a fixed base or rock aside).
     pub fn arch_size(&self) -> f64 {
         match (&self.arch, &self.blocks) {
             (Some(a), _) => a.shape.size(),
-            (None, Some(b)) => b.polygons.size(),
+            (None, Some(b)) => b.detected.assembly.size(),
             (None, None) => f64::NAN,
         }
     }

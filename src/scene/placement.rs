@@ -57,15 +57,21 @@ pub(super) enum Structure {
     /// The parametric arch (and piers), blocks in chain order.
     Arch(ArchLayout),
     /// The user's blocks: convex counter-clockwise outlines, in source order by their kind,
-    /// detected with the joint tolerance `tolerance` (m).
-    Blocks { tolerance: f64 },
+    /// detected with the joint tolerance `tolerance` (m), and the fixed blocks `fixed`
+    /// (source index, counter-clockwise outline of any shape), which carry what rests on them
+    /// to the ground.
+    Blocks {
+        tolerance: f64,
+        fixed: Vec<(usize, Vec<Vec2>)>,
+    },
 }
 
-/// An upward-facing edge of a structure's top: its block, its ends from left to right
+/// An upward-facing edge of a structure's top: its block (None: a fixed block), its ends from
+/// left to right
 /// (`a.x < b.x`), and the arc `(centre, radius)` it lies on (a curved voussoir's extrados) or
 /// None (straight).
 struct RoofEdge {
-    block: usize,
+    block: Option<usize>,
     a: Vec2,
     b: Vec2,
     arc: Option<(Vec2, f64)>,
@@ -108,7 +114,7 @@ impl<'a> Placement<'a> {
     pub(super) fn new(assembly: &'a Assembly, structure: Structure) -> Self {
         match structure {
             Structure::Arch(layout) => Self::arch(assembly, layout),
-            Structure::Blocks { tolerance } => Self::blocks(assembly, tolerance),
+            Structure::Blocks { tolerance, fixed } => Self::blocks(assembly, tolerance, fixed),
         }
     }
 
@@ -116,7 +122,7 @@ impl<'a> Placement<'a> {
     fn arch(assembly: &'a Assembly, layout: ArchLayout) -> Self {
         let g = &layout.geometry;
         let piers = layout.pier_tops.iter().map(|&(block, x0, x1)| RoofEdge {
-            block,
+            block: Some(block),
             a: Vec2::new(x0, 0.0),
             b: Vec2::new(x1, 0.0),
             arc: None,
@@ -124,7 +130,7 @@ impl<'a> Placement<'a> {
         let voussoirs = (0..g.voussoirs()).filter_map(|j| {
             let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
             (b.x > a.x).then(|| RoofEdge {
-                block: layout.first + j,
+                block: Some(layout.first + j),
                 a,
                 b,
                 arc: layout.curved.then(|| extrados_arc(g, j)),
@@ -140,14 +146,21 @@ impl<'a> Placement<'a> {
     }
 
     /// The placement on the user's blocks (`assembly`, as detected with the joint tolerance
-    /// `tol`, in metres).
-    fn blocks(assembly: &'a Assembly, tol: f64) -> Self {
+    /// `tol`, in metres) and the fixed blocks `fixed`: their tops are roof too, so a load or
+    /// fill over them rests on them (and is carried to the ground), not on a block below.
+    fn blocks(assembly: &'a Assembly, tol: f64, fixed: Vec<(usize, Vec<Vec2>)>) -> Self {
         let mut roof = Vec::new();
-        for (block, b) in assembly.blocks.iter().enumerate() {
-            let m = b.polygon.len();
+        let outlines = assembly
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (Some(i), &b.polygon))
+            .chain(fixed.iter().map(|(_, p)| (None, p)));
+        for (block, polygon) in outlines {
+            let m = polygon.len();
             for k in 0..m {
                 // Counter-clockwise outlines: an upward-facing edge runs toward -x.
-                let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+                let (a, c) = (polygon[k], polygon[(k + 1) % m]);
                 if a.x - c.x > tol {
                     roof.push(RoofEdge {
                         block,
@@ -162,7 +175,24 @@ impl<'a> Placement<'a> {
             assembly,
             tol,
             roof,
-            structure: Structure::Blocks { tolerance: tol },
+            structure: Structure::Blocks {
+                tolerance: tol,
+                fixed,
+            },
+        }
+    }
+
+    /// The fixed block (its source index) that holds `p` within the tolerance, if any.
+    pub(super) fn fixed_at(&self, p: Vec2) -> Option<usize> {
+        match &self.structure {
+            Structure::Arch(_) => None,
+            Structure::Blocks { fixed, .. } => fixed
+                .iter()
+                .find(|(_, poly)| {
+                    crate::blocks::distance_to_outline(p, poly) <= self.tol
+                        || crate::blocks::inside_outline(poly, p)
+                })
+                .map(|&(f, _)| f),
         }
     }
 
@@ -205,6 +235,11 @@ impl<'a> Placement<'a> {
 
     /// Why no block holds `p`, in words (the error's allowed values).
     fn outside(&self, p: Vec2) -> String {
+        if let Some(f) = self.fixed_at(p) {
+            return format!(
+                "the point lies in the fixed block {f}, which does not move: a load there acts on no block of the structure"
+            );
+        }
         match self.structure {
             Structure::Arch(_) => {
                 let (b, d) = nearest_block(self.assembly, p);
@@ -223,7 +258,9 @@ impl<'a> Placement<'a> {
             Structure::Arch(_) => {
                 "the loaded length must overlap the extrados of the arch (or an exposed pier top)"
             }
-            Structure::Blocks { .. } => "the loaded length must lie over the top of some block",
+            Structure::Blocks { .. } => {
+                "the loaded length must lie over the top of some block (not of a fixed block)"
+            }
         }
     }
 
@@ -236,8 +273,9 @@ impl<'a> Placement<'a> {
                 .filter_map(|e| {
                     let lo = from_x.max(e.a.x);
                     let hi = to_x.min(e.b.x);
+                    let block = e.block?;
                     (hi > lo).then(|| Piece {
-                        block: e.block,
+                        block,
                         point: e.at(0.5 * (lo + hi)),
                         length: hi - lo,
                     })
@@ -254,10 +292,13 @@ impl<'a> Placement<'a> {
                 }
                 self.under_top(cuts)
                     .into_iter()
-                    .map(|(x0, x1, e)| Piece {
-                        block: e.block,
-                        point: e.at(0.5 * (x0 + x1)),
-                        length: x1 - x0,
+                    .filter_map(|(x0, x1, e)| {
+                        // A piece over a fixed block rests on it.
+                        Some(Piece {
+                            block: e.block?,
+                            point: e.at(0.5 * (x0 + x1)),
+                            length: x1 - x0,
+                        })
                     })
                     .collect()
             }
@@ -278,8 +319,11 @@ impl<'a> Placement<'a> {
             Structure::Arch(_) => self
                 .roof
                 .iter()
-                .filter(|e| matches!(self.assembly.blocks[e.block].kind, BlockKind::Voussoir(_)))
-                .filter_map(|e| region(e.block, e.a, e.b, e.arc))
+                .filter_map(|e| {
+                    let block = e.block?;
+                    matches!(self.assembly.blocks[block].kind, BlockKind::Voussoir(_))
+                        .then(|| region(block, e.a, e.b, e.arc))?
+                })
                 .collect(),
             Structure::Blocks { .. } => {
                 let cuts = self.roof.iter().flat_map(|e| [e.a.x, e.b.x]).collect();
@@ -299,7 +343,8 @@ impl<'a> Placement<'a> {
                                 b = e.at(x);
                             }
                         }
-                        region(e.block, a, b, None)
+                        // Fill over a fixed block rests on it.
+                        region(e.block?, a, b, None)
                     })
                     .collect()
             }

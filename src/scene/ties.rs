@@ -3,7 +3,7 @@
 //! ```toml
 //! [[ties]]
 //! from = [-1.1, 1.0]     # m: anchored on the block containing this point
-//! to = [1.1, 1.0]        # m: on another block, or the ground (at or below the structure's base)
+//! to = [1.1, 1.0]        # m: on another block, a fixed block, or the ground (at or below the structure's base)
 //! capacity = 40000.0     # N: the force at which it yields
 //! prestress = 0.0        # N, default 0, at most capacity: carried at lambda = 0
 //! ultimate_strain = 0.075 # default 7.5 % (B450C's A_gt): the stretch over its length at which it breaks
@@ -135,8 +135,8 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
 }
 
 /// The ties of a scene anchored on the placement's assembly: each anchor on the block that
-/// holds its point ([`Placement::locate`]), or the ground when the point lies at or below the
-/// structure's base (its lowest point, within the placement's tolerance); any other point is
+/// holds its point ([`Placement::locate`]), or the ground when the point lies in a fixed block
+/// ([`Placement::fixed_at`]) or at or below the structure's base (its lowest point, within the placement's tolerance); any other point is
 /// an error naming the key.
 pub(super) fn anchor_ties(
     specs: &[TieSpec],
@@ -163,13 +163,15 @@ pub(super) fn anchor_ties(
             let block = match placement.locate(point) {
                 Some(b) => Some(b),
                 None if point.y <= base + tol => None,
+                // A point of a fixed block (`[blocks] fixed`) is a point of the ground.
+                None if placement.fixed_at(point).is_some() => None,
                 None => {
                     return Err(error(
                         k,
                         key,
                         p,
                         format!(
-                            "the point lies outside every block and above the ground (the structure's base is at y = {}): an anchor is a point of a block, or of the ground at or below the base",
+                            "the point lies outside every block and above the ground (the structure's base is at y = {}): an anchor is a point of a block, of a fixed block, or of the ground at or below the base",
                             short(base)
                         ),
                     ))

@@ -1,11 +1,13 @@
 //! Scenes of the user's own blocks: the `[blocks]` table (a file or inline polygons, the
-//! ground line, the units, the DXF layer), its checks, and the structure it reads — the
-//! assembly found by [`crate::blocks::detect`], on which `scene::build` places the loads
-//! ([`super::placement`]).
+//! ground line, the units, the DXF layer, the points of the fixed blocks), its checks, and the
+//! structure it reads — the assembly found by [`crate::blocks::detect_with_fixed`], on which
+//! `scene::build` places the loads ([`super::placement`]). An error about a fixed block is
+//! the key `blocks.fixed[k]` with its point as written.
 
 use super::{Material, Section};
 use crate::blocks::{self, BlockError, Detected, Polygons, Units};
 use crate::error::SceneError;
+use crate::geometry::Vec2;
 use std::path::{Path, PathBuf};
 use toml::Value;
 
@@ -17,6 +19,7 @@ pub(super) const BLOCKS_KEYS: &[&str] = &[
     "layer",
     "units",
     "tolerance",
+    "fixed",
 ];
 
 /// Default tolerance of the joint detection, relative to the structure's size.
@@ -36,12 +39,16 @@ pub enum BlockSource {
 pub struct BlocksSpec {
     pub source: BlockSource,
     pub units: Units,
-    /// `ground_y` as given (None: the lowest vertex).
+    /// `ground_y` as given (None: the lowest vertex, or no ground with fixed blocks).
     pub ground_y: Option<f64>,
+    /// `fixed` as given: points in the source's units inside the blocks that do not move.
+    pub fixed: Vec<[f64; 2]>,
+    /// How the outlines were mended as they were read.
+    pub mending: blocks::Mending,
     pub layer: Option<String>,
     /// Joint tolerance relative to the structure's size.
     pub tolerance: f64,
-    /// The outlines, in metres.
+    /// The outlines, in metres, fixed blocks included.
     pub polygons: Polygons,
     /// Blocks and joints found (weights from `[material]`).
     pub detected: Detected,
@@ -104,7 +111,9 @@ pub(super) fn parse_blocks(
     let file = s.table.get("file").is_some();
     let inline = s.table.get("polygons").is_some();
     s.used.insert("polygons");
-    let (source, polygons, places) = match (file, inline) {
+    s.used.insert("fixed");
+    let fixed_points = fixed_points(&s)?;
+    let (source, polygons, places, mending) = match (file, inline) {
         (true, true) => {
             return Err(s.out_of_range(
                 "polygons",
@@ -131,17 +140,22 @@ pub(super) fn parse_blocks(
                     "only a .dxf block file has layers",
                 ));
             }
-            let (polys, places) = blocks::read_file_with_places(&path, units, layer.as_deref())
+            let read = blocks::read_source(&path, units, layer.as_deref())
                 .map_err(|e| blocks_error(&s, "file", Some(&path), &[], &e))?;
-            (BlockSource::File { written, path }, polys, places)
+            (
+                BlockSource::File { written, path },
+                read.polygons,
+                read.places,
+                read.mending,
+            )
         }
         (false, true) => {
             s.used.insert("file");
             let raw = inline_polygons(&s)?;
             let places: Vec<String> = (0..raw.len()).map(|i| format!("polygons[{i}]")).collect();
-            let polys = blocks::from_vertices(raw, units)
+            let (polys, mending) = blocks::from_vertices_mended(raw, units)
                 .map_err(|e| blocks_error(&s, "polygons", None, &places, &e))?;
-            (BlockSource::Inline, polys, places)
+            (BlockSource::Inline, polys, places, mending)
         }
     };
     s.finish("")?;
@@ -149,18 +163,46 @@ pub(super) fn parse_blocks(
         BlockSource::File { path, .. } => ("file", Some(path.as_path())),
         BlockSource::Inline => ("polygons", None),
     };
-    let detected = blocks::detect(
+    // A fixed block's error names its point (`blocks.fixed[k]`, as written) and the block.
+    let fixed_error = |e: &BlockError| match e {
+        BlockError::Fixed { index, .. } => {
+            let p = fixed_points.get(*index).copied().unwrap_or_default();
+            let located = blocks_error(&s, key, path, &places, e);
+            let message = match located {
+                SceneError::BadBlocks { message, .. } => message,
+                other => other.to_string(),
+            };
+            SceneError::OutOfRange {
+                origin: s.origin.to_string(),
+                key: s.key(&format!("fixed[{index}]")),
+                value: format!("[{}, {}]", super::short(p[0]), super::short(p[1])),
+                allowed: message,
+            }
+        }
+        _ => blocks_error(&s, key, path, &places, e),
+    };
+    let scale = units.scale();
+    let at: Vec<Vec2> = fixed_points
+        .iter()
+        .map(|p| Vec2::new(p[0] * scale, p[1] * scale))
+        .collect();
+    let fixed = blocks::blocks_at(&polygons, &at, tolerance * polygons.size(), units)
+        .map_err(|e| fixed_error(&e))?;
+    let detected = blocks::detect_with_fixed(
         &polygons,
+        &fixed,
         ground_y,
         tolerance,
         material.unit_weight * material.depth,
         material.friction,
     )
-    .map_err(|e| blocks_error(&s, key, path, &places, &e))?;
+    .map_err(|e| fixed_error(&e))?;
     Ok(BlocksSpec {
         source,
         units,
         ground_y,
+        fixed: fixed_points,
+        mending,
         layer,
         tolerance,
         polygons,
@@ -199,6 +241,47 @@ fn blocks_error(
     }
 }
 
+/// `fixed = [[x, y], ...]`: points in the source's units (empty when absent).
+fn fixed_points(s: &Section) -> Result<Vec<[f64; 2]>, SceneError> {
+    let expected = "a list of points [[x, y], ...] in the blocks' units, each inside a block that does not move";
+    let list = match s.table.get("fixed") {
+        None => return Ok(Vec::new()),
+        Some(Value::Array(list)) => list,
+        Some(v) => return Err(s.wrong_type("fixed", v, expected)),
+    };
+    if list.len() > blocks::MAX_BLOCKS {
+        return Err(s.out_of_range(
+            "fixed",
+            format!("{} points", list.len()),
+            &format!("at most {} (blocks::MAX_BLOCKS)", blocks::MAX_BLOCKS),
+        ));
+    }
+    list.iter()
+        .enumerate()
+        .map(|(k, q)| match point(q) {
+            Some([x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
+            _ => Err(s.wrong_type(
+                &format!("fixed[{k}]"),
+                q,
+                "a point [x, y] of two finite numbers",
+            )),
+        })
+        .collect()
+}
+
+/// `[x, y]`: a TOML array of two numbers.
+fn point(v: &Value) -> Option<[f64; 2]> {
+    let num = |x: &Value| match x {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    };
+    match v {
+        Value::Array(xy) if xy.len() == 2 => Some([num(&xy[0])?, num(&xy[1])?]),
+        _ => None,
+    }
+}
+
 /// `polygons = [[[x, y], ...], ...]`, counted before it is copied.
 fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
     let v = s.table.get("polygons");
@@ -225,11 +308,6 @@ fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
             ),
         ));
     }
-    let num = |x: &Value| match x {
-        Value::Float(f) => Some(*f),
-        Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    };
     list.iter()
         .enumerate()
         .map(|(i, p)| {
@@ -237,20 +315,14 @@ fn inline_polygons(s: &Section) -> Result<Vec<Vec<[f64; 2]>>, SceneError> {
                 return Err(wrong(p));
             };
             pts.iter()
-                .map(|q| match q {
-                    Value::Array(xy) if xy.len() == 2 => match (num(&xy[0]), num(&xy[1])) {
-                        (Some(x), Some(y)) => Ok([x, y]),
-                        _ => Err(s.wrong_type(
+                .map(|q| {
+                    point(q).ok_or_else(|| {
+                        s.wrong_type(
                             &format!("polygons[{i}]"),
                             q,
                             "a vertex [x, y] of two numbers",
-                        )),
-                    },
-                    _ => Err(s.wrong_type(
-                        &format!("polygons[{i}]"),
-                        q,
-                        "a vertex [x, y] of two numbers",
-                    )),
+                        )
+                    })
                 })
                 .collect()
         })

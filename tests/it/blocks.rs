@@ -22,15 +22,7 @@ fn json_of(assembly: &Assembly) -> String {
     serde_json::json!({ "polygons": polygons }).to_string()
 }
 
-/// Write `files` and the scene `scene.toml` into `dir`, and read the scene.
-fn scene_in(dir: &Path, toml: &str, files: &[(&str, &[u8])]) -> Result<Scene, String> {
-    for (name, bytes) in files {
-        std::fs::write(dir.join(name), bytes).map_err(|e| e.to_string())?;
-    }
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, toml).map_err(|e| e.to_string())?;
-    Scene::from_file(&path).map_err(|e| e.to_string())
-}
+use common::scene_in;
 
 fn options(direction: Direction) -> Options {
     Options {
@@ -410,19 +402,7 @@ fn dxf_of(polylines: &[(&[[f64; 2]], bool, &str)]) -> Vec<u8> {
     let mut d = dxf::Drawing::new();
     d.header.version = dxf::enums::AcadVersion::R2000;
     for (pts, closed, layer) in polylines {
-        let mut p = dxf::entities::LwPolyline {
-            vertices: pts
-                .iter()
-                .map(|q| dxf::LwPolylineVertex {
-                    x: q[0],
-                    y: q[1],
-                    ..Default::default()
-                })
-                .collect(),
-            ..Default::default()
-        };
-        p.set_is_closed(*closed);
-        let mut e = dxf::entities::Entity::new(dxf::entities::EntityType::LwPolyline(p));
+        let mut e = dxf::entities::Entity::new(common::lwpolyline(pts, *closed));
         e.common.layer = layer.to_string();
         d.add_entity(e);
     }
@@ -485,7 +465,7 @@ fn bad_block_files_get_clear_errors() {
             "DXF layer without blocks",
             format!("{}layer = \"BLOCKS\"\n", scene("b.dxf")),
             vec![("b.dxf", closed)],
-            &["no closed LWPOLYLINE", "layer `BLOCKS`", "WALLS"],
+            &["no LWPOLYLINE", "layer `BLOCKS`", "WALLS"],
         ),
         (
             "empty JSON file",
@@ -1034,19 +1014,10 @@ fn dxf_polylines_of_both_kinds_on_a_layer_are_blocks() {
     e.common.layer = "Stones".into();
     d.add_entity(e);
     // A triangle leaning on it, on layer Notes: it would make the block no column.
-    let mut lw = dxf::entities::LwPolyline {
-        vertices: [[0.0, 1000.0], [400.0, 1000.0], [0.0, 2000.0]]
-            .iter()
-            .map(|q| dxf::LwPolylineVertex {
-                x: q[0],
-                y: q[1],
-                ..Default::default()
-            })
-            .collect(),
-        ..Default::default()
-    };
-    lw.set_is_closed(true);
-    let mut e = dxf::entities::Entity::new(dxf::entities::EntityType::LwPolyline(lw));
+    let mut e = dxf::entities::Entity::new(common::lwpolyline(
+        &[[0.0, 1000.0], [400.0, 1000.0], [0.0, 2000.0]],
+        true,
+    ));
     e.common.layer = "Notes".into();
     d.add_entity(e);
     let mut bytes = Vec::new();

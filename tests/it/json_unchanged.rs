@@ -30,6 +30,8 @@ const ADDED: &[&str] = &[
     "lambda_associative",
     "slipping_joints",
     "friction_note",
+    "fixed",
+    "mended",
 ];
 
 /// Strip the added fields and the wall times, recursively.

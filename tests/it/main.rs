@@ -19,6 +19,7 @@ mod dem_dynamic;
 mod dem_fuzz;
 mod dem_record;
 mod extremes;
+mod fixed_blocks;
 mod friction;
 mod json_contract;
 mod json_unchanged;

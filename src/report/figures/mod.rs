@@ -56,10 +56,19 @@ pub fn of_drawing(
     })
 }
 
+/// The outlines of the scene's fixed blocks (`[blocks] fixed`), drawn behind the blocks.
+fn fixed_outlines(scene: &Scene) -> Vec<Vec<crate::geometry::Vec2>> {
+    scene.blocks.as_ref().map_or_else(Vec::new, |b| {
+        b.detected.fixed.iter().map(|f| f.polygon.clone()).collect()
+    })
+}
+
 /// A scene before any analysis (Python's `Scene._repr_svg_`): its blocks and loads, the
 /// horizontal load toward +x.
 pub fn scene(scene: &Scene, model: &crate::model::Model) -> Result<Figure, SvgError> {
+    let fixed = fixed_outlines(scene);
     let drawing = Drawing {
+        fixed: &fixed,
         title: shape_title(scene),
         load: Some(Direction::Right),
         loads: Some(&model.loads),
@@ -79,7 +88,9 @@ pub fn analysis_svg(
     direction: Direction,
 ) -> Result<String, SvgError> {
     let result = &a.lower;
+    let fixed = fixed_outlines(scene);
     let drawing = Drawing {
+        fixed: &fixed,
         title: drawing_title(scene, a),
         forces: result.forces.as_deref(),
         hinges: &result.hinges,
@@ -228,7 +239,9 @@ pub fn dem(scene: &Scene, d: &DemAnalysis, rep: &DemReport) -> Result<Figure, Sv
         (Some(p), None) => format!("at t = {:.3} s of the last run{amp_note}", p.time),
         _ => String::new(),
     };
+    let fixed = fixed_outlines(scene);
     let drawing = Drawing {
+        fixed: &fixed,
         title: dem_drawing_title(scene, rep, d.lower.status),
         moved: (!moves.is_empty()).then_some(Placements {
             moves: &moves,

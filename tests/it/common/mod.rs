@@ -68,6 +68,37 @@ pub fn single_block(b: f64, h: f64, mu: f64) -> Assembly {
     }
 }
 
+/// Write `files` and the scene `scene.toml` into `dir`, and read the scene.
+pub fn scene_in(
+    dir: &std::path::Path,
+    toml: &str,
+    files: &[(&str, &[u8])],
+) -> Result<Scene, String> {
+    for (name, bytes) in files {
+        std::fs::write(dir.join(name), bytes).map_err(|e| e.to_string())?;
+    }
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, toml).map_err(|e| e.to_string())?;
+    Scene::from_file(&path).map_err(|e| e.to_string())
+}
+
+/// A DXF `LWPOLYLINE` through `points`, closed by its flag or not.
+pub fn lwpolyline(points: &[[f64; 2]], closed: bool) -> dxf::entities::EntityType {
+    let mut p = dxf::entities::LwPolyline {
+        vertices: points
+            .iter()
+            .map(|q| dxf::LwPolylineVertex {
+                x: q[0],
+                y: q[1],
+                ..Default::default()
+            })
+            .collect(),
+        ..Default::default()
+    };
+    p.set_is_closed(closed);
+    dxf::entities::EntityType::LwPolyline(p)
+}
+
 /// A bundled scene file under `data/`.
 pub fn data(name: &str) -> std::path::PathBuf {
     std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -228,14 +228,13 @@ pub(super) fn assemble(
             JointKind::Bay(k, 0),
         ));
         for j in 0..n {
-            let (area, centroid) = ring.voussoir_area_centroid(j, curved);
-            blocks.push(Block {
-                polygon: ring.quad(j).to_vec(),
-                area,
-                centroid,
-                weight: gamma * area,
-                kind: BlockKind::BayVoussoir(k, j),
-            });
+            blocks.push(voussoir_block(
+                &ring,
+                j,
+                curved,
+                gamma,
+                BlockKind::BayVoussoir(k, j),
+            ));
             if j + 1 < n {
                 let (p1, p2) = ring.joints[j + 1];
                 joints.push(joint(
@@ -259,20 +258,14 @@ pub(super) fn assemble(
                 Some(top),
                 JointKind::Bay(k, n),
             ));
-            let courses = piers::courses(&column, xir, 1.0);
-            let kc = courses.len();
-            for (c, course) in courses.into_iter().enumerate().rev() {
-                blocks.push(rect_block(course.polygon, gamma, BlockKind::Column(k, c)));
-                let here = blocks.len() - 1;
-                let below = (c > 0).then_some(here + 1);
-                joints.push(joint(
-                    course.bed.0,
-                    course.bed.1,
-                    Some(here),
-                    below,
-                    JointKind::Column(k, c),
-                ));
-            }
+            let kc = column.courses;
+            stack_top_down(
+                &mut blocks,
+                &mut joints,
+                piers::courses(&column, xir, 1.0),
+                (gamma, mu),
+                |c| (BlockKind::Column(k, c), JointKind::Column(k, c)),
+            );
             let next = shifted(g, arcade.offset(k + 1, xi_l, xi_r));
             let xe_next = next.joints[0].1.x;
             if xe_next > xer {
@@ -294,19 +287,13 @@ pub(super) fn assemble(
             if xer < xir + br {
                 tops.push((pier_top, xer, xir + br));
             }
-            let courses = piers::courses(&piers.right, xir, 1.0);
-            for (c, course) in courses.into_iter().enumerate().rev() {
-                blocks.push(rect_block(course.polygon, gamma, BlockKind::RightPier(c)));
-                let here = blocks.len() - 1;
-                let below = (c > 0).then_some(here + 1);
-                joints.push(joint(
-                    course.bed.0,
-                    course.bed.1,
-                    Some(here),
-                    below,
-                    JointKind::RightPier(c),
-                ));
-            }
+            stack_top_down(
+                &mut blocks,
+                &mut joints,
+                piers::courses(&piers.right, xir, 1.0),
+                (gamma, mu),
+                |c| (BlockKind::RightPier(c), JointKind::RightPier(c)),
+            );
         }
         rings.push((ring, first));
     }
@@ -315,6 +302,51 @@ pub(super) fn assemble(
         joints,
         rings,
         tops,
+    }
+}
+
+/// Stack `courses` (from the base up) as blocks from the top down, each with its bed joint
+/// under it (from the course to the one below, or to the ground for course 0: the bed runs
+/// from the left face to the right one, so its normal points down), kinds by `kinds(course)`;
+/// `(gamma, mu)` the unit weight times depth and the friction.
+fn stack_top_down(
+    blocks: &mut Vec<Block>,
+    joints: &mut Vec<Joint>,
+    courses: Vec<piers::Course>,
+    (gamma, mu): (f64, f64),
+    kinds: impl Fn(usize) -> (BlockKind, JointKind),
+) {
+    for (c, course) in courses.into_iter().enumerate().rev() {
+        let (block, joint) = kinds(c);
+        blocks.push(rect_block(course.polygon, gamma, block));
+        let here = blocks.len() - 1;
+        joints.push(Joint {
+            p1: course.bed.0,
+            p2: course.bed.1,
+            from: Some(here),
+            to: (c > 0).then_some(here + 1),
+            friction: mu,
+            kind: joint,
+        });
+    }
+}
+
+/// Voussoir `j` of the ring `g` as a block of kind `kind`: its quadrilateral, with the area
+/// and centroid of the quadrilateral or (`curved`) of the exact annular piece.
+pub(super) fn voussoir_block(
+    g: &ArchGeometry,
+    j: usize,
+    curved: bool,
+    gamma: f64,
+    kind: BlockKind,
+) -> Block {
+    let (area, centroid) = g.voussoir_area_centroid(j, curved);
+    Block {
+        polygon: g.quad(j).to_vec(),
+        area,
+        centroid,
+        weight: gamma * area,
+        kind,
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::placement::{self, ArchLayout, Placement, Structure};
 use super::{arcade, piers, spandrel, Scene, VoussoirShape};
-use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
+use crate::assembly::{Assembly, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
 use crate::geometry::Vec2;
 use crate::model::Model;
@@ -213,14 +213,13 @@ fn chain_assembly(
         let idx = joints.len();
         joints.push(chain_joint(p1, p2, idx, total_blocks, JointKind::Arch(j)));
         if j < n {
-            let (area, centroid) = g.voussoir_area_centroid(j, curved);
-            blocks.push(Block {
-                polygon: g.quad(j).to_vec(),
-                area,
-                centroid,
-                weight: gamma * area,
-                kind: BlockKind::Voussoir(j),
-            });
+            blocks.push(arcade::voussoir_block(
+                &g,
+                j,
+                curved,
+                gamma,
+                BlockKind::Voussoir(j),
+            ));
         }
     }
     // Right pier, top to base.

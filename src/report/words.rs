@@ -76,13 +76,21 @@ pub fn family_words(f: Family) -> &'static str {
     }
 }
 
-/// What a mechanism through `joints` moves: `the portal` when one of them is a pier joint,
-/// `the arch` when all are arch joints, `the structure` otherwise.
+/// What a mechanism through `joints` moves: `the arcade` when one of them is a joint of an
+/// arcade's bays, columns or piers, `the portal` when one of them is a pier joint, `the arch`
+/// when all are arch joints, `the structure` otherwise.
 pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) -> &'static str {
+    let arcade = assembly
+        .joints
+        .iter()
+        .any(|j| matches!(j.kind, JointKind::Bay(..) | JointKind::Column(..)));
     let mut arch_only = true;
     for j in joints {
         match assembly.joints.get(j).map(|j| j.kind) {
             Some(JointKind::Arch(_)) => {}
+            Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) if arcade => {
+                return "the arcade"
+            }
             Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) => return "the portal",
             Some(JointKind::Bay(..) | JointKind::Column(..)) => return "the arcade",
             _ => arch_only = false,

@@ -376,6 +376,13 @@ fn continuous_of(
     direction: Direction,
 ) -> Result<ContinuousResult, KinematicError> {
     let arch = scene.parametric("the continuous model")?;
+    if scene.arcade.as_ref().is_some_and(|a| a.bays > 1) || scene.spandrel.is_some() {
+        // Its continuum is one ring on its piers: several rings, or a wall over them, are not
+        // that chain.
+        return Err(KinematicError::Continuous(
+            "it models one ring (on its piers) as a continuum; an arcade of several bays or a spandrel wall is no such chain (the static program and the DEM apply)".to_string(),
+        ));
+    }
     if !arch.joints.is_radial() {
         // Its sections are radial cuts of the ring: with other joints the discrete arch is
         // not a subdivision of that continuum, so the model does not bound it.

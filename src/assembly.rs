@@ -25,6 +25,15 @@ pub enum BlockKind {
     Other,
     /// A block of the user's own (`[blocks]`), by its index in the source (from 0).
     User(usize),
+    /// A voussoir of an arcade (`[arcade]`, two bays or more): the bay from the left (from 0)
+    /// and the voussoir from the bay's left springing.
+    BayVoussoir(usize, usize),
+    /// A course of an arcade's interior column: the column from the left (from 0; column k
+    /// stands between bays k and k + 1) and the course from the base.
+    Column(usize, usize),
+    /// A piece of the spandrel wall (`[spandrel]`): the course from the springing line (from
+    /// 0) and the piece from the left within it.
+    Spandrel(usize, usize),
 }
 
 /// A rigid block.
@@ -59,6 +68,14 @@ pub enum JointKind {
     /// named by their indices in the source: a joint to the ground (`from` or `to` None)
     /// that lies on a block that does not move.
     Fixed(usize, usize),
+    /// Arch joint j of bay k of an arcade (two bays or more): `(k, j)`.
+    Bay(usize, usize),
+    /// Bed joint of an arcade's interior column: `(column, course)`, the course above it
+    /// counted from the base (0: the column's base on the ground).
+    Column(usize, usize),
+    /// A joint of the spandrel wall, between the blocks `(from, to)` of the assembly (a
+    /// voussoir, pier or column course, or a wall piece, and a wall piece).
+    Spandrel(usize, usize),
 }
 
 /// A plane joint between two blocks, or a block and the ground (`None`).

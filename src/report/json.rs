@@ -67,6 +67,13 @@ pub struct SceneReport {
     /// `thickness` null and `voussoirs` 0.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub blocks: Option<BlocksReport>,
+    /// `[arcade]` (`bays`, `column_width` in m), present only for an arcade.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arcade: Option<crate::scene::ArcadeSpec>,
+    /// `[spandrel]` (`level`, `course_height`, `unit_length` in m) with `pieces`, the number
+    /// of the wall's blocks; present only with a spandrel wall.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spandrel: Option<SpandrelReport>,
     /// `[material] unit_weight` (N/m^3).
     pub unit_weight: f64,
     /// `[material] depth` (m).
@@ -78,6 +85,15 @@ pub struct SceneReport {
     pub compressive_strength: Option<f64>,
     /// The strength ratio `W/(fc d t)` (0 for rigid joints), see [`crate::sweep::sigma`].
     pub sigma: f64,
+}
+
+/// `[spandrel]` echoed in the JSON `scene`, with the number of pieces it was cut into.
+#[derive(Debug, Serialize)]
+pub struct SpandrelReport {
+    #[serde(flatten)]
+    pub spec: crate::scene::SpandrelSpec,
+    /// Blocks of the wall.
+    pub pieces: usize,
 }
 
 /// `[blocks]` echoed in the JSON `scene`, with what was found: present only for scenes of the
@@ -489,6 +505,16 @@ impl SceneReport {
                 .map(|(k, v)| (k, round15(v)))
                 .collect(),
             blocks: scene.blocks.as_ref().map(|b| BlocksReport::new(b)),
+            arcade: scene.arcade.clone(),
+            spandrel: scene.spandrel.clone().map(|spec| SpandrelReport {
+                spec,
+                pieces: model
+                    .assembly
+                    .blocks
+                    .iter()
+                    .filter(|b| matches!(b.kind, crate::assembly::BlockKind::Spandrel(..)))
+                    .count(),
+            }),
             piers: scene.piers.as_ref().map(|p| PiersReport {
                 height: p.left.height,
                 width: p.left.base_width(),

@@ -20,6 +20,9 @@ pub fn joint_label(kind: JointKind) -> String {
         JointKind::Between(a, Some(b)) => format!("blocks {a}|{b}"),
         JointKind::Between(a, None) => format!("block {a}|ground"),
         JointKind::Fixed(a, f) => format!("block {a}|fixed {f}"),
+        JointKind::Bay(k, j) => format!("bay {k} arch {j}"),
+        JointKind::Column(k, c) => format!("column {k} joint {c}"),
+        JointKind::Spandrel(a, b) => format!("spandrel {a}|{b}"),
     }
 }
 
@@ -74,14 +77,23 @@ pub fn family_words(f: Family) -> &'static str {
     }
 }
 
-/// What a mechanism through `joints` moves: `the portal` when one of them is a pier joint,
-/// `the arch` when all are arch joints, `the structure` otherwise.
+/// What a mechanism through `joints` moves: `the arcade` when one of them is a joint of an
+/// arcade's bays, columns or piers, `the portal` when one of them is a pier joint, `the arch`
+/// when all are arch joints, `the structure` otherwise.
 pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) -> &'static str {
+    let arcade = assembly
+        .joints
+        .iter()
+        .any(|j| matches!(j.kind, JointKind::Bay(..) | JointKind::Column(..)));
     let mut arch_only = true;
     for j in joints {
         match assembly.joints.get(j).map(|j| j.kind) {
             Some(JointKind::Arch(_)) => {}
+            Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) if arcade => {
+                return "the arcade"
+            }
             Some(JointKind::LeftPier(_) | JointKind::RightPier(_)) => return "the portal",
+            Some(JointKind::Bay(..) | JointKind::Column(..)) => return "the arcade",
             _ => arch_only = false,
         }
     }
@@ -95,14 +107,20 @@ pub fn what_moves(assembly: &Assembly, joints: impl IntoIterator<Item = usize>) 
 /// The end of a joint a hinge sits at, in words with its name in the JSON and the CSV:
 /// `intrados (p1)`, `extrados (p2)` on the arch, `inner face (p1)`, `outer face (p2)` on a pier.
 pub fn end_words(kind: JointKind, end: JointEnd) -> &'static str {
-    if matches!(kind, JointKind::Between(..) | JointKind::Fixed(..)) {
+    if matches!(
+        kind,
+        JointKind::Between(..) | JointKind::Fixed(..) | JointKind::Spandrel(..)
+    ) {
         // A joint between the user's blocks has no intrados or faces, only its two ends.
         return match end {
             JointEnd::P1 => "end p1",
             JointEnd::P2 => "end p2",
         };
     }
-    let pier = matches!(kind, JointKind::LeftPier(_) | JointKind::RightPier(_));
+    let pier = matches!(
+        kind,
+        JointKind::LeftPier(_) | JointKind::RightPier(_) | JointKind::Column(..)
+    );
     match (end, pier) {
         (JointEnd::P1, false) => "intrados (p1)",
         (JointEnd::P2, false) => "extrados (p2)",
@@ -199,6 +217,17 @@ pub fn describe_scene(scene: &Scene, model: &Model) -> String {
     };
     if let Some(p) = &scene.piers {
         let _ = write!(s, "\n  {}", p.describe());
+    }
+    if let Some(a) = &scene.arcade {
+        let _ = write!(s, "\n  {}", a.describe());
+    }
+    if let Some(w) = &scene.spandrel {
+        let pieces = assembly
+            .blocks
+            .iter()
+            .filter(|b| matches!(b.kind, crate::assembly::BlockKind::Spandrel(..)))
+            .count();
+        let _ = write!(s, "\n  {} ({pieces} pieces)", w.describe());
     }
     let _ = write!(
         s,
@@ -398,14 +427,22 @@ pub fn shape_title(scene: &Scene) -> String {
         );
     };
     let shape = arch.shape.title();
-    format!(
-        "{shape} {}",
-        if scene.piers.is_some() {
-            "portal"
-        } else {
-            "arch"
-        }
-    )
+    let wall = if scene.spandrel.is_some() {
+        " with a spandrel wall"
+    } else {
+        ""
+    };
+    match &scene.arcade {
+        Some(a) if a.bays > 1 => format!("{shape} arcade of {} bays{wall}", a.bays),
+        _ => format!(
+            "{shape} {}{wall}",
+            if scene.piers.is_some() {
+                "portal"
+            } else {
+                "arch"
+            }
+        ),
+    }
 }
 
 /// How a dynamic run's criterion calls collapse, for the summaries.

@@ -3,10 +3,10 @@
 //! the ties of `[[ties]]` placed on those blocks by one path, [`super::placement`].
 
 use super::placement::{self, ArchLayout, Placement, Structure};
-use super::{piers, Scene, VoussoirShape};
-use crate::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
+use super::{arcade, piers, spandrel, Scene, VoussoirShape};
+use crate::assembly::{Assembly, BlockKind, Joint, JointKind};
 use crate::error::SceneError;
-use crate::geometry::{polygon_area_centroid, Vec2};
+use crate::geometry::Vec2;
 use crate::model::Model;
 
 thread_local! {
@@ -84,18 +84,78 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
     })
 }
 
-/// The blocks and joints of a scene: the left pier courses from the base up, the voussoirs
-/// from left to right, the right pier courses from the top down (a chain).
+/// The blocks and joints of a parametric scene: one arch or portal (a chain, see
+/// [`chain_assembly`]) or an arcade of several bays ([`arcade::assemble`]), then the spandrel
+/// wall's pieces after them ([`spandrel::build`]).
 fn build_assembly(
     scene: &Scene,
     a: &super::ArchSpec,
 ) -> Result<(Assembly, ArchLayout), SceneError> {
-    let g = a.geometry().map_err(|why| SceneError::OutOfRange {
+    let bays = scene.arcade.as_ref().map_or(1, |c| c.bays);
+    let (mut assembly, mut layout) = match (&scene.arcade, &scene.piers) {
+        (Some(arcade), Some(piers)) if bays > 1 => {
+            let g = geometry(scene, a)?;
+            let gamma = scene.material.unit_weight * scene.material.depth;
+            let curved = a.voussoir_shape == VoussoirShape::Curved;
+            let parts = arcade::assemble(&g, curved, piers, arcade, gamma, scene.material.friction);
+            (
+                Assembly {
+                    blocks: parts.blocks,
+                    joints: parts.joints,
+                },
+                ArchLayout {
+                    rings: parts.rings,
+                    curved,
+                    pier_tops: parts.tops,
+                    spandrel: false,
+                },
+            )
+        }
+        _ => chain_assembly(scene, a)?,
+    };
+    if let (Some(wall), Some(piers)) = (&scene.spandrel, &scene.piers) {
+        let (first_ring, last_ring) = (&layout.rings[0].0, &layout.rings[layout.rings.len() - 1].0);
+        let n = first_ring.voussoirs();
+        let x_left = first_ring.joints[0].0.x - piers.left.top_width();
+        let x_right = last_ring.joints[n].0.x + piers.right.top_width();
+        let gamma = scene.material.unit_weight * scene.material.depth;
+        let (blocks, joints) = spandrel::build(
+            wall,
+            &layout.rings,
+            &layout.pier_tops,
+            x_left,
+            x_right,
+            assembly.blocks.len(),
+            gamma,
+            scene.material.friction,
+        );
+        assembly.blocks.extend(blocks);
+        assembly.joints.extend(joints);
+        layout.spandrel = true;
+    }
+    Ok((assembly, layout))
+}
+
+/// The ring of the scene's arch, cut with its stereotomy.
+fn geometry(
+    scene: &Scene,
+    a: &super::ArchSpec,
+) -> Result<crate::geometry::ArchGeometry, SceneError> {
+    a.geometry().map_err(|why| SceneError::OutOfRange {
         origin: scene.origin.clone(),
         key: "arch.joints".into(),
         value: format!("\"{}\"", a.joints.name()),
         allowed: why,
-    })?;
+    })
+}
+
+/// The blocks and joints of one arch or portal: the left pier courses from the base up, the
+/// voussoirs from left to right, the right pier courses from the top down (a chain).
+fn chain_assembly(
+    scene: &Scene,
+    a: &super::ArchSpec,
+) -> Result<(Assembly, ArchLayout), SceneError> {
+    let g = geometry(scene, a)?;
     let gamma = scene.material.unit_weight * scene.material.depth;
     let mu = scene.material.friction;
     let curved = a.voussoir_shape == VoussoirShape::Curved;
@@ -123,7 +183,11 @@ fn build_assembly(
     let (xi_r, xe_r) = (g.joints[n].0.x, g.joints[n].1.x);
     if let Some(p) = &scene.piers {
         for (c, course) in piers::courses(&p.left, xi, -1.0).into_iter().enumerate() {
-            blocks.push(rect_block(course.polygon, gamma, BlockKind::LeftPier(c)));
+            blocks.push(arcade::rect_block(
+                course.polygon,
+                gamma,
+                BlockKind::LeftPier(c),
+            ));
             let idx = joints.len();
             joints.push(chain_joint(
                 course.bed.0,
@@ -155,14 +219,13 @@ fn build_assembly(
         let idx = joints.len();
         joints.push(chain_joint(p1, p2, idx, total_blocks, JointKind::Arch(j)));
         if j < n {
-            let (area, centroid) = g.voussoir_area_centroid(j, curved);
-            blocks.push(Block {
-                polygon: g.quad(j).to_vec(),
-                area,
-                centroid,
-                weight: gamma * area,
-                kind: BlockKind::Voussoir(j),
-            });
+            blocks.push(arcade::voussoir_block(
+                &g,
+                j,
+                curved,
+                gamma,
+                BlockKind::Voussoir(j),
+            ));
         }
     }
     // Right pier, top to base.
@@ -173,7 +236,11 @@ fn build_assembly(
         }
         let courses = piers::courses(&p.right, xi_r, 1.0);
         for (c, course) in courses.into_iter().enumerate().rev() {
-            blocks.push(rect_block(course.polygon, gamma, BlockKind::RightPier(c)));
+            blocks.push(arcade::rect_block(
+                course.polygon,
+                gamma,
+                BlockKind::RightPier(c),
+            ));
             let idx = joints.len();
             joints.push(chain_joint(
                 course.bed.0,
@@ -185,21 +252,10 @@ fn build_assembly(
         }
     }
     let layout = ArchLayout {
-        geometry: g,
-        first,
+        rings: vec![(g, first)],
         curved,
         pier_tops,
+        spandrel: false,
     };
     Ok((Assembly { blocks, joints }, layout))
-}
-
-fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
-    let (area, centroid) = polygon_area_centroid(&polygon);
-    Block {
-        polygon,
-        area,
-        centroid,
-        weight: gamma * area,
-        kind,
-    }
 }

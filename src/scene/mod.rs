@@ -5,15 +5,19 @@
 //! A `Scene` keeps the TOML table it was read from, so overrides (from the command line, a
 //! sweep or the minimum-thickness search) go through exactly the same validation.
 
+pub mod arcade;
 mod build;
 mod piers;
 mod placement;
 pub mod reinforcements;
+pub mod spandrel;
 pub mod ties;
 pub mod units;
 mod user_blocks;
+pub use arcade::ArcadeSpec;
 pub use build::{build, build_for_design, builds_on_this_thread};
 pub use piers::{Pier, PierProfile, Piers};
+pub use spandrel::SpandrelSpec;
 pub use user_blocks::{BlockSource, BlocksSpec};
 
 use crate::error::{did_you_mean, SceneError};
@@ -172,6 +176,10 @@ pub struct Scene {
     /// The user's own blocks (`[blocks]`), instead of `[arch]` and `[piers]`.
     pub blocks: Option<Arc<BlocksSpec>>,
     pub piers: Option<Piers>,
+    /// `[arcade]`: the bays side by side (None: one arch, or a portal).
+    pub arcade: Option<ArcadeSpec>,
+    /// `[spandrel]`: the wall in running bond above the ring(s).
+    pub spandrel: Option<SpandrelSpec>,
     pub material: Material,
     /// Loads beyond self-weight (`[[loads]]`), in file order.
     pub loads: Vec<LoadSpec>,
@@ -343,13 +351,20 @@ impl Scene {
         };
         let shape = &arch.shape;
         let mut t_max = shape.max_thickness(arch.voussoirs);
-        if let Some(fill) = &self.fill {
-            if shape.crown_extrados(t_max) > fill.level {
+        let level = [
+            self.fill.as_ref().map(|f| f.level),
+            self.spandrel.as_ref().map(|w| w.level),
+        ]
+        .into_iter()
+        .flatten()
+        .reduce(f64::min);
+        if let Some(level) = level {
+            if shape.crown_extrados(t_max) > level {
                 // The crown's extrados rises with t: bisect for the thickness that meets the level.
                 let (mut lo, mut hi) = (0.0, t_max);
                 for _ in 0..200 {
                     let mid = 0.5 * (lo + hi);
-                    if shape.crown_extrados(mid) > fill.level {
+                    if shape.crown_extrados(mid) > level {
                         hi = mid;
                     } else {
                         lo = mid;
@@ -379,8 +394,10 @@ impl Scene {
     /// A characteristic length of the structure (its overall size), used to make tolerances
     /// and the conic program dimensionless.
     pub fn size(&self) -> f64 {
-        self.arch_size()
+        let bays = self.arcade.as_ref().map_or(1, |a| a.bays) as f64;
+        (bays * self.arch_size())
             .max(self.piers.as_ref().map_or(0.0, |p| p.max_height()))
+            .max(self.spandrel.as_ref().map_or(0.0, |w| w.level))
     }
 }
 
@@ -490,6 +507,8 @@ const SECTIONS: &[&str] = &[
     "action",
     "ties",
     "reinforcements",
+    "arcade",
+    "spandrel",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -881,11 +900,13 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         origin,
     ))?;
     // The structure: the user's blocks, or the parametric arch (and piers).
-    let (arch, piers, blocks) = match section(&table, "blocks", origin)? {
+    let (arch, piers, blocks, arcade, spandrel) = match section(&table, "blocks", origin)? {
         Some(t) => {
             for (name, instead) in [
                 ("arch", "the blocks are the structure"),
                 ("piers", "model piers as blocks"),
+                ("arcade", "model the bays as blocks"),
+                ("spandrel", "model the wall as blocks"),
             ] {
                 if table.contains_key(name) {
                     return Err(SceneError::OutOfRange {
@@ -898,7 +919,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
             }
             let spec =
                 user_blocks::parse_blocks(Section::new("blocks", t, origin), &material, base_dir)?;
-            (None, None, Some(Arc::new(spec)))
+            (None, None, Some(Arc::new(spec)), None, None)
         }
         None => {
             let arch_table =
@@ -913,7 +934,23 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
                 Some(t) => Some(parse_piers(Section::new("piers", t, origin), &arch)?),
                 None => None,
             };
-            (Some(arch), piers, None)
+            let arcade = match section(&table, "arcade", origin)? {
+                Some(t) => Some(arcade::parse(
+                    Section::new("arcade", t, origin),
+                    &arch,
+                    piers.as_ref(),
+                )?),
+                None => None,
+            };
+            let spandrel = match section(&table, "spandrel", origin)? {
+                Some(t) => Some(spandrel::parse(
+                    Section::new("spandrel", t, origin),
+                    &arch,
+                    piers.as_ref(),
+                )?),
+                None => None,
+            };
+            (Some(arch), piers, None, arcade, spandrel)
         }
     };
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
@@ -921,9 +958,21 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
     let ties = ties::parse_ties(&table, origin)?;
     let reinforcements = reinforcements::parse(&table, origin)?;
     let fill = match section(&table, "fill", origin)? {
-        Some(t) => Some(parse_fill(Section::new("fill", t, origin), arch.as_ref())?),
+        Some(t) => Some(parse_fill(
+            Section::new("fill", t, origin),
+            arch.as_ref(),
+            spandrel.as_ref(),
+        )?),
         None => None,
     };
+    if arcade.as_ref().is_some_and(|a| a.bays > 1) && !reinforcements.is_empty() {
+        return Err(SceneError::OutOfRange {
+            origin: origin.to_string(),
+            key: "reinforcements[0].from_joint".into(),
+            value: reinforcements[0].from_joint.to_string(),
+            allowed: "a strip names the joints of one arch; an arcade of several bays has several arches, and strips on arcades are not supported yet (analyse one bay as a portal)".into(),
+        });
+    }
     let seismic = parse_seismic(Section::new(
         "seismic",
         section(&table, "seismic", origin)?.unwrap_or(&empty),
@@ -945,6 +994,8 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         arch,
         blocks,
         piers,
+        arcade,
+        spandrel,
         material,
         loads,
         ties,
@@ -1375,7 +1426,11 @@ fn short(x: f64) -> String {
 
 /// `[fill]`. Over a parametric arch its level must not be below the crown extrados; over the
 /// user's blocks, that it lies above some block top is checked where it is placed.
-fn parse_fill(mut s: Section, arch: Option<&ArchSpec>) -> Result<FillSpec, SceneError> {
+fn parse_fill(
+    mut s: Section,
+    arch: Option<&ArchSpec>,
+    spandrel: Option<&SpandrelSpec>,
+) -> Result<FillSpec, SceneError> {
     s.check_known(FILL_KEYS, "")?;
     let level = s.finite("level", "y of the fill's top surface in metres")?;
     if level.abs() > MAX_LENGTH {
@@ -1402,6 +1457,18 @@ fn parse_fill(mut s: Section, arch: Option<&ArchSpec>) -> Result<FillSpec, Scene
         ));
     }
     s.finish("")?;
+    if let Some(wall) = spandrel {
+        if level <= wall.level {
+            return Err(s.out_of_range(
+                "level",
+                level,
+                &format!(
+                    "a fill rests on the spandrel wall's top: it must be above spandrel.level = {}",
+                    wall.level
+                ),
+            ));
+        }
+    }
     if let Some(arch) = arch {
         let crown = arch.shape.crown_extrados(arch.thickness);
         if level < crown {

@@ -44,12 +44,15 @@ use crate::model::{AppliedLoad, LoadCase, LoadSource, SpreadLoad, Tie};
 
 /// Where the parametric arch's blocks sit in its assembly (see `scene::build`).
 pub(super) struct ArchLayout {
-    pub geometry: ArchGeometry,
-    /// Index of voussoir 0 in the assembly.
-    pub first: usize,
+    /// The rings (one, or one per bay of an arcade) left to right, each with the index of its
+    /// voussoir 0 in the assembly.
+    pub rings: Vec<(ArchGeometry, usize)>,
     pub curved: bool,
-    /// Exposed pier tops `(block, x_from, x_to)` at y = 0.
+    /// Exposed pier (and column) tops `(block, x_from, x_to)` at y = 0.
     pub pier_tops: Vec<(usize, f64, f64)>,
+    /// Whether a spandrel wall (`[spandrel]`) covers the rings: its pieces' tops are then the
+    /// roof, and loads rest on the highest roof edge, as over the user's blocks.
+    pub spandrel: bool,
 }
 
 /// The structure a placement places on.
@@ -120,28 +123,54 @@ impl<'a> Placement<'a> {
 
     /// The placement on the parametric arch's assembly, laid out as `layout`.
     fn arch(assembly: &'a Assembly, layout: ArchLayout) -> Self {
-        let g = &layout.geometry;
+        let tol = 1e-9 * assembly.size();
+        if layout.spandrel {
+            // The wall covers the rings: its pieces' tops are the roof.
+            let mut roof = Vec::new();
+            for (block, b) in assembly.blocks.iter().enumerate() {
+                if matches!(b.kind, BlockKind::Spandrel(..)) {
+                    roof.extend(upward_edges(Some(block), &b.polygon, tol));
+                }
+            }
+            return Placement {
+                assembly,
+                tol,
+                roof,
+                structure: Structure::Arch(layout),
+            };
+        }
         let piers = layout.pier_tops.iter().map(|&(block, x0, x1)| RoofEdge {
             block: Some(block),
             a: Vec2::new(x0, 0.0),
             b: Vec2::new(x1, 0.0),
             arc: None,
         });
-        let voussoirs = (0..g.voussoirs()).filter_map(|j| {
-            let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
-            (b.x > a.x).then(|| RoofEdge {
-                block: Some(layout.first + j),
-                a,
-                b,
-                arc: layout.curved.then(|| extrados_arc(g, j)),
+        let voussoirs = layout.rings.iter().flat_map(|(g, first)| {
+            (0..g.voussoirs()).filter_map(move |j| {
+                let (a, b) = (g.joints[j].1, g.joints[j + 1].1);
+                (b.x > a.x).then(|| RoofEdge {
+                    block: Some(first + j),
+                    a,
+                    b,
+                    arc: layout.curved.then(|| extrados_arc(g, j)),
+                })
             })
         });
         let roof = piers.chain(voussoirs).collect();
         Placement {
             assembly,
-            tol: 1e-9 * assembly.size(),
+            tol,
             roof,
             structure: Structure::Arch(layout),
+        }
+    }
+
+    /// Whether loads rest on the highest roof edge over each point (the user's blocks, a
+    /// spandrel wall) rather than on every roof edge they overlap (the rings' extrados).
+    fn on_top(&self) -> bool {
+        match &self.structure {
+            Structure::Arch(layout) => layout.spandrel,
+            Structure::Blocks { .. } => true,
         }
     }
 
@@ -157,19 +186,7 @@ impl<'a> Placement<'a> {
             .map(|(i, b)| (Some(i), &b.polygon))
             .chain(fixed.iter().map(|(_, p)| (None, p)));
         for (block, polygon) in outlines {
-            let m = polygon.len();
-            for k in 0..m {
-                // Counter-clockwise outlines: an upward-facing edge runs toward -x.
-                let (a, c) = (polygon[k], polygon[(k + 1) % m]);
-                if a.x - c.x > tol {
-                    roof.push(RoofEdge {
-                        block,
-                        a: c,
-                        b: a,
-                        arc: None,
-                    });
-                }
-            }
+            roof.extend(upward_edges(block, polygon, tol));
         }
         Placement {
             assembly,
@@ -222,11 +239,13 @@ impl<'a> Placement<'a> {
         let poly = &self.assembly.blocks[i].polygon;
         match &self.structure {
             Structure::Arch(arch) => {
-                let j = i.wrapping_sub(arch.first);
-                if arch.curved && j < arch.geometry.voussoirs() {
-                    inside_curved(&arch.geometry, j, p, self.tol)
-                } else {
-                    inside_convex(poly, p, self.tol, orientation(poly))
+                let ring = arch.rings.iter().find_map(|(g, first)| {
+                    let j = i.wrapping_sub(*first);
+                    (j < g.voussoirs()).then_some((g, j))
+                });
+                match ring {
+                    Some((g, j)) if arch.curved => inside_curved(g, j, p, self.tol),
+                    _ => inside_convex(poly, p, self.tol, orientation(poly)),
                 }
             }
             Structure::Blocks { .. } => inside_convex(poly, p, self.tol, 1.0),
@@ -255,6 +274,9 @@ impl<'a> Placement<'a> {
     /// What a line load must rest on, in words (the error's allowed values).
     fn roof_words(&self) -> &'static str {
         match self.structure {
+            Structure::Arch(ref a) if a.spandrel => {
+                "the loaded length must overlap the top of the spandrel wall"
+            }
             Structure::Arch(_) => {
                 "the loaded length must overlap the extrados of the arch (or an exposed pier top)"
             }
@@ -267,7 +289,7 @@ impl<'a> Placement<'a> {
     /// The shares of a line load over `[from_x, to_x]` (see the module docs).
     fn line_pieces(&self, from_x: f64, to_x: f64) -> Vec<Piece> {
         match self.structure {
-            Structure::Arch(_) => self
+            Structure::Arch(_) if !self.on_top() => self
                 .roof
                 .iter()
                 .filter_map(|e| {
@@ -281,7 +303,7 @@ impl<'a> Placement<'a> {
                     })
                 })
                 .collect(),
-            Structure::Blocks { .. } => {
+            _ => {
                 let mut cuts = vec![from_x, to_x];
                 for e in &self.roof {
                     cuts.extend(
@@ -316,16 +338,19 @@ impl<'a> Placement<'a> {
             })
         };
         match self.structure {
-            Structure::Arch(_) => self
+            Structure::Arch(_) if !self.on_top() => self
                 .roof
                 .iter()
                 .filter_map(|e| {
                     let block = e.block?;
-                    matches!(self.assembly.blocks[block].kind, BlockKind::Voussoir(_))
-                        .then(|| region(block, e.a, e.b, e.arc))?
+                    matches!(
+                        self.assembly.blocks[block].kind,
+                        BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
+                    )
+                    .then(|| region(block, e.a, e.b, e.arc))?
                 })
                 .collect(),
-            Structure::Blocks { .. } => {
+            _ => {
                 let cuts = self.roof.iter().flat_map(|e| [e.a.x, e.b.x]).collect();
                 self.under_top(cuts)
                     .into_iter()
@@ -540,6 +565,23 @@ fn fill_region(
     Some((area, moment / area, outline))
 }
 
+/// The upward-facing edges of block `block`'s counter-clockwise outline `polygon`: those that
+/// run toward -x by more than `tol`.
+fn upward_edges(block: Option<usize>, polygon: &[Vec2], tol: f64) -> Vec<RoofEdge> {
+    let m = polygon.len();
+    (0..m)
+        .filter_map(|k| {
+            let (a, c) = (polygon[k], polygon[(k + 1) % m]);
+            (a.x - c.x > tol).then_some(RoofEdge {
+                block,
+                a: c,
+                b: a,
+                arc: None,
+            })
+        })
+        .collect()
+}
+
 /// The sign of a polygon's signed area: 1 counter-clockwise, -1 clockwise.
 fn orientation(poly: &[Vec2]) -> f64 {
     let m = poly.len();
@@ -613,5 +655,8 @@ fn describe(kind: BlockKind) -> String {
         BlockKind::RightPier(c) => format!("right pier course {c}"),
         BlockKind::Other => "a block".to_string(),
         BlockKind::User(i) => format!("block {i}"),
+        BlockKind::BayVoussoir(k, j) => format!("voussoir {j} of bay {k}"),
+        BlockKind::Column(k, c) => format!("column {k} course {c}"),
+        BlockKind::Spandrel(c, k) => format!("spandrel course {c} piece {k}"),
     }
 }

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod arcade;
 mod architecture;
 mod assess;
 mod bad_input;

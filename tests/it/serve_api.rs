@@ -238,7 +238,7 @@ fn every_preset_analyses_to_the_library_value_in_both_directions() {
         }
         let symmetric = matches!(
             name,
-            "circular" | "pointed" | "basket" | "portal" | "tied_portal"
+            "circular" | "pointed" | "basket" | "portal" | "tied_portal" | "arcade"
         );
         let differ = (by_direction[0] - by_direction[1]).abs();
         if symmetric {

@@ -277,6 +277,9 @@ pub struct AnalysisReport {
     pub sliding_governs: bool,
     /// Block velocities of the kinematic mechanism `[vx, vy, omega]`.
     pub kinematic_mechanism: Vec<[f64; 3]>,
+    /// Added: joints that slide in the kinematic mechanism (only the general program's
+    /// mechanisms slide; empty otherwise).
+    pub mechanism_sliding: Vec<usize>,
     /// Why the kinematic search was not run or failed, or what a local search covered.
     pub kinematic_note: Option<String>,
     /// `exhaustive` (lambda_upper is the discrete kinematic multiplier), `local` (only the
@@ -508,6 +511,7 @@ impl AnalysisReport {
                     report.mechanism_hinges = m.hinges.clone();
                     report.open_joints = m.open.clone();
                     report.kinematic_mechanism = m.velocities.clone();
+                    report.mechanism_sliding = m.sliding.clone();
                 }
             }
             Err(note) => report.kinematic_note = Some(note.clone()),
@@ -583,6 +587,7 @@ impl AnalysisReport {
             open_joints: Vec::new(),
             sliding_governs: false,
             kinematic_mechanism: Vec::new(),
+            mechanism_sliding: Vec::new(),
             kinematic_note: None,
             kinematic_search: None,
             kinematic_time_s: None,

@@ -284,7 +284,9 @@ pub struct AnalysisReport {
     pub kinematic_note: Option<String>,
     /// `exhaustive` (lambda_upper is the discrete kinematic multiplier), `local` (only the
     /// mechanisms near the static hinges were searched: lambda_upper is an upper bound, null
-    /// when that search found none), or null when no kinematic search ran.
+    /// when that search found none), `certified`, `general` (the general kinematic program
+    /// over every admissible mechanism of any assembly, docs/kinematic.md), or null when no
+    /// kinematic search ran.
     pub kinematic_search: Option<crate::kinematic::Search>,
     pub kinematic_time_s: Option<f64>,
     /// Continuous model (only with `--continuous`).

@@ -189,12 +189,24 @@ fn main() {
             .collect();
         match v.as_slice() {
             [t, l, p] => (*t, *l, *p),
-            _ => panic!("child {method}:{n}: {text} {}", String::from_utf8_lossy(&out.stderr)),
+            _ => panic!(
+                "child {method}:{n}: {text} {}",
+                String::from_utf8_lossy(&out.stderr)
+            ),
         }
     };
     println!(
         "{:>7} {:>7} {:>16} {:>16} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9}",
-        "blocks", "joints", "lambda static", "lambda general", "static s", "general s", "ratio", "model MiB", "static", "general"
+        "blocks",
+        "joints",
+        "lambda static",
+        "lambda general",
+        "static s",
+        "general s",
+        "ratio",
+        "model MiB",
+        "static",
+        "general"
     );
     for n in sizes {
         let m = model(n);

@@ -90,7 +90,7 @@ use std::time::Instant;
 /// Relative tolerance of the certificate's admissibility check: an opening rate (or a flow
 /// rule's slack) above `-ADMISSIBLE_REL_TOL` times the largest relative velocity of the
 /// mechanism counts as admissible. The interior point's solutions violate their cones by about
-/// its feasibility tolerance ([`SOLVER_TOL`]); a violation of this size changes the multiplier
+/// its feasibility tolerance (`SOLVER_TOL`); a violation of this size changes the multiplier
 /// by as little.
 pub const ADMISSIBLE_REL_TOL: f64 = 1e-8;
 
@@ -427,10 +427,11 @@ pub fn check(model: &Model, twists: Vec<Twist>, sign: f64) -> Result<Checked, St
         return Err("the mechanism's velocities are not finite numbers".into());
     }
     let rates = joint_rates(assembly, &twists);
-    let largest = rates
-        .iter()
-        .fold(0.0_f64, |m, r| m.max(r.dn1.abs()).max(r.dn2.abs()).max(r.dt.abs()));
-    if !(largest > 0.0) {
+    let largest = rates.iter().fold(0.0_f64, |m, r| {
+        m.max(r.dn1.abs()).max(r.dn2.abs()).max(r.dt.abs())
+    });
+    // NaN-safe: a NaN rate fails too.
+    if largest.is_nan() || largest <= 0.0 {
         return Err("no joint moves: the solution is no mechanism".into());
     }
     let tol = ADMISSIBLE_REL_TOL * largest;
@@ -625,7 +626,11 @@ pub fn analyse_general(
     }
     Ok(KinematicResult {
         status,
-        lambda_upper: if status == Status::Collapse { best } else { None },
+        lambda_upper: if status == Status::Collapse {
+            best
+        } else {
+            None
+        },
         lambda_signed: best,
         lambda_needed: needed,
         mechanism,

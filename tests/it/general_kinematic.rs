@@ -64,10 +64,7 @@ fn joint(p1: Vec2, p2: Vec2, from: Option<usize>, to: Option<usize>, mu: f64) ->
 /// horizontal beds (normal up, from the lower block) and vertical head joints (normal toward
 /// +x, from the left block).
 fn rect_assembly(rects: &[[f64; 4]], mu: f64) -> Assembly {
-    let blocks: Vec<Block> = rects
-        .iter()
-        .map(|r| rect(r[0], r[1], r[2], r[3]))
-        .collect();
+    let blocks: Vec<Block> = rects.iter().map(|r| rect(r[0], r[1], r[2], r[3])).collect();
     let mut joints = Vec::new();
     let tol = 1e-12;
     for (i, a) in rects.iter().enumerate() {
@@ -267,7 +264,9 @@ fn general_equals_static_on_a_lintel_portal() {
                 } else {
                     Direction::Right
                 };
-                let lm = general(&model.mirrored(), other).lambda_upper.expect("mirror");
+                let lm = general(&model.mirrored(), other)
+                    .lambda_upper
+                    .expect("mirror");
                 assert!(rel(lk, lm) <= 1e-8, "{label}: mirror {lm} vs {lk}");
             }
         }
@@ -301,7 +300,11 @@ fn general_equals_static_on_every_bundled_block_scene() {
     assert!(scenes.len() >= 3, "{scenes:?}");
     for path in scenes {
         let scene = Scene::from_file(&path).expect("bundled scene");
-        for friction in [None, Some("material.friction=inf"), Some("material.friction=0.3")] {
+        for friction in [
+            None,
+            Some("material.friction=inf"),
+            Some("material.friction=0.3"),
+        ] {
             let scene = match friction {
                 Some(o) => scene.with_overrides(&[o]).expect("override"),
                 None => scene.clone(),
@@ -376,14 +379,17 @@ fn general_takes_ties_strips_and_the_live_action() {
             &[Direction::Right, Direction::Left]
         };
         for &dir in dirs {
-            let a = analysis::analyse(&scene, &options(KinematicMode::General, dir))
-                .expect("analysis");
+            let a =
+                analysis::analyse(&scene, &options(KinematicMode::General, dir)).expect("analysis");
             let k = a.upper.as_ref().expect("general");
             let (ls, lk) = (
                 a.lower.lambda.expect("static"),
                 k.lambda_upper.expect("general"),
             );
-            assert!(rel(ls, lk) <= 1e-8, "{name} {dir:?}: static {ls} general {lk}");
+            assert!(
+                rel(ls, lk) <= 1e-8,
+                "{name} {dir:?}: static {ls} general {lk}"
+            );
         }
     }
     // A block b x h with a strip of capacity F at its heel: lambda = (W b/2 + F b)/(W h/2).
@@ -433,14 +439,19 @@ fn with_crushing_the_general_bound_is_the_rigid_one_and_says_so() {
         .expect("override");
     let r = analysis::analyse(&rigid, &Options::default()).expect("rigid");
     let c = analysis::analyse(&crushing, &Options::default()).expect("crushing");
-    let (lr, lc) = (r.lower.lambda.expect("rigid"), c.lower.lambda.expect("crushing"));
+    let (lr, lc) = (
+        r.lower.lambda.expect("rigid"),
+        c.lower.lambda.expect("crushing"),
+    );
     assert!(lc < lr * (1.0 - 1e-4), "crushing {lc} below rigid {lr}");
     let ku = c.upper.as_ref().expect("general");
     let u = ku.lambda_upper.expect("upper");
     assert!(rel(lr, u) <= 1e-8, "rigid {lr} vs general {u}");
     assert!(u >= lc);
     assert!(
-        ku.note.as_deref().is_some_and(|n| n.contains("rigid hinges")),
+        ku.note
+            .as_deref()
+            .is_some_and(|n| n.contains("rigid hinges")),
         "{:?}",
         ku.note
     );
@@ -464,8 +475,7 @@ fn the_json_of_a_wall_has_the_general_bound() {
         .arg("--json")
         .assert()
         .success();
-    let v: serde_json::Value =
-        serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
     assert_eq!(v["kinematic_search"], "general");
     assert_eq!(v["kinematic_status"], "collapse");
     let (l, u) = (
@@ -474,7 +484,13 @@ fn the_json_of_a_wall_has_the_general_bound() {
     );
     assert!(rel(l, u) <= 1e-8, "{l} {u}");
     assert!(v["gap"].as_f64().expect("gap") <= 1e-8);
-    assert_eq!(v["kinematic_mechanism"].as_array().expect("velocities").len(), 3);
+    assert_eq!(
+        v["kinematic_mechanism"]
+            .as_array()
+            .expect("velocities")
+            .len(),
+        3
+    );
     assert!(v["mechanism_sliding"].is_array());
     let hinges = v["mechanism_hinges"].as_array().expect("hinges").len();
     let open = v["open_joints"].as_array().expect("open").len();

@@ -41,8 +41,14 @@ fn undo_general(v: &mut Value, a: &analysis::SceneAnalysis) {
     if v["kinematic_search"] != "general" {
         return;
     }
-    let why = analysis::not_a_chain(&a.model.assembly).expect("only assemblies that are not chains get the general program by default");
-    for key in ["lambda_upper", "kinematic_status", "gap", "kinematic_search"] {
+    let why = analysis::not_a_chain(&a.model.assembly)
+        .expect("only assemblies that are not chains get the general program by default");
+    for key in [
+        "lambda_upper",
+        "kinematic_status",
+        "gap",
+        "kinematic_search",
+    ] {
         v[key] = Value::Null;
     }
     for key in ["mechanism_hinges", "open_joints", "kinematic_mechanism"] {

@@ -547,50 +547,40 @@ pub fn analyse_general(
         Program::new(model, sign, -1.0).solve(model)?
     };
     let programs: u64 = if symmetric { 1 } else { 2 };
-    let certify =
-        |twists: Vec<Twist>| check(model, twists, sign).map_err(KinematicError::NotCertified);
-    // The least multiplier equilibrium allows, max (G + D)/A over A < 0, and its mechanism.
     let mut iterations = 0;
     let mut stopped = Vec::new();
-    let (needed, witness) = match lower {
-        Solved::Optimal {
-            twists,
-            iterations: it,
-            stopped: why,
-        } => {
+    // Certify a program's optimum: its mechanism and multiplier (G + D)/A, whose action power
+    // must have the sign `norm` asked for (None when the program has no optimum).
+    let mut certified =
+        |solved: Solved, norm: f64| -> Result<Option<(Checked, f64)>, KinematicError> {
+            let Solved::Optimal {
+                twists,
+                iterations: it,
+                stopped: why,
+            } = solved
+            else {
+                return Ok(None);
+            };
             iterations += it;
             stopped.extend(why);
-            let c = certify(twists)?;
+            let c = check(model, twists, sign).map_err(KinematicError::NotCertified)?;
             let (a, g, d) = c.work;
-            if a >= 0.0 {
+            if a * norm <= 0.0 {
                 return Err(KinematicError::NotCertified(format!(
-                    "the mechanism driven against the action has action power {a:.3e} >= 0"
-                )));
+                "the optimal mechanism's action power is {a:.3e}, not of the sign {norm} asked for"
+            )));
             }
-            (Some((g + d) / a), Some(c))
-        }
-        Solved::Unbounded => return Ok(cannot_stand(model, settings, start, programs)),
-        Solved::Infeasible => (None, None),
-    };
-    let (best, mechanism) = match upper {
-        Solved::Optimal {
-            twists,
-            iterations: it,
-            stopped: why,
-        } => {
-            iterations += it;
-            stopped.extend(why);
-            let c = certify(twists)?;
-            let (a, g, d) = c.work;
-            if a <= 0.0 {
-                return Err(KinematicError::NotCertified(format!(
-                    "the optimal mechanism's action power is {a:.3e}, not positive"
-                )));
-            }
-            let lambda = (g + d) / a;
-            (Some(lambda), Some(c.mechanism(assembly, lambda)))
-        }
-        Solved::Unbounded | Solved::Infeasible => (None, None),
+            Ok(Some((c, (g + d) / a)))
+        };
+    if let Solved::Unbounded = lower {
+        return Ok(cannot_stand(model, settings, start, programs));
+    }
+    // The least multiplier equilibrium allows, max (G + D)/A over A < 0, and its mechanism;
+    // the greatest, min (G + D)/A over A > 0.
+    let (witness, needed) = certified(lower, -1.0)?.unzip();
+    let (best, mechanism) = match certified(upper, 1.0)? {
+        Some((c, lambda)) => (Some(lambda), Some(c.mechanism(assembly, lambda))),
+        None => (None, None),
     };
     let needed_mechanism = witness.map(|c| {
         let l = needed.unwrap_or(f64::NAN);

@@ -75,19 +75,13 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                             family_words(m.family)
                         ));
                         sec.items(hinge_items(assembly, &m.hinges));
-                        for j in &m.open {
+                        let what = m.open.iter().map(|j| (j, "opens completely"));
+                        for (j, does) in what.chain(m.sliding.iter().map(|j| (j, "slides"))) {
                             let label = assembly
                                 .joints
                                 .get(*j)
                                 .map_or("joint".to_string(), |joint| joint_label(joint.kind));
-                            sec.item(format!("joint {j:>4} ({label}), opens completely"));
-                        }
-                        for j in &m.sliding {
-                            let label = assembly
-                                .joints
-                                .get(*j)
-                                .map_or("joint".to_string(), |joint| joint_label(joint.kind));
-                            sec.item(format!("joint {j:>4} ({label}), slides"));
+                            sec.item(format!("joint {j:>4} ({label}), {does}"));
                         }
                     }
                 }

@@ -229,18 +229,9 @@ fn column_lambda(blocks: &[[f64; 4]], joints: &[(f64, f64)]) -> f64 {
 }
 
 fn inline_scene(blocks: &[[f64; 4]]) -> Scene {
-    let polys: Vec<String> = blocks
-        .iter()
-        .map(|r| {
-            format!(
-                "[[{}, {}], [{}, {}], [{}, {}], [{}, {}]]",
-                r[0], r[1], r[2], r[1], r[2], r[3], r[0], r[3]
-            )
-        })
-        .collect();
     common::scene(&format!(
-        "[blocks]\nground_y = 0.0\npolygons = [{}]\n",
-        polys.join(", ")
+        "[blocks]\nground_y = 0.0\npolygons = {}\n",
+        common::rect_polygons(blocks)
     ))
 }
 

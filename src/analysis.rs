@@ -49,6 +49,11 @@ pub enum KinematicMode {
     /// The exhaustive search up to `kinematic_max_joints` joints (an independent check of the
     /// static bound), the certified bound or the local search above.
     Exhaustive,
+    /// The general kinematic program ([`kinematic::analyse_general`]) on chains too: every
+    /// admissible mechanism of the blocks (rocking, opening, sliding with associative
+    /// friction), its optimum certified by virtual work. Assemblies that are not chains get it
+    /// whatever the mode.
+    General,
 }
 
 impl Default for Options {
@@ -137,6 +142,14 @@ impl SceneAnalysis {
         // structure's): only the static solution's own sliding joints say that sliding governs.
         let local = self.upper.as_ref().is_ok_and(|k| k.search == Search::Local)
             || self.model.strength.is_finite();
+        if self.kinematic_search == Some(Search::General) {
+            // The general program's mechanisms slide too, so its bound is no rotational one
+            // (it equals the static bound): the static solution's own sliding joints say
+            // whether sliding governs.
+            return finite
+                && self.lower.status == Status::Collapse
+                && !self.lower.sliding.is_empty();
+        }
         match (self.lower.status, self.lower.lambda, self.lambda_upper()) {
             (Status::Collapse, Some(l), Some(u)) => {
                 finite && l < u * (1.0 - 1e-6) && !(local && self.lower.sliding.is_empty())
@@ -243,15 +256,10 @@ fn upper_bound(
     if options.kinematic_max_joints == 0 {
         return (Err("kinematic search turned off".to_string()), None);
     }
-    if let Some(why) = not_a_chain(&model.assembly) {
-        // The discrete search enumerates the mechanisms of a chain; an assembly whose blocks
-        // touch several neighbours has no such enumeration here.
-        return (
-            Err(format!(
-                "none: the blocks are not a chain between two supports ({why}), so only the static bound and the DEM apply; the collapse mechanism (drawn with --svg) is read from the static program's duals"
-            )),
-            None,
-        );
+    if options.kinematic == KinematicMode::General || not_a_chain(&model.assembly).is_some() {
+        // The chain searches enumerate the mechanisms of a chain; any other assembly (a wall,
+        // a lintel, an arcade) takes the general program, as a chain does when asked.
+        return general(model, options);
     }
     let settings = KinematicSettings {
         direction: options.direction(),
@@ -309,6 +317,17 @@ fn upper_bound(
         .map_err(|e| format!("exhaustive kinematic search skipped: {too_many}; {e}"));
     let search = k.as_ref().map_or(Search::Local, |k| k.search);
     (k, Some(search))
+}
+
+/// The general kinematic program's upper bound ([`kinematic::analyse_general`]), or why there
+/// is none (a solver that did not converge, a mechanism that failed its certificate).
+fn general(model: &Model, options: &Options) -> (Result<KinematicResult, String>, Option<Search>) {
+    let settings = KinematicSettings {
+        direction: options.direction(),
+        ..KinematicSettings::default()
+    };
+    let k = kinematic::analyse_general(model, &settings).map_err(|e| format!("none: {e}"));
+    (k, Some(Search::General))
 }
 
 /// Why an assembly is neither a chain between two supports nor a column on one, in words

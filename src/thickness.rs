@@ -319,6 +319,15 @@ pub fn analyse(
     options: &crate::analysis::Options,
 ) -> Result<ThicknessAnalysis, AnalysisError> {
     options.validate()?;
+    if options.kinematic == crate::analysis::KinematicMode::General {
+        // The kinematic minimum thickness is a root of the chain searches' multiplier in the
+        // thickness; the general program answers one structure at a time (analyze, sweep).
+        return Err(AnalysisError::Settings {
+            setting: "kinematic (--kinematic)".to_string(),
+            value: "general".to_string(),
+            allowed: "certified or exhaustive: the minimum-thickness search values the chain's mechanisms (the general kinematic program is for analyze and sweep)".to_string(),
+        });
+    }
     let settings = &options.static_settings;
     let max_joints = options.kinematic_max_joints;
     let lower = min_thickness(scene, settings)?;

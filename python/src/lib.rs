@@ -461,8 +461,9 @@ fn kinematic_mode(k: &str) -> PyResult<KinematicMode> {
     match k {
         "certified" => Ok(KinematicMode::Certified),
         "exhaustive" => Ok(KinematicMode::Exhaustive),
+        "general" => Ok(KinematicMode::General),
         other => Err(PyValueError::new_err(format!(
-            "kinematic `{other}`: expected \"certified\" or \"exhaustive\""
+            "kinematic `{other}`: expected \"certified\", \"exhaustive\" or \"general\""
         ))),
     }
 }

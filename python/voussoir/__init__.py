@@ -260,7 +260,9 @@ def analyze(
     is ``"live"`` (lambda the adequacy factor of its live loads) has no direction, and giving
     one raises :class:`AnalysisError` (``kind = "not_for_action"``), as ``--direction`` does.
     ``kinematic``: ``"certified"`` (the
-    mechanism of the static hinges, falling back to a search) or ``"exhaustive"``;
+    mechanism of the static hinges, falling back to a search), ``"exhaustive"`` or
+    ``"general"`` (the general kinematic program, which assemblies that are not chains always
+    get: ``docs/kinematic.md``);
     ``kinematic_max_joints`` bounds the exhaustive search (0 turns the kinematic analysis
     off). The GIL is released while the library solves. Raises :class:`SceneError` for a
     scene that cannot be built and :class:`AnalysisError` for a solver failure (physical

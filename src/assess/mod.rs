@@ -137,6 +137,7 @@ impl Linkage {
             Family::TwoOpen => "two-open-joints",
             Family::OneHinge => "one-hinge",
             Family::HingesWithHeldTies => "tied",
+            Family::General => "general (any blocks rocking, lifting or sliding)",
         };
         let point = |k: usize| Vec2::new(mechanism.hinges[k].x, mechanism.hinges[k].y);
         let omega = |b: usize| mechanism.velocities.get(b).map_or(0.0, |v| v[2]);

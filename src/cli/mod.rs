@@ -47,6 +47,9 @@ pub enum Kinematic {
     Certified,
     /// The exhaustive search over every mechanism, up to --kinematic-max-joints
     Exhaustive,
+    /// The general kinematic program (any blocks rocking, lifting, sliding), on chains too;
+    /// assemblies that are not chains always get it (analyze and sweep only)
+    General,
 }
 
 impl From<Kinematic> for voussoir::analysis::KinematicMode {
@@ -54,6 +57,7 @@ impl From<Kinematic> for voussoir::analysis::KinematicMode {
         match k {
             Kinematic::Certified => voussoir::analysis::KinematicMode::Certified,
             Kinematic::Exhaustive => voussoir::analysis::KinematicMode::Exhaustive,
+            Kinematic::General => voussoir::analysis::KinematicMode::General,
         }
     }
 }

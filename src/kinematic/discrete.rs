@@ -810,6 +810,7 @@ fn certify_held(
             family: Family::HingesWithHeldTies,
             hinges,
             open: Vec::new(),
+            sliding: Vec::new(),
             velocities,
             lambda,
         }),
@@ -1001,6 +1002,7 @@ fn mechanism_of(assembly: &Assembly, chain: &Chain, key: &Key) -> Option<Mechani
         family,
         hinges,
         open,
+        sliding: Vec::new(),
         velocities: vel,
         lambda: g / a,
     })
@@ -1750,6 +1752,7 @@ pub fn certify_crushing(
             family: Family::FourHinges,
             hinges,
             open: Vec::new(),
+            sliding: Vec::new(),
             velocities,
             lambda,
         }),

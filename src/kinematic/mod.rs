@@ -69,12 +69,14 @@
 
 pub mod continuous;
 pub mod discrete;
+pub mod general;
 
 pub use continuous::{
     continuous, continuous_min_thickness, ContinuousHinge, ContinuousResult, HingeLocation,
     MinThickness,
 };
 pub use discrete::{analyse, analyse_local, certify, certify_crushing, mechanism_work};
+pub use general::analyse_general;
 
 use crate::assembly::{Hinge, JointEnd};
 use crate::geometry::Vec2;
@@ -104,8 +106,10 @@ pub enum KinematicError {
         total: usize,
         window: usize,
     },
-    #[error("no certified upper bound from the static solution: {0}")]
+    #[error("no certified upper bound: {0}")]
     NotCertified(String),
+    #[error("general kinematic program: {0}")]
+    General(String),
     #[error("the continuous model puts rigid hinges on the intrados and extrados, so it does not model a finite compressive strength (material.compressive_strength = {compressive_strength:e} Pa); it is not run rather than report the rigid arch's multiplier as the crushing one")]
     FiniteStrength { compressive_strength: f64 },
     #[error("the continuous model's hinges fall anywhere on the ring, between the blocks a tie rod is anchored on, so it does not model tie rods ({count} in the scene); it is not run rather than report the untied arch's multiplier")]
@@ -131,6 +135,11 @@ pub enum Search {
     /// ([`certify`]): its multiplier by virtual work bounds the collapse multiplier from
     /// above, and when it equals the static one the two certify it.
     Certified,
+    /// The general kinematic program over every admissible mechanism of any assembly
+    /// ([`general`]: rocking, opening and sliding of every block with associative friction),
+    /// its optimum certified by virtual work: the least kinematic multiplier, equal to the
+    /// static one by duality.
+    General,
 }
 
 impl Search {
@@ -139,6 +148,7 @@ impl Search {
             Search::Exhaustive => "exhaustive",
             Search::Local => "local",
             Search::Certified => "certified",
+            Search::General => "general",
         }
     }
 }
@@ -187,6 +197,9 @@ pub enum Family {
     HingesWithHeldTies,
     /// A single hinge of a one-support chain (column, cantilever).
     OneHinge,
+    /// The optimum of the general kinematic program ([`general`]): any blocks rocking,
+    /// lifting or sliding.
+    General,
 }
 
 /// A mechanism: its active joints and the motion of the blocks.
@@ -198,6 +211,9 @@ pub struct Mechanism {
     pub hinges: Vec<Hinge>,
     /// Joints that open completely.
     pub open: Vec<usize>,
+    /// Joints that slide (their relative velocity has a tangential part): only the general
+    /// program's mechanisms slide.
+    pub sliding: Vec<usize>,
     /// `[vx, vy, omega]` of each block (centroid velocity, rotation rate), scaled so the
     /// fastest centroid moves at 1 and the load does positive work (for `Collapse`), or so
     /// gravity does positive work (the witness of `CannotStand`).

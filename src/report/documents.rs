@@ -30,8 +30,12 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
         Ok(k) => {
             match (k.status, k.lambda_upper) {
                 (Status::Collapse, Some(u)) => {
+                    let general = k.search == Search::General;
                     if k.search == crate::kinematic::Search::Certified {
                         sec.head(format!("Kinematic (upper bound): lambda = {u:.6}, the mechanism of the static hinges by virtual work ({:.2} ms)",
+                            k.wall_time_s * 1e3));
+                    } else if general {
+                        sec.head(format!("Kinematic (upper bound): lambda = {u:.6}, the least over every admissible mechanism of the blocks (the general kinematic program, certified by virtual work; {:.1} ms)",
                             k.wall_time_s * 1e3));
                     } else {
                         sec.head(format!(
@@ -44,7 +48,7 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                             k.wall_time_s * 1e3
                         ));
                     }
-                    if a.sliding_governs() {
+                    if a.sliding_governs() && !general {
                         let mu = num(scene.material.friction);
                         let words = if a.lower.status == Status::CannotStand {
                             format!("with mu = {mu} the structure slides before any of them forms")
@@ -71,12 +75,13 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                             family_words(m.family)
                         ));
                         sec.items(hinge_items(assembly, &m.hinges));
-                        for j in &m.open {
+                        let what = m.open.iter().map(|j| (j, "opens completely"));
+                        for (j, does) in what.chain(m.sliding.iter().map(|j| (j, "slides"))) {
                             let label = assembly
                                 .joints
                                 .get(*j)
                                 .map_or("joint".to_string(), |joint| joint_label(joint.kind));
-                            sec.item(format!("joint {j:>4} ({label}), opens completely"));
+                            sec.item(format!("joint {j:>4} ({label}), {does}"));
                         }
                     }
                 }
@@ -88,7 +93,14 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                 }
             }
             if let (Some(gap), Some(l), Some(u)) = (a.gap(), a.lower.lambda, k.lambda_upper) {
-                if a.sliding_governs() {
+                if k.search == Search::General {
+                    // The general program's mechanisms slide too: by duality its bound meets
+                    // the static one whether or not sliding governs.
+                    sec.line(format!("bounds agree: relative gap {}", sci(gap, 1)));
+                    if a.sliding_governs() {
+                        sec.line("sliding governs: joints slide in the collapse mechanism (associative friction: both numbers are the associative multiplier, docs/friction.md)");
+                    }
+                } else if a.sliding_governs() {
                     let below = sliding_shortfall(l, u)
                         .map_or(String::new(), |d| format!(" ({:.1}% lower)", 100.0 * d));
                     sec.line(format!("sliding governs: the static bound {l:.6} is below the rotational mechanisms' {u:.6}{below}"));

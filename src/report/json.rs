@@ -320,11 +320,16 @@ pub struct AnalysisReport {
     pub sliding_governs: bool,
     /// Block velocities of the kinematic mechanism `[vx, vy, omega]`.
     pub kinematic_mechanism: Vec<[f64; 3]>,
+    /// Added: joints that slide in the kinematic mechanism (only the general program's
+    /// mechanisms slide; empty otherwise).
+    pub mechanism_sliding: Vec<usize>,
     /// Why the kinematic search was not run or failed, or what a local search covered.
     pub kinematic_note: Option<String>,
     /// `exhaustive` (lambda_upper is the discrete kinematic multiplier), `local` (only the
     /// mechanisms near the static hinges were searched: lambda_upper is an upper bound, null
-    /// when that search found none), or null when no kinematic search ran.
+    /// when that search found none), `certified`, `general` (the general kinematic program
+    /// over every admissible mechanism of any assembly, docs/kinematic.md), or null when no
+    /// kinematic search ran.
     pub kinematic_search: Option<crate::kinematic::Search>,
     pub kinematic_time_s: Option<f64>,
     /// Continuous model (only with `--continuous`).
@@ -561,6 +566,7 @@ impl AnalysisReport {
                     report.mechanism_hinges = m.hinges.clone();
                     report.open_joints = m.open.clone();
                     report.kinematic_mechanism = m.velocities.clone();
+                    report.mechanism_sliding = m.sliding.clone();
                 }
             }
             Err(note) => report.kinematic_note = Some(note.clone()),
@@ -636,6 +642,7 @@ impl AnalysisReport {
             open_joints: Vec::new(),
             sliding_governs: false,
             kinematic_mechanism: Vec::new(),
+            mechanism_sliding: Vec::new(),
             kinematic_note: None,
             kinematic_search: None,
             kinematic_time_s: None,

@@ -73,6 +73,7 @@ pub fn family_words(f: Family) -> &'static str {
         Family::TwoHingesOneOpen => "two hinges and an opening joint",
         Family::TwoOpen => "two opening joints",
         Family::OneHinge => "one hinge",
+        Family::General => "blocks rocking, lifting and sliding (the general kinematic program)",
         Family::HingesWithHeldTies => "hinges, with tie rods that keep their length",
     }
 }

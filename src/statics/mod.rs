@@ -202,7 +202,7 @@ pub fn analyse_full(
 /// numbers them, without building the image (this runs on every self-weight analysis).
 ///
 /// [`Assembly::mirrored`]: crate::assembly::Assembly::mirrored
-fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
+pub(crate) fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
     use crate::geometry::mirror;
     let (nb, nj) = (assembly.blocks.len(), assembly.joints.len());
     let tol = 1e-9 * assembly.size();

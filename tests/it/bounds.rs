@@ -11,16 +11,17 @@ use voussoir::kinematic::{self, KinematicSettings};
 use voussoir::scene::Scene;
 use voussoir::statics::{self, Direction, StaticSettings, Status};
 
-struct Case {
-    label: String,
-    toml: String,
+pub(crate) struct Case {
+    pub label: String,
+    pub toml: String,
 }
 
 fn arch(shape: &str, t: f64, n: usize, vs: &str) -> String {
     format!("[arch]\n{shape}\nthickness = {t}\nvoussoirs = {n}\nvoussoir_shape = \"{vs}\"\n")
 }
 
-fn grid() -> Vec<Case> {
+/// The chains every bound is checked on (also by `general_kinematic.rs`).
+pub(crate) fn grid() -> Vec<Case> {
     let mut cases = Vec::new();
     let shapes = ["polygon", "curved"];
     let mut k = 0usize;

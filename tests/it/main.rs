@@ -22,6 +22,7 @@ mod dem_record;
 mod extremes;
 mod fixed_blocks;
 mod friction;
+mod general_kinematic;
 mod json_contract;
 mod json_unchanged;
 mod kinematic;

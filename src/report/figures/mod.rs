@@ -89,14 +89,24 @@ pub fn analysis_svg(
 ) -> Result<String, SvgError> {
     let result = &a.lower;
     let fixed = fixed_outlines(scene);
+    // The general kinematic program's mechanism, certified by virtual work, where it ran
+    // (assemblies that are not chains, or asked for); the static program's duals otherwise.
+    let velocities = match (&a.upper, a.kinematic_search) {
+        (Ok(k), Some(crate::kinematic::Search::General)) => k
+            .mechanism
+            .as_ref()
+            .filter(|_| k.status == Status::Collapse)
+            .map_or(&result.mechanism, |m| &m.velocities),
+        _ => &result.mechanism,
+    };
     let drawing = Drawing {
         fixed: &fixed,
         title: drawing_title(scene, a),
         forces: result.forces.as_deref(),
         hinges: &result.hinges,
         sliding: &result.sliding,
-        mechanism: (!result.mechanism.is_empty()).then_some(Mechanism {
-            velocities: &result.mechanism,
+        mechanism: (!velocities.is_empty()).then_some(Mechanism {
+            velocities,
             amplification: None,
         }),
         // A live action shakes nothing: no seismic arrow; its loads are labelled as multiplied.
@@ -362,9 +372,13 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
     };
     let upper = match &a.upper {
         Ok(k) => match (k.status, k.lambda_upper) {
-            (Status::Collapse, Some(u)) if a.sliding_governs() => Some(format!(
-                "λ (kinematic upper bound) = {u:.4} (rotation only)"
-            )),
+            (Status::Collapse, Some(u))
+                if a.sliding_governs() && k.search != crate::kinematic::Search::General =>
+            {
+                Some(format!(
+                    "λ (kinematic upper bound) = {u:.4} (rotation only)"
+                ))
+            }
             (Status::Collapse, Some(u)) => Some(format!("λ (kinematic upper bound) = {u:.4}")),
             (status, _) if status == a.lower.status => None,
             (Status::NoCollapse, _) => Some("kinematic: no collapse".to_string()),

@@ -47,6 +47,21 @@ pub fn rect(x0: f64, y0: f64, b: f64, h: f64) -> Block {
     }
 }
 
+/// The inline `polygons` value of a `[blocks]` table for axis-aligned rectangles
+/// `[x0, y0, x1, y1]`.
+pub fn rect_polygons(rects: &[[f64; 4]]) -> String {
+    let polys: Vec<String> = rects
+        .iter()
+        .map(|r| {
+            format!(
+                "[[{}, {}], [{}, {}], [{}, {}], [{}, {}]]",
+                r[0], r[1], r[2], r[1], r[2], r[3], r[0], r[3]
+            )
+        })
+        .collect();
+    format!("[{}]", polys.join(", "))
+}
+
 /// A horizontal joint at height y from x = a to x = c (p1 at a), carrying `to` on `from`
 /// when a > c (normal up).
 pub fn hjoint(a: f64, c: f64, y: f64, from: Option<usize>, to: Option<usize>, mu: f64) -> Joint {

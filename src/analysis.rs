@@ -36,6 +36,51 @@ pub struct Options {
     pub kinematic: KinematicMode,
     /// Run the continuous model.
     pub continuous: bool,
+    /// Which friction law the collapse multiplier is given for (docs/friction.md). Default
+    /// [`FrictionMode::Auto`].
+    pub friction: FrictionMode,
+}
+
+/// Which friction law the collapse multiplier is given for (`--friction`, docs/friction.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrictionMode {
+    /// The non-associative multiplier ([`statics::analyse_non_associative`]) whenever the
+    /// associative one is not exact (`friction_exact` false); when it is exact, the two are
+    /// the same number and nothing is iterated. `min-thickness` gives the associative value
+    /// alone in this mode (its search is many analyses).
+    #[default]
+    Auto,
+    /// The associative (static program's) multiplier alone.
+    Associative,
+    /// The non-associative multiplier always: iterated even when the associative one is exact
+    /// (a check), and the minimum thickness of non-associative joints too.
+    NonAssociative,
+}
+
+impl FrictionMode {
+    /// The name `--friction` and the JSON use.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FrictionMode::Auto => "auto",
+            FrictionMode::Associative => "associative",
+            FrictionMode::NonAssociative => "non-associative",
+        }
+    }
+
+    /// The mode named `name` (`auto`, `associative`, `non-associative`), for front ends that
+    /// take it as a string (Python, the page).
+    pub fn parse(name: &str) -> Result<FrictionMode, AnalysisError> {
+        match name {
+            "auto" => Ok(FrictionMode::Auto),
+            "associative" => Ok(FrictionMode::Associative),
+            "non-associative" | "non_associative" => Ok(FrictionMode::NonAssociative),
+            other => Err(AnalysisError::Settings {
+                setting: "friction".to_string(),
+                value: format!("\"{other}\""),
+                allowed: "\"auto\", \"associative\" or \"non-associative\"".to_string(),
+            }),
+        }
+    }
 }
 
 /// How the kinematic upper bound is found.
@@ -58,6 +103,7 @@ impl Default for Options {
             kinematic_max_joints: KINEMATIC_DEFAULT_MAX_JOINTS,
             kinematic: KinematicMode::Certified,
             continuous: false,
+            friction: FrictionMode::Auto,
         }
     }
 }
@@ -102,6 +148,10 @@ pub struct SceneAnalysis {
     pub kinematic_search: Option<Search>,
     /// The continuous model, when asked for (or why it failed).
     pub continuous: Option<Result<ContinuousResult, String>>,
+    /// The non-associative multiplier (docs/friction.md), when `options.friction` asks for it:
+    /// with [`FrictionMode::Auto`] only when the associative one is not exact (and there is a
+    /// collapse); None otherwise.
+    pub non_associative: Option<statics::NonAssociative>,
 }
 
 impl SceneAnalysis {
@@ -121,6 +171,17 @@ impl SceneAnalysis {
     /// ([`statics::FrictionCheck`], docs/friction.md): every front end reads this.
     pub fn friction(&self) -> statics::FrictionCheck {
         self.lower.friction(&self.model.assembly)
+    }
+
+    /// The non-associative multiplier, when it was computed and converged (docs/friction.md).
+    pub fn lambda_non_associative(&self) -> Option<f64> {
+        self.non_associative.as_ref().and_then(|n| n.lambda)
+    }
+
+    /// The multiplier that governs downstream (the page's large number, `assess`, `retrofit`):
+    /// the non-associative one when it exists, the static (associative) one otherwise.
+    pub fn lambda_governing(&self) -> Option<f64> {
+        self.lambda_non_associative().or(self.lower.lambda)
     }
 
     /// Whether sliding governs: finite friction somewhere, and the static bound is below the
@@ -223,13 +284,43 @@ pub fn analyse_model(
     let continuous = options
         .continuous
         .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
+    let non_associative = non_associative_of(&model, &lower, options)?;
     Ok(SceneAnalysis {
         model,
         lower,
         upper,
         kinematic_search,
         continuous,
+        non_associative,
     })
+}
+
+/// The non-associative multiplier of `model`, whose static result is `lower`, as
+/// `options.friction` asks (see [`FrictionMode`]): the associative value as it is when that is
+/// exact (unless forced), the iteration of [`statics::analyse_non_associative`] otherwise;
+/// None when not asked for, with infinite friction, or with no collapse.
+fn non_associative_of(
+    model: &Model,
+    lower: &StaticResult,
+    options: &Options,
+) -> Result<Option<statics::NonAssociative>, AnalysisError> {
+    let check = lower.friction(&model.assembly);
+    if options.friction == FrictionMode::Associative
+        || !check.finite
+        || lower.status != Status::Collapse
+    {
+        return Ok(None);
+    }
+    if check.exact && options.friction == FrictionMode::Auto {
+        return Ok(Some(statics::NonAssociative::exact(lower)));
+    }
+    statics::analyse_non_associative(
+        model,
+        &options.static_settings,
+        lower,
+        &statics::NonAssociativeSettings::default(),
+    )
+    .map(Some)
 }
 
 /// The kinematic upper bound of `model` given its static solution `lower`, per `options`

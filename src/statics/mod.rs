@@ -13,11 +13,15 @@
 mod chain;
 pub mod design;
 mod friction;
+pub mod non_associative;
 mod problem;
 mod settings;
 
 pub use chain::{analyse_chain, declines, Declined};
 pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};
+pub use non_associative::{
+    analyse_non_associative, NonAssociative, NonAssociativeSettings, Start, StartOutcome,
+};
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
@@ -221,6 +225,15 @@ fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
             && flip(p.from) == q.to
             && (p.friction == q.friction || (p.friction - q.friction).abs() <= 1e-12 * q.friction)
     })
+}
+
+/// Whether `model` is its own mirror image under self-weight alone, with no ties or strips: its
+/// multipliers toward the right and the left are then the same.
+pub fn symmetric_self_weight(model: &Model) -> bool {
+    model.loads.is_self_weight_only()
+        && model.ties.is_empty()
+        && model.strips.is_empty()
+        && mirror_symmetric(&model.assembly)
 }
 
 /// Under loads or a structure that are not symmetric the multipliers equilibrium allows form

@@ -20,6 +20,7 @@ mod dem_fuzz;
 mod dem_record;
 mod extremes;
 mod friction;
+mod non_associative;
 mod json_contract;
 mod json_unchanged;
 mod kinematic;

@@ -39,6 +39,9 @@ pub struct Options {
     /// Which friction law the collapse multiplier is given for (docs/friction.md). Default
     /// [`FrictionMode::Auto`].
     pub friction: FrictionMode,
+    /// Also run the DEM check (its Coulomb contacts slide without opening), from its own start
+    /// (`analyze --dem`): where the associative, the non-associative and the DEM's values sit.
+    pub dem: bool,
 }
 
 /// Which friction law the collapse multiplier is given for (`--friction`, docs/friction.md).
@@ -104,6 +107,7 @@ impl Default for Options {
             kinematic: KinematicMode::Certified,
             continuous: false,
             friction: FrictionMode::Auto,
+            dem: false,
         }
     }
 }
@@ -152,6 +156,9 @@ pub struct SceneAnalysis {
     /// with [`FrictionMode::Auto`] only when the associative one is not exact (and there is a
     /// collapse); None otherwise.
     pub non_associative: Option<statics::NonAssociative>,
+    /// The DEM check of the same model toward the same side, when `options.dem` asks (or why
+    /// it failed).
+    pub dem: Option<Result<crate::dem::DemResult, String>>,
 }
 
 impl SceneAnalysis {
@@ -285,6 +292,21 @@ pub fn analyse_model(
         .continuous
         .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
     let non_associative = non_associative_of(&model, &lower, options)?;
+    let dem = options.dem.then(|| {
+        // The DEM loads toward +x: the mirror image stands for a load toward the left.
+        let simulated = match options.direction() {
+            Direction::Right => model.clone(),
+            Direction::Left => model.mirrored(),
+        };
+        dem_of(
+            scene,
+            &simulated,
+            lower.lambda,
+            &DemOptions::default(),
+            &mut |_| {},
+        )
+        .map_err(|e| e.to_string())
+    });
     Ok(SceneAnalysis {
         model,
         lower,
@@ -292,6 +314,7 @@ pub fn analyse_model(
         kinematic_search,
         continuous,
         non_associative,
+        dem,
     })
 }
 
@@ -959,8 +982,10 @@ fn direction_name(d: Direction) -> &'static str {
 /// [`CERTIFY_TOL`]).
 pub const GOVERNS_TOL: f64 = 1e-6;
 
-/// Whether the assessed mechanism is the governing one: the static lower bound must reach its
-/// `alpha0`. It does not when the structure cannot stand, when joints slide at collapse
+/// Whether the assessed mechanism is the governing one: the governing multiplier
+/// ([`SceneAnalysis::lambda_governing`]: the non-associative one when it was computed, the
+/// static one otherwise; docs/friction.md) must reach its `alpha0`. It does not when the
+/// structure cannot stand, when joints slide at collapse
 /// (finite friction), or when a finite compressive strength lowers the multiplier but the
 /// mechanism came from a search with rigid hinges (its hinges at the joint ends): the
 /// rotational capacity curve would then start above the true collapse multiplier and
@@ -969,7 +994,7 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
     let lower = &a.analysis.lower;
     let alpha0 = a.capacity.alpha0;
     let dir = direction_name(a.capacity.direction);
-    let lambda = match (lower.status, lower.lambda) {
+    let lambda = match (lower.status, a.analysis.lambda_governing()) {
         (Status::CannotStand, _) | (_, None) => {
             return Err(format!(
                 "load toward the {dir}: the static program finds no equilibrium (the structure cannot stand, or no lower bound), while the rotational mechanism has alpha0 = {alpha0:.6}: its capacity curve would be that of a structure that does not exist, so there is no assessment"
@@ -980,7 +1005,10 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
     if lambda >= alpha0 - GOVERNS_TOL * alpha0.abs().max(1.0) {
         return Ok(());
     }
-    let why = if !lower.sliding.is_empty() {
+    let non_associative = a.analysis.lambda_non_associative().is_some();
+    let why = if non_associative && a.analysis.lambda_non_associative() < lower.lambda {
+        "the non-associative multiplier (joints that slide without opening) is below it: that collapse governs, and it has no rotational capacity curve in this model".to_string()
+    } else if !lower.sliding.is_empty() {
         format!(
             "{} joint(s) slide at collapse: sliding governs, and a sliding mechanism has no capacity curve in this model",
             lower.sliding.len()
@@ -992,7 +1020,8 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
             .to_string()
     };
     Err(format!(
-        "load toward the {dir}: the static lower bound lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",
+        "load toward the {dir}: the {} lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",
+        if non_associative { "non-associative multiplier" } else { "static lower bound" },
         100.0 * (alpha0 - lambda) / alpha0
     ))
 }

@@ -43,6 +43,10 @@ pub struct Args {
     /// associative (the static program's alone), non-associative (always)
     #[arg(long, value_enum, default_value = "auto")]
     friction: super::Friction,
+    /// Also run the DEM (Coulomb contacts that slide without opening) and show where the
+    /// associative, the non-associative and the DEM's multipliers sit
+    #[arg(long)]
+    dem: bool,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -64,6 +68,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         kinematic: args.kinematic.into(),
         continuous: args.continuous,
         friction: args.friction.into(),
+        dem: args.dem,
     };
     let a = analysis::analyse(&scene, &options)?;
     let (assembly, result) = (&a.model.assembly, &a.lower);

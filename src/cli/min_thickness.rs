@@ -48,6 +48,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         kinematic: args.kinematic.into(),
         continuous: args.continuous,
         friction: args.friction.into(),
+        ..analysis::Options::default()
     };
     let t = thickness::analyse(&scene, &options)?;
     let m = &t.lower;

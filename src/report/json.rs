@@ -270,6 +270,10 @@ pub struct AnalysisReport {
     /// The multiplier that governs (the page's large number, `assess`, `retrofit`):
     /// `lambda_non_associative` when there is one, `lambda_lower` otherwise.
     pub lambda_governing: Option<f64>,
+    /// The DEM check of the same scene (only with `analyze --dem`): its Coulomb contacts
+    /// slide without opening, so it estimates the non-associative collapse.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dem: Option<AnalysisDemReport>,
     pub joints: Vec<JointReport>,
     pub mechanism: Vec<[f64; 3]>,
     pub equilibrium_residual: f64,
@@ -594,6 +598,7 @@ impl AnalysisReport {
             non_associative_starts: Vec::new(),
             non_associative_note: None,
             lambda_governing: r.lambda,
+            dem: None,
             joints,
             mechanism: r.mechanism.clone(),
             equilibrium_residual: r.equilibrium_residual,
@@ -624,6 +629,19 @@ impl AnalysisReport {
     }
 }
 
+/// The DEM check in `analyze --dem --json`.
+#[derive(Debug, Serialize)]
+pub struct AnalysisDemReport {
+    /// The DEM's multiplier (the middle of its bracket), null when it found none.
+    pub lambda_dem: Option<f64>,
+    /// The bracket `[stands, collapses]`.
+    pub lambda_stands: Option<f64>,
+    pub lambda_collapses: Option<f64>,
+    pub wall_time_s: Option<f64>,
+    /// Why there is no DEM result, or its warnings; null when none.
+    pub note: Option<String>,
+}
+
 /// One start of the non-associative iteration, in `analyze --json`.
 #[derive(Debug, Serialize)]
 pub struct NonAssociativeStartReport {
@@ -639,6 +657,22 @@ impl AnalysisReport {
     /// The non-associative fields of `a` (left at their defaults when not computed).
     fn set_non_associative(&mut self, a: &SceneAnalysis) {
         self.lambda_governing = a.lambda_governing();
+        self.dem = a.dem.as_ref().map(|d| match d {
+            Ok(d) => AnalysisDemReport {
+                lambda_dem: d.lambda_dem,
+                lambda_stands: d.lambda_stands,
+                lambda_collapses: d.lambda_collapses,
+                wall_time_s: Some(d.wall_time_s),
+                note: (!d.warnings.is_empty()).then(|| d.warnings.join("; ")),
+            },
+            Err(e) => AnalysisDemReport {
+                lambda_dem: None,
+                lambda_stands: None,
+                lambda_collapses: None,
+                wall_time_s: None,
+                note: Some(e.clone()),
+            },
+        });
         let Some(na) = &a.non_associative else {
             return;
         };

@@ -63,7 +63,7 @@ impl Default for NonAssociativeSettings {
         NonAssociativeSettings {
             max_iterations: 100,
             tolerance: 1e-6,
-            relaxation: 0.5,
+            relaxation: 1.0,
         }
     }
 }

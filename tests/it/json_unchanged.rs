@@ -30,6 +30,14 @@ const ADDED: &[&str] = &[
     "lambda_associative",
     "slipping_joints",
     "friction_note",
+    "lambda_non_associative",
+    "non_associative_converged",
+    "non_associative_iterations",
+    "non_associative_sliding_joints",
+    "non_associative_starts",
+    "non_associative_note",
+    "lambda_governing",
+    "dem",
 ];
 
 /// Strip the added fields and the wall times, recursively.

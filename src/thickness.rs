@@ -445,13 +445,12 @@ pub fn analyse(
         .joints
         .iter()
         .any(|j| j.friction.is_finite());
-    let non_associative = if options.friction == crate::analysis::FrictionMode::NonAssociative
-        && finite
-    {
-        Some(min_thickness_non_associative(scene, settings)?)
-    } else {
-        None
-    };
+    let non_associative =
+        if options.friction == crate::analysis::FrictionMode::NonAssociative && finite {
+            Some(min_thickness_non_associative(scene, settings)?)
+        } else {
+            None
+        };
     Ok(ThicknessAnalysis {
         non_associative,
         lower,

@@ -166,7 +166,9 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
 fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
     if let Some(na) = a.non_associative.as_ref().filter(|n| !n.from_exact) {
         let head = match na.lambda {
-            Some(l) => format!("Non-associative friction (joints slide without opening): lambda = {l:.6}"),
+            Some(l) => {
+                format!("Non-associative friction (joints slide without opening): lambda = {l:.6}")
+            }
             None => "Non-associative friction: no converged multiplier".to_string(),
         };
         let sec = doc.section(head);

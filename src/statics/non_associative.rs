@@ -25,14 +25,19 @@
 //! converged value of the starts tried is kept. Nothing guarantees that it is the lowest of
 //! all: the true collapse multiplier is at most that value.
 //!
-//! What is implemented (the relaxation is ours; the paper's text was not at hand when this was
-//! written): `beta` starts at [`NonAssociativeSettings::relaxation`] (0.5, the mean of the
-//! previous and the new normal forces) and is halved, down to 1/64, whenever the multiplier's
-//! increments change sign twice in a row (an oscillation); convergence asks that the
-//! multiplier change by at most `tolerance * max(1, |lambda|)` between two iterations and that
-//! the fixed-point conditions above hold to `tolerance` times the largest normal force. Two
-//! starts: the normal forces of the associative collapse solution, and those of the most
-//! central equilibrium under the permanent loads alone (the phase-one program's).
+//! What is implemented (the relaxation is ours: only the paper's abstract was at hand when
+//! this was written, so its exact relaxation rule is not reproduced): `beta` starts at
+//! [`NonAssociativeSettings::relaxation`] (1: each capacity from the last normal forces) and
+//! is halved, down to 1/64, whenever the multiplier's increments change sign twice in a row
+//! (an oscillation: the capacities then mix the previous and the new normal forces);
+//! convergence asks that the multiplier change by at most `tolerance * max(1, |lambda|)`
+//! between two iterations and that the fixed-point conditions above hold to `tolerance` times
+//! the largest normal force. Three starts, in this order ([`Start`]): the normal forces of the
+//! associative collapse solution; the same, with every program followed by a second one that
+//! picks, among its optima, the equilibrium of least friction capacity `sum mu N`
+//! ([`Objective::LeastFriction`]), which steers toward the lower solutions; and the normal
+//! forces of the most central equilibrium under the permanent loads alone (the phase-one
+//! program's).
 
 use super::problem::{Objective, StaticProblem};
 use super::{
@@ -49,12 +54,13 @@ use std::time::Instant;
 /// How the non-associative iteration runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NonAssociativeSettings {
-    /// The most programs solved from one start. Default 100.
+    /// The most iterations from one start (one program each, two for
+    /// [`Start::LeastFriction`]). Default 100.
     pub max_iterations: u32,
     /// Relative change of the multiplier, and mismatch of the normal forces (over the largest
     /// one), below which the iteration has settled. Default 1e-6.
     pub tolerance: f64,
-    /// The first relaxation factor `beta` (0 < beta <= 1). Default 0.5.
+    /// The first relaxation factor `beta` (0 < beta <= 1). Default 1.
     pub relaxation: f64,
 }
 
@@ -104,7 +110,7 @@ pub struct StartOutcome {
     pub start: Start,
     /// The multiplier of the last program solved (None when none was solved).
     pub lambda: Option<f64>,
-    /// Programs solved from this start.
+    /// Programs solved from this start (two per iteration for [`Start::LeastFriction`]).
     pub iterations: u32,
     /// Whether it settled (a fixed point, to the tolerance).
     pub converged: bool,
@@ -202,7 +208,10 @@ fn solve_fixed(
             &model.ties,
             &model.strips,
             ShearLimit::Fixed(capacity),
-            Objective::LeastFriction { sign, lambda: below },
+            Objective::LeastFriction {
+                sign,
+                lambda: below,
+            },
         );
         let s2 = run(&p2, settings)?;
         matches!(s2.status, SolverStatus::Solved | SolverStatus::AlmostSolved).then_some(s2.x)
@@ -258,7 +267,11 @@ fn solve_fixed(
 /// `tol`: Coulomb's law holds with its own normal forces, and every joint whose shear reaches
 /// its capacity carries the normal force the capacity was set from.
 fn fixed_point(model: &Model, nbar: &[f64], it: &Iterate, tol: f64) -> bool {
-    let nmax = it.forces.iter().fold(0.0_f64, |a, f| a.max(f.n)).max(1e-300);
+    let nmax = it
+        .forces
+        .iter()
+        .fold(0.0_f64, |a, f| a.max(f.n))
+        .max(1e-300);
     let eps = tol * nmax;
     model
         .assembly
@@ -288,18 +301,21 @@ fn iterate_from(
     let mut lambdas: Vec<f64> = Vec::new();
     let mut turns = 0;
     let mut iterations = 0;
+    let mut programs = 0;
     let mut last: Option<StaticResult> = None;
-    let mut stopped = format!("no fixed point in {} programs", na.max_iterations);
+    let mut stopped = format!("no fixed point in {} iterations", na.max_iterations);
     while iterations < na.max_iterations {
         iterations += 1;
         let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
         let least = start == Start::LeastFriction;
+        programs += 1;
         let Some(it) = solve_fixed(model, settings, &capacity, least)? else {
             stopped = format!(
                 "the program with the capacities of iteration {iterations} has no solution"
             );
             break;
         };
+        programs += u32::from(least);
         let settled = lambdas.last().is_some_and(|&prev| {
             (it.lambda - prev).abs() <= na.tolerance * it.lambda.abs().max(1.0)
         }) && fixed_point(model, &nbar, &it, na.tolerance);
@@ -310,7 +326,7 @@ fn iterate_from(
                 StartOutcome {
                     start,
                     lambda: Some(lambda),
-                    iterations,
+                    iterations: programs,
                     converged: true,
                     stopped: None,
                 },
@@ -338,7 +354,7 @@ fn iterate_from(
         StartOutcome {
             start,
             lambda: last.as_ref().and_then(|r| r.lambda),
-            iterations,
+            iterations: programs,
             converged: false,
             stopped: Some(stopped),
         },

@@ -235,7 +235,8 @@ pub(crate) fn program_rows(
         // the cones (c + 1 >= |c - 1|): the contacts leave those rows out, since a nearly
         // parallel duplicate of a strong material's cone splits its dual between the two
         // and costs the interior point accuracy.
-        let (first, friction_joints) = contact::static_rows(assembly, rows, strength.is_finite(), shear);
+        let (first, friction_joints) =
+            contact::static_rows(assembly, rows, strength.is_finite(), shear);
         crushing::static_rows(assembly, strength, rows, first);
         let tie_columns = ties
             .iter()

@@ -47,7 +47,10 @@ fn a_rocking_arch_with_finite_friction_is_exact_and_not_iterated() {
     assert!(off["lambda_non_associative"].is_null(), "{off}");
     assert!(off["non_associative_converged"].is_null(), "{off}");
     assert_eq!(off["lambda_governing"], off["lambda_lower"]);
-    let forced = json_of(&["analyze", "--json", "--friction", "non-associative"], text);
+    let forced = json_of(
+        &["analyze", "--json", "--friction", "non-associative"],
+        text,
+    );
     assert_eq!(forced["non_associative_converged"], true, "{forced}");
     assert!(forced["non_associative_iterations"].as_u64().unwrap_or(0) >= 2);
     let iterated = f64_of(&forced, "lambda_non_associative");
@@ -136,14 +139,21 @@ fn two_blocks_side_by_side_rock_at_b_over_h_but_the_associative_joint_reaches_hi
             assert!(!a.friction(&m.assembly).exact);
             let n = na.lambda.expect("a start converged");
             // The iteration stops when successive multipliers agree to 1e-6.
-            assert!((n - r).abs() <= 2e-6, "{d:?}: non-associative {n} vs b/h {r}");
+            assert!(
+                (n - r).abs() <= 2e-6,
+                "{d:?}: non-associative {n} vs b/h {r}"
+            );
             assert!(n < l);
             let least = na
                 .starts
                 .iter()
                 .find(|s| s.start == statics::Start::LeastFriction)
                 .expect("the least-friction start ran");
-            assert!(least.converged && least.lambda == na.lambda, "{:?}", na.starts);
+            assert!(
+                least.converged && least.lambda == na.lambda,
+                "{:?}",
+                na.starts
+            );
         }
     }
 }
@@ -173,7 +183,9 @@ fn gilbert_semicircle_minimum_thickness_against_friction() {
             .as_ref()
             .and_then(|n| n.min_thickness)
             .expect("non-associative minimum");
-        println!("mu {mu}: associative {assoc:.4} m, non-associative {na:.4} m, published {t_pub} m");
+        println!(
+            "mu {mu}: associative {assoc:.4} m, non-associative {na:.4} m, published {t_pub} m"
+        );
         for (what, value) in [("associative", assoc), ("non-associative", na)] {
             assert!(
                 (value / t_pub - 1.0).abs() <= 0.025,
@@ -187,9 +199,7 @@ fn gilbert_semicircle_minimum_thickness_against_friction() {
 fn polygons_scene(blocks: &[[f64; 4]], mu: f64) -> Scene {
     let polys: Vec<String> = blocks
         .iter()
-        .map(|[x0, y0, x1, y1]| {
-            format!("[[{x0}, {y0}], [{x1}, {y0}], [{x1}, {y1}], [{x0}, {y1}]]")
-        })
+        .map(|[x0, y0, x1, y1]| format!("[[{x0}, {y0}], [{x1}, {y0}], [{x1}, {y1}], [{x0}, {y1}]]"))
         .collect();
     scene(&format!(
         "[blocks]\npolygons = [{}]\n[material]\nfriction = {mu}\n",
@@ -264,7 +274,13 @@ fn walls_and_portals_sit_below_the_associative_value_and_on_the_dem() {
             if let Some(r) = &na.result {
                 let fs = a.model.loads.force_scale();
                 assert!(r.equilibrium_residual <= 1e-6 * fs, "{name}: residual");
-                for (j, f) in a.model.assembly.joints.iter().zip(r.forces.iter().flatten()) {
+                for (j, f) in a
+                    .model
+                    .assembly
+                    .joints
+                    .iter()
+                    .zip(r.forces.iter().flatten())
+                {
                     assert!(
                         f.v.abs() <= j.friction * f.n + 1e-6 * fs,
                         "{name} mu {mu}: |V| {} > mu N {}",
@@ -273,8 +289,8 @@ fn walls_and_portals_sit_below_the_associative_value_and_on_the_dem() {
                     );
                 }
             }
-            let dem = analysis::dem(&s, &analysis::DemOptions::default(), &mut |_| {})
-                .expect("DEM");
+            let dem =
+                analysis::dem(&s, &analysis::DemOptions::default(), &mut |_| {}).expect("DEM");
             let (lo, hi) = (
                 dem.result.lambda_stands.expect("a standing run"),
                 dem.result.lambda_collapses.expect("a collapsing run"),
@@ -310,8 +326,14 @@ fn an_iteration_that_does_not_settle_gives_no_multiplier() {
     let na = statics::analyse_non_associative(&model, &s, &a, &one).expect("runs");
     assert!(!na.converged);
     assert_eq!(na.lambda, None);
-    assert!(na.starts.iter().all(|s| !s.converged && s.stopped.is_some()));
-    assert!(na.starts.iter().all(|s| s.lambda.is_some()), "the last iterates are kept");
+    assert!(na
+        .starts
+        .iter()
+        .all(|s| !s.converged && s.stopped.is_some()));
+    assert!(
+        na.starts.iter().all(|s| s.lambda.is_some()),
+        "the last iterates are kept"
+    );
     // Nothing to iterate without a collapse: no multiplier, no start.
     let thin = model_of(&semicircle(0.05, 16));
     let r = statics::analyse(&thin, &s).expect("static");
@@ -345,8 +367,14 @@ fn the_command_line_says_where_the_three_values_sit() {
         .as_str()
         .is_some_and(|n| n.contains("several solutions")));
     let dem = &v["dem"];
-    let (lo, hi) = (f64_of(dem, "lambda_stands"), f64_of(dem, "lambda_collapses"));
-    assert!(lo < hi && (0.5 * (lo + hi) / na - 1.0).abs() < 0.03, "{dem}");
+    let (lo, hi) = (
+        f64_of(dem, "lambda_stands"),
+        f64_of(dem, "lambda_collapses"),
+    );
+    assert!(
+        lo < hi && (0.5 * (lo + hi) / na - 1.0).abs() < 0.03,
+        "{dem}"
+    );
     let (_dir, path) = scene_file(text);
     let out = voussoir()
         .args(["analyze", "--dem"])

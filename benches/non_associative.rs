@@ -18,27 +18,16 @@ fn scene(text: &str) -> Scene {
     }
 }
 
-/// A running-bond wall of `courses` courses of `per` blocks 0.4 x 0.2 m (half blocks at the
-/// ends of every other course).
+/// The running-bond wall of `courses` courses of `per` blocks ([`common::running_bond_wall`])
+/// with friction `mu`.
 fn wall(courses: usize, per: usize, mu: f64) -> Scene {
-    let (b, h) = (0.4, 0.2);
-    let mut polys = Vec::new();
-    for c in 0..courses {
-        let y0 = c as f64 * h;
-        let mut xs: Vec<f64> = (0..=per).map(|k| k as f64 * b).collect();
-        if c % 2 == 1 {
-            xs = std::iter::once(0.0)
-                .chain((0..per).map(|k| (k as f64 + 0.5) * b))
-                .chain(std::iter::once(per as f64 * b))
-                .collect();
-        }
-        for w in xs.windows(2) {
-            let (x0, x1, y1) = (w[0], w[1], y0 + h);
-            polys.push(format!(
-                "[[{x0}, {y0}], [{x1}, {y0}], [{x1}, {y1}], [{x0}, {y1}]]"
-            ));
-        }
-    }
+    let polys: Vec<String> = common::running_bond_wall(courses, per)
+        .iter()
+        .map(|p| {
+            let pts: Vec<String> = p.iter().map(|[x, y]| format!("[{x}, {y}]")).collect();
+            format!("[{}]", pts.join(", "))
+        })
+        .collect();
     scene(&format!(
         "[blocks]\npolygons = [{}]\n[material]\nfriction = {mu}\n",
         polys.join(", ")

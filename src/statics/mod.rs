@@ -167,18 +167,7 @@ pub fn analyse_full(
                 || read_mechanism(assembly, &problem, &sol.z),
             );
             if result.status == Status::Collapse {
-                result.ties = model
-                    .ties
-                    .iter()
-                    .zip(&tension)
-                    .map(|(t, &f)| t.force_of(f))
-                    .collect();
-                result.strips = model
-                    .strips
-                    .iter()
-                    .zip(&strip_tension)
-                    .map(|(s, &f)| s.force_of(f))
-                    .collect();
+                result.set_tensions(model, &tension, &strip_tension);
                 // A joint whose contact resultant sits at one end is no hinge while a strip
                 // on its other end holds below its capacity: it cannot open there.
                 result.hinges.retain(|h| {
@@ -282,6 +271,22 @@ fn stands_at_zero(
 }
 
 impl StaticResult {
+    /// The ties' and the strips' forces from their tensions (N, in their order).
+    fn set_tensions(&mut self, model: &Model, ties: &[f64], strips: &[f64]) {
+        self.ties = model
+            .ties
+            .iter()
+            .zip(ties)
+            .map(|(t, &f)| t.force_of(f))
+            .collect();
+        self.strips = model
+            .strips
+            .iter()
+            .zip(strips)
+            .map(|(s, &f)| s.force_of(f))
+            .collect();
+    }
+
     /// A result with no solution read yet: status cannot stand, no multiplier.
     fn unsolved(
         settings: &StaticSettings,

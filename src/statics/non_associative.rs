@@ -176,18 +176,22 @@ fn solve_fixed(
     least_friction: bool,
 ) -> Result<Option<Iterate>, AnalysisError> {
     let start = Instant::now();
-    let problem = StaticProblem::with_shear_limit(
-        &model.assembly,
-        &model.loads,
-        model.strength,
-        &model.ties,
-        &model.strips,
-        ShearLimit::Fixed(capacity),
-        Objective::MaxLambda {
-            sign: settings.direction.sign(),
-            cap: Some(LAMBDA_CAP),
-        },
-    );
+    let sign = settings.direction.sign();
+    let program = |objective| {
+        StaticProblem::with_shear_limit(
+            &model.assembly,
+            &model.loads,
+            model.strength,
+            &model.ties,
+            &model.strips,
+            ShearLimit::Fixed(capacity),
+            objective,
+        )
+    };
+    let problem = program(Objective::MaxLambda {
+        sign,
+        cap: Some(LAMBDA_CAP),
+    });
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -196,23 +200,14 @@ fn solve_fixed(
         return Ok(None);
     }
     let lambda = sol.x[0];
-    let sign = settings.direction.sign();
     // The equilibrium with the least friction capacity at (a hair below) that multiplier:
     // the mechanism stays the first program's (its duals hold on the whole optimal face).
     let least = if least_friction {
         let below = lambda - 1e-9 * lambda.abs().max(1.0);
-        let p2 = StaticProblem::with_shear_limit(
-            &model.assembly,
-            &model.loads,
-            model.strength,
-            &model.ties,
-            &model.strips,
-            ShearLimit::Fixed(capacity),
-            Objective::LeastFriction {
-                sign,
-                lambda: below,
-            },
-        );
+        let p2 = program(Objective::LeastFriction {
+            sign,
+            lambda: below,
+        });
         let s2 = run(&p2, settings)?;
         matches!(s2.status, SolverStatus::Solved | SolverStatus::AlmostSolved).then_some(s2.x)
     } else {
@@ -243,18 +238,7 @@ fn solve_fixed(
         || read_mechanism(&model.assembly, &problem, &sol.z),
     );
     result.lambda = Some(lambda);
-    result.ties = model
-        .ties
-        .iter()
-        .zip(&tension)
-        .map(|(t, &f)| t.force_of(f))
-        .collect();
-    result.strips = model
-        .strips
-        .iter()
-        .zip(&strip_tension)
-        .map(|(s, &f)| s.force_of(f))
-        .collect();
+    result.set_tensions(model, &tension, &strip_tension);
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(Some(Iterate {
         lambda,

@@ -21,12 +21,6 @@ fn both(model: &Model, direction: Direction) -> (statics::StaticResult, statics:
     (a, na)
 }
 
-fn f64_of(v: &serde_json::Value, key: &str) -> f64 {
-    v[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
-}
-
 /// Issue 25's first acceptance case: a thin semicircle with ample friction rocks (no joint
 /// slips in its mechanism), so the non-associative multiplier is the associative one, to the
 /// bit, and nothing is iterated; `--friction associative` leaves it out, and `--friction
@@ -210,20 +204,7 @@ fn polygons_scene(blocks: &[[f64; 4]], mu: f64) -> Scene {
 /// The running-bond wall of `tests/it/blocks.rs` and docs/dem.md: three courses of 0.4 m,
 /// 1.2 m long, the middle one offset by half a block.
 fn running_bond_wall(mu: f64) -> Scene {
-    let h = 0.4;
-    let mut blocks = Vec::new();
-    for c in 0..3 {
-        let y0 = c as f64 * h;
-        let xs: &[f64] = if c % 2 == 0 {
-            &[0.0, 0.6, 1.2]
-        } else {
-            &[0.0, 0.3, 0.9, 1.2]
-        };
-        for w in xs.windows(2) {
-            blocks.push([w[0], y0, w[1], y0 + h]);
-        }
-    }
-    polygons_scene(&blocks, mu)
+    polygons_scene(&running_bond_wall_rects(), mu)
 }
 
 /// A lintel portal: two piers 0.6 x 1.2 m, 1.2 m apart, and a 2.4 x 0.4 m lintel on them.

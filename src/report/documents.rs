@@ -503,6 +503,18 @@ pub fn min_thickness(scene: &Scene, model: &Model, t: &ThicknessAnalysis) -> Doc
         }
         _ => {}
     }
+    if let Some(na) = &t.non_associative {
+        doc.section(match na.min_thickness {
+            Some(v) => format!(
+                "Non-associative minimum thickness (joints slide without opening): t_min = {v:.6} m ({} trials, bisected to 1e-6; docs/friction.md)",
+                na.evaluations
+            ),
+            None => format!(
+                "Non-associative minimum thickness: none found ({:?}, {} trials)",
+                na.outcome, na.evaluations
+            ),
+        });
+    }
     if let Some(c) = rep.min_thickness_continuous {
         match c {
             Some(t) => {

@@ -17,27 +17,6 @@ fn scene(text: &str) -> Scene {
     }
 }
 
-/// A running-bond wall of `courses` courses of `per` blocks (half blocks at the ends of every
-/// other course).
-fn wall(courses: usize, per: usize) -> Vec<Vec<[f64; 2]>> {
-    let (b, h) = (0.4, 0.2);
-    let mut out = Vec::new();
-    for c in 0..courses {
-        let y0 = c as f64 * h;
-        let mut xs: Vec<f64> = (0..=per).map(|k| k as f64 * b).collect();
-        if c % 2 == 1 {
-            xs = std::iter::once(0.0)
-                .chain((0..per).map(|k| (k as f64 + 0.5) * b))
-                .chain(std::iter::once(per as f64 * b))
-                .collect();
-        }
-        for w in xs.windows(2) {
-            out.push(vec![[w[0], y0], [w[1], y0], [w[1], y0 + h], [w[0], y0 + h]]);
-        }
-    }
-    out
-}
-
 fn polygons_of(s: &Scene) -> Vec<Vec<[f64; 2]>> {
     let m = voussoir::scene::build(s).expect("model");
     m.assembly
@@ -54,7 +33,10 @@ fn main() {
     );
     let arch = scene("[arch]\nshape='circular'\nradius=10.0\nthickness=1.0\nvoussoirs=10000\n");
     let cases = [
-        ("running-bond wall, 100 courses", wall(100, 100)),
+        (
+            "running-bond wall, 100 courses",
+            common::running_bond_wall(100, 100),
+        ),
         ("semicircle, 10,000 voussoirs", polygons_of(&arch)),
     ];
     for (label, raw) in cases {

@@ -36,6 +36,54 @@ pub struct Options {
     pub kinematic: KinematicMode,
     /// Run the continuous model.
     pub continuous: bool,
+    /// Which friction law the collapse multiplier is given for (docs/friction.md). Default
+    /// [`FrictionMode::Auto`].
+    pub friction: FrictionMode,
+    /// Also run the DEM check (its Coulomb contacts slide without opening), from its own start
+    /// (`analyze --dem`): where the associative, the non-associative and the DEM's values sit.
+    pub dem: bool,
+}
+
+/// Which friction law the collapse multiplier is given for (`--friction`, docs/friction.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrictionMode {
+    /// The non-associative multiplier ([`statics::analyse_non_associative`]) whenever the
+    /// associative one is not exact (`friction_exact` false); when it is exact, the two are
+    /// the same number and nothing is iterated. `min-thickness` gives the associative value
+    /// alone in this mode (its search is many analyses).
+    #[default]
+    Auto,
+    /// The associative (static program's) multiplier alone.
+    Associative,
+    /// The non-associative multiplier always: iterated even when the associative one is exact
+    /// (a check), and the minimum thickness of non-associative joints too.
+    NonAssociative,
+}
+
+impl FrictionMode {
+    /// The name `--friction` and the JSON use.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FrictionMode::Auto => "auto",
+            FrictionMode::Associative => "associative",
+            FrictionMode::NonAssociative => "non-associative",
+        }
+    }
+
+    /// The mode named `name` (`auto`, `associative`, `non-associative`), for front ends that
+    /// take it as a string (Python, the page).
+    pub fn parse(name: &str) -> Result<FrictionMode, AnalysisError> {
+        match name {
+            "auto" => Ok(FrictionMode::Auto),
+            "associative" => Ok(FrictionMode::Associative),
+            "non-associative" | "non_associative" => Ok(FrictionMode::NonAssociative),
+            other => Err(AnalysisError::Settings {
+                setting: "friction".to_string(),
+                value: format!("\"{other}\""),
+                allowed: "\"auto\", \"associative\" or \"non-associative\"".to_string(),
+            }),
+        }
+    }
 }
 
 /// How the kinematic upper bound is found.
@@ -63,6 +111,8 @@ impl Default for Options {
             kinematic_max_joints: KINEMATIC_DEFAULT_MAX_JOINTS,
             kinematic: KinematicMode::Certified,
             continuous: false,
+            friction: FrictionMode::Auto,
+            dem: false,
         }
     }
 }
@@ -107,6 +157,13 @@ pub struct SceneAnalysis {
     pub kinematic_search: Option<Search>,
     /// The continuous model, when asked for (or why it failed).
     pub continuous: Option<Result<ContinuousResult, String>>,
+    /// The non-associative multiplier (docs/friction.md), when `options.friction` asks for it:
+    /// with [`FrictionMode::Auto`] only when the associative one is not exact (and there is a
+    /// collapse); None otherwise.
+    pub non_associative: Option<statics::NonAssociative>,
+    /// The DEM check of the same model toward the same side, when `options.dem` asks (or why
+    /// it failed).
+    pub dem: Option<Result<crate::dem::DemResult, String>>,
 }
 
 impl SceneAnalysis {
@@ -126,6 +183,17 @@ impl SceneAnalysis {
     /// ([`statics::FrictionCheck`], docs/friction.md): every front end reads this.
     pub fn friction(&self) -> statics::FrictionCheck {
         self.lower.friction(&self.model.assembly)
+    }
+
+    /// The non-associative multiplier, when it was computed and converged (docs/friction.md).
+    pub fn lambda_non_associative(&self) -> Option<f64> {
+        self.non_associative.as_ref().and_then(|n| n.lambda)
+    }
+
+    /// The multiplier that governs downstream (the page's large number, `assess`, `retrofit`):
+    /// the non-associative one when it exists, the static (associative) one otherwise.
+    pub fn lambda_governing(&self) -> Option<f64> {
+        self.lambda_non_associative().or(self.lower.lambda)
     }
 
     /// Whether sliding governs: finite friction somewhere, and the static bound is below the
@@ -236,13 +304,59 @@ pub fn analyse_model(
     let continuous = options
         .continuous
         .then(|| continuous_of(scene, &model, options.direction()).map_err(|e| e.to_string()));
+    let non_associative = non_associative_of(&model, &lower, options)?;
+    let dem = options.dem.then(|| {
+        // The DEM loads toward +x: the mirror image stands for a load toward the left.
+        let simulated = match options.direction() {
+            Direction::Right => model.clone(),
+            Direction::Left => model.mirrored(),
+        };
+        dem_of(
+            scene,
+            &simulated,
+            lower.lambda,
+            &DemOptions::default(),
+            &mut |_| {},
+        )
+        .map_err(|e| e.to_string())
+    });
     Ok(SceneAnalysis {
         model,
         lower,
         upper,
         kinematic_search,
         continuous,
+        non_associative,
+        dem,
     })
+}
+
+/// The non-associative multiplier of `model`, whose static result is `lower`, as
+/// `options.friction` asks (see [`FrictionMode`]): the associative value as it is when that is
+/// exact (unless forced), the iteration of [`statics::analyse_non_associative`] otherwise;
+/// None when not asked for, with infinite friction, or with no collapse.
+fn non_associative_of(
+    model: &Model,
+    lower: &StaticResult,
+    options: &Options,
+) -> Result<Option<statics::NonAssociative>, AnalysisError> {
+    let check = lower.friction(&model.assembly);
+    if options.friction == FrictionMode::Associative
+        || !check.finite
+        || lower.status != Status::Collapse
+    {
+        return Ok(None);
+    }
+    if check.exact && options.friction == FrictionMode::Auto {
+        return Ok(Some(statics::NonAssociative::exact(lower)));
+    }
+    statics::analyse_non_associative(
+        model,
+        &options.static_settings,
+        lower,
+        &statics::NonAssociativeSettings::default(),
+    )
+    .map(Some)
 }
 
 /// The kinematic upper bound of `model` given its static solution `lower`, per `options`
@@ -894,8 +1008,10 @@ fn direction_name(d: Direction) -> &'static str {
 /// [`CERTIFY_TOL`]).
 pub const GOVERNS_TOL: f64 = 1e-6;
 
-/// Whether the assessed mechanism is the governing one: the static lower bound must reach its
-/// `alpha0`. It does not when the structure cannot stand, when joints slide at collapse
+/// Whether the assessed mechanism is the governing one: the governing multiplier
+/// ([`SceneAnalysis::lambda_governing`]: the non-associative one when it was computed, the
+/// static one otherwise; docs/friction.md) must reach its `alpha0`. It does not when the
+/// structure cannot stand, when joints slide at collapse
 /// (finite friction), or when a finite compressive strength lowers the multiplier but the
 /// mechanism came from a search with rigid hinges (its hinges at the joint ends): the
 /// rotational capacity curve would then start above the true collapse multiplier and
@@ -904,7 +1020,7 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
     let lower = &a.analysis.lower;
     let alpha0 = a.capacity.alpha0;
     let dir = direction_name(a.capacity.direction);
-    let lambda = match (lower.status, lower.lambda) {
+    let lambda = match (lower.status, a.analysis.lambda_governing()) {
         (Status::CannotStand, _) | (_, None) => {
             return Err(format!(
                 "load toward the {dir}: the static program finds no equilibrium (the structure cannot stand, or no lower bound), while the rotational mechanism has alpha0 = {alpha0:.6}: its capacity curve would be that of a structure that does not exist, so there is no assessment"
@@ -915,7 +1031,10 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
     if lambda >= alpha0 - GOVERNS_TOL * alpha0.abs().max(1.0) {
         return Ok(());
     }
-    let why = if !lower.sliding.is_empty() {
+    let non_associative = a.analysis.lambda_non_associative().is_some();
+    let why = if non_associative && a.analysis.lambda_non_associative() < lower.lambda {
+        "the non-associative multiplier (joints that slide without opening) is below it: that collapse governs, and it has no rotational capacity curve in this model".to_string()
+    } else if !lower.sliding.is_empty() {
         format!(
             "{} joint(s) slide at collapse: sliding governs, and a sliding mechanism has no capacity curve in this model",
             lower.sliding.len()
@@ -927,7 +1046,8 @@ pub fn rotation_governs(a: &SiteAssessment) -> Result<(), String> {
             .to_string()
     };
     Err(format!(
-        "load toward the {dir}: the static lower bound lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",
+        "load toward the {dir}: the {} lambda = {lambda:.6} is below the rotational mechanism's alpha0 = {alpha0:.6} ({:.1} % lower): {why}. Its capacity curve would overstate the capacity, so there is no assessment",
+        if non_associative { "non-associative multiplier" } else { "static lower bound" },
         100.0 * (alpha0 - lambda) / alpha0
     ))
 }

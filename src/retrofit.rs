@@ -86,6 +86,18 @@ impl Retrofit {
             .try_fold(f64::INFINITY, |m, l| l.map(|l| m.min(l)))
             .filter(|m| m.is_finite())
     }
+
+    /// The least of the re-analysed governing multipliers over the directions
+    /// ([`SceneAnalysis::lambda_governing`]: the non-associative one where joints slide,
+    /// docs/friction.md). The design itself is the static (associative) program's, so with
+    /// sliding joints this may fall short of the target: the report says so.
+    pub fn lambda_governing(&self) -> Option<f64> {
+        self.analyses
+            .iter()
+            .map(|(_, a)| a.lambda_governing())
+            .try_fold(f64::INFINITY, |m, l| l.map(|l| m.min(l)))
+            .filter(|m| m.is_finite())
+    }
 }
 
 /// Design the scene's `"design"` ties for lambda >= `target` (both directions of a seismic

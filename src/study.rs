@@ -268,6 +268,8 @@ impl Study {
         let settings = StaticSettings::default();
         let options = crate::analysis::Options {
             continuous: self.continuous,
+            // Its rows are the static multiplier's (see `sweep`): no non-associative iteration.
+            friction: crate::analysis::FrictionMode::Associative,
             ..Default::default()
         };
         let plan = sweep::Sweep::new(&self.scene, self.variations.clone())?;

@@ -752,6 +752,7 @@ pub fn static_case(
     let options = Options {
         static_settings: settings.clone(),
         kinematic_max_joints: 0,
+        friction: crate::analysis::FrictionMode::Associative,
         ..Options::default()
     };
     case(values, scene, &options, false)

@@ -179,6 +179,72 @@ pub fn min_thickness_kinematic(
     })
 }
 
+/// Relative tolerance of the bisection of the non-associative minimum thickness: every trial
+/// is a sequence of programs (docs/friction.md), and the iteration settles to 1e-6.
+pub const NON_ASSOCIATIVE_REL_TOL: f64 = 1e-6;
+
+/// Whether `scene` stands with non-associative joints (Coulomb friction, slip without
+/// opening; docs/friction.md): the static program finds equilibrium at lambda = 0, and in each
+/// direction (one for a mirror-symmetric structure under self-weight) the non-associative
+/// multiplier has converged and is >= 0. A direction whose iteration does not converge counts
+/// as not standing: no standing is claimed that was not shown.
+pub fn stands_non_associative(
+    scene: &Scene,
+    settings: &StaticSettings,
+) -> Result<bool, AnalysisError> {
+    let model = crate::scene::build(scene)?;
+    if !statics::stands_at_rest(&model, settings)? {
+        return Ok(false);
+    }
+    let directions: &[crate::outcome::Direction] = if statics::symmetric_self_weight(&model) {
+        &[crate::outcome::Direction::Right]
+    } else {
+        &[
+            crate::outcome::Direction::Right,
+            crate::outcome::Direction::Left,
+        ]
+    };
+    for &d in directions {
+        let s = settings.clone().direction(d);
+        let r = statics::analyse(&model, &s)?;
+        match r.status {
+            Status::CannotStand => return Ok(false),
+            Status::NoCollapse => continue,
+            Status::Collapse => {}
+        }
+        if r.friction(&model.assembly).exact {
+            // No joint slips in the mechanism: the associative multiplier is the real one.
+            if r.lambda.is_some_and(|l| l >= 0.0) {
+                continue;
+            }
+            return Ok(false);
+        }
+        let na = statics::analyse_non_associative(
+            &model,
+            &s,
+            &r,
+            &statics::NonAssociativeSettings::default(),
+        )?;
+        if !(na.converged && na.lambda.is_some_and(|l| l >= 0.0)) {
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
+/// The minimum thickness with non-associative joints: the smallest thickness at which
+/// [`stands_non_associative`] holds, bisected to [`NON_ASSOCIATIVE_REL_TOL`]. It is at least the
+/// static (associative) one, since every non-associative solution is an admissible
+/// equilibrium.
+pub fn min_thickness_non_associative(
+    scene: &Scene,
+    settings: &StaticSettings,
+) -> Result<ThicknessSearch, AnalysisError> {
+    search(scene, NON_ASSOCIATIVE_REL_TOL, |s| {
+        stands_non_associative(s, settings)
+    })
+}
+
 /// The minimum thickness by every method asked for.
 #[derive(Debug, Clone)]
 pub struct ThicknessAnalysis {
@@ -193,6 +259,10 @@ pub struct ThicknessAnalysis {
     pub kinematic_note: Option<String>,
     /// The continuous model's minimum thickness, when asked (or why it failed).
     pub continuous: Option<Result<crate::kinematic::MinThickness, String>>,
+    /// The minimum thickness with non-associative joints
+    /// ([`min_thickness_non_associative`]), with `--friction non-associative` and finite
+    /// friction; None otherwise.
+    pub non_associative: Option<ThicknessSearch>,
 }
 
 impl ThicknessAnalysis {
@@ -379,7 +449,19 @@ pub fn analyse(
     let continuous = options
         .continuous
         .then(|| crate::analysis::continuous_min_thickness(scene).map_err(|e| e.to_string()));
+    let finite = crate::scene::build(scene)?
+        .assembly
+        .joints
+        .iter()
+        .any(|j| j.friction.is_finite());
+    let non_associative =
+        if options.friction == crate::analysis::FrictionMode::NonAssociative && finite {
+            Some(min_thickness_non_associative(scene, settings)?)
+        } else {
+            None
+        };
     Ok(ThicknessAnalysis {
+        non_associative,
         lower,
         kinematic,
         kinematic_search,

@@ -478,6 +478,7 @@ fn options(
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
+    friction: &str,
 ) -> PyResult<Options> {
     let asked = dir.map(direction).transpose()?;
     let d = analysis::direction_for(scene, asked).map_err(|e| analysis_error(py, &e))?;
@@ -486,7 +487,15 @@ fn options(
         kinematic_max_joints,
         kinematic: kinematic_mode(kinematic)?,
         continuous,
+        friction: friction_mode(py, friction)?,
+        ..Options::default()
     })
+}
+
+/// The friction law named `friction` (`--friction`'s words: "auto", "associative",
+/// "non-associative"), refused by the library's words otherwise.
+fn friction_mode(py: Python<'_>, friction: &str) -> PyResult<analysis::FrictionMode> {
+    analysis::FrictionMode::parse(friction).map_err(|e| analysis_error(py, &e))
 }
 
 fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
@@ -495,7 +504,7 @@ fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
 
 /// `analyze --json` of a scene, as JSON text (solved on a worker thread, Ctrl-C answered).
 #[pyfunction]
-#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS, friction = "auto"))]
 fn analyze_json(
     py: Python<'_>,
     scene: &Scene,
@@ -503,6 +512,7 @@ fn analyze_json(
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
+    friction: &str,
 ) -> PyResult<String> {
     let options = options(
         py,
@@ -511,6 +521,7 @@ fn analyze_json(
         continuous,
         kinematic,
         kinematic_max_joints,
+        friction,
     )?;
     let lib_scene = scene.inner.clone();
     let (lib_scene, a) = interruptible(py, Arc::default(), move || {
@@ -524,7 +535,7 @@ fn analyze_json(
 /// The drawing `analyze --svg` writes (blocks, thrust line, hinges, mechanism, loads), as SVG
 /// text: `report::analysis_svg` of the same analysis as `analyze_json`.
 #[pyfunction]
-#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+#[pyo3(signature = (scene, direction = None, continuous = false, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS, friction = "auto"))]
 fn analysis_svg(
     py: Python<'_>,
     scene: &Scene,
@@ -532,6 +543,7 @@ fn analysis_svg(
     continuous: bool,
     kinematic: &str,
     kinematic_max_joints: usize,
+    friction: &str,
 ) -> PyResult<String> {
     let options = options(
         py,
@@ -540,6 +552,7 @@ fn analysis_svg(
         continuous,
         kinematic,
         kinematic_max_joints,
+        friction,
     )?;
     let dir = options.direction();
     let lib_scene = scene.inner.clone();
@@ -554,13 +567,15 @@ fn analysis_svg(
 /// `min-thickness --json` of a scene, as JSON text (solved on a worker thread, Ctrl-C
 /// answered).
 #[pyfunction]
-#[pyo3(signature = (scene, continuous = false, kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS))]
+#[pyo3(signature = (scene, continuous = false, kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS, friction = "auto"))]
 fn min_thickness_json(
     py: Python<'_>,
     scene: &Scene,
     continuous: bool,
     kinematic_max_joints: usize,
+    friction: &str,
 ) -> PyResult<String> {
+    let friction = friction_mode(py, friction)?;
     let lib_scene = scene.inner.clone();
     let (lib_scene, out) = interruptible(py, Arc::default(), move || {
         let out = (|| -> Result<_, LibAnalysisError> {
@@ -570,6 +585,8 @@ fn min_thickness_json(
                 kinematic_max_joints,
                 kinematic: analysis::KinematicMode::Certified,
                 continuous,
+                friction,
+                ..analysis::Options::default()
             };
             let t = voussoir::thickness::analyse(&lib_scene, &options)?;
             Ok((model, t))
@@ -1000,6 +1017,8 @@ fn sweep_rows<'py>(
         continuous,
         kinematic,
         kinematic_max_joints,
+        // A sweep's rows are the static multiplier's, as the CLI's `sweep`.
+        "associative",
     )?;
     let mut variations = Vec::new();
     for (k, v) in vary.iter() {

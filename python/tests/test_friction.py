@@ -30,3 +30,22 @@ def test_a_sliding_arch_is_an_upper_bound_in_words():
     assert "upper bound of the real (non-associative) collapse multiplier" in r.friction_note
     text = repr(r)
     assert "friction_exact=False" in text and "not a safe lower bound" in text
+
+
+def test_the_non_associative_multiplier_and_the_friction_keyword():
+    # The sliding arch: the non-associative multiplier is computed by default, at most the
+    # associative one, and it governs; "associative" leaves it out; an unknown word is refused.
+    scene = _semicircle(0.25, 0.4)
+    r = voussoir.analyze(scene)
+    assert r.non_associative_converged is True
+    assert r.lambda_non_associative <= r.lambda_associative + 1e-9
+    assert r.lambda_governing == r.lambda_non_associative
+    assert [s["start"] for s in r.non_associative_starts] == [
+        "associative", "least_friction", "at_rest"]
+    off = voussoir.analyze(scene, friction="associative")
+    assert off.lambda_non_associative is None and off.lambda_governing == off.lambda_lower
+    with pytest.raises(voussoir.AnalysisError):
+        voussoir.analyze(scene, friction="dilatant")
+    # The same numbers as the command line's (the library answers both).
+    cli = voussoir.analyze(scene, friction="non-associative")
+    assert cli.lambda_non_associative == pytest.approx(r.lambda_non_associative, rel=1e-6)

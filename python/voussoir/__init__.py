@@ -135,7 +135,8 @@ class Report:
     def __repr__(self) -> str:
         shown = ", ".join(
             f"{k}={self._data[k]!r}"
-            for k in ("status", "outcome", "lambda_lower", "lambda_upper", "min_thickness",
+            for k in ("status", "outcome", "lambda_lower", "lambda_non_associative",
+                      "lambda_upper", "min_thickness",
                       "lambda_dem", "governing", "passes", "verdict", "scale_collapses",
                       "friction_exact")
             if k in self._data
@@ -251,6 +252,7 @@ def analyze(
     *,
     kinematic: str = "certified",
     kinematic_max_joints: int = KINEMATIC_DEFAULT_MAX_JOINTS,
+    friction: str = "auto",
 ) -> Result:
     """The collapse multiplier of ``scene``: the static lower bound with its thrust line,
     hinges and mechanism, the kinematic upper bound, and with ``continuous=True`` the
@@ -264,11 +266,15 @@ def analyze(
     ``"general"`` (the general kinematic program, which assemblies that are not chains always
     get: ``docs/kinematic.md``);
     ``kinematic_max_joints`` bounds the exhaustive search (0 turns the kinematic analysis
-    off). The GIL is released while the library solves. Raises :class:`SceneError` for a
-    scene that cannot be built and :class:`AnalysisError` for a solver failure (physical
-    answers such as ``cannot_stand`` are statuses, not errors).
+    off). ``friction``: ``"auto"`` (the non-associative multiplier, ``lambda_non_associative``,
+    whenever joints slide in the static mechanism), ``"associative"`` (the static program's
+    alone) or ``"non-associative"`` (always), as ``--friction`` (docs/friction.md);
+    ``lambda_governing`` is the one that governs. The GIL is released while the library
+    solves. Raises :class:`SceneError` for a scene that cannot be built and
+    :class:`AnalysisError` for a solver failure or an unknown ``friction`` (physical answers
+    such as ``cannot_stand`` are statuses, not errors).
     """
-    args = (scene, direction, continuous, kinematic, kinematic_max_joints)
+    args = (scene, direction, continuous, kinematic, kinematic_max_joints, friction)
     text = _voussoir.analyze_json(*args)
     return Result(json.loads(text), lambda: _voussoir.analysis_svg(*args))
 
@@ -278,11 +284,14 @@ def min_thickness(
     continuous: bool = False,
     *,
     kinematic_max_joints: int = KINEMATIC_DEFAULT_MAX_JOINTS,
+    friction: str = "auto",
 ) -> MinThicknessResult:
     """The smallest arch thickness that stands under the permanent loads (lambda = 0), all
     else fixed, by the static program (bisection to 1e-9) and beside it the kinematic (and
-    with ``continuous=True`` the continuous) minimum, as ``voussoir min-thickness --json``."""
-    text = _voussoir.min_thickness_json(scene, continuous, kinematic_max_joints)
+    with ``continuous=True`` the continuous) minimum, as ``voussoir min-thickness --json``;
+    ``friction="non-associative"`` adds ``min_thickness_non_associative`` (joints that slide
+    without opening, docs/friction.md)."""
+    text = _voussoir.min_thickness_json(scene, continuous, kinematic_max_joints, friction)
     return MinThicknessResult(json.loads(text))
 
 

@@ -71,11 +71,15 @@ def analyze_json(
     continuous: bool = False,
     kinematic: str = "certified",
     kinematic_max_joints: int = 200,
+    friction: str = "auto",
 ) -> str:
     """``voussoir analyze --json`` of a scene, as JSON text."""
 
 def min_thickness_json(
-    scene: Scene, continuous: bool = False, kinematic_max_joints: int = 200
+    scene: Scene,
+    continuous: bool = False,
+    kinematic_max_joints: int = 200,
+    friction: str = "auto",
 ) -> str:
     """``voussoir min-thickness --json`` of a scene, as JSON text."""
 
@@ -91,6 +95,7 @@ def analysis_svg(
     continuous: bool = False,
     kinematic: str = "certified",
     kinematic_max_joints: int = 200,
+    friction: str = "auto",
 ) -> str:
     """The drawing of ``voussoir analyze --svg``, as SVG text."""
 

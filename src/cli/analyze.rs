@@ -38,6 +38,15 @@ pub struct Args {
     /// search when it does not meet the static bound) or the exhaustive search
     #[arg(long, value_enum, default_value = "certified")]
     kinematic: super::Kinematic,
+    /// Friction law of the multiplier: auto (the non-associative multiplier of real joints,
+    /// which slide without opening, whenever joints slide in the static mechanism),
+    /// associative (the static program's alone), non-associative (always)
+    #[arg(long, value_enum, default_value = "auto")]
+    friction: super::Friction,
+    /// Also run the DEM (Coulomb contacts that slide without opening) and show where the
+    /// associative, the non-associative and the DEM's multipliers sit
+    #[arg(long)]
+    dem: bool,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -58,6 +67,8 @@ pub fn run(args: Args) -> Result<String, Error> {
         kinematic_max_joints: args.kinematic_max_joints,
         kinematic: args.kinematic.into(),
         continuous: args.continuous,
+        friction: args.friction.into(),
+        dem: args.dem,
     };
     let a = analysis::analyse(&scene, &options)?;
     let (assembly, result) = (&a.model.assembly, &a.lower);

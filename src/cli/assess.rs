@@ -38,6 +38,11 @@ pub struct Args {
     /// governs; with this flag the verdict covers the given direction only)
     #[arg(long, value_enum)]
     direction: Option<Dir>,
+    /// Friction law of the multiplier: auto (the non-associative multiplier of real joints,
+    /// which slide without opening, whenever joints slide in the static mechanism),
+    /// associative (the static program's alone), non-associative (always)
+    #[arg(long, value_enum, default_value = "auto")]
+    friction: super::Friction,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -62,7 +67,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             args.at
         ))));
     }
-    let options = analysis::Options::default();
+    let options = analysis::Options {
+        friction: args.friction.into(),
+        ..analysis::Options::default()
+    };
     let assess = analysis::AssessOptions {
         points: args.points,
         control_block: args.control_block,

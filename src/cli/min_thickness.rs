@@ -28,6 +28,11 @@ pub struct Args {
     /// the static value) or the exhaustive bisection
     #[arg(long, value_enum, default_value = "certified")]
     kinematic: super::Kinematic,
+    /// Friction law of the multiplier: auto (the non-associative multiplier of real joints,
+    /// which slide without opening, whenever joints slide in the static mechanism),
+    /// associative (the static program's alone), non-associative (always)
+    #[arg(long, value_enum, default_value = "auto")]
+    friction: super::Friction,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -42,6 +47,8 @@ pub fn run(args: Args) -> Result<String, Error> {
         kinematic_max_joints: args.kinematic_max_joints,
         kinematic: args.kinematic.into(),
         continuous: args.continuous,
+        friction: args.friction.into(),
+        ..analysis::Options::default()
     };
     let t = thickness::analyse(&scene, &options)?;
     let m = &t.lower;

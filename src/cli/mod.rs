@@ -62,6 +62,28 @@ impl From<Kinematic> for voussoir::analysis::KinematicMode {
     }
 }
 
+/// Which friction law the collapse multiplier is given for, as the command line names it
+/// (docs/friction.md).
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum Friction {
+    /// The non-associative multiplier whenever joints slide in the associative mechanism
+    Auto,
+    /// The static program's (associative) multiplier alone
+    Associative,
+    /// The non-associative multiplier always (and the minimum thickness of real joints)
+    NonAssociative,
+}
+
+impl From<Friction> for voussoir::analysis::FrictionMode {
+    fn from(f: Friction) -> Self {
+        match f {
+            Friction::Auto => voussoir::analysis::FrictionMode::Auto,
+            Friction::Associative => voussoir::analysis::FrictionMode::Associative,
+            Friction::NonAssociative => voussoir::analysis::FrictionMode::NonAssociative,
+        }
+    }
+}
+
 /// The scene file and its overrides, common to every command that reads one scene.
 #[derive(clap::Args)]
 pub struct SceneArgs {

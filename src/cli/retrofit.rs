@@ -29,6 +29,11 @@ pub struct Args {
     /// Conic solver tolerance (gap and feasibility, dimensionless; 1e-14..1e-6)
     #[arg(long, default_value_t = 1e-10)]
     tolerance: f64,
+    /// Friction law of the multiplier: auto (the non-associative multiplier of real joints,
+    /// which slide without opening, whenever joints slide in the static mechanism),
+    /// associative (the static program's alone), non-associative (always)
+    #[arg(long, value_enum, default_value = "auto")]
+    friction: super::Friction,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -43,6 +48,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         .check()?;
     let options = analysis::Options {
         static_settings: StaticSettings::default().tolerance(args.tolerance),
+        friction: args.friction.into(),
         ..analysis::Options::default()
     };
     let (site, plain) = match args.target_lambda {
@@ -71,7 +77,7 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     // The governing direction: the least multiplier.
     let governing = r.analyses.iter().min_by(|a, b| {
-        let l = |x: &(_, analysis::SceneAnalysis)| x.1.lower.lambda.unwrap_or(f64::INFINITY);
+        let l = |x: &(_, analysis::SceneAnalysis)| x.1.lambda_governing().unwrap_or(f64::INFINITY);
         l(a).total_cmp(&l(b))
     });
     let figure = match governing {

@@ -106,6 +106,9 @@ pub fn run(args: Args) -> Result<String, Error> {
         continuous: args.continuous,
         kinematic_max_joints: args.kinematic_max_joints,
         kinematic: args.kinematic.into(),
+        // A sweep reports the static multiplier: the non-associative iteration of every case
+        // would cost its programs for a number no row prints (docs/friction.md).
+        friction: analysis::FrictionMode::Associative,
         ..analysis::Options::default()
     };
     // A hidden bar (stderr not a terminal) is not ticked: every case would touch its shared

@@ -9,6 +9,13 @@
 //! `mu (c1 + c2) -+ V >= 0` (the planar Coulomb cone, associative: at the limit the
 //! mechanism slides and dilates, so a sliding joint dissipates nothing).
 //!
+//! A second shear law, [`ShearLimit::Fixed`], bounds each joint's shear by a fixed capacity
+//! `|V| <= S_j` instead of `mu N` (a Tresca-like cohesion, `S_j = mu N_prev` from an earlier
+//! solution): its normality rule is pure slip with no opening, so a program with fixed
+//! capacities has the mechanisms of real (non-dilatant) joints. The non-associative
+//! multiplier (`crate::statics::non_associative`; Gilbert, Casapulla & Ahmed 2006) solves a
+//! sequence of such programs.
+//!
 //! Work rate: hinging and opening joints dissipate nothing; the associative sliding joint
 //! neither (dilatancy), so contacts add nothing to the virtual-work equation of the
 //! kinematic searches, whose mechanisms do not slide.
@@ -22,10 +29,28 @@ pub fn column_from(first: usize, joint: usize, which: usize) -> usize {
     first + 3 * joint + which
 }
 
+/// How the contacts' shear is bounded, for the joints with finite friction (joints with
+/// `friction = inf` have no shear row under either law).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub enum ShearLimit<'a> {
+    /// Coulomb's `|V| <= mu N`, the associative joint (it dilates when it slips).
+    #[default]
+    Coulomb,
+    /// A fixed capacity per joint, `|V| <= capacity[j]` (N, in joint order; joints with
+    /// infinite friction ignore theirs): slip without opening. A capacity that is not a
+    /// finite number >= 0 is read as 0.
+    Fixed(&'a [f64]),
+}
+
 /// The contacts' part of the static program: their unknowns, their forces on the blocks, no
-/// tension (unless `implied`, by the crushing cones) and friction. Returns the first column
-/// and the joints with friction rows, in row order.
-pub fn static_rows(assembly: &Assembly, rows: &mut Rows, implied: bool) -> (usize, Vec<usize>) {
+/// tension (unless `implied`, by the crushing cones) and friction (the law `shear`). Returns
+/// the first column and the joints with friction rows, in row order.
+pub fn static_rows(
+    assembly: &Assembly,
+    rows: &mut Rows,
+    implied: bool,
+    shear: ShearLimit<'_>,
+) -> (usize, Vec<usize>) {
     let first = rows.add_columns(3 * assembly.joints.len());
     let col = |j, which| column_from(first, j, which);
     for (j, jt) in assembly.joints.iter().enumerate() {
@@ -46,12 +71,21 @@ pub fn static_rows(assembly: &Assembly, rows: &mut Rows, implied: bool) -> (usiz
     for (j, jt) in assembly.joints.iter().enumerate() {
         if jt.friction.is_finite() {
             for sv in [1.0, -1.0] {
-                let mu = jt.friction;
-                rows.nonnegative(
-                    vec![(col(j, 0), -mu), (col(j, 1), -mu), (col(j, 2), sv)],
-                    0.0,
-                    true,
-                );
+                match shear {
+                    ShearLimit::Coulomb => {
+                        let mu = jt.friction;
+                        rows.nonnegative(
+                            vec![(col(j, 0), -mu), (col(j, 1), -mu), (col(j, 2), sv)],
+                            0.0,
+                            true,
+                        );
+                    }
+                    ShearLimit::Fixed(capacity) => {
+                        let s = capacity.get(j).copied().unwrap_or(0.0);
+                        let s = if s.is_finite() { s.max(0.0) } else { 0.0 };
+                        rows.nonnegative(vec![(col(j, 2), sv)], s / rows.force_scale, true);
+                    }
+                }
             }
             friction.push(j);
         }

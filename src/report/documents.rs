@@ -169,7 +169,65 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
             }
         }
     }
+    friction_section(&mut doc, a);
     doc.with_data(Data::Analysis(Box::new(AnalysisReport::new(scene, a))))
+}
+
+/// The non-associative multiplier and the DEM check, when they ran: where the associative,
+/// the non-associative and the DEM's values sit (docs/friction.md).
+fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
+    if let Some(na) = a.non_associative.as_ref().filter(|n| !n.from_exact) {
+        let head = match na.lambda {
+            Some(l) => {
+                format!("Non-associative friction (joints slide without opening): lambda = {l:.6}")
+            }
+            None => "Non-associative friction: no converged multiplier".to_string(),
+        };
+        let sec = doc.section(head);
+        sec.line(super::words::non_associative_words(na));
+        if !na.sliding.is_empty() {
+            let list: Vec<String> = na.sliding.iter().map(|j| j.to_string()).collect();
+            sec.line(format!(
+                "joints that slide in its mechanism: {}",
+                list.join(", ")
+            ));
+        }
+        sec.items(na.starts.iter().map(|s| {
+            let l = s.lambda.map_or("none".to_string(), |l| format!("{l:.6}"));
+            let how = if s.converged {
+                "converged".to_string()
+            } else {
+                format!(
+                    "not converged ({})",
+                    s.stopped.as_deref().unwrap_or("stopped")
+                )
+            };
+            format!(
+                "start {}: lambda = {l} after {} programs, {how}",
+                s.start.as_str(),
+                s.iterations
+            )
+        }));
+    }
+    if let Some(d) = &a.dem {
+        let sec = doc.section("Where the multipliers sit");
+        if let Some(l) = a.lower.lambda {
+            sec.item(format!("associative (static program): {l:.6}"));
+        }
+        match a.non_associative.as_ref().and_then(|n| n.lambda) {
+            Some(l) => sec.item(format!("non-associative (iteration): {l:.6}")),
+            None => sec.item("non-associative: not computed or not converged".to_string()),
+        };
+        match d {
+            Ok(d) => match (d.lambda_stands, d.lambda_collapses) {
+                (Some(s), Some(c)) => sec.item(format!(
+                    "DEM (Coulomb contacts, no dilatancy): stands at {s:.6}, collapses at {c:.6}"
+                )),
+                _ => sec.item("DEM: no bracket (see `voussoir dem`)".to_string()),
+            },
+            Err(e) => sec.item(format!("DEM: {e}")),
+        };
+    }
 }
 
 /// The section of the static analysis.
@@ -456,6 +514,18 @@ pub fn min_thickness(scene: &Scene, model: &Model, t: &ThicknessAnalysis) -> Doc
             doc.section(format!("Kinematic: {note}"));
         }
         _ => {}
+    }
+    if let Some(na) = &t.non_associative {
+        doc.section(match na.min_thickness {
+            Some(v) => format!(
+                "Non-associative minimum thickness (joints slide without opening): t_min = {v:.6} m ({} trials, bisected to 1e-6; docs/friction.md)",
+                na.evaluations
+            ),
+            None => format!(
+                "Non-associative minimum thickness: none found ({:?}, {} trials)",
+                na.outcome, na.evaluations
+            ),
+        });
     }
     if let Some(c) = rep.min_thickness_continuous {
         match c {

@@ -292,6 +292,31 @@ pub struct AnalysisReport {
     pub slipping_joints: Vec<usize>,
     /// `friction_exact` in words when it is false, null otherwise.
     pub friction_note: Option<String>,
+    /// The non-associative collapse multiplier (joints that slide without opening; docs/
+    /// friction.md): the lowest converged value of the starts tried, equal to
+    /// `lambda_associative` when `friction_exact` is true (not iterated); null when not
+    /// computed (`--friction associative`, infinite friction, no collapse) or when no start
+    /// converged.
+    pub lambda_non_associative: Option<f64>,
+    /// Whether a start of the non-associative iteration converged; null when not computed.
+    pub non_associative_converged: Option<bool>,
+    /// Programs solved by the non-associative iteration, all starts together (0 when the
+    /// associative multiplier is exact or nothing was computed).
+    pub non_associative_iterations: u32,
+    /// The joints that slip (without opening) in the retained non-associative mechanism.
+    pub non_associative_sliding_joints: Vec<usize>,
+    /// Every start of the non-associative iteration: `start`, `lambda` (its last iterate),
+    /// `iterations`, `converged`.
+    pub non_associative_starts: Vec<NonAssociativeStartReport>,
+    /// What the non-associative value is, in words; null when not computed.
+    pub non_associative_note: Option<String>,
+    /// The multiplier that governs (the page's large number, `assess`, `retrofit`):
+    /// `lambda_non_associative` when there is one, `lambda_lower` otherwise.
+    pub lambda_governing: Option<f64>,
+    /// The DEM check of the same scene (only with `analyze --dem`): its Coulomb contacts
+    /// slide without opening, so it estimates the non-associative collapse.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dem: Option<AnalysisDemReport>,
     pub joints: Vec<JointReport>,
     pub mechanism: Vec<[f64; 3]>,
     pub equilibrium_residual: f64,
@@ -572,6 +597,7 @@ impl AnalysisReport {
             Err(note) => report.kinematic_note = Some(note.clone()),
         }
         report.kinematic_search = a.kinematic_search;
+        report.set_non_associative(a);
         report.gap = a.gap();
         report.sliding_governs = a.sliding_governs();
         if let Some(c) = &a.continuous {
@@ -624,6 +650,14 @@ impl AnalysisReport {
             lambda_associative: friction.lambda_associative,
             friction_note: super::words::friction_words(&friction, r.status),
             slipping_joints: friction.slipping,
+            lambda_non_associative: None,
+            non_associative_converged: None,
+            non_associative_iterations: 0,
+            non_associative_sliding_joints: Vec::new(),
+            non_associative_starts: Vec::new(),
+            non_associative_note: None,
+            lambda_governing: r.lambda,
+            dem: None,
             joints,
             mechanism: r.mechanism.clone(),
             equilibrium_residual: r.equilibrium_residual,
@@ -652,6 +686,71 @@ impl AnalysisReport {
             ties: TieReport::all(model, r),
             reinforcements: ReinforcementReport::all(scene, model, r),
         }
+    }
+}
+
+/// The DEM check in `analyze --dem --json`.
+#[derive(Debug, Serialize)]
+pub struct AnalysisDemReport {
+    /// The DEM's multiplier (the middle of its bracket), null when it found none.
+    pub lambda_dem: Option<f64>,
+    /// The bracket `[stands, collapses]`.
+    pub lambda_stands: Option<f64>,
+    pub lambda_collapses: Option<f64>,
+    pub wall_time_s: Option<f64>,
+    /// Why there is no DEM result, or its warnings; null when none.
+    pub note: Option<String>,
+}
+
+/// One start of the non-associative iteration, in `analyze --json`.
+#[derive(Debug, Serialize)]
+pub struct NonAssociativeStartReport {
+    /// `associative`, `least_friction` or `at_rest` (docs/friction.md).
+    pub start: &'static str,
+    /// The multiplier of its last program (a solution only when `converged`).
+    pub lambda: Option<f64>,
+    pub iterations: u32,
+    pub converged: bool,
+}
+
+impl AnalysisReport {
+    /// The non-associative fields of `a` (left at their defaults when not computed).
+    fn set_non_associative(&mut self, a: &SceneAnalysis) {
+        self.lambda_governing = a.lambda_governing();
+        self.dem = a.dem.as_ref().map(|d| match d {
+            Ok(d) => AnalysisDemReport {
+                lambda_dem: d.lambda_dem,
+                lambda_stands: d.lambda_stands,
+                lambda_collapses: d.lambda_collapses,
+                wall_time_s: Some(d.wall_time_s),
+                note: (!d.warnings.is_empty()).then(|| d.warnings.join("; ")),
+            },
+            Err(e) => AnalysisDemReport {
+                lambda_dem: None,
+                lambda_stands: None,
+                lambda_collapses: None,
+                wall_time_s: None,
+                note: Some(e.clone()),
+            },
+        });
+        let Some(na) = &a.non_associative else {
+            return;
+        };
+        self.lambda_non_associative = na.lambda;
+        self.non_associative_converged = Some(na.converged);
+        self.non_associative_iterations = na.iterations;
+        self.non_associative_sliding_joints.clone_from(&na.sliding);
+        self.non_associative_starts = na
+            .starts
+            .iter()
+            .map(|s| NonAssociativeStartReport {
+                start: s.start.as_str(),
+                lambda: s.lambda,
+                iterations: s.iterations,
+                converged: s.converged,
+            })
+            .collect();
+        self.non_associative_note = Some(super::words::non_associative_words(na));
     }
 }
 
@@ -688,6 +787,14 @@ pub struct MinThicknessReport {
     /// Why the continuous model failed (only with `--continuous`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous_note: Option<String>,
+    /// The minimum thickness with non-associative joints, or null when none was found (only
+    /// with `--friction non-associative` and finite friction; docs/friction.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_thickness_non_associative: Option<Option<f64>>,
+    /// How that search ended (`found`, `never_stands`, `stands_at_every_thickness`; only with
+    /// it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub non_associative_outcome: Option<ThicknessOutcome>,
 }
 
 impl MinThicknessReport {
@@ -698,6 +805,10 @@ impl MinThicknessReport {
         rep.min_thickness_gap = t.gap();
         rep.kinematic_search = t.kinematic_search.map(|k| k.as_str());
         rep.kinematic_note = t.kinematic_note.clone();
+        if let Some(na) = &t.non_associative {
+            rep.min_thickness_non_associative = Some(na.min_thickness);
+            rep.non_associative_outcome = Some(na.outcome);
+        }
         match &t.continuous {
             Some(Ok(c)) => {
                 rep.min_thickness_continuous = Some(Some(c.thickness));
@@ -736,6 +847,8 @@ impl MinThicknessReport {
             min_thickness_continuous: None,
             continuous_hinges: None,
             continuous_note: None,
+            min_thickness_non_associative: None,
+            non_associative_outcome: None,
         }
     }
 }

@@ -23,6 +23,10 @@ pub struct RetrofitReport {
     /// The least static multiplier of the retrofitted structure over the directions (null
     /// when infeasible).
     pub lambda_lower: Option<f64>,
+    /// The least governing multiplier of the retrofitted structure over the directions: the
+    /// non-associative one where joints slide without opening, `lambda_lower` otherwise
+    /// (docs/friction.md); null when infeasible.
+    pub lambda_governing: Option<f64>,
     /// The largest multiplier any capacities reach in every direction (infeasible designs
     /// only; null otherwise, or when the structure cannot stand).
     pub best_reachable_lambda: Option<f64>,
@@ -89,6 +93,7 @@ impl RetrofitReport {
                 .map(|t| t.index)
                 .collect(),
             lambda_lower: r.lambda(),
+            lambda_governing: r.lambda_governing(),
             best_reachable_lambda: r.best_reachable,
             tie_design_strength: r.design_strength,
             analyses: r
@@ -155,6 +160,17 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
             sec.line(format!(
                 "re-analysed {dir}: lambda_lower = {lower}, lambda_upper = {upper}"
             ));
+            if let Some(na) = a.lambda_non_associative().filter(|_| !a.friction().exact) {
+                sec.line(format!(
+                    "non-associative multiplier (joints slide without opening) {dir}: {na:.6}"
+                ));
+                if na < r.target * (1.0 - 1e-6) {
+                    sec.warning(format!(
+                        "the non-associative multiplier {na:.6} is below the target {}: the capacities come from the static (associative) program, which real joints, sliding without opening, do not reach (docs/friction.md)",
+                        r.target
+                    ));
+                }
+            }
         }
     } else {
         sec.head(format!(

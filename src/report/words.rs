@@ -521,3 +521,30 @@ pub fn tie_on_curve_words(t: &crate::assess::TieOnCurve) -> String {
         t.index, t.force
     )
 }
+
+/// What the non-associative multiplier `na` is, in words (docs/friction.md).
+pub fn non_associative_words(na: &crate::statics::NonAssociative) -> String {
+    if na.from_exact {
+        return "non-associative friction: no joint slips in the associative mechanism, so the real multiplier is the associative one (not iterated)".to_string();
+    }
+    let tried: Vec<&str> = na.starts.iter().map(|s| s.start.as_str()).collect();
+    match na.lambda {
+        Some(l) => {
+            let slide = match na.sliding.len() {
+                0 => "no joint slides".to_string(),
+                1 => "1 joint slides without opening".to_string(),
+                n => format!("{n} joints slide without opening"),
+            };
+            format!(
+                "non-associative friction (real joints slide without opening): lambda = {l:.6} after {} programs, the lowest converged value from the starts {} ({slide}); such problems can have several solutions, and the real collapse multiplier is at most this value",
+                na.iterations,
+                tried.join(", ")
+            )
+        }
+        None => format!(
+            "non-associative friction: no start ({}) converged in {} programs, so there is no non-associative multiplier; the associative value remains an upper bound of the real collapse",
+            tried.join(", "),
+            na.iterations
+        ),
+    }
+}

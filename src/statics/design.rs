@@ -64,6 +64,7 @@ fn program(
             &model.strips,
             sign,
             &design,
+            crate::interaction::contact::ShearLimit::Coulomb,
             &mut rows,
         );
         all.append_copy(rows, 1 + d);

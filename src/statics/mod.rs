@@ -13,11 +13,15 @@
 mod chain;
 pub mod design;
 mod friction;
+pub mod non_associative;
 mod problem;
 mod settings;
 
 pub use chain::{analyse_chain, declines, Declined};
 pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};
+pub use non_associative::{
+    analyse_non_associative, NonAssociative, NonAssociativeSettings, Start, StartOutcome,
+};
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
@@ -163,18 +167,7 @@ pub fn analyse_full(
                 || read_mechanism(assembly, &problem, &sol.z),
             );
             if result.status == Status::Collapse {
-                result.ties = model
-                    .ties
-                    .iter()
-                    .zip(&tension)
-                    .map(|(t, &f)| t.force_of(f))
-                    .collect();
-                result.strips = model
-                    .strips
-                    .iter()
-                    .zip(&strip_tension)
-                    .map(|(s, &f)| s.force_of(f))
-                    .collect();
+                result.set_tensions(model, &tension, &strip_tension);
                 // A joint whose contact resultant sits at one end is no hinge while a strip
                 // on its other end holds below its capacity: it cannot open there.
                 result.hinges.retain(|h| {
@@ -223,6 +216,15 @@ pub(crate) fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
     })
 }
 
+/// Whether `model` is its own mirror image under self-weight alone, with no ties or strips: its
+/// multipliers toward the right and the left are then the same.
+pub fn symmetric_self_weight(model: &Model) -> bool {
+    model.loads.is_self_weight_only()
+        && model.ties.is_empty()
+        && model.strips.is_empty()
+        && mirror_symmetric(&model.assembly)
+}
+
 /// Under loads or a structure that are not symmetric the multipliers equilibrium allows form
 /// an interval that may lie entirely above 0; then the structure cannot stand without the
 /// earthquake. The least multiplier (chains) or the phase-one program at lambda = 0 tells.
@@ -269,6 +271,22 @@ fn stands_at_zero(
 }
 
 impl StaticResult {
+    /// The ties' and the strips' forces from their tensions (N, in their order).
+    fn set_tensions(&mut self, model: &Model, ties: &[f64], strips: &[f64]) {
+        self.ties = model
+            .ties
+            .iter()
+            .zip(ties)
+            .map(|(t, &f)| t.force_of(f))
+            .collect();
+        self.strips = model
+            .strips
+            .iter()
+            .zip(strips)
+            .map(|(s, &f)| s.force_of(f))
+            .collect();
+    }
+
     /// A result with no solution read yet: status cannot stand, no multiplier.
     fn unsolved(
         settings: &StaticSettings,

@@ -33,7 +33,8 @@
 //! optimum changes sign cleanly as the thickness crosses the minimum.
 
 use crate::assembly::Assembly;
-use crate::interaction::{contact, crushing, Rows, Strip, Tie};
+use crate::interaction::contact::{self, ShearLimit};
+use crate::interaction::{crushing, Rows, Strip, Tie};
 use crate::model::{LoadCase, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
@@ -71,6 +72,11 @@ pub enum Objective {
     MaxLambda { sign: f64, cap: Option<f64> },
     /// Minimise the tension relaxation `tau` at lambda = 0.
     MinTension,
+    /// At the multiplier fixed at `lambda` (load toward `sign`), minimise the joints' friction
+    /// capacity `sum mu_j N_j` over the joints with finite friction: the equilibrium with the
+    /// least normal forces where they give friction, which the non-associative iteration
+    /// takes among the optima of [`Objective::MaxLambda`] (`crate::statics::non_associative`).
+    LeastFriction { sign: f64, lambda: f64 },
 }
 
 /// Column of a joint unknown: 0 = c1, 1 = c2, 2 = V (the contacts' columns come first, after
@@ -107,9 +113,32 @@ impl StaticProblem {
         strips: &[Strip],
         objective: Objective,
     ) -> StaticProblem {
+        Self::with_shear_limit(
+            assembly,
+            loads,
+            strength,
+            ties,
+            strips,
+            ShearLimit::Coulomb,
+            objective,
+        )
+    }
+
+    /// [`StaticProblem::with_interactions`] with the contacts' shear bounded by `shear`
+    /// (Coulomb's law, or fixed capacities: the non-associative iteration's programs).
+    pub fn with_shear_limit(
+        assembly: &Assembly,
+        loads: &LoadCase,
+        strength: Strength,
+        ties: &[Tie],
+        strips: &[Strip],
+        shear: ShearLimit<'_>,
+        objective: Objective,
+    ) -> StaticProblem {
         let (sign, lambda_cap, relax) = match objective {
             Objective::MaxLambda { sign, cap } => (sign, cap, false),
             Objective::MinTension => (0.0, None, true),
+            Objective::LeastFriction { sign, .. } => (sign, None, false),
         };
         let mut rows = Rows::new(assembly, loads.force_scale(), relax);
         let (friction_joints, tie_columns, strip_columns) = program_rows(
@@ -120,6 +149,7 @@ impl StaticProblem {
             strips,
             sign,
             &[],
+            shear,
             &mut rows,
         );
         if let Some(cap) = lambda_cap {
@@ -128,6 +158,18 @@ impl StaticProblem {
         if relax {
             // tau >= -1 keeps the phase-one program bounded.
             rows.nonnegative(vec![(0, -1.0)], 1.0, false);
+        }
+        if let Objective::LeastFriction { lambda, .. } = objective {
+            rows.fix_column(0, lambda);
+            let mut q = vec![0.0; rows.columns()];
+            for &j in &friction_joints {
+                let mu = assembly.joints[j].friction;
+                q[column(j, 0)] = mu;
+                q[column(j, 1)] = mu;
+            }
+            let mut p = Self::assemble_with(rows, q, friction_joints, tie_columns);
+            p.strip_columns = strip_columns;
+            return p;
         }
         let mut p = Self::assemble(rows, friction_joints, tie_columns, relax);
         p.strip_columns = strip_columns;
@@ -151,8 +193,9 @@ impl StaticProblem {
 /// The rows of the static program, without its objective and its own bounds on column 0: the
 /// loads (the action toward `sign` times column 0, the permanent loads on the right-hand
 /// side) and every interaction. `design[k]`, when given for tie k, is the column of its
-/// capacity, an unknown of a retrofit design (`crate::statics::design`). Returns the joints
-/// with friction rows, the ties' columns and the strips'.
+/// capacity, an unknown of a retrofit design (`crate::statics::design`); `shear` bounds the
+/// contacts' shear ([`ShearLimit`]). Returns the joints with friction rows, the ties' columns
+/// and the strips'.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn program_rows(
     assembly: &Assembly,
@@ -162,6 +205,7 @@ pub(crate) fn program_rows(
     strips: &[Strip],
     sign: f64,
     design: &[Option<usize>],
+    shear: ShearLimit<'_>,
     rows: &mut Rows,
 ) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
     let relax = rows.relax;
@@ -191,7 +235,8 @@ pub(crate) fn program_rows(
         // the cones (c + 1 >= |c - 1|): the contacts leave those rows out, since a nearly
         // parallel duplicate of a strong material's cone splits its dual between the two
         // and costs the interior point accuracy.
-        let (first, friction_joints) = contact::static_rows(assembly, rows, strength.is_finite());
+        let (first, friction_joints) =
+            contact::static_rows(assembly, rows, strength.is_finite(), shear);
         crushing::static_rows(assembly, strength, rows, first);
         let tie_columns = ties
             .iter()

@@ -50,7 +50,9 @@ const digits = (x, d) => (typeof x === 'number' ? x.toFixed(d) : '—');
 
 function assertShows(s, cli, what) {
   assert.equal(s.status, cli.status, `${what}: status`);
-  assert.equal(s.lambda, digits(cli.lambda_lower, 4), `${what}: lambda in large type`);
+  // The large number is the governing multiplier (the non-associative one when computed).
+  const big = typeof cli.lambda_governing === 'number' ? cli.lambda_governing : cli.lambda_lower;
+  assert.equal(s.lambda, digits(big, 4), `${what}: lambda in large type`);
   assert.equal(s.lower, digits(cli.lambda_lower, 6), `${what}: lower bound`);
   assert.equal(s.upper, digits(cli.lambda_upper, 6), `${what}: upper bound`);
 }

@@ -302,20 +302,7 @@ fn two_stacked_blocks_and_an_l_shaped_pair_give_their_hand_values() {
 
 /// A running-bond wall: three courses, the middle one offset by half a block.
 fn wall() -> Scene {
-    let h = 0.4;
-    let mut blocks = Vec::new();
-    for c in 0..3 {
-        let y0 = c as f64 * h;
-        let xs: &[f64] = if c % 2 == 0 {
-            &[0.0, 0.6, 1.2]
-        } else {
-            &[0.0, 0.3, 0.9, 1.2]
-        };
-        for w in xs.windows(2) {
-            blocks.push([w[0], y0, w[1], y0 + h]);
-        }
-    }
-    inline_scene(&blocks)
+    inline_scene(&common::running_bond_wall_rects())
 }
 
 #[test]

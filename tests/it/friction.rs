@@ -24,12 +24,6 @@ fn block_text(mu: &str) -> String {
     )
 }
 
-fn f64_of(v: &serde_json::Value, key: &str) -> f64 {
-    v[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
-}
-
 /// A thin semicircle with ample friction rocks: no joint slips in its mechanism, so the
 /// multiplier is exact, the associative value is the same number, and it is the one of
 /// infinite friction.

@@ -33,6 +33,14 @@ const ADDED: &[&str] = &[
     "fixed",
     "mended",
     "mechanism_sliding",
+    "lambda_non_associative",
+    "non_associative_converged",
+    "non_associative_iterations",
+    "non_associative_sliding_joints",
+    "non_associative_starts",
+    "non_associative_note",
+    "lambda_governing",
+    "dem",
 ];
 
 /// The kinematic fields of an assembly that is not a chain as the baseline wrote them, before

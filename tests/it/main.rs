@@ -29,6 +29,7 @@ mod kinematic;
 mod live_loads;
 mod loads;
 mod local_search;
+mod non_associative;
 mod piers;
 mod proptest_scenes;
 mod reduced;

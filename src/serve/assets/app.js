@@ -703,9 +703,17 @@
       $('v-timing').textContent = 'updated in ' + ms.toFixed(0) + ' ms' + server;
     }
     drawChart();
+    const nonAssociative = result.friction_exact === false && typeof result.lambda_non_associative === 'number';
     announce((STATUS_WORDS[result.status] || String(result.status || '')) + ', lambda '
-      + fmt(result.lambda_lower, 4)
-      + (result.friction_exact === false ? ', an upper bound (associative friction)' : ''));
+      + fmt(governing(result), 4)
+      + (nonAssociative ? ', non-associative friction'
+        : (result.friction_exact === false ? ', an upper bound (associative friction)' : '')));
+  }
+
+  // The multiplier that governs (analyze --json's lambda_governing; lambda_lower from an
+  // older server).
+  function governing(r) {
+    return typeof r.lambda_governing === 'number' ? r.lambda_governing : r.lambda_lower;
   }
 
   function parseSvg(text) {
@@ -733,10 +741,18 @@
     const status = $('v-status');
     status.dataset.status = r.status || '';
     status.textContent = STATUS_WORDS[r.status] || String(r.status || '').replace(/_/g, ' ');
+    // The large number is the governing multiplier: the non-associative one when it was
+    // computed (joints that slide without opening), the static one otherwise.
+    const big = governing(r);
     const lambda = $('v-lambda');
-    lambda.textContent = fmt(r.lambda_lower, 4);
-    lambda.classList.toggle('none', typeof r.lambda_lower !== 'number');
-    lambda.dataset.value = r.lambda_lower === null || r.lambda_lower === undefined ? '' : String(r.lambda_lower);
+    lambda.textContent = fmt(big, 4);
+    lambda.classList.toggle('none', typeof big !== 'number');
+    lambda.dataset.value = big === null || big === undefined ? '' : String(big);
+    const naRow = $('v-na-row');
+    const na = r.friction_exact === false && typeof r.lambda_non_associative === 'number';
+    naRow.hidden = !na;
+    $('v-na').textContent = na ? fmt(r.lambda_non_associative, 6) : '';
+    naRow.title = na ? (r.non_associative_note || '') : '';
     // lambda_c is certified when the bounds meet; otherwise it lies between them.
     const apart = typeof r.lambda_upper === 'number' && typeof r.lambda_lower === 'number'
       && !(typeof r.gap === 'number' && r.gap < 1e-6);

@@ -282,3 +282,29 @@ pub fn static_and_dem_bracket(model: &Model) -> (f64, f64, f64) {
         dem.lambda_collapses.expect("a collapsing run"),
     )
 }
+
+/// The running-bond wall of docs/dem.md as rectangles `[x0, y0, x1, y1]`: three courses 0.4 m
+/// high, 1.2 m long, the middle one offset by half a block (2 + 3 + 2 blocks).
+pub fn running_bond_wall_rects() -> Vec<[f64; 4]> {
+    let h = 0.4;
+    let mut blocks = Vec::new();
+    for c in 0..3 {
+        let y0 = c as f64 * h;
+        let xs: &[f64] = if c % 2 == 0 {
+            &[0.0, 0.6, 1.2]
+        } else {
+            &[0.0, 0.3, 0.9, 1.2]
+        };
+        for w in xs.windows(2) {
+            blocks.push([w[0], y0, w[1], y0 + h]);
+        }
+    }
+    blocks
+}
+
+/// The number `key` of a JSON object (a panic naming it when it is not one).
+pub fn f64_of(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
+}

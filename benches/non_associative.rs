@@ -1,0 +1,111 @@
+//! The non-associative multiplier against the associative solve (issue 25, docs/friction.md):
+//! iterations and wall time of `statics::analyse_non_associative` (all three starts) against
+//! `statics::analyse` (the chain's active set on arches) and the full conic program, on
+//! semicircles of 64 and 1000 voussoirs that slide at their springings (t/R = 0.25, mu = 0.4)
+//! and a 200-block running-bond wall (mu = 0.6). Median of a few runs; run with
+//! `cargo bench --bench non_associative`.
+
+mod common;
+
+use voussoir::model::Model;
+use voussoir::scene::Scene;
+use voussoir::statics::{self, NonAssociativeSettings, Program, StaticSettings};
+
+fn scene(text: &str) -> Scene {
+    match Scene::from_toml_str(text, "bench") {
+        Ok(s) => s,
+        Err(e) => panic!("bench scene: {e}"),
+    }
+}
+
+/// The running-bond wall of `courses` courses of `per` blocks ([`common::running_bond_wall`])
+/// with friction `mu`.
+fn wall(courses: usize, per: usize, mu: f64) -> Scene {
+    let polys: Vec<String> = common::running_bond_wall(courses, per)
+        .iter()
+        .map(|p| {
+            let pts: Vec<String> = p.iter().map(|[x, y]| format!("[{x}, {y}]")).collect();
+            format!("[{}]", pts.join(", "))
+        })
+        .collect();
+    scene(&format!(
+        "[blocks]\npolygons = [{}]\n[material]\nfriction = {mu}\n",
+        polys.join(", ")
+    ))
+}
+
+fn model(s: &Scene) -> Model {
+    match voussoir::scene::build(s) {
+        Ok(m) => m,
+        Err(e) => panic!("bench model: {e}"),
+    }
+}
+
+fn main() {
+    let arch = |n: usize| {
+        scene(&format!(
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.25\nvoussoirs = {n}\n[material]\nfriction = 0.4\n"
+        ))
+    };
+    let cases = [
+        ("semicircle, 64 voussoirs", arch(64), 5),
+        ("semicircle, 1000 voussoirs", arch(1000), 3),
+        (
+            "running-bond wall, 10 x 20 (205 blocks)",
+            wall(10, 20, 0.6),
+            3,
+        ),
+    ];
+    println!(
+        "{:<42} {:>7} {:>11} {:>11} {:>11} {:>10} {:>7} {:>9} {:>9}",
+        "case",
+        "blocks",
+        "assoc ms",
+        "full ms",
+        "non-assoc",
+        "lambda_a",
+        "lam_na",
+        "programs",
+        "x assoc"
+    );
+    let settings = StaticSettings::default();
+    let na_settings = NonAssociativeSettings::default();
+    for (name, s, reps) in cases {
+        let m = model(&s);
+        let (t_assoc, a) = common::median(reps, || statics::analyse(&m, &settings));
+        let a = match a {
+            Ok(a) => a,
+            Err(e) => panic!("{name}: {e}"),
+        };
+        let full = settings.clone().program(Program::Full);
+        let (t_full, _) = common::median(reps, || statics::analyse(&m, &full));
+        let (t_na, na) = common::median(reps, || {
+            statics::analyse_non_associative(&m, &settings, &a, &na_settings)
+        });
+        let na = match na {
+            Ok(n) => n,
+            Err(e) => panic!("{name}: {e}"),
+        };
+        println!(
+            "{:<42} {:>7} {:>11.3} {:>11.3} {:>11.3} {:>10.6} {:>7} {:>9} {:>9.1}",
+            name,
+            m.assembly.blocks.len(),
+            1e3 * t_assoc,
+            1e3 * t_full,
+            1e3 * t_na,
+            a.lambda.unwrap_or(f64::NAN),
+            na.lambda.map_or("none".to_string(), |l| format!("{l:.5}")),
+            na.iterations,
+            t_na / t_assoc
+        );
+        for st in &na.starts {
+            println!(
+                "    start {:<15} lambda {:>10} programs {:>4} converged {}",
+                st.start.as_str(),
+                st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
+                st.iterations,
+                st.converged
+            );
+        }
+    }
+}

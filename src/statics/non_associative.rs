@@ -1,0 +1,406 @@
+//! The non-associative collapse multiplier: joints that slide without opening (docs/friction.md).
+//!
+//! Real masonry joints obey Coulomb's `|V| <= mu N` but slide with no dilatancy, so the
+//! normality rule (and with it the safe theorem) does not hold: the associative multiplier of
+//! the static program is only an upper bound of the real collapse multiplier (Drucker 1954;
+//! Radenkovic 1961). Gilbert, Casapulla & Ahmed (2006, *Limit analysis of masonry block
+//! structures with non-associative frictional joints using linear programming*, Computers &
+//! Structures 84, 873-887) find a non-associative collapse state by a sequence of convex
+//! programs in which each joint's shear capacity is fixed from normal forces already known:
+//!
+//! 1. `S_j = mu_j Nbar_j`, with `Nbar` the normal forces of a starting solution;
+//! 2. solve the static program with `|V_j| <= S_j` in place of `|V_j| <= mu_j N_j`
+//!    ([`ShearLimit::Fixed`]): its failure surface is flat in N, so its normality rule is slip
+//!    without opening, the flow rule of the real joint, and the program is a linear (or, with
+//!    crushing, conic) program like the associative one;
+//! 3. relax: `Nbar <- Nbar + beta (N - Nbar)`, with `N` the new normal forces, and repeat
+//!    until the multiplier and the normal forces settle.
+//!
+//! At a fixed point (`N = Nbar` wherever a joint's shear reaches its capacity, and
+//! `|V| <= mu N` everywhere) the forces are in equilibrium and admissible for Coulomb's law,
+//! and the program's mechanism (its duals) slides without opening at exactly the joints whose
+//! shear is `mu N`, dissipating `mu N |slip|`: a complete solution of the non-associative
+//! problem. Such problems can have several solutions (Gilbert et al. 2006; Casapulla & Lauro
+//! 2000 name a class with a unique one); the iteration finds one per start, and the lowest
+//! converged value of the starts tried is kept. Nothing guarantees that it is the lowest of
+//! all: the true collapse multiplier is at most that value.
+//!
+//! What is implemented (the relaxation is ours: only the paper's abstract was at hand when
+//! this was written, so its exact relaxation rule is not reproduced): `beta` starts at
+//! [`NonAssociativeSettings::relaxation`] (1: each capacity from the last normal forces) and
+//! is halved, down to 1/64, whenever the multiplier's increments change sign twice in a row
+//! (an oscillation: the capacities then mix the previous and the new normal forces);
+//! convergence asks that the multiplier change by at most `tolerance * max(1, |lambda|)`
+//! between two iterations and that the fixed-point conditions above hold to `tolerance` times
+//! the largest normal force. Three starts, in this order ([`Start`]): the normal forces of the
+//! associative collapse solution; the same, with every program followed by a second one that
+//! picks, among its optima, the equilibrium of least friction capacity `sum mu N`
+//! ([`Objective::LeastFriction`]), which steers toward the lower solutions; and the normal
+//! forces of the most central equilibrium under the permanent loads alone (the phase-one
+//! program's).
+
+use super::problem::{Objective, StaticProblem};
+use super::{
+    check_almost_solved, problem_size, read_forces, read_mechanism, read_strips, read_ties, run,
+    slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
+};
+use crate::assembly::JointForce;
+use crate::error::AnalysisError;
+use crate::interaction::contact::ShearLimit;
+use crate::model::Model;
+use clarabel::solver::SolverStatus;
+use std::time::Instant;
+
+/// How the non-associative iteration runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NonAssociativeSettings {
+    /// The most iterations from one start (one program each, two for
+    /// [`Start::LeastFriction`]). Default 100.
+    pub max_iterations: u32,
+    /// Relative change of the multiplier, and mismatch of the normal forces (over the largest
+    /// one), below which the iteration has settled. Default 1e-6.
+    pub tolerance: f64,
+    /// The first relaxation factor `beta` (0 < beta <= 1). Default 1.
+    pub relaxation: f64,
+}
+
+impl Default for NonAssociativeSettings {
+    fn default() -> Self {
+        NonAssociativeSettings {
+            max_iterations: 100,
+            tolerance: 1e-6,
+            relaxation: 1.0,
+        }
+    }
+}
+
+/// The smallest relaxation factor the oscillation damping goes down to.
+const MIN_RELAXATION: f64 = 1.0 / 64.0;
+
+/// Where an iteration started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// The normal forces of the associative collapse solution.
+    Associative,
+    /// The normal forces of the most central equilibrium under the permanent loads (the
+    /// phase-one program at lambda = 0).
+    AtRest,
+    /// The normal forces of the associative collapse solution, and at every iteration the
+    /// equilibrium with the least friction capacity `sum mu N` among the optima (a second
+    /// program, [`Objective::LeastFriction`]): it steers the iteration toward the solutions
+    /// with the least normal forces where joints slide, the lower ones when there are
+    /// several.
+    LeastFriction,
+}
+
+impl Start {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Start::Associative => "associative",
+            Start::AtRest => "at_rest",
+            Start::LeastFriction => "least_friction",
+        }
+    }
+}
+
+/// One start's iteration.
+#[derive(Debug, Clone)]
+pub struct StartOutcome {
+    pub start: Start,
+    /// The multiplier of the last program solved (None when none was solved).
+    pub lambda: Option<f64>,
+    /// Programs solved from this start (two per iteration for [`Start::LeastFriction`]).
+    pub iterations: u32,
+    /// Whether it settled (a fixed point, to the tolerance).
+    pub converged: bool,
+    /// Why it stopped, when it did not converge.
+    pub stopped: Option<String>,
+}
+
+/// The non-associative multiplier of a model.
+#[derive(Debug, Clone)]
+pub struct NonAssociative {
+    /// The lowest multiplier among the converged starts; None when none converged (then
+    /// `starts` holds the last iterates, which are not solutions).
+    pub lambda: Option<f64>,
+    /// Whether some start converged.
+    pub converged: bool,
+    /// Programs solved, all starts together (0 when the associative multiplier is exact and
+    /// nothing was iterated).
+    pub iterations: u32,
+    /// The joints that slip (without opening) in the mechanism of the retained solution.
+    pub sliding: Vec<usize>,
+    /// Every start tried, in order.
+    pub starts: Vec<StartOutcome>,
+    /// The retained solution: forces, hinges, mechanism (of the last fixed-capacity program).
+    pub result: Option<StaticResult>,
+    /// Whether the associative multiplier was taken as it is (friction exact), with no
+    /// iteration.
+    pub from_exact: bool,
+    /// Wall time of all the iterations (s).
+    pub solve_time_s: f64,
+}
+
+impl NonAssociative {
+    /// The associative solution taken as it is, when it is exact (no joint slips in its
+    /// mechanism): the non-associative multiplier equals it.
+    pub fn exact(associative: &StaticResult) -> NonAssociative {
+        NonAssociative {
+            lambda: associative.lambda,
+            converged: true,
+            iterations: 0,
+            sliding: Vec::new(),
+            starts: Vec::new(),
+            result: None,
+            from_exact: true,
+            solve_time_s: 0.0,
+        }
+    }
+}
+
+/// One program with fixed shear capacities: its multiplier, forces and result.
+struct Iterate {
+    lambda: f64,
+    forces: Vec<JointForce>,
+    result: StaticResult,
+}
+
+/// Solve the static program of `model` with each joint's shear bounded by `capacity` (N),
+/// maximising lambda toward `settings.direction` (capped at [`LAMBDA_CAP`]). None when the
+/// program has no solution (no equilibrium with these capacities at any multiplier).
+fn solve_fixed(
+    model: &Model,
+    settings: &StaticSettings,
+    capacity: &[f64],
+    least_friction: bool,
+) -> Result<Option<Iterate>, AnalysisError> {
+    let start = Instant::now();
+    let sign = settings.direction.sign();
+    let program = |objective| {
+        StaticProblem::with_shear_limit(
+            &model.assembly,
+            &model.loads,
+            model.strength,
+            &model.ties,
+            &model.strips,
+            ShearLimit::Fixed(capacity),
+            objective,
+        )
+    };
+    let problem = program(Objective::MaxLambda {
+        sign,
+        cap: Some(LAMBDA_CAP),
+    });
+    let sol = run(&problem, settings)?;
+    if !matches!(
+        sol.status,
+        SolverStatus::Solved | SolverStatus::AlmostSolved
+    ) {
+        return Ok(None);
+    }
+    let lambda = sol.x[0];
+    // The equilibrium with the least friction capacity at (a hair below) that multiplier:
+    // the mechanism stays the first program's (its duals hold on the whole optimal face).
+    let least = if least_friction {
+        let below = lambda - 1e-9 * lambda.abs().max(1.0);
+        let p2 = program(Objective::LeastFriction {
+            sign,
+            lambda: below,
+        });
+        let s2 = run(&p2, settings)?;
+        matches!(s2.status, SolverStatus::Solved | SolverStatus::AlmostSolved).then_some(s2.x)
+    } else {
+        None
+    };
+    let x = least.as_deref().unwrap_or(&sol.x);
+    let forces = read_forces(&model.assembly, &problem, x);
+    let tension = read_ties(&problem, x);
+    let strip_tension = read_strips(&problem, x);
+    let residual = model.equilibrium_residual(&forces, &tension, &strip_tension, lambda, sign);
+    check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
+    let mut result = StaticResult::unsolved(
+        settings,
+        sol.iterations,
+        format!("{:?} (fixed shear capacities)", sol.status),
+        problem_size(&problem),
+    );
+    // Read as a collapse whatever the sign of lambda: the iteration needs the forces of
+    // every iterate (a negative multiplier is judged by the caller).
+    result = result.read_solution(
+        &model.assembly,
+        model.strength,
+        settings,
+        lambda.max(0.0),
+        forces.clone(),
+        residual,
+        true,
+        || read_mechanism(&model.assembly, &problem, &sol.z),
+    );
+    result.lambda = Some(lambda);
+    result.set_tensions(model, &tension, &strip_tension);
+    result.solve_time_s = start.elapsed().as_secs_f64();
+    Ok(Some(Iterate {
+        lambda,
+        forces,
+        result,
+    }))
+}
+
+/// Whether `it`, solved with the capacities of normal forces `nbar`, is a fixed point to
+/// `tol`: Coulomb's law holds with its own normal forces, and every joint whose shear reaches
+/// its capacity carries the normal force the capacity was set from.
+fn fixed_point(model: &Model, nbar: &[f64], it: &Iterate, tol: f64) -> bool {
+    let nmax = it
+        .forces
+        .iter()
+        .fold(0.0_f64, |a, f| a.max(f.n))
+        .max(1e-300);
+    let eps = tol * nmax;
+    model
+        .assembly
+        .joints
+        .iter()
+        .zip(nbar.iter().zip(&it.forces))
+        .filter(|(j, _)| j.friction.is_finite())
+        .all(|(j, (&nb, f))| {
+            let mu = j.friction;
+            let admissible = f.v.abs() <= mu * f.n + mu * eps;
+            let at_capacity = f.v.abs() >= mu * nb - mu * eps;
+            admissible && (!at_capacity || (f.n - nb).abs() <= eps)
+        })
+}
+
+/// Iterate from the normal forces `n0` (N, joint order).
+fn iterate_from(
+    model: &Model,
+    settings: &StaticSettings,
+    na: &NonAssociativeSettings,
+    start: Start,
+    n0: Vec<f64>,
+) -> Result<(StartOutcome, Option<StaticResult>), AnalysisError> {
+    let mu: Vec<f64> = model.assembly.joints.iter().map(|j| j.friction).collect();
+    let mut nbar = n0;
+    let mut beta = na.relaxation;
+    let mut lambdas: Vec<f64> = Vec::new();
+    let mut turns = 0;
+    let mut iterations = 0;
+    let mut programs = 0;
+    let mut last: Option<StaticResult> = None;
+    let mut stopped = format!("no fixed point in {} iterations", na.max_iterations);
+    while iterations < na.max_iterations {
+        iterations += 1;
+        let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
+        let least = start == Start::LeastFriction;
+        programs += 1;
+        let Some(it) = solve_fixed(model, settings, &capacity, least)? else {
+            stopped = format!(
+                "the program with the capacities of iteration {iterations} has no solution"
+            );
+            break;
+        };
+        programs += u32::from(least);
+        let settled = lambdas.last().is_some_and(|&prev| {
+            (it.lambda - prev).abs() <= na.tolerance * it.lambda.abs().max(1.0)
+        }) && fixed_point(model, &nbar, &it, na.tolerance);
+        lambdas.push(it.lambda);
+        if settled {
+            let lambda = it.lambda;
+            return Ok((
+                StartOutcome {
+                    start,
+                    lambda: Some(lambda),
+                    iterations: programs,
+                    converged: true,
+                    stopped: None,
+                },
+                Some(it.result),
+            ));
+        }
+        // Damp an oscillation: successive increments of opposite signs, twice in a row.
+        if let [.., a, b, c] = lambdas[..] {
+            if (c - b) * (b - a) < 0.0 {
+                turns += 1;
+                if turns >= 2 && beta > MIN_RELAXATION {
+                    beta = (beta * 0.5).max(MIN_RELAXATION);
+                    turns = 0;
+                }
+            } else {
+                turns = 0;
+            }
+        }
+        for (nb, f) in nbar.iter_mut().zip(&it.forces) {
+            *nb += beta * (f.n - *nb);
+        }
+        last = Some(it.result);
+    }
+    Ok((
+        StartOutcome {
+            start,
+            lambda: last.as_ref().and_then(|r| r.lambda),
+            iterations: programs,
+            converged: false,
+            stopped: Some(stopped),
+        },
+        None,
+    ))
+}
+
+/// The non-associative multiplier of `model` in `settings.direction`, given its associative
+/// static result `associative` (a collapse with forces; otherwise nothing is iterated and the
+/// answer has no multiplier). Each start of [`Start`] is iterated; the lowest converged
+/// multiplier is kept.
+pub fn analyse_non_associative(
+    model: &Model,
+    settings: &StaticSettings,
+    associative: &StaticResult,
+    na: &NonAssociativeSettings,
+) -> Result<NonAssociative, AnalysisError> {
+    let clock = Instant::now();
+    let mut out = NonAssociative {
+        lambda: None,
+        converged: false,
+        iterations: 0,
+        sliding: Vec::new(),
+        starts: Vec::new(),
+        result: None,
+        from_exact: false,
+        solve_time_s: 0.0,
+    };
+    let Some(forces) = associative
+        .forces
+        .as_ref()
+        .filter(|_| associative.status == Status::Collapse)
+    else {
+        return Ok(out);
+    };
+    let n_associative: Vec<f64> = forces.iter().map(|f| f.n).collect();
+    let mut starts = vec![
+        (Start::Associative, n_associative.clone()),
+        (Start::LeastFriction, n_associative),
+    ];
+    let rest = super::stands(model, settings)?;
+    if rest.stands {
+        starts.push((Start::AtRest, rest.forces.iter().map(|f| f.n).collect()));
+    }
+    let mut best: Option<StaticResult> = None;
+    for (start, n0) in starts {
+        let (outcome, result) = iterate_from(model, settings, na, start, n0)?;
+        out.iterations += outcome.iterations;
+        if let (true, Some(r)) = (outcome.converged, result) {
+            let value = |x: &StaticResult| x.lambda.unwrap_or(f64::INFINITY);
+            if best.as_ref().is_none_or(|b| value(&r) < value(b)) {
+                best = Some(r);
+            }
+        }
+        out.starts.push(outcome);
+    }
+    if let Some(r) = best {
+        out.converged = true;
+        out.lambda = r.lambda;
+        out.sliding = slipping_joints(&model.assembly, &r.mechanism, &r.open);
+        out.result = Some(r);
+    }
+    out.solve_time_s = clock.elapsed().as_secs_f64();
+    Ok(out)
+}

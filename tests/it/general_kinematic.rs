@@ -473,3 +473,38 @@ fn the_json_of_a_wall_has_the_general_bound() {
     let sliding = v["mechanism_sliding"].as_array().expect("sliding").len();
     assert!(hinges + open + sliding > 0, "{v}");
 }
+
+/// The arcades of `[arcade]` / `[spandrel]` (issue 23): the general upper bound equals the
+/// static one (1e-8) on the bundled 3-bay arcade with its spandrel wall (314 blocks), on 2 and
+/// 4 bays, bare and walled, with infinite and finite friction, both directions; its mechanism
+/// passes the virtual-work check of this file.
+#[test]
+fn general_equals_static_on_arcades_with_and_without_a_wall() {
+    let text = std::fs::read_to_string(common::data("arcade.toml")).expect("bundled arcade");
+    let bare: String = {
+        let at = text.find("\n[spandrel]").expect("a [spandrel] table") + 1;
+        let rest = &text[at..];
+        let end = rest.find("\n[material]").expect("[material] after it");
+        format!("{}{}", &text[..at], &rest[end + 1..])
+    };
+    for (name, scene_text) in [("walled", &text), ("bare", &bare)] {
+        for (bays, mu) in [(3, "inf"), (2, "0.6"), (4, "inf")] {
+            let s = common::scene(scene_text)
+                .with_overrides(&[format!("arcade.bays={bays}"), format!("material.friction={mu}")])
+                .expect("overrides");
+            let model = voussoir::scene::build(&s).expect("model");
+            for dir in [Direction::Right, Direction::Left] {
+                let st = full_static(&model, dir);
+                let k = general(&model, dir);
+                let label = format!("{name} arcade of {bays} bays, mu {mu}, {dir:?}");
+                assert_eq!(st.status, k.status, "{label}");
+                let (ls, lk) = (
+                    st.lambda.expect("static lambda"),
+                    k.lambda_upper.expect("general lambda"),
+                );
+                assert!(rel(ls, lk) <= 1e-8, "{label}: static {ls} general {lk}");
+                check_virtual_work(&model, &k, dir);
+            }
+        }
+    }
+}

@@ -490,7 +490,10 @@ fn general_equals_static_on_arcades_with_and_without_a_wall() {
     for (name, scene_text) in [("walled", &text), ("bare", &bare)] {
         for (bays, mu) in [(3, "inf"), (2, "0.6"), (4, "inf")] {
             let s = common::scene(scene_text)
-                .with_overrides(&[format!("arcade.bays={bays}"), format!("material.friction={mu}")])
+                .with_overrides(&[
+                    format!("arcade.bays={bays}"),
+                    format!("material.friction={mu}"),
+                ])
                 .expect("overrides");
             let model = voussoir::scene::build(&s).expect("model");
             for dir in [Direction::Right, Direction::Left] {

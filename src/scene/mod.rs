@@ -343,8 +343,10 @@ impl Scene {
     }
 
     /// The largest arch thickness the scene admits (exclusive): the shape's limit with the
-    /// scene's voussoirs, and with a fill the thickness at which the crown's extrados reaches
-    /// the fill's level (a thicker ring would stand above its fill).
+    /// scene's voussoirs, with a fill (or a spandrel wall) the thickness at which the crown's
+    /// extrados reaches its level (a thicker ring would stand above it), and with an arcade's
+    /// columns or a wall on the pier tops the thickness whose springing joints still fit
+    /// there.
     pub fn max_thickness(&self) -> f64 {
         let Some(arch) = &self.arch else {
             return f64::NAN;
@@ -373,7 +375,55 @@ impl Scene {
                 t_max = lo;
             }
         }
+        // An arcade's columns and a spandrel's pier tops must hold the springing joints,
+        // which widen with t: bisect for the thickness at which they just fit.
+        let fits = |t: f64| self.springings_fit(t);
+        if !fits(t_max) {
+            let (mut lo, mut hi) = (0.0, t_max);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if fits(mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            t_max = lo;
+        }
         t_max
+    }
+
+    /// Whether the springing joints of the ring at thickness `t` fit where they rest: side by
+    /// side on an arcade's interior columns (`arcade.column_width`), and beside a spandrel
+    /// wall on the pier tops (the checks of `[arcade]` and `[spandrel]`).
+    fn springings_fit(&self, t: f64) -> bool {
+        let Some(arch) = &self.arch else {
+            return true;
+        };
+        let columns = self.arcade.as_ref().filter(|a| a.bays > 1);
+        let walled = self.spandrel.is_some();
+        if columns.is_none() && !walled {
+            return true;
+        }
+        let Ok(g) = crate::geometry::recut(
+            &arch.shape.geometry(t, arch.voussoirs),
+            arch.joints,
+            arch.voussoir_shape == VoussoirShape::Curved,
+        ) else {
+            return false;
+        };
+        let n = g.voussoirs();
+        let (left, right) = (
+            g.joints[0].0.x - g.joints[0].1.x,
+            g.joints[n].1.x - g.joints[n].0.x,
+        );
+        if columns.is_some_and(|a| left + right > a.column_width) {
+            return false;
+        }
+        match (&self.piers, walled) {
+            (Some(p), true) => p.left.top_width() >= left && p.right.top_width() >= right,
+            _ => true,
+        }
     }
 
     /// The assembly and load case of this scene ([`build`]).

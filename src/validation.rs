@@ -31,7 +31,6 @@
 
 use crate::analysis::{self, DemOptions};
 use crate::error::Error;
-use crate::kinematic::continuous::HingeLocation;
 use crate::scene::Scene;
 use crate::statics::{self, StaticSettings};
 use crate::thickness;
@@ -150,15 +149,9 @@ fn centreline_minimum(n: usize) -> Result<(f64, f64), Error> {
         Ok(crate::model::Model::self_weight(m.assembly))
     };
     let settings = StaticSettings::default();
-    let (mut lo, mut hi) = (0.10, 0.12);
-    while hi - lo > 1e-12 {
-        let mid = 0.5 * (lo + hi);
-        if statics::stands(&model(mid)?, &settings)?.stands {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
+    let hi = least_passing(0.10, 0.12, 1e-12, |t| {
+        Ok(statics::stands(&model(t)?, &settings)?.stands)
+    })?;
     let r = statics::stands(&model(hi)?, &settings)?;
     let needed = r
         .forces
@@ -169,16 +162,34 @@ fn centreline_minimum(n: usize) -> Result<(f64, f64), Error> {
     Ok((hi, needed))
 }
 
+/// The least value in `[lo, hi]` at which `passes` holds, by bisection to `tol` (the upper end
+/// of the final bracket; `passes` is assumed false at `lo` and true at `hi`).
+fn least_passing(
+    mut lo: f64,
+    mut hi: f64,
+    tol: f64,
+    mut passes: impl FnMut(f64) -> Result<bool, Error>,
+) -> Result<f64, Error> {
+    while hi - lo > tol {
+        let mid = 0.5 * (lo + hi);
+        if passes(mid)? {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(hi)
+}
+
 /// The static minimum thickness of `scene` (its ring's thickness varied).
-fn static_min_thickness(scene: &Scene) -> Result<thickness::MinThickness, Error> {
+fn static_min_thickness(scene: &Scene) -> Result<f64, Error> {
     let m = thickness::min_thickness(scene, &StaticSettings::default())?;
-    if m.search.min_thickness.is_none() {
-        return Err(Error::Validation(format!(
+    m.search.min_thickness.ok_or_else(|| {
+        Error::Validation(format!(
             "the minimum-thickness search found no thickness ({:?})",
             m.search.outcome
-        )));
-    }
-    Ok(m)
+        ))
+    })
 }
 
 /// The static collapse multiplier of `scene`.
@@ -215,14 +226,8 @@ pub fn cases() -> Result<Vec<Case>, Error> {
     });
     let haunch = continuous
         .result
-        .hinges
-        .iter()
-        .filter_map(|h| match h.location {
-            HingeLocation::Arch {
-                from_vertical_deg, ..
-            } if h.end == Some(crate::assembly::JointEnd::P1) => Some(from_vertical_deg),
-            _ => None,
-        })
+        .intrados_hinges_deg()
+        .into_iter()
         .fold(f64::NAN, f64::max);
     out.push(Case {
         id: "milankovitch_haunch_hinge",
@@ -235,10 +240,7 @@ pub fn cases() -> Result<Vec<Case>, Error> {
         tolerance: 0.3,
         note: "the continuous model's haunch hinges at its minimum thickness; the published angle is given to 0.1 deg, the model places hinges to about 0.2 deg.".into(),
     });
-    let t_radial = static_min_thickness(&radial)?
-        .search
-        .min_thickness
-        .unwrap_or(f64::NAN);
+    let t_radial = static_min_thickness(&radial)?;
     out.push(Case {
         id: "milankovitch_static",
         structure: format!("semicircular arch, radial joints, self-weight, {VOUSSOIRS} voussoirs"),
@@ -289,15 +291,7 @@ pub fn cases() -> Result<Vec<Case>, Error> {
         )?;
         Ok(m.search.min_thickness.is_some())
     };
-    let (mut lo, mut hi) = (0.25, 0.35);
-    while hi - lo > 1e-6 {
-        let mid = 0.5 * (lo + hi);
-        if some_thickness(mid)? {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
+    let hi = least_passing(0.25, 0.35, 1e-6, some_thickness)?;
     out.push(Case {
         id: "cocchetti_rizzi_mu_ms",
         structure: format!("semicircular arch, radial joints, self-weight, {VOUSSOIRS} voussoirs"),
@@ -348,10 +342,7 @@ pub fn cases() -> Result<Vec<Case>, Error> {
 
     // Makris & Alexakis: vertical joints.
     let vertical = semicircle(0.15, VOUSSOIRS, "vertical", f64::INFINITY)?;
-    let t_vertical = static_min_thickness(&vertical)?
-        .search
-        .min_thickness
-        .unwrap_or(f64::NAN);
+    let t_vertical = static_min_thickness(&vertical)?;
     out.push(Case {
         id: "makris_alexakis_vertical",
         structure: format!("semicircular arch, vertical joints, self-weight, {VOUSSOIRS} voussoirs"),

@@ -159,10 +159,7 @@ impl Tie {
         place: impl Fn(Option<usize>, Vec2) -> Vec2,
         velocity: impl Fn(Option<usize>, Vec2) -> Vec2,
     ) -> f64 {
-        let (from, to) = (
-            place(self.from.block, self.from.point),
-            place(self.to.block, self.to.point),
-        );
+        let (from, to) = self.anchors_moved(place);
         let length = self.length();
         let now = (to - from).norm();
         let stretch = now - length;
@@ -178,11 +175,16 @@ impl Tie {
     /// The stretch (m) in a finite configuration: its anchors where `place` moves them, less
     /// its length at rest.
     pub fn stretch_moved(&self, place: impl Fn(Option<usize>, Vec2) -> Vec2) -> f64 {
-        let (from, to) = (
+        let (from, to) = self.anchors_moved(place);
+        (to - from).norm() - self.length()
+    }
+
+    /// The anchor points where `place` moves them (`from`, `to`).
+    fn anchors_moved(&self, place: impl Fn(Option<usize>, Vec2) -> Vec2) -> (Vec2, Vec2) {
+        (
             place(self.from.block, self.from.point),
             place(self.to.block, self.to.point),
-        );
-        (to - from).norm() - self.length()
+        )
     }
 
     /// Whether a stretch (m) breaks the tie (past `ultimate_strain` times its length).

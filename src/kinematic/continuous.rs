@@ -129,6 +129,22 @@ pub struct ContinuousResult {
     pub wall_time_s: f64,
 }
 
+impl ContinuousResult {
+    /// The angles from the crown (deg) of the hinges on the intrados (end p1) in the arch
+    /// ring: the haunch hinges of a semicircle at its minimum thickness.
+    pub fn intrados_hinges_deg(&self) -> Vec<f64> {
+        self.hinges
+            .iter()
+            .filter_map(|h| match h.location {
+                HingeLocation::Arch {
+                    from_vertical_deg, ..
+                } if h.end == Some(JointEnd::P1) => Some(from_vertical_deg),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 /// The continuous model's minimum thickness: where `lambda_continuous` reaches 0.
 #[derive(Debug, Clone)]
 pub struct MinThickness {

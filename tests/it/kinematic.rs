@@ -3,9 +3,7 @@
 
 use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind};
 use voussoir::geometry::{polygon_area_centroid, Vec2};
-use voussoir::kinematic::{
-    self, HingeLocation, KinematicError, KinematicResult, KinematicSettings,
-};
+use voussoir::kinematic::{self, KinematicError, KinematicResult, KinematicSettings};
 use voussoir::model::Model;
 use voussoir::scene::Scene;
 use voussoir::statics::{self, Direction, StaticSettings, Status};
@@ -197,17 +195,7 @@ fn continuous_minimum_thickness_of_semicircle() {
     let m = voussoir::analysis::continuous_min_thickness(&semicircle(0.2, 16, "curved"))
         .expect("min t");
     assert!((m.thickness - 0.1075).abs() <= 5e-4, "{}", m.thickness);
-    let haunch: Vec<f64> = m
-        .result
-        .hinges
-        .iter()
-        .filter_map(|h| match h.location {
-            HingeLocation::Arch {
-                from_vertical_deg, ..
-            } if h.end == Some(JointEnd::P1) => Some(from_vertical_deg),
-            _ => None,
-        })
-        .collect();
+    let haunch: Vec<f64> = m.result.intrados_hinges_deg();
     assert!(!haunch.is_empty());
     for a in haunch {
         assert!((a - 54.5).abs() <= 0.3, "haunch hinge at {a} deg");

@@ -903,6 +903,9 @@ pub struct AssessOptions {
     pub points: usize,
     /// Control block; default the block whose centroid moves most horizontally.
     pub control_block: Option<usize>,
+    /// Follow a chain's mechanism by the incremental analysis too (`--incremental`); other
+    /// mechanisms always take it ([`crate::assess::incremental`]).
+    pub incremental: bool,
 }
 
 impl Default for AssessOptions {
@@ -910,6 +913,7 @@ impl Default for AssessOptions {
         AssessOptions {
             points: 200,
             control_block: None,
+            incremental: false,
         }
     }
 }
@@ -959,6 +963,7 @@ pub fn assess(
         points: assess.points,
         control_block: assess.control_block,
         fc: site.fc,
+        incremental: assess.incremental,
     };
     let capacity =
         crate::assess::capacity(&analysis.model, &mechanism, options.direction(), &settings)

@@ -633,15 +633,16 @@ fn dem_json(py: Python<'_>, scene: &Scene, tolerance: f64, from_static: bool) ->
 
 /// `assess --json` of a scene at its `[site]`, as JSON text: both directions of the load, the
 /// worse governing, or only `direction` ("right" or "left") when given; `points` of the
-/// capacity curve and its `control_block` as the CLI's flags.
+/// capacity curve, its `control_block` and `incremental` as the CLI's flags.
 #[pyfunction]
-#[pyo3(signature = (scene, direction = None, points = 200, control_block = None))]
+#[pyo3(signature = (scene, direction = None, points = 200, control_block = None, incremental = false))]
 fn assess_json(
     py: Python<'_>,
     scene: &Scene,
     direction: Option<&str>,
     points: usize,
     control_block: Option<usize>,
+    incremental: bool,
 ) -> PyResult<String> {
     let only = direction.map(self::direction).transpose()?;
     let lib_scene = scene.inner.clone();
@@ -652,6 +653,7 @@ fn assess_json(
             &analysis::AssessOptions {
                 points,
                 control_block,
+                incremental,
             },
             only,
         );
@@ -664,7 +666,7 @@ fn assess_json(
 /// The charts of `assess` as SVG text: `which` is "capacity" (the capacity curves of every
 /// direction, `--svg`) or "adrs" (the governing direction's ADRS plot, `--adrs-svg`).
 #[pyfunction]
-#[pyo3(signature = (scene, which = "adrs", direction = None, points = 200, control_block = None))]
+#[pyo3(signature = (scene, which = "adrs", direction = None, points = 200, control_block = None, incremental = false))]
 fn assess_svg(
     py: Python<'_>,
     scene: &Scene,
@@ -672,6 +674,7 @@ fn assess_svg(
     direction: Option<&str>,
     points: usize,
     control_block: Option<usize>,
+    incremental: bool,
 ) -> PyResult<String> {
     if which != "capacity" && which != "adrs" {
         return Err(PyValueError::new_err(format!(
@@ -688,6 +691,7 @@ fn assess_svg(
             &analysis::AssessOptions {
                 points,
                 control_block,
+                incremental,
             },
             only,
         )?;

@@ -365,21 +365,25 @@ def assess(
     *,
     points: int = 200,
     control_block: Optional[int] = None,
+    incremental: bool = False,
 ) -> AssessResult:
     """The seismic assessment of the governing mechanism (NTC 2018 / Circolare 2019 C8.7.1,
     docs/assessment.md), as ``voussoir assess --json``: both directions of the load, the worse
     governing, or only ``direction`` (``"right"`` or ``"left"``, as ``--direction``).
 
     ``site``: keys of the ``[site]`` table to set (``{"ag": 0.25, "soil": "B", "F0": 2.4,
-    "Tc_star": 0.3}``, as ``--site KEY=VALUE``) over the scene's own. ``points`` and
-    ``control_block`` as ``--points`` and ``--control-block``. Raises :class:`AnalysisError`
+    "Tc_star": 0.3}``, as ``--site KEY=VALUE``) over the scene's own. ``points``,
+    ``control_block`` and ``incremental`` as ``--points``, ``--control-block`` and
+    ``--incremental``. Raises :class:`AnalysisError`
     when a direction has no mechanism with a capacity curve (the message says why)."""
     if site:
         scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
-    text = _voussoir.assess_json(scene, direction, points, control_block)
+    text = _voussoir.assess_json(scene, direction, points, control_block, incremental)
     return AssessResult(
         json.loads(text),
-        lambda which: _voussoir.assess_svg(scene, which, direction, points, control_block),
+        lambda which: _voussoir.assess_svg(
+            scene, which, direction, points, control_block, incremental
+        ),
     )
 
 

@@ -45,6 +45,8 @@ use crate::spectrum::{Site, Spectrum, G};
 use std::ops::Range;
 use thiserror::Error;
 
+pub mod incremental;
+
 /// Why a mechanism has no capacity curve.
 #[derive(Debug, Error)]
 pub enum AssessError {
@@ -58,6 +60,10 @@ pub enum AssessError {
     TooFewPoints(usize),
     #[error("the mechanism {0} before its multiplier reaches 0, so it has no d_k0")]
     NoZero(String),
+    #[error("incremental analysis: {0}")]
+    Incremental(String),
+    #[error("the incremental capacity curve does not follow tie rods ({count} in the scene): their moved anchors and breaking are followed for the mechanisms of chains (one hinge or four hinges) only; the static and kinematic multipliers with the ties are given by `voussoir analyze`")]
+    IncrementalTies { count: usize },
     #[error("the seismic load does no work on the mechanism")]
     NoSeismicWork,
     #[error("the capacity curve does not follow bonded strips ({count} joints crossed) through the finite motion of the mechanism: a rigid-plastic strip debonds at the first opening of its joint, and what it carries after needs a bond-slip law this model does not have; so the reinforced structure is not assessed rather than assessed without them; the static and kinematic multipliers with the strips are given by `voussoir analyze`")]
@@ -355,6 +361,10 @@ pub struct CapacitySettings {
     pub control_block: Option<usize>,
     /// Confidence factor `FC` dividing `a*`. Default 1.
     pub fc: f64,
+    /// Follow the mechanism by the incremental analysis ([`incremental`]) even when it is a
+    /// chain's (one or four hinges), whose finite kinematics [`Linkage`] gives in closed
+    /// form. Default false; mechanisms of other families always take the incremental route.
+    pub incremental: bool,
 }
 
 impl Default for CapacitySettings {
@@ -363,14 +373,98 @@ impl Default for CapacitySettings {
             points: 200,
             control_block: None,
             fc: 1.0,
+            incremental: false,
         }
     }
+}
+
+/// How the capacity curve moves the mechanism.
+#[derive(Debug, Clone)]
+pub enum Motion {
+    /// The closed-form finite kinematics of a chain's mechanism (one hinge, or four).
+    Linkage(Linkage),
+    /// The incremental analysis of any assembly's mechanism ([`incremental`]).
+    Incremental(incremental::Path),
+}
+
+impl Motion {
+    /// `"linkage"` or `"incremental"`, as the JSON says.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Motion::Linkage(_) => "linkage",
+            Motion::Incremental(_) => "incremental",
+        }
+    }
+
+    /// The moving blocks: a linkage's bodies, or for the incremental analysis the runs of
+    /// consecutive blocks that move at rest.
+    pub fn bodies(&self) -> Vec<Range<usize>> {
+        match self {
+            Motion::Linkage(l) => l.bodies().to_vec(),
+            Motion::Incremental(p) => {
+                let mut runs: Vec<Range<usize>> = Vec::new();
+                for (b, _) in p.moving.iter().enumerate().filter(|(_, m)| **m) {
+                    match runs.last_mut() {
+                        Some(r) if r.end == b => r.end = b + 1,
+                        _ => runs.push(b..b + 1),
+                    }
+                }
+                runs
+            }
+        }
+    }
+
+    /// The linkage, on the closed-form route.
+    pub fn linkage(&self) -> Option<&Linkage> {
+        match self {
+            Motion::Linkage(l) => Some(l),
+            Motion::Incremental(_) => None,
+        }
+    }
+
+    /// `"alpha_zero"`, or `"cannot_stand"` when the incremental path ended where the displaced
+    /// structure has no equilibrium under any multiplier.
+    pub fn end(&self) -> &'static str {
+        match self {
+            Motion::Incremental(p) if p.falls => "cannot_stand",
+            _ => "alpha_zero",
+        }
+    }
+
+    /// The kinematic programs the incremental path solved (0 for a linkage).
+    pub fn programs(&self) -> usize {
+        match self {
+            Motion::Incremental(p) => p.solves,
+            Motion::Linkage(_) => 0,
+        }
+    }
+
+    fn moves_block(&self, b: usize) -> bool {
+        match self {
+            Motion::Linkage(l) => l.body_of(b).is_some(),
+            Motion::Incremental(p) => p.moving.get(b).copied().unwrap_or(false),
+        }
+    }
+}
+
+/// One configuration along the curve, in the form drawings take.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// Per block: translation of its centroid and rotation about it (rad), from rest.
+    pub moves: Vec<(Vec2, f64)>,
+    /// The control displacement (m).
+    pub d_k: f64,
+    /// The multiplier that holds the configuration.
+    pub alpha: f64,
+    /// The rotation of the linkage's first body, or of the incremental path's control block
+    /// (rad, magnitude).
+    pub rotation: f64,
 }
 
 /// The capacity of a mechanism: participating mass and capacity curve.
 #[derive(Debug, Clone)]
 pub struct Capacity {
-    pub linkage: Linkage,
+    pub motion: Motion,
     pub direction: Direction,
     pub control_block: usize,
     /// Horizontal virtual displacement of the control point, in the scale of the mass sums.
@@ -381,7 +475,8 @@ pub struct Capacity {
     pub alpha0: f64,
     /// `a0* = alpha0 g / (e* FC)` (m/s^2).
     pub a0_star: f64,
-    /// Rotation of the first body at which alpha = 0 (rad).
+    /// Rotation at which alpha = 0 (rad): of the linkage's first body, or of the incremental
+    /// path's control block.
     pub rotation0: f64,
     /// `d_k0`, the control displacement at alpha = 0 (m).
     pub d_k0: f64,
@@ -396,12 +491,12 @@ pub struct Capacity {
 }
 
 /// The seismic masses and permanent loads of the moving blocks, by block.
-fn moving_loads(model: &Model, linkage: &Linkage) -> Vec<(usize, Load)> {
+fn moving_loads(model: &Model, moves: impl Fn(usize) -> bool) -> Vec<(usize, Load)> {
     model
         .loads
         .applied()
         .iter()
-        .filter(|a| linkage.body_of(a.block).is_some())
+        .filter(|a| moves(a.block))
         .map(|a| (a.block, (a.force, a.point, a.seismic_weight)))
         .collect()
 }
@@ -410,22 +505,55 @@ impl Capacity {
     /// `alpha = G / A` in configuration `config`: `A` the power of the seismic forces per
     /// unit multiplier, `G` minus the power of the permanent forces, every load moved with its
     /// block.
-    fn alpha_at(&self, model: &Model, config: &Configuration) -> f64 {
-        alpha_of(&self.linkage, model, &self.loads, config, self.direction)
+    fn alpha_at(&self, linkage: &Linkage, model: &Model, config: &Configuration) -> f64 {
+        alpha_of(linkage, model, &self.loads, config, self.direction)
     }
 
-    /// The configuration and multiplier at rotation `u`.
+    /// The linkage's configuration and multiplier at rotation `u` (None on the incremental
+    /// route, or where the linkage cannot go).
     pub fn at(&self, model: &Model, u: f64) -> Option<(Configuration, f64)> {
-        let c = self.linkage.configure(u)?;
-        let a = self.alpha_at(model, &c);
+        let Motion::Linkage(linkage) = &self.motion else {
+            return None;
+        };
+        let c = linkage.configure(u)?;
+        let a = self.alpha_at(linkage, model, &c);
         Some((c, a))
     }
 
-    /// The control displacement `d_k` in configuration `config`.
+    /// The control displacement `d_k` in the linkage's configuration `config`.
     pub fn d_k(&self, model: &Model, config: &Configuration) -> f64 {
         let c = model.assembly.blocks[self.control_block].centroid;
-        let k = self.linkage.body_of(self.control_block).unwrap_or(0);
+        let k = match &self.motion {
+            Motion::Linkage(l) => l.body_of(self.control_block).unwrap_or(0),
+            Motion::Incremental(_) => 0,
+        };
         self.direction.sign() * (config.motions[k].apply(c).x - c.x)
+    }
+
+    /// The configuration a fraction `fraction` (0 to 1) of the way to `alpha = 0`: of the
+    /// rotation for a linkage, of `d_k0` for the incremental path.
+    pub fn state_at(&self, model: &Model, fraction: f64) -> Option<State> {
+        match &self.motion {
+            Motion::Linkage(l) => {
+                let u = fraction * self.rotation0;
+                let (config, alpha) = self.at(model, u)?;
+                Some(State {
+                    moves: l.placements(&model.assembly, &config),
+                    d_k: self.d_k(model, &config),
+                    alpha,
+                    rotation: u,
+                })
+            }
+            Motion::Incremental(p) => {
+                let s = p.at_d_k(fraction * self.d_k0)?;
+                Some(State {
+                    moves: s.moves,
+                    d_k: s.d_k,
+                    alpha: s.alpha,
+                    rotation: s.rotation,
+                })
+            }
+        }
     }
 
     /// `d* = d_k sum P dx^2 / (dx_k sum P dx)`.
@@ -441,10 +569,18 @@ impl Capacity {
     /// The rotation at which `d*` equals `d` (bisection; `d*` grows along the curve), with
     /// `a*` there.
     pub fn at_d_star(&self, model: &Model, d: f64) -> Option<(f64, f64)> {
+        let linkage = match &self.motion {
+            Motion::Linkage(l) => l,
+            Motion::Incremental(p) => {
+                // d* is proportional to d_k.
+                let s = p.at_d_k(d * self.dx_k * self.mass.sum_p_dx / self.mass.sum_p_dx2)?;
+                return Some((s.rotation, self.a_star(s.alpha)));
+            }
+        };
         let (mut lo, mut hi) = (0.0, self.rotation0);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            let c = self.linkage.configure(mid)?;
+            let c = linkage.configure(mid)?;
             if self.d_star(self.d_k(model, &c)) < d {
                 lo = mid;
             } else {
@@ -519,11 +655,11 @@ pub struct TieOnCurve {
 
 /// The ties along the curve of `cap`: whether each lengthens, and where it breaks (by
 /// bisection between the curve's points, to 1e-12 of the rotation).
-fn ties_on_curve(cap: &Capacity, model: &Model) -> Vec<TieOnCurve> {
+fn ties_on_curve(cap: &Capacity, linkage: &Linkage, model: &Model) -> Vec<TieOnCurve> {
     let stretch = |tie: &crate::model::Tie, u: f64| {
-        cap.linkage
+        linkage
             .configure(u)
-            .map(|c| tie.stretch_moved(placing(&cap.linkage, &c)))
+            .map(|c| tie.stretch_moved(placing(linkage, &c)))
     };
     model
         .ties
@@ -548,7 +684,7 @@ fn ties_on_curve(cap: &Capacity, model: &Model) -> Vec<TieOnCurve> {
                         lo = mid;
                     }
                 }
-                cap.linkage
+                linkage
                     .configure(hi)
                     .map_or(f64::NAN, |c| cap.d_k(model, &c))
             });
@@ -584,6 +720,9 @@ pub fn capacity(
         return Err(AssessError::Strips {
             count: model.strips.len(),
         });
+    }
+    if settings.incremental || mechanism.family == Family::General {
+        return incremental_capacity(model, direction, settings);
     }
     let linkage = Linkage::new(&model.assembly, mechanism)?;
     let rest = linkage
@@ -624,31 +763,11 @@ pub fn capacity(
             block: control_block,
         });
     }
-    // Virtual displacements scaled so that dx_k = 1 (the sums are scale-free in the ratios
-    // that matter, but their values are reported).
-    let loads = moving_loads(model, &linkage);
-    let (mut sp, mut spdx, mut spdx2) = (0.0, 0.0, 0.0);
-    for &(b, (_, point, w)) in &loads {
-        if w > 0.0 {
-            let dx = dx_of(b, point).unwrap_or(0.0) / dx_k0;
-            sp += w;
-            spdx += w * dx;
-            spdx2 += w * dx * dx;
-        }
-    }
-    if spdx2.is_nan() || spdx2 <= 0.0 {
-        return Err(AssessError::NoSeismicWork);
-    }
-    let m_star = spdx * spdx / (G * spdx2);
-    let mass = ParticipatingMass {
-        seismic_weight: sp,
-        sum_p_dx: spdx,
-        sum_p_dx2: spdx2,
-        m_star,
-        e_star: G * m_star / sp,
-    };
+    let motion = Motion::Linkage(linkage.clone());
+    let loads = moving_loads(model, |b| motion.moves_block(b));
+    let mass = participating_mass(&loads, |b, p| dx_of(b, p).unwrap_or(0.0) / dx_k0)?;
     let mut cap = Capacity {
-        linkage,
+        motion,
         direction,
         control_block,
         dx_k: 1.0,
@@ -663,7 +782,7 @@ pub fn capacity(
         loads,
         ties: Vec::new(),
     };
-    cap.alpha0 = cap.alpha_at(model, &rest);
+    cap.alpha0 = cap.alpha_at(&linkage, model, &rest);
     if !(cap.alpha0.is_finite() && cap.alpha0 > 0.0) {
         return Err(AssessError::NoZero(format!(
             "needs alpha = {} at rest, not a positive multiplier,",
@@ -735,7 +854,100 @@ pub fn capacity(
         cap.d0_star = last.d_star;
     }
     cap.curve = curve;
-    cap.ties = ties_on_curve(&cap, model);
+    cap.ties = ties_on_curve(&cap, &linkage, model);
+    Ok(cap)
+}
+
+/// The participating mass of the seismic masses in `loads` (C8.7.1.2.1), `dx(block, point)`
+/// their virtual horizontal displacements toward the load, scaled so that `dx_k = 1` (the
+/// sums are scale-free in the ratios that matter, but their values are reported).
+fn participating_mass(
+    loads: &[(usize, Load)],
+    dx: impl Fn(usize, Vec2) -> f64,
+) -> Result<ParticipatingMass, AssessError> {
+    let (mut sp, mut spdx, mut spdx2) = (0.0, 0.0, 0.0);
+    for &(b, (_, point, w)) in loads {
+        if w > 0.0 {
+            let dx = dx(b, point);
+            sp += w;
+            spdx += w * dx;
+            spdx2 += w * dx * dx;
+        }
+    }
+    if spdx2.is_nan() || spdx2 <= 0.0 {
+        return Err(AssessError::NoSeismicWork);
+    }
+    let m_star = spdx * spdx / (G * spdx2);
+    Ok(ParticipatingMass {
+        seismic_weight: sp,
+        sum_p_dx: spdx,
+        sum_p_dx2: spdx2,
+        m_star,
+        e_star: G * m_star / sp,
+    })
+}
+
+/// The capacity of the least mechanism of any assembly by the incremental analysis
+/// ([`incremental`]): the participating mass from its block velocities at rest, `alpha0` its
+/// multiplier (the general kinematic program's, equal to the static one with associative
+/// friction), the curve re-solved along the path.
+fn incremental_capacity(
+    model: &Model,
+    direction: Direction,
+    settings: &CapacitySettings,
+) -> Result<Capacity, AssessError> {
+    let path = incremental::follow(model, direction, settings.control_block)?;
+    let sign = direction.sign();
+    let control_block = path.control_block;
+    let blocks = &model.assembly.blocks;
+    let dx_k0 = sign * velocity(path.rest[control_block], blocks[control_block].centroid).x;
+    let loads = moving_loads(model, |b| path.moving.get(b).copied().unwrap_or(false));
+    let mass = participating_mass(&loads, |b, p| sign * velocity(path.rest[b], p).x / dx_k0)?;
+    let (alpha0, d_k0, rotation0) = match (path.steps.first(), path.steps.last()) {
+        (Some(a), Some(z)) => (a.alpha, z.d_k, z.rotation),
+        _ => {
+            return Err(AssessError::Incremental(
+                "the path has no configuration".into(),
+            ))
+        }
+    };
+    if !(alpha0.is_finite() && alpha0 > 0.0) {
+        return Err(AssessError::NoZero(format!(
+            "needs alpha = {alpha0} at rest, not a positive multiplier,"
+        )));
+    }
+    let curve_of = |cap: &Capacity| {
+        let n = settings.points;
+        (0..n)
+            .filter_map(|i| path.at_d_k(d_k0 * i as f64 / (n - 1) as f64))
+            .map(|s| CapacityPoint {
+                rotation: s.rotation,
+                d_k: s.d_k,
+                alpha: s.alpha,
+                d_star: cap.d_star(s.d_k),
+                a_star: cap.a_star(s.alpha),
+            })
+            .collect()
+    };
+    let mut cap = Capacity {
+        motion: Motion::Incremental(path.clone()),
+        direction,
+        control_block,
+        dx_k: 1.0,
+        mass,
+        fc: settings.fc,
+        alpha0,
+        a0_star: 0.0,
+        rotation0,
+        d_k0,
+        d0_star: 0.0,
+        curve: Vec::new(),
+        loads,
+        ties: Vec::new(),
+    };
+    cap.a0_star = cap.a_star(alpha0);
+    cap.d0_star = cap.d_star(d_k0);
+    cap.curve = curve_of(&cap);
     Ok(cap)
 }
 

@@ -34,6 +34,11 @@ pub struct Args {
     /// Control block (its centroid is the control point); default the block that moves most
     #[arg(long)]
     control_block: Option<usize>,
+    /// Follow the mechanism by the incremental analysis (re-solved in each displaced
+    /// configuration) even when it is a chain's, whose finite kinematics are known in closed
+    /// form; mechanisms of walls, lintels and arcades always take it
+    #[arg(long)]
+    incremental: bool,
     /// Assess one direction of the horizontal acceleration only (default: both, the worse
     /// governs; with this flag the verdict covers the given direction only)
     #[arg(long, value_enum)]
@@ -74,6 +79,7 @@ pub fn run(args: Args) -> Result<String, Error> {
     let assess = analysis::AssessOptions {
         points: args.points,
         control_block: args.control_block,
+        incremental: args.incremental,
     };
     let all = voussoir::analysis::assess_directions(
         &scene,

@@ -182,6 +182,15 @@ impl Program {
     /// The program of `model` with the action toward `sign` and its power normalised to
     /// `norm`.
     fn new(model: &Model, sign: f64, norm: f64) -> Program {
+        Program::sparse(model, sign, norm, 0.0)
+    }
+
+    /// The program with `sparsity` times a generic positive weighting of the opening rates
+    /// `dn` of every joint end added to the objective: among mechanisms of equal `G + D` (a
+    /// degenerate optimum, where an interior point returns the centre of the optimal face, a
+    /// blend of mechanisms) it picks one vertex, the mechanism that opens least; 0 is the
+    /// program itself.
+    fn sparse(model: &Model, sign: f64, norm: f64, sparsity: f64) -> Program {
         let assembly = &model.assembly;
         let loads = &model.loads;
         let nb = assembly.blocks.len();
@@ -223,9 +232,17 @@ impl Program {
             let (n, u) = (jt.normal(), jt.tangent());
             let mut dt = Vec::new();
             rel(&mut dt, j, u, jt.midpoint(), 1.0);
-            for end in [jt.p1, jt.p2] {
+            for (e, end) in [jt.p1, jt.p2].into_iter().enumerate() {
                 let mut dn = Vec::new();
                 rel(&mut dn, j, n, end, 1.0);
+                if sparsity > 0.0 {
+                    // A generic weight in [1, 2) per joint end (a fixed hash, so runs repeat).
+                    let h = ((2 * j + e) as f64 * 12.9898 + 78.233).sin() * 43758.5453;
+                    let w = sparsity * (1.0 + h - h.floor());
+                    for &(c, v) in &dn {
+                        q[c] += w * v;
+                    }
+                }
                 if jt.friction.is_finite() && jt.friction > 0.0 {
                     for s in [1.0, -1.0] {
                         let mut row = dn.clone();
@@ -510,6 +527,65 @@ impl Checked {
             velocities,
             lambda,
         }
+    }
+}
+
+/// The least `(G + D)/A` over the admissible mechanisms of `model` with `A = 1` (the action
+/// toward `sign`), certified by virtual work as in [`analyse_general`], without the other end
+/// of the interval: what an incremental analysis needs at each configuration
+/// (`crate::assess::incremental`), where the displaced structure's multiplier may be of any
+/// sign.
+pub(crate) enum Least {
+    /// The certified mechanism (block twists about the origin) and its multiplier.
+    Mechanism(Vec<Twist>, f64),
+    /// No admissible mechanism is driven by the action.
+    Nothing,
+    /// An admissible mechanism with `A = 0` is driven by the permanent loads alone.
+    Falls,
+}
+
+/// Weight of the opening rates in the objective of the program that picks one mechanism of a
+/// degenerate optimum ([`Program::sparse`]): small beside the work balance (about 1 with the
+/// action's power normalised), large beside the solver's tolerance.
+const SPARSITY: f64 = 1e-5;
+
+/// See [`Least`]. With `one`, the mechanism is one vertex of the optimal face (the one that
+/// opens least, [`Program::sparse`]) rather than the interior point's blend of every optimal
+/// mechanism; the multiplier is the program's least either way.
+pub(crate) fn least_mechanism(
+    model: &Model,
+    sign: f64,
+    one: bool,
+) -> Result<Least, KinematicError> {
+    model.validate()?;
+    let certified = |twists: Vec<Twist>| -> Result<(Vec<Twist>, f64), KinematicError> {
+        let c = check(model, twists, sign).map_err(KinematicError::NotCertified)?;
+        let (a, g, d) = c.work;
+        if a <= 0.0 {
+            return Err(KinematicError::NotCertified(format!(
+                "the optimal mechanism's action power is {a:.3e}, not positive"
+            )));
+        }
+        Ok((c.twists, (g + d) / a))
+    };
+    match Program::new(model, sign, 1.0).solve(model)? {
+        Solved::Optimal { twists, .. } => {
+            let (twists, lambda) = certified(twists)?;
+            if !one {
+                return Ok(Least::Mechanism(twists, lambda));
+            }
+            // Best effort: a vertex that fails its certificate (the perturbed program is
+            // solved less accurately on a badly scaled assembly) leaves the blend.
+            match Program::sparse(model, sign, 1.0, SPARSITY).solve(model) {
+                Ok(Solved::Optimal { twists: t, .. }) => match certified(t) {
+                    Ok((t, _)) => Ok(Least::Mechanism(t, lambda)),
+                    Err(_) => Ok(Least::Mechanism(twists, lambda)),
+                },
+                _ => Ok(Least::Mechanism(twists, lambda)),
+            }
+        }
+        Solved::Infeasible => Ok(Least::Nothing),
+        Solved::Unbounded => Ok(Least::Falls),
     }
 }
 

@@ -132,6 +132,14 @@ pub struct DirectionReport {
     /// Added: the tie rods along the curve (`[{index, lengthens, force, breaks_at_d_k}]`,
     /// empty without `[[ties]]`).
     pub ties: Vec<TieOnCurve>,
+    /// Added (issue 23): how the curve follows the mechanism: `linkage` (a chain's closed-form
+    /// finite kinematics) or `incremental` (re-solved in each displaced configuration).
+    pub capacity_curve_method: &'static str,
+    /// Added: where the curve ends: `alpha_zero`, or `cannot_stand` (the displaced structure
+    /// has no equilibrium under any multiplier beyond `d_k0`: the incremental route only).
+    pub capacity_curve_end: &'static str,
+    /// Added: kinematic programs the incremental route solved (0 for a linkage).
+    pub incremental_programs: usize,
 }
 
 impl DirectionReport {
@@ -146,7 +154,7 @@ impl DirectionReport {
             mechanism: MechanismReport {
                 hinges: mech.map(|m| m.hinges.clone()).unwrap_or_default(),
                 bodies: c
-                    .linkage
+                    .motion
                     .bodies()
                     .iter()
                     .map(|r| [r.start, r.end.saturating_sub(1)])
@@ -172,6 +180,9 @@ impl DirectionReport {
             ag_max: v.ag_max(),
             capacity_curve: c.curve.clone(),
             ties: c.ties.clone(),
+            capacity_curve_method: c.motion.name(),
+            capacity_curve_end: c.motion.end(),
+            incremental_programs: c.motion.programs(),
         }
     }
 }

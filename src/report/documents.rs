@@ -848,7 +848,7 @@ fn direction_section(doc: &mut Document, a: &SiteAssessment) {
             .lower
             .lambda
             .map_or("none".to_string(), |l| format!("{l:.6}")),
-        c.linkage
+        c.motion
             .bodies()
             .iter()
             .map(|r| format!("blocks {}-{}", r.start, r.end.saturating_sub(1)))
@@ -904,6 +904,23 @@ fn direction_section(doc: &mut Document, a: &SiteAssessment) {
     ));
 }
 
+/// How the capacity curve was obtained, in words.
+fn curve_words(c: &crate::assess::Capacity) -> String {
+    use crate::assess::Motion;
+    match &c.motion {
+        Motion::Linkage(_) => "(The capacity curve keeps the hinges at their joints, as the code method does; past about a third of d_k0 a real arch may move a hinge: docs/assessment.md)".to_string(),
+        Motion::Incremental(p) => format!(
+            "(The capacity curve is incremental: the structure is moved along its mechanism and the multiplier re-solved in each displaced configuration, {} kinematic programs, so hinges may move and contacts open; {}: docs/assessment.md)",
+            p.solves,
+            if p.falls {
+                "it ends where the displaced structure can no longer stand under any multiplier, before alpha reaches 0 (d_k0 is taken there)"
+            } else {
+                "it ends where alpha reaches 0"
+            }
+        ),
+    }
+}
+
 /// The document of `assess`: the site, each direction assessed, the rule and the verdict
 /// of the governing direction.
 pub fn assessment(scene: &Scene, all: &Assessment) -> Document {
@@ -938,7 +955,7 @@ pub fn assessment(scene: &Scene, all: &Assessment) -> Document {
         direction_section(&mut doc, a);
     }
     let t = doc.untitled();
-    t.statement("(The capacity curve keeps the hinges at their joints, as the code method does; past about a third of d_k0 a real arch may move a hinge: docs/assessment.md)");
+    t.statement(curve_words(&g.capacity));
     t.statement(format!("Rule: {RULE}."));
     let words = direction_words(g.capacity.direction);
     if all.restricted {

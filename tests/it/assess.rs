@@ -27,6 +27,7 @@ fn capacity_of(model: &Model, fc: f64) -> Capacity {
         points: 200,
         control_block: None,
         fc,
+        incremental: false,
     };
     assess::capacity(model, &governing(model), Direction::Right, &settings).expect("capacity")
 }
@@ -210,7 +211,11 @@ fn arch_curve_starts_at_the_static_multiplier_and_falls_to_zero() {
     // d(sum W y) / d(sum W x), here by central differences of the moved blocks' positions.
     let moments = |u: f64| {
         let (c, _) = cap.at(&a.model, u).expect("configuration");
-        let moved = cap.linkage.moved_model(&a.model, &c);
+        let moved = cap
+            .motion
+            .linkage()
+            .expect("a chain's linkage")
+            .moved_model(&a.model, &c);
         moved.assembly.blocks.iter().fold((0.0, 0.0), |(x, y), b| {
             (x + b.weight * b.centroid.x, y + b.weight * b.centroid.y)
         })
@@ -275,7 +280,11 @@ fn loads_move_with_their_blocks_along_the_curve() {
     );
     let works = |u: f64| {
         let (c, _) = cap.at(&a.model, u).expect("configuration");
-        let moved = cap.linkage.moved_model(&a.model, &c);
+        let moved = cap
+            .motion
+            .linkage()
+            .expect("a chain's linkage")
+            .moved_model(&a.model, &c);
         moved.loads.applied().iter().fold((0.0, 0.0), |(g, s), l| {
             (g - l.force.dot(&l.point), s + l.seismic_weight * l.point.x)
         })
@@ -298,7 +307,11 @@ fn loads_move_with_their_blocks_along_the_curve() {
 /// configuration of the capacity curve at rotation `u`, minus the one it started from.
 fn dem_drift(model: &Model, cap: &Capacity, u: f64, lambda: f64) -> (f64, f64) {
     let (config, _) = cap.at(model, u).expect("configuration");
-    let moved = cap.linkage.moved_model(model, &config);
+    let moved = cap
+        .motion
+        .linkage()
+        .expect("a chain's linkage")
+        .moved_model(model, &config);
     let params = IntegrationParameters::for_model(&moved);
     let mut sim = Simulation::new(&moved, &params).expect("simulation");
     // Gravity and the seismic load ramped in together (their ratio, the multiplier, fixed

@@ -19,6 +19,9 @@ use voussoir::statics::{Direction, StaticSettings};
 /// Fields added to the JSON contract since the baseline, ignored in the comparison, and
 /// `file` (a block file's path, which depends on where the checkout is).
 const ADDED: &[&str] = &[
+    "capacity_curve_method",
+    "capacity_curve_end",
+    "incremental_programs",
     "action",
     "live_weight",
     "tilt_deg",

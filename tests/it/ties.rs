@@ -440,6 +440,7 @@ fn tied_block_capacity_curve_follows_virtual_work() {
             points: 60,
             control_block: None,
             fc: 1.0,
+            incremental: false,
         };
         let cap = assess::capacity(&m, &mech, Direction::Right, &settings).expect("capacity");
         let closed0 = (w * b / 2.0 + s * ht) / (w * h / 2.0);

@@ -194,12 +194,10 @@ pub fn assessment_adrs(all: &Assessment, title: &str) -> Result<Figure, SvgError
 pub fn assessment_mechanism(all: &Assessment, title: &str, at: f64) -> Result<Figure, FigureError> {
     let a = all.governing();
     let model = &a.analysis.model;
-    let u = at * a.capacity.rotation0;
-    let Some((config, alpha)) = a.capacity.at(model, u) else {
-        return Err(FigureError::Unreachable(u));
+    let Some(state) = a.capacity.state_at(model, at) else {
+        return Err(FigureError::Unreachable(at * a.capacity.rotation0));
     };
-    let moves = a.capacity.linkage.placements(&model.assembly, &config);
-    let d_k = a.capacity.d_k(model, &config);
+    let (moves, d_k, alpha, u) = (state.moves, state.d_k, state.alpha, state.rotation);
     let hinges = a
         .analysis
         .upper

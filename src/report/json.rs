@@ -1066,6 +1066,18 @@ pub struct DynamicReport {
     pub planned_steps: u64,
     /// What looked implausible, one sentence each; empty when nothing did.
     pub warnings: Vec<String>,
+    /// The rest test (`--rest-test`, docs/dem.md): `applied`, `not_applicable` (why in
+    /// `rest_test_note`) or `off`; the static multipliers toward +x and -x it compares the
+    /// ground with (null unless applied).
+    pub rest_test: &'static str,
+    pub rest_lambda_right: Option<f64>,
+    pub rest_lambda_left: Option<f64>,
+    pub rest_test_note: Option<String>,
+    /// When the ground first reaches the threshold (s; null: never, or the test not applied),
+    /// and when the time integration started (s since the ground started moving: 0 without
+    /// the test; null when the ground never reached the threshold and nothing was integrated).
+    pub first_exceedance_s: Option<f64>,
+    pub integration_start_s: Option<f64>,
 }
 
 impl DynamicReport {
@@ -1095,6 +1107,12 @@ impl DynamicReport {
             collapse_displacement: r.collapse_displacement,
             planned_steps: r.planned_steps,
             warnings: r.warnings.clone(),
+            rest_test: r.rest_test.name(),
+            rest_lambda_right: r.rest_test.threshold().map(|t| t.lambda_right),
+            rest_lambda_left: r.rest_test.threshold().map(|t| t.lambda_left),
+            rest_test_note: r.rest_test.note().map(str::to_string),
+            first_exceedance_s: r.first_exceedance,
+            integration_start_s: r.integration_start,
         }
     }
 }
@@ -1128,6 +1146,14 @@ pub struct IdaReport {
     /// The collapse criterion of the runs (`displacement` or `overturning`); a run still
     /// moving when it gave up counts as collapsed.
     pub criterion: crate::dem::dynamic::Criterion,
+    /// The rest test of the runs, as in the dynamic run's report, and when each run's time
+    /// integration started (s, in the order of `runs`; null: that scale never reached the
+    /// threshold and cost no integration).
+    pub rest_test: &'static str,
+    pub rest_lambda_right: Option<f64>,
+    pub rest_lambda_left: Option<f64>,
+    pub rest_test_note: Option<String>,
+    pub runs_integration_start_s: Vec<Option<f64>>,
 }
 
 impl IdaReport {
@@ -1154,6 +1180,11 @@ impl IdaReport {
             pga_vertical,
             collapse_pga_vertical: r.scale_collapses.zip(pga_vertical).map(|(s, p)| s * p),
             criterion: r.criterion,
+            rest_test: r.rest_test.name(),
+            rest_lambda_right: r.rest_test.threshold().map(|t| t.lambda_right),
+            rest_lambda_left: r.rest_test.threshold().map(|t| t.lambda_left),
+            rest_test_note: r.rest_test.note().map(str::to_string),
+            runs_integration_start_s: r.integration_starts.clone(),
         }
     }
 }

@@ -15,6 +15,12 @@
 //! dashpots at impacts (`contact_damping`, 0.3 of critical by default) and by Coulomb sliding.
 //! For a rocking block this gives a coefficient of restitution of its own, measured against
 //! Housner's (1963) `1 - 1.5 sin^2(alpha)` in `tests/it/dem_dynamic.rs` and docs/dem.md.
+//!
+//! A motion given as a record or a pulse ([`respond_input`], [`ida_input`]) is first read
+//! against the static threshold of the rest test ([`super::rest`]): rigid blocks stay at rest
+//! while `-lambda_right (g + a_v) < a_h < lambda_left (g + a_v)`, so the settled state is held
+//! until the half-cycle in which the ground first reaches it, and nothing is integrated when it
+//! never does.
 
 use super::record::{Component, GroundInput};
 use super::rest::{self, RestPlan, RestTest};

@@ -112,15 +112,15 @@ fn main() {
     );
     println!("| run | rest test | collapsed | integration from (s) | steps | steps/s | wall s |");
     println!("|---|---|---|---:|---:|---:|---:|");
+    // With the rest test, then (unless quick) without it.
+    let modes: &[bool] = if quick { &[true] } else { &[true, false] };
+    let with_rest = |rest: bool| DynamicSettings {
+        rest_test: rest,
+        ..settings.clone()
+    };
     for scale in [1.0, 1.6] {
-        for rest in [true, false] {
-            if quick && !rest {
-                continue;
-            }
-            let settings = DynamicSettings {
-                rest_test: rest,
-                ..settings.clone()
-            };
+        for &rest in modes {
+            let settings = with_rest(rest);
             let m = motion.scaled(scale);
             let r = pool
                 .install(|| analysis::dem_dynamic(&scene, &m, &settings))
@@ -139,14 +139,8 @@ fn main() {
             );
         }
     }
-    for rest in [true, false] {
-        if quick && !rest {
-            continue;
-        }
-        let settings = DynamicSettings {
-            rest_test: rest,
-            ..settings.clone()
-        };
+    for &rest in modes {
+        let settings = with_rest(rest);
         let (_, ida) = pool
             .install(|| analysis::dem_ida(&scene, &motion, &settings, 0.05))
             .expect("IDA");

@@ -263,15 +263,15 @@ pub fn respond_xy(
     duration: f64,
     settings: &DynamicSettings,
 ) -> Result<DynamicResult, DemError> {
-    let rest = if settings.rest_test {
-        RestTest::NotApplicable(
-            "the motion is given as a function of time (the rest test reads records and pulses)"
-                .into(),
-        )
-    } else {
-        RestTest::Off
-    };
-    run_motion(model, params, ground, duration, settings, rest, None)
+    run_motion(
+        model,
+        params,
+        ground,
+        duration,
+        settings,
+        function_rest(settings),
+        None,
+    )
 }
 
 /// Run `model` under the ground motion `ground` (a record or a pulse, with an optional
@@ -777,33 +777,14 @@ pub fn ida_xy(
     max_scale: f64,
 ) -> Result<IdaResult, DemError> {
     let clock = Instant::now();
-    check_tolerance(tolerance, "IDA")?;
-    let quiet = DynamicSettings {
-        history_every: None,
-        frames_every: None,
-        ..settings.clone()
-    };
-    let found = first_collapse_bracket(1.0, tolerance, max_scale, 2.0, |scale| {
-        respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)
-    })?;
-    let starts = vec![Some(0.0); found.runs.len()];
-    Ok(IdaResult {
-        scale_survives: found.survives,
-        scale_collapses: found.collapses,
-        runs: found.runs,
-        steps: found.steps,
-        wall_time_s: clock.elapsed().as_secs_f64(),
-        criterion: settings.criterion,
-        rest_test: if settings.rest_test {
-            RestTest::NotApplicable(
-                "the motion is given as a function of time (the rest test reads records and pulses)"
-                    .into(),
-            )
-        } else {
-            RestTest::Off
-        },
-        integration_starts: starts,
-    })
+    ida_runs(
+        clock,
+        settings,
+        tolerance,
+        max_scale,
+        function_rest(settings),
+        |scale, quiet| respond_xy(model, params, &|t| scale * ground(t), duration, quiet),
+    )
 }
 
 /// [`ida_xy`] of a ground motion given as a record or a pulse (with an optional vertical
@@ -820,21 +801,54 @@ pub fn ida_input(
 ) -> Result<IdaResult, DemError> {
     let clock = Instant::now();
     check_tolerance(tolerance, "IDA")?;
-    let quiet = DynamicSettings {
-        history_every: None,
-        frames_every: None,
-        ..settings.clone()
-    };
     let rest = if settings.rest_test {
         check_model(model)?;
         rest::rest_test(model, params)
     } else {
         RestTest::Off
     };
+    ida_runs(
+        clock,
+        settings,
+        tolerance,
+        max_scale,
+        rest.clone(),
+        |scale, quiet| respond_with(model, params, &ground.scaled(scale), quiet, &rest),
+    )
+}
+
+/// The rest test of a motion given as a function of time: not applicable when asked for.
+fn function_rest(settings: &DynamicSettings) -> RestTest {
+    if settings.rest_test {
+        RestTest::NotApplicable(
+            "the motion is given as a function of time (the rest test reads records and pulses)"
+                .into(),
+        )
+    } else {
+        RestTest::Off
+    }
+}
+
+/// The IDA's search over the scales, `run(scale, settings)` running one scale (without
+/// history or frames); `rest` is the test asked for, reported as the runs applied it.
+fn ida_runs(
+    clock: Instant,
+    settings: &DynamicSettings,
+    tolerance: f64,
+    max_scale: f64,
+    rest: RestTest,
+    mut run: impl FnMut(f64, &DynamicSettings) -> Result<DynamicResult, DemError>,
+) -> Result<IdaResult, DemError> {
+    check_tolerance(tolerance, "IDA")?;
+    let quiet = DynamicSettings {
+        history_every: None,
+        frames_every: None,
+        ..settings.clone()
+    };
     let mut starts = Vec::new();
     let mut used = None;
     let found = first_collapse_bracket(1.0, tolerance, max_scale, 2.0, |scale| {
-        let r = respond_with(model, params, &ground.scaled(scale), &quiet, &rest)?;
+        let r = run(scale, &quiet)?;
         starts.push(r.integration_start);
         used.get_or_insert_with(|| r.rest_test.clone());
         Ok(r)

@@ -700,9 +700,7 @@ pub fn dynamic(scene: &Scene, model: &Model, rep: DynamicReport) -> Document {
         rep.residual_displacement,
         rep.residual_rotation));
     sec.line(rest_test_words(
-        rep.rest_test,
-        rep.rest_lambda_right.zip(rep.rest_lambda_left),
-        rep.rest_test_note.as_deref(),
+        &rep.rest,
         Some((rep.first_exceedance_s, rep.integration_start_s)),
     ));
     sec.line(format!("no local damping: energy is lost only at the contacts (docs/dem.md)\n{} (at most {}), time step {:.3e} s, {:.2} s wall time",
@@ -843,13 +841,8 @@ pub fn ida(scene: &Scene, model: &Model, rep: IdaReport) -> Document {
         .iter()
         .filter(|s| s.is_none())
         .count();
-    let mut words = rest_test_words(
-        rep.rest_test,
-        rep.rest_lambda_right.zip(rep.rest_lambda_left),
-        rep.rest_test_note.as_deref(),
-        None,
-    );
-    if rep.rest_test == "applied" {
+    let mut words = rest_test_words(&rep.rest, None);
+    if rep.rest.rest_test == "applied" {
         words.push_str(&format!(
             "; {} stayed below it and cost no integration",
             count(skipped as u64, "run", "runs")
@@ -862,12 +855,14 @@ pub fn ida(scene: &Scene, model: &Model, rep: IdaReport) -> Document {
 /// The summary's line on a dynamic run's rest test (docs/dem.md): the thresholds, and, for
 /// one run (`times`: first exceedance and integration start), when the integration started.
 fn rest_test_words(
-    name: &str,
-    lambdas: Option<(f64, f64)>,
-    note: Option<&str>,
+    rest: &super::RestTestReport,
     times: Option<(Option<f64>, Option<f64>)>,
 ) -> String {
-    match (name, lambdas) {
+    let note = rest.rest_test_note.as_deref();
+    match (
+        rest.rest_test,
+        rest.rest_lambda_right.zip(rest.rest_lambda_left),
+    ) {
         ("applied", Some((right, left))) => {
             let head = format!("rest test: rigid blocks stay at rest while -{right:.6} (g + a_v) < a_h < {left:.6} (g + a_v) (the static multipliers toward +x and -x)");
             match times {

@@ -11,12 +11,10 @@
 //! the static multiplier `lambda = b / h` in either direction, times the effective gravity.
 
 use voussoir::analysis;
-use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::dem::dynamic::{self, DynamicResult, DynamicSettings, EndState};
 use voussoir::dem::record::{Component, Excitation, GroundInput, GroundMotion, Pulse, PulseShape};
 use voussoir::dem::rest::{self, RestTest, RestThreshold};
 use voussoir::dem::IntegrationParameters;
-use voussoir::geometry::Vec2;
 use voussoir::model::Model;
 use voussoir::scene::Scene;
 
@@ -24,29 +22,7 @@ use crate::common;
 
 /// A rectangular block b x h standing on the ground, with friction `mu`.
 fn block(b: f64, h: f64, mu: f64) -> Model {
-    let polygon = vec![
-        Vec2::new(-0.5 * b, 0.0),
-        Vec2::new(0.5 * b, 0.0),
-        Vec2::new(0.5 * b, h),
-        Vec2::new(-0.5 * b, h),
-    ];
-    Model::self_weight(Assembly {
-        blocks: vec![Block {
-            polygon,
-            area: b * h,
-            centroid: Vec2::new(0.0, 0.5 * h),
-            weight: 20000.0 * b * h,
-            kind: BlockKind::Other,
-        }],
-        joints: vec![Joint {
-            p1: Vec2::new(-0.5 * b, 0.0),
-            p2: Vec2::new(0.5 * b, 0.0),
-            from: Some(0),
-            to: None,
-            friction: mu,
-            kind: JointKind::Other,
-        }],
-    })
+    Model::self_weight(common::rect_block(b, h, mu))
 }
 
 /// A synthetic record sampled every 0.01 s for `duration` s: a sum of sines of

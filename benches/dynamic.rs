@@ -3,6 +3,13 @@
 //! the same record. Prints steps/s and wall times; run with `cargo bench --bench dynamic`.
 //! Targets: the 30 s record in under 10 s, the IDA within a minute.
 //!
+//! Issue 28's rest test (`dem::rest`): the record (peak 0.1 g) stays below the arch's static
+//! threshold (0.149 g), so with the test nothing is integrated; the bench times the static
+//! solves of the threshold and the rest of the run apart (the target: under 1 ms beyond the
+//! static solve), the median of 200 repetitions, with and without the time history; then the
+//! record scaled to 1.6 (above the threshold from 7.3 s) and the IDA, with and without the
+//! test. `--quick` (or `VOUSSOIR_BENCH_QUICK=1`) leaves out the runs without the test.
+//!
 //! The record is synthetic (no network, no bundled data): a sum of sines of 1-8 Hz under a
 //! trapezoidal envelope (2 s rise, 20 s strong motion, 8 s decay), sampled every 0.01 s as a
 //! PEER record is, and scaled to a peak of 0.1 g.
@@ -52,6 +59,8 @@ fn main() {
         history_every: None,
         ..DynamicSettings::default()
     };
+    let quick = std::env::args().any(|a| a == "--quick")
+        || std::env::var("VOUSSOIR_BENCH_QUICK").is_ok_and(|v| v == "1");
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -60,32 +69,92 @@ fn main() {
         "DEM under ground motion: semicircle R = 1 m, t/R = 0.15, n = 20, mu = 0.8; {}\n",
         motion.main.describe()
     );
-    println!("| run | collapsed | steps | time step (s) | steps/s | wall s |");
-    println!("|---|---|---:|---:|---:|---:|");
-    let r = pool
-        .install(|| analysis::dem_dynamic(&scene, &motion, &settings))
-        .expect("dynamic run");
-    let res = &r.result;
+    // The rest test alone: its static solves, then the run beyond them.
+    let model = voussoir::scene::build(&scene).expect("model");
+    let params = analysis::dem_parameters(&scene, &model).expect("parameters");
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let reps = 200;
+    let mut solve = Vec::new();
+    let mut beyond = Vec::new();
+    let mut beyond_history = Vec::new();
+    for _ in 0..reps {
+        let t = std::time::Instant::now();
+        let r = voussoir::dem::rest::rest_test(&model, &params);
+        solve.push(t.elapsed().as_secs_f64());
+        assert_eq!(r.name(), "applied");
+        for (history, out) in [(None, &mut beyond), (Some(0.01), &mut beyond_history)] {
+            let s = DynamicSettings {
+                history_every: history,
+                ..DynamicSettings::default()
+            };
+            let r = voussoir::dem::dynamic::respond_input(&model, &params, &motion, &s)
+                .expect("dynamic run");
+            assert_eq!(
+                r.integration_start, None,
+                "the record stays below the threshold"
+            );
+            // respond_input's own clock: the run beyond the static solves.
+            out.push(r.wall_time_s);
+        }
+    }
+    let th = voussoir::dem::rest::rest_test(&model, &params);
+    let th = th.threshold().expect("applied");
     println!(
-        "| 30 s record (+{} s tail), scale 1 | {} | {} | {:.2e} | {:.0} | {:.2} |",
-        settings.tail,
-        res.collapsed,
-        res.steps,
-        res.time_step,
-        res.steps as f64 / res.wall_time_s,
-        res.wall_time_s
+        "rest test: thresholds lambda = {:.6} (+x), {:.6} (-x); median of {reps}: static solves {:.3} ms, the 30 s run beyond them {:.4} ms without the history, {:.4} ms with it (0.01 s)\n",
+        th.lambda_right,
+        th.lambda_left,
+        1e3 * median(solve),
+        1e3 * median(beyond),
+        1e3 * median(beyond_history)
     );
-    let (_, ida) = pool
-        .install(|| analysis::dem_ida(&scene, &motion, &settings, 0.05))
-        .expect("IDA");
-    println!(
-        "| IDA to 5 % ({} runs): collapse scale in [{:.3}, {}] | - | {} | - | {:.0} | {:.2} |",
-        ida.runs.len(),
-        ida.scale_survives,
-        ida.scale_collapses
-            .map_or("none".to_string(), |s| format!("{s:.3}")),
-        ida.steps,
-        ida.steps as f64 / ida.wall_time_s,
-        ida.wall_time_s
-    );
+    println!("| run | rest test | collapsed | integration from (s) | steps | steps/s | wall s |");
+    println!("|---|---|---|---:|---:|---:|---:|");
+    // With the rest test, then (unless quick) without it.
+    let modes: &[bool] = if quick { &[true] } else { &[true, false] };
+    let with_rest = |rest: bool| DynamicSettings {
+        rest_test: rest,
+        ..settings.clone()
+    };
+    for scale in [1.0, 1.6] {
+        for &rest in modes {
+            let settings = with_rest(rest);
+            let m = motion.scaled(scale);
+            let r = pool
+                .install(|| analysis::dem_dynamic(&scene, &m, &settings))
+                .expect("dynamic run");
+            let res = &r.result;
+            println!(
+                "| 30 s record (+{} s tail), scale {scale} | {} | {} | {} | {} | {:.0} | {:.4} |",
+                settings.tail,
+                res.rest_test.name(),
+                res.collapsed,
+                res.integration_start
+                    .map_or("never".to_string(), |t| format!("{t:.3}")),
+                res.steps,
+                res.steps as f64 / res.wall_time_s,
+                res.wall_time_s
+            );
+        }
+    }
+    for &rest in modes {
+        let settings = with_rest(rest);
+        let (_, ida) = pool
+            .install(|| analysis::dem_ida(&scene, &motion, &settings, 0.05))
+            .expect("IDA");
+        println!(
+            "| IDA to 5 % ({} runs, {} never integrated): collapse scale in [{:.3}, {}] | {} | - | - | {} | {:.0} | {:.2} |",
+            ida.runs.len(),
+            ida.integration_starts.iter().filter(|s| s.is_none()).count(),
+            ida.scale_survives,
+            ida.scale_collapses
+                .map_or("none".to_string(), |s| format!("{s:.3}")),
+            ida.rest_test.name(),
+            ida.steps,
+            ida.steps as f64 / ida.wall_time_s,
+            ida.wall_time_s
+        );
+    }
 }

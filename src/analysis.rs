@@ -741,14 +741,8 @@ pub fn dem_dynamic(
     seismic_only(scene, "a ground motion (dem --record / --pulse)")?;
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
-    let result = crate::dem::dynamic::respond_xy(
-        &model,
-        &params,
-        &|t| ground.at(t),
-        ground.duration(),
-        settings,
-    )
-    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    let result = crate::dem::dynamic::respond_input(&model, &params, ground, settings)
+        .map_err(|e| AnalysisError::Other(e.to_string()))?;
     Ok(DynamicAnalysis {
         model,
         ground: ground.clone(),
@@ -767,16 +761,8 @@ pub fn dem_ida(
     seismic_only(scene, "an incremental dynamic analysis (dem --ida)")?;
     let model = crate::scene::build(scene)?;
     let params = dem_parameters(scene, &model)?;
-    let r = crate::dem::dynamic::ida_xy(
-        &model,
-        &params,
-        &|t| ground.at(t),
-        ground.duration(),
-        settings,
-        tolerance,
-        1000.0,
-    )
-    .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    let r = crate::dem::dynamic::ida_input(&model, &params, ground, settings, tolerance, 1000.0)
+        .map_err(|e| AnalysisError::Other(e.to_string()))?;
     Ok((model, r))
 }
 

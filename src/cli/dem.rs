@@ -95,6 +95,18 @@ pub struct Args {
     /// (it fell: run on until at rest or fallen) [default: displacement]
     #[arg(long, value_enum)]
     criterion: Option<CriterionArg>,
+    /// The rest test of a dynamic run (--record, --pulse, --ida): on skips the time
+    /// integration while the ground acceleration stays below the static multiplier's
+    /// threshold (rigid blocks stay at rest there; docs/dem.md), off integrates from the
+    /// start and shows the contacts' elastic micro-motion [default: on]
+    #[arg(long, value_enum, conflicts_with = "pulse_curve")]
+    rest_test: Option<RestTestArg>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum RestTestArg {
+    On,
+    Off,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -213,6 +225,7 @@ fn settings(args: &Args) -> Result<dem::dynamic::DynamicSettings, Error> {
             Some(CriterionArg::Overturning) => dem::dynamic::Criterion::Overturning,
         },
         max_steps: args.max_steps,
+        rest_test: !matches!(args.rest_test, Some(RestTestArg::Off)),
         ..Default::default()
     })
 }
@@ -399,6 +412,11 @@ pub fn run(args: Args) -> Result<String, Error> {
         // at a constant lambda): a dynamic criterion there would be ignored.
         return Err(Error::Scene(voussoir::error::SceneError::Usage(
             "--criterion decides when a dynamic run (--record, --pulse, --ida, --pulse-curve) has collapsed; the lambda search does not use it".into(),
+        )));
+    }
+    if args.rest_test.is_some() {
+        return Err(Error::Scene(voussoir::error::SceneError::Usage(
+            "--rest-test decides whether a dynamic run (--record, --pulse, --ida) waits while the ground stays below the static threshold; the lambda search does not use it".into(),
         )));
     }
     if args.animation.is_some() {

@@ -15,7 +15,15 @@
 //! dashpots at impacts (`contact_damping`, 0.3 of critical by default) and by Coulomb sliding.
 //! For a rocking block this gives a coefficient of restitution of its own, measured against
 //! Housner's (1963) `1 - 1.5 sin^2(alpha)` in `tests/it/dem_dynamic.rs` and docs/dem.md.
+//!
+//! A motion given as a record or a pulse ([`respond_input`], [`ida_input`]) is first read
+//! against the static threshold of the rest test ([`super::rest`]): rigid blocks stay at rest
+//! while `-lambda_right (g + a_v) < a_h < lambda_left (g + a_v)`, so the settled state is held
+//! until the half-cycle in which the ground first reaches it, and nothing is integrated when it
+//! never does.
 
+use super::record::{Component, GroundInput};
+use super::rest::{self, RestPlan, RestTest};
 use super::world::{Load, World};
 use super::{
     check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
@@ -114,6 +122,12 @@ pub struct DynamicSettings {
     pub criterion: Criterion,
     /// The most time steps the run may plan, instead of `IntegrationParameters::max_steps`.
     pub max_steps: Option<u64>,
+    /// The rest test ([`super::rest`]): skip the time integration while the ground
+    /// acceleration stays below the static multiplier's threshold (rigid blocks stay at rest
+    /// there), and start it in the half-cycle of the first exceedance. Default true; applied
+    /// to motions given as records or pulses ([`respond_input`], [`ida_input`]) where it is
+    /// exact, and reported as not applicable otherwise.
+    pub rest_test: bool,
 }
 
 impl Default for DynamicSettings {
@@ -126,6 +140,7 @@ impl Default for DynamicSettings {
             frames_every: None,
             criterion: Criterion::Displacement,
             max_steps: None,
+            rest_test: true,
         }
     }
 }
@@ -194,6 +209,16 @@ pub struct DynamicResult {
     pub planned_steps: u64,
     /// What looked implausible (see `DemResult::warnings`), one sentence each.
     pub warnings: Vec<String>,
+    /// The rest test of the run ([`super::rest`]): off, not applicable (and why), or applied
+    /// with its static thresholds.
+    pub rest_test: RestTest,
+    /// When the ground acceleration first reaches the rest test's threshold (s); `None` when
+    /// it never does or the test was not applied.
+    pub first_exceedance: Option<f64>,
+    /// When the time integration started (s since the ground started moving): 0 without the
+    /// rest test; `None` when the ground never reached the threshold and the blocks stayed at
+    /// rest throughout (nothing was integrated, not even the settling).
+    pub integration_start: Option<f64>,
 }
 
 impl DynamicResult {
@@ -229,12 +254,87 @@ pub fn respond(
 
 /// Run `model` under the ground acceleration `ground(t) = (a_h, a_v)` (m/s^2; toward +x and
 /// upward, see the module's sign convention) for `duration` seconds plus `settings.tail`.
+/// A motion given as a function is integrated from its start: the rest test needs the
+/// motion's pieces ([`respond_input`]).
 pub fn respond_xy(
     model: &Model,
     params: &IntegrationParameters,
     ground: &dyn Fn(f64) -> Vec2,
     duration: f64,
     settings: &DynamicSettings,
+) -> Result<DynamicResult, DemError> {
+    run_motion(
+        model,
+        params,
+        ground,
+        duration,
+        settings,
+        function_rest(settings),
+        None,
+    )
+}
+
+/// Run `model` under the ground motion `ground` (a record or a pulse, with an optional
+/// vertical component) for its duration plus `settings.tail`, with the rest test when
+/// `settings.rest_test` asks for it ([`super::rest`]): the time integration starts in the
+/// half-cycle where the ground acceleration first reaches the static threshold, and does not
+/// run at all when it never does.
+pub fn respond_input(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &GroundInput,
+    settings: &DynamicSettings,
+) -> Result<DynamicResult, DemError> {
+    let rest = if settings.rest_test {
+        check_model(model)?;
+        rest::rest_test(model, params)
+    } else {
+        RestTest::Off
+    };
+    respond_with(model, params, ground, settings, &rest)
+}
+
+/// [`respond_input`] with the rest test already found (the IDA finds it once for all scales).
+fn respond_with(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &GroundInput,
+    settings: &DynamicSettings,
+    rest: &RestTest,
+) -> Result<DynamicResult, DemError> {
+    let vertical = ground.component == Component::Y || ground.vertical.is_some();
+    let (rest, plan) = match rest {
+        RestTest::Applied(th) if vertical && !th.homogeneous => (
+            RestTest::NotApplicable(
+                "a vertical ground acceleration on permanent loads that are not all seismic weights (a load with no seismic mass, a tie or a strip): the threshold then depends on the vertical acceleration".into(),
+            ),
+            None,
+        ),
+        RestTest::Applied(th) => (rest.clone(), Some(rest::plan(ground, th))),
+        other => (other.clone(), None),
+    };
+    run_motion(
+        model,
+        params,
+        &|t| ground.at(t),
+        ground.duration(),
+        settings,
+        rest,
+        plan,
+    )
+}
+
+/// The dynamic run itself: settle, hold the settled state until `plan`'s integration start
+/// (0 without a plan), then integrate; no settling and no integration when the plan says the
+/// ground never reaches the threshold.
+fn run_motion(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &dyn Fn(f64) -> Vec2,
+    duration: f64,
+    settings: &DynamicSettings,
+    rest: RestTest,
+    plan: Option<RestPlan>,
 ) -> Result<DynamicResult, DemError> {
     let clock = Instant::now();
     check_model(model)?;
@@ -276,11 +376,33 @@ pub fn respond_xy(
         Criterion::Displacement => settings.collapse_share,
         Criterion::Overturning => OVERTURNING_SHARE,
     } * size;
+    let integration_start = match plan {
+        None => Some(0.0),
+        Some(p) => p.integration_start,
+    };
+    let first_exceedance = plan.and_then(|p| p.first_exceedance);
+    let Some(start_at) = integration_start else {
+        // The ground never reaches the threshold: the rigid blocks stay where they are.
+        return Ok(at_rest_throughout(
+            model,
+            &world,
+            ground,
+            duration + settings.tail,
+            settings,
+            threshold,
+            settle_steps.saturating_add(motion_steps),
+            rest,
+            clock,
+        ));
+    };
     let settle = super::protocol::run(&mut world, &model.assembly, None, &mut |_| {});
     check_interrupt(settle.steps)?;
     super::check_finite(&settle)?;
     let cannot_stand = settle.outcome != super::Outcome::Stands;
     let mut result = DynamicResult {
+        rest_test: rest,
+        first_exceedance,
+        integration_start,
         cannot_stand: settle.outcome != super::Outcome::Stands,
         collapsed: false,
         collapse_time: None,
@@ -323,7 +445,8 @@ pub fn respond_xy(
         lambda: 1.0,
     };
     world.local_damping = 0.0;
-    world.time = 0.0;
+    // Until the integration starts the blocks hold their settled state (the rest test).
+    world.time = start_at;
     let end = duration + settings.tail;
     // Past the planned end the state decides, not the clock: on until at rest or collapsed.
     let give_up = end + params.max_time;
@@ -349,6 +472,22 @@ pub fn respond_xy(
         ground: a,
         blocks: w.bodies[..nb].iter().map(|b| (b.pos, b.angle)).collect(),
     };
+    // The samples and frames of the time held at rest, at the times the run would take them.
+    if let Some(every) = settings.history_every {
+        while next_sample < start_at {
+            let a = ground(next_sample);
+            result.history.push(sample(&world, 0, next_sample, a));
+            next_sample += every;
+        }
+    }
+    if let Some(every) = settings.frames_every {
+        while next_frame < start_at {
+            result
+                .frames
+                .push(frame(&world, next_frame, ground(next_frame)));
+            next_frame += every;
+        }
+    }
     loop {
         let t = world.time;
         if t >= end {
@@ -466,6 +605,87 @@ pub fn respond_xy(
     Ok(result)
 }
 
+/// The result of a run whose ground never reaches the rest test's threshold: the rigid blocks
+/// stay where the assembly puts them (no settling, no integration), the history and frames
+/// are those of rest at the times a run takes them, and the run survives at rest.
+#[allow(clippy::too_many_arguments)]
+fn at_rest_throughout(
+    model: &Model,
+    world: &World,
+    ground: &dyn Fn(f64) -> Vec2,
+    end: f64,
+    settings: &DynamicSettings,
+    collapse_displacement: f64,
+    planned_steps: u64,
+    rest: RestTest,
+    clock: Instant,
+) -> DynamicResult {
+    let nb = model.assembly.blocks.len();
+    let control = settings.control_block.unwrap_or(0);
+    let placements: Vec<(Vec2, f64)> = world.bodies[..nb]
+        .iter()
+        .map(|b| (b.pos, b.angle))
+        .collect();
+    let times = |every: Option<f64>| {
+        let mut out = Vec::new();
+        if let Some(every) = every {
+            let mut t = 0.0;
+            while t < end {
+                out.push(t);
+                t += every;
+            }
+            out.push(end);
+        }
+        out
+    };
+    let rest_sample = |t: f64| {
+        let a = ground(t);
+        Sample {
+            time: t,
+            ground_acceleration: a.x,
+            ground_acceleration_vertical: a.y,
+            displacement: 0.0,
+            rotation: 0.0,
+        }
+    };
+    DynamicResult {
+        cannot_stand: false,
+        collapsed: false,
+        collapse_time: None,
+        control_block: control,
+        peak_displacement: 0.0,
+        peak_rotation: 0.0,
+        residual_displacement: 0.0,
+        residual_rotation: 0.0,
+        history: times(settings.history_every)
+            .into_iter()
+            .map(rest_sample)
+            .collect(),
+        frames: times(settings.frames_every)
+            .into_iter()
+            .map(|t| Frame {
+                time: t,
+                ground: ground(t),
+                blocks: placements.clone(),
+            })
+            .collect(),
+        start: placements.clone(),
+        start_polygons: world.bodies[..nb].iter().map(|b| b.world.clone()).collect(),
+        steps: 0,
+        time_step: world.dt,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+        end_state: EndState::AtRest,
+        criterion: settings.criterion,
+        collapse_displacement,
+        extended: 0.0,
+        planned_steps,
+        warnings: settled_warnings(world, model),
+        rest_test: rest,
+        first_exceedance: None,
+        integration_start: None,
+    }
+}
+
 /// For one block standing alone on the ground under its own weight only, with no sliding
 /// (Housner's rocking block), the energy (J) it needs above its settled state to tip over a
 /// corner of its base: its weight times the rise of its centroid (settled at `centroid`) to
@@ -514,6 +734,11 @@ pub struct IdaResult {
     pub wall_time_s: f64,
     /// The collapse criterion of the runs.
     pub criterion: Criterion,
+    /// The rest test of the runs ([`super::rest`]; found once for all scales), and, for each
+    /// run in the order of `runs`, when its integration started (`None`: the scaled ground
+    /// never reached the threshold and nothing was integrated).
+    pub rest_test: RestTest,
+    pub integration_starts: Vec<Option<f64>>,
 }
 
 /// Scale `ground` up (doubling from 1) until a run collapses, then bisect until the bracket
@@ -552,18 +777,81 @@ pub fn ida_xy(
     max_scale: f64,
 ) -> Result<IdaResult, DemError> {
     let clock = Instant::now();
-    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
-        return Err(DemError::Settings(format!(
-            "IDA tolerance = {tolerance}: must be > 0 and < 1"
-        )));
+    ida_runs(
+        clock,
+        settings,
+        tolerance,
+        max_scale,
+        function_rest(settings),
+        |scale, quiet| respond_xy(model, params, &|t| scale * ground(t), duration, quiet),
+    )
+}
+
+/// [`ida_xy`] of a ground motion given as a record or a pulse (with an optional vertical
+/// component, scaled alike), with the rest test when `settings.rest_test` asks for it: its
+/// thresholds are found once, and a scale whose motion stays below them costs no
+/// integration at all.
+pub fn ida_input(
+    model: &Model,
+    params: &IntegrationParameters,
+    ground: &GroundInput,
+    settings: &DynamicSettings,
+    tolerance: f64,
+    max_scale: f64,
+) -> Result<IdaResult, DemError> {
+    let clock = Instant::now();
+    check_tolerance(tolerance, "IDA")?;
+    let rest = if settings.rest_test {
+        check_model(model)?;
+        rest::rest_test(model, params)
+    } else {
+        RestTest::Off
+    };
+    ida_runs(
+        clock,
+        settings,
+        tolerance,
+        max_scale,
+        rest.clone(),
+        |scale, quiet| respond_with(model, params, &ground.scaled(scale), quiet, &rest),
+    )
+}
+
+/// The rest test of a motion given as a function of time: not applicable when asked for.
+fn function_rest(settings: &DynamicSettings) -> RestTest {
+    if settings.rest_test {
+        RestTest::NotApplicable(
+            "the motion is given as a function of time (the rest test reads records and pulses)"
+                .into(),
+        )
+    } else {
+        RestTest::Off
     }
+}
+
+/// The IDA's search over the scales, `run(scale, settings)` running one scale (without
+/// history or frames); `rest` is the test asked for, reported as the runs applied it.
+fn ida_runs(
+    clock: Instant,
+    settings: &DynamicSettings,
+    tolerance: f64,
+    max_scale: f64,
+    rest: RestTest,
+    mut run: impl FnMut(f64, &DynamicSettings) -> Result<DynamicResult, DemError>,
+) -> Result<IdaResult, DemError> {
+    check_tolerance(tolerance, "IDA")?;
     let quiet = DynamicSettings {
         history_every: None,
         frames_every: None,
         ..settings.clone()
     };
+    let mut starts = Vec::new();
+    let mut used = None;
     let found = first_collapse_bracket(1.0, tolerance, max_scale, 2.0, |scale| {
-        respond_xy(model, params, &|t| scale * ground(t), duration, &quiet)
+        let r = run(scale, &quiet)?;
+        starts.push(r.integration_start);
+        used.get_or_insert_with(|| r.rest_test.clone());
+        Ok(r)
     })?;
     Ok(IdaResult {
         scale_survives: found.survives,
@@ -572,7 +860,20 @@ pub fn ida_xy(
         steps: found.steps,
         wall_time_s: clock.elapsed().as_secs_f64(),
         criterion: settings.criterion,
+        rest_test: used.unwrap_or(rest),
+        integration_starts: starts,
     })
+}
+
+/// Refuse a relative bracket width outside (0, 1).
+fn check_tolerance(tolerance: f64, what: &str) -> Result<(), DemError> {
+    if tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0 {
+        Ok(())
+    } else {
+        Err(DemError::Settings(format!(
+            "{what} tolerance = {tolerance}: must be > 0 and < 1"
+        )))
+    }
 }
 
 /// The smallest amplitude of a pulse that brings the structure down, bracketed.
@@ -615,11 +916,7 @@ pub fn minimum_amplitude(
     max_amplitude: f64,
     scan_ratio: f64,
 ) -> Result<AmplitudeBracket, DemError> {
-    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
-        return Err(DemError::Settings(format!(
-            "amplitude tolerance = {tolerance}: must be > 0 and < 1"
-        )));
-    }
+    check_tolerance(tolerance, "amplitude")?;
     if !(start.is_finite() && start > 0.0 && max_amplitude >= start) {
         return Err(DemError::Settings(format!(
             "starting amplitude {start} m/s^2: must be > 0 and at most {max_amplitude}"

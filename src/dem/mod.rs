@@ -45,6 +45,7 @@ pub mod dynamic;
 use crate::dem_settings as params;
 mod protocol;
 pub mod record;
+pub mod rest;
 mod world;
 
 pub use crate::dem_settings::{

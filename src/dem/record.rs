@@ -514,6 +514,67 @@ impl Excitation {
             }),
         }
     }
+    /// The times at which the motion may jump or turn: a record's sample times, a pulse's
+    /// start and end (and a sine's quarter periods). Between two consecutive ones it is
+    /// continuous and monotone (linear for a record, constant for a rectangular pulse), and it
+    /// is 0 before the first and after the last; the rest test ([`super::rest`]) reads it
+    /// piece by piece.
+    pub fn breaks(&self) -> Vec<f64> {
+        match self {
+            Excitation::Record(r) => r.time.clone(),
+            Excitation::Pulse(p) => match p.shape {
+                PulseShape::Sine => (0..=4).map(|k| 0.25 * k as f64 * p.period).collect(),
+                PulseShape::Rect => vec![0.0, p.period],
+            },
+        }
+    }
+
+    /// Whether the motion is linear between consecutive [`Excitation::breaks`] (a record, a
+    /// rectangular pulse), not only monotone (a sine).
+    pub fn piecewise_linear(&self) -> bool {
+        !matches!(
+            self,
+            Excitation::Pulse(Pulse {
+                shape: PulseShape::Sine,
+                ..
+            })
+        )
+    }
+
+    /// The limits of the acceleration (m/s^2) at `t` from the left and from the right: they
+    /// differ only where the motion jumps (a record's first and last sample, from and to 0; a
+    /// rectangular pulse's start and end).
+    pub fn limits(&self, t: f64) -> (f64, f64) {
+        let (first, last) = match self {
+            Excitation::Record(r) => match (r.time.first(), r.time.last()) {
+                (Some(&f), Some(&l)) => (f, l),
+                _ => return (0.0, 0.0),
+            },
+            Excitation::Pulse(p) => (0.0, p.period),
+        };
+        let inside = self.at(t);
+        let left = if t > first && t <= last {
+            match self {
+                // A rectangular pulse's value at its end is the one just after.
+                Excitation::Pulse(p) if p.shape == PulseShape::Rect && t == last => p.amplitude,
+                _ => inside,
+            }
+        } else {
+            0.0
+        };
+        let right = if t >= first && t < last {
+            inside
+        } else if t == last {
+            match self {
+                Excitation::Record(_) => 0.0,
+                Excitation::Pulse(_) => inside,
+            }
+        } else {
+            0.0
+        };
+        (left, right)
+    }
+
     /// A short description for reports.
     pub fn describe(&self) -> String {
         match self {

@@ -699,6 +699,10 @@ pub fn dynamic(scene: &Scene, model: &Model, rep: DynamicReport) -> Document {
         rep.peak_rotation,
         rep.residual_displacement,
         rep.residual_rotation));
+    sec.line(rest_test_words(
+        &rep.rest,
+        Some((rep.first_exceedance_s, rep.integration_start_s)),
+    ));
     sec.line(format!("no local damping: energy is lost only at the contacts (docs/dem.md)\n{} (at most {}), time step {:.3e} s, {:.2} s wall time",
         count(rep.steps, "time step", "time steps"),
         rep.planned_steps,
@@ -832,7 +836,53 @@ pub fn ida(scene: &Scene, model: &Model, rep: IdaReport) -> Document {
         count(rep.steps, "time step", "time steps"),
         rep.wall_time_s,
         rep.criterion.name()));
+    let skipped = rep
+        .runs_integration_start_s
+        .iter()
+        .filter(|s| s.is_none())
+        .count();
+    let mut words = rest_test_words(&rep.rest, None);
+    if rep.rest.rest_test == "applied" {
+        words.push_str(&format!(
+            "; {} stayed below it and cost no integration",
+            count(skipped as u64, "run", "runs")
+        ));
+    }
+    sec.line(words);
     doc.with_data(Data::Ida(Box::new(rep)))
+}
+
+/// The summary's line on a dynamic run's rest test (docs/dem.md): the thresholds, and, for
+/// one run (`times`: first exceedance and integration start), when the integration started.
+fn rest_test_words(
+    rest: &super::RestTestReport,
+    times: Option<(Option<f64>, Option<f64>)>,
+) -> String {
+    let note = rest.rest_test_note.as_deref();
+    match (
+        rest.rest_test,
+        rest.rest_lambda_right.zip(rest.rest_lambda_left),
+    ) {
+        ("applied", Some((right, left))) => {
+            let head = format!("rest test: rigid blocks stay at rest while -{right:.6} (g + a_v) < a_h < {left:.6} (g + a_v) (the static multipliers toward +x and -x)");
+            match times {
+                Some((_, None)) => format!("{head}; the ground never reached it: at rest throughout, nothing integrated (not even the settling)"),
+                Some((first, Some(start))) => format!(
+                    "{head}; first reached at t = {} s, time integration from t = {start:.4} s (the start of that half-cycle)",
+                    first.map_or("?".to_string(), |t| format!("{t:.4}"))
+                ),
+                None => head,
+            }
+        }
+        ("off", _) => {
+            "rest test off: time integration from t = 0 (the contacts' elastic micro-motion shows)"
+                .to_string()
+        }
+        _ => format!(
+            "rest test not applicable ({}): time integration from t = 0",
+            note.unwrap_or("no threshold")
+        ),
+    }
 }
 /// The section of one direction assessed.
 fn direction_section(doc: &mut Document, a: &SiteAssessment) {

@@ -1025,6 +1025,30 @@ impl DemReport {
     }
 }
 
+/// The rest test of a dynamic run or an IDA (`--rest-test`, docs/dem.md), flattened into
+/// their reports.
+#[derive(Debug, Serialize)]
+pub struct RestTestReport {
+    /// `applied`, `not_applicable` (why in `rest_test_note`) or `off`.
+    pub rest_test: &'static str,
+    /// The static multipliers toward +x and -x the ground is compared with (null unless
+    /// applied).
+    pub rest_lambda_right: Option<f64>,
+    pub rest_lambda_left: Option<f64>,
+    pub rest_test_note: Option<String>,
+}
+
+impl RestTestReport {
+    pub fn new(r: &crate::dem::rest::RestTest) -> Self {
+        RestTestReport {
+            rest_test: r.name(),
+            rest_lambda_right: r.threshold().map(|t| t.lambda_right),
+            rest_lambda_left: r.threshold().map(|t| t.lambda_left),
+            rest_test_note: r.note().map(str::to_string),
+        }
+    }
+}
+
 /// `dem --record FILE --json` / `dem --pulse ... --json`: a dynamic run under ground motion.
 #[derive(Debug, Serialize)]
 pub struct DynamicReport {
@@ -1066,6 +1090,14 @@ pub struct DynamicReport {
     pub planned_steps: u64,
     /// What looked implausible, one sentence each; empty when nothing did.
     pub warnings: Vec<String>,
+    /// The rest test (`--rest-test`, docs/dem.md).
+    #[serde(flatten)]
+    pub rest: RestTestReport,
+    /// When the ground first reaches the threshold (s; null: never, or the test not applied),
+    /// and when the time integration started (s since the ground started moving: 0 without
+    /// the test; null when the ground never reached the threshold and nothing was integrated).
+    pub first_exceedance_s: Option<f64>,
+    pub integration_start_s: Option<f64>,
 }
 
 impl DynamicReport {
@@ -1095,6 +1127,9 @@ impl DynamicReport {
             collapse_displacement: r.collapse_displacement,
             planned_steps: r.planned_steps,
             warnings: r.warnings.clone(),
+            rest: RestTestReport::new(&r.rest_test),
+            first_exceedance_s: r.first_exceedance,
+            integration_start_s: r.integration_start,
         }
     }
 }
@@ -1128,6 +1163,12 @@ pub struct IdaReport {
     /// The collapse criterion of the runs (`displacement` or `overturning`); a run still
     /// moving when it gave up counts as collapsed.
     pub criterion: crate::dem::dynamic::Criterion,
+    /// The rest test of the runs, as in the dynamic run's report, and when each run's time
+    /// integration started (s, in the order of `runs`; null: that scale never reached the
+    /// threshold and cost no integration).
+    #[serde(flatten)]
+    pub rest: RestTestReport,
+    pub runs_integration_start_s: Vec<Option<f64>>,
 }
 
 impl IdaReport {
@@ -1154,6 +1195,8 @@ impl IdaReport {
             pga_vertical,
             collapse_pga_vertical: r.scale_collapses.zip(pga_vertical).map(|(s, p)| s * p),
             criterion: r.criterion,
+            rest: RestTestReport::new(&r.rest_test),
+            runs_integration_start_s: r.integration_starts.clone(),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! static lower bound on arches and a portal, the sliding case against the associative bound,
 //! energy conservation of the integrator, the `[dem]` table's validation and snapshots.
 
-use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointEnd, JointKind};
+use voussoir::assembly::{Assembly, JointEnd};
 use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
@@ -11,30 +11,7 @@ use voussoir::statics::{self, Status};
 
 /// A rectangular block b x h standing on the ground (one support joint along its base).
 fn block(b: f64, h: f64, mu: f64) -> Assembly {
-    let polygon = vec![
-        Vec2::new(-0.5 * b, 0.0),
-        Vec2::new(0.5 * b, 0.0),
-        Vec2::new(0.5 * b, h),
-        Vec2::new(-0.5 * b, h),
-    ];
-    Assembly {
-        blocks: vec![Block {
-            polygon,
-            area: b * h,
-            centroid: Vec2::new(0.0, 0.5 * h),
-            weight: 20000.0 * b * h,
-            kind: BlockKind::Other,
-        }],
-        // n = (0, -1) points from the block into the ground.
-        joints: vec![Joint {
-            p1: Vec2::new(-0.5 * b, 0.0),
-            p2: Vec2::new(0.5 * b, 0.0),
-            from: Some(0),
-            to: None,
-            friction: mu,
-            kind: JointKind::Other,
-        }],
-    }
+    crate::common::rect_block(b, h, mu)
 }
 
 fn scene(text: &str) -> Scene {

@@ -4,7 +4,6 @@
 //! alpha = atan(b / h) its slenderness and p = sqrt(3 g / (4 R)) its frequency parameter
 //! (polar inertia about a base corner I_O = (4/3) m R^2).
 
-use voussoir::assembly::{Assembly, Block, BlockKind, Joint, JointKind};
 use voussoir::dem::dynamic::{self, DynamicSettings};
 use voussoir::dem::record::{Pulse, PulseShape};
 use voussoir::dem::{IntegrationParameters, Simulation};
@@ -17,29 +16,7 @@ const G: f64 = 9.81;
 
 /// A rectangular block b x h standing on the ground, no sliding.
 fn block(b: f64, h: f64) -> Model {
-    let polygon = vec![
-        Vec2::new(-0.5 * b, 0.0),
-        Vec2::new(0.5 * b, 0.0),
-        Vec2::new(0.5 * b, h),
-        Vec2::new(-0.5 * b, h),
-    ];
-    Model::self_weight(Assembly {
-        blocks: vec![Block {
-            polygon,
-            area: b * h,
-            centroid: Vec2::new(0.0, 0.5 * h),
-            weight: 20000.0 * b * h,
-            kind: BlockKind::Other,
-        }],
-        joints: vec![Joint {
-            p1: Vec2::new(-0.5 * b, 0.0),
-            p2: Vec2::new(0.5 * b, 0.0),
-            from: Some(0),
-            to: None,
-            friction: f64::INFINITY,
-            kind: JointKind::Other,
-        }],
-    })
+    Model::self_weight(common::rect_block(b, h, f64::INFINITY))
 }
 
 struct Housner {

@@ -19,6 +19,7 @@ mod dem_brackets;
 mod dem_dynamic;
 mod dem_fuzz;
 mod dem_record;
+mod dem_rest;
 mod extremes;
 mod fixed_blocks;
 mod friction;

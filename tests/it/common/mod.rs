@@ -308,3 +308,30 @@ pub fn f64_of(v: &serde_json::Value, key: &str) -> f64 {
         .as_f64()
         .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
 }
+
+/// A rectangular block b x h standing on the ground (one support joint along its base, from
+/// the block into the ground), of weight 20 kN/m^2 times its area, with friction `mu`.
+pub fn rect_block(b: f64, h: f64, mu: f64) -> Assembly {
+    Assembly {
+        blocks: vec![Block {
+            polygon: vec![
+                Vec2::new(-0.5 * b, 0.0),
+                Vec2::new(0.5 * b, 0.0),
+                Vec2::new(0.5 * b, h),
+                Vec2::new(-0.5 * b, h),
+            ],
+            area: b * h,
+            centroid: Vec2::new(0.0, 0.5 * h),
+            weight: 20000.0 * b * h,
+            kind: BlockKind::Other,
+        }],
+        joints: vec![Joint {
+            p1: Vec2::new(-0.5 * b, 0.0),
+            p2: Vec2::new(0.5 * b, 0.0),
+            from: Some(0),
+            to: None,
+            friction: mu,
+            kind: JointKind::Other,
+        }],
+    }
+}

@@ -32,6 +32,8 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{SolverStatus, SupportedConeT};
 use std::time::Instant;
 
+mod working_set;
+
 /// The joint force as an affine function of `x = [lambda, H, V, M0]` (SI units):
 /// `F = F0 + base + lambda * per`, moment about the reference point likewise.
 #[derive(Debug, Clone, Copy, Default)]
@@ -198,11 +200,21 @@ impl ChainProgram {
     /// The no-tension rows follow from the cones and are then left out (as in the full
     /// program).
     fn conic(&self) -> ConicForm {
-        let skip = self.no_tension_rows_implied();
-        let mut rows: Vec<([f64; 4], f64)> = self.dense[skip..].to_vec();
+        let linear: Vec<usize> = (self.no_tension_rows_implied()..self.dense.len()).collect();
+        let crush: Vec<usize> = (0..self.kappa.len()).collect();
+        self.conic_of(&linear, &crush)
+    }
+
+    /// Clarabel's form of a program made of some of the rows: the linear rows `linear`
+    /// (indices into `dense`), then the two crushing cones of each joint in `crush` (which
+    /// imply that joint's no-tension rows, so `linear` should not repeat them). With every
+    /// row, [`Self::conic`]; with fewer, a relaxation ([`working_set`]).
+    fn conic_of(&self, linear: &[usize], crush: &[usize]) -> ConicForm {
+        let mut rows: Vec<([f64; 4], f64)> = linear.iter().map(|&i| self.dense[i]).collect();
         let lin = rows.len();
         let scaled = |(coef, c): ([f64; 4], f64), f: f64| (coef.map(|v| f * v), f * c);
-        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+        for &k in crush {
+            let (r, kappa) = self.kappa[k];
             let (g2, g1) = (self.dense[2 * k], self.dense[2 * k + 1]);
             let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
             let mut sum = ([0.0; 4], w * (g1.1 + g2.1));
@@ -234,7 +246,7 @@ impl ChainProgram {
         if lin > 0 {
             cones.push(SupportedConeT::NonnegativeConeT(lin));
         }
-        cones.extend((0..2 * self.kappa.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
+        cones.extend((0..2 * crush.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
         ConicForm {
             a: CscMatrix::new(m, 4, colptr, rowval, nzval),
             b: rows.iter().map(|&(_, c)| c).collect(),
@@ -498,22 +510,31 @@ impl ChainProgram {
     }
 
     /// Fold the duals of the crushing cones (after the linear rows in `z`) into multipliers of
-    /// the no-tension rows they are built from, so [`Self::mechanism`] reads them: the cone of
-    /// the row `g` with partner `h` holds `s = [r g + 1, r g - 1, w (g + h)]`
-    /// (`w = sqrt2 r / sqrt(kappa)`), so its dual `(z0, z1, z2)` acts on `g` with weight
-    /// `r (z0 + z1) + w z2` and on `h` with `w z2`.
+    /// the no-tension rows they are built from, so [`Self::mechanism`] reads them.
     fn fold_cone_duals(&self, z: &[f64]) -> Vec<f64> {
-        let skip = self.no_tension_rows_implied();
-        let m = self.rows - skip;
-        let mut y = vec![0.0; skip];
-        y.extend_from_slice(&z[..m]);
-        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+        let linear: Vec<usize> = (self.no_tension_rows_implied()..self.dense.len()).collect();
+        let crush: Vec<usize> = (0..self.kappa.len()).collect();
+        self.fold_duals_of(z, &linear, &crush)
+    }
+
+    /// The duals `z` of [`Self::conic_of`]`(linear, crush)` as multipliers of every row of
+    /// `dense` (zero for the rows left out): the cone of the row `g` with partner `h` holds
+    /// `s = [r g + 1, r g - 1, w (g + h)]` (`w = sqrt2 r / sqrt(kappa)`), so its dual
+    /// `(z0, z1, z2)` acts on `g` with weight `r (z0 + z1) + w z2` and on `h` with `w z2`.
+    fn fold_duals_of(&self, z: &[f64], linear: &[usize], crush: &[usize]) -> Vec<f64> {
+        let mut y = vec![0.0; self.dense.len()];
+        for (&i, &zi) in linear.iter().zip(z) {
+            y[i] = zi;
+        }
+        let m = linear.len();
+        for (j, &k) in crush.iter().enumerate() {
+            let (r, kappa) = self.kappa[k];
             let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
             for (c, (g, h)) in [(2 * k, 2 * k + 1), (2 * k + 1, 2 * k)]
                 .into_iter()
                 .enumerate()
             {
-                let base = m + 6 * k + 3 * c;
+                let base = m + 6 * j + 3 * c;
                 let (z0, z1, z2) = (z[base], z[base + 1], z[base + 2]);
                 y[g] += r * (z0 + z1) + w * z2;
                 y[h] += w * z2;
@@ -772,6 +793,28 @@ pub fn analyse_chain(
         if let Some(r) = active_set_result(model, &program, settings) {
             let mut r = super::stands_at_zero(model, settings, r)?;
             // The wall time covers the stand test at lambda = 0 too.
+            r.solve_time_s = start.elapsed().as_secs_f64();
+            return Ok(r);
+        }
+    }
+    if conic_program && settings.working_set {
+        if let Some(ws) = program.working_set(model, settings)? {
+            let lambda = ws.x[0];
+            let forces = program.forces(assembly, &ws.x);
+            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+            let status = ws.words(assembly.joints.len());
+            let result = StaticResult::unsolved(settings, ws.iterations, status, program.size())
+                .read_solution(
+                    assembly,
+                    model.strength,
+                    settings,
+                    lambda,
+                    forces,
+                    residual,
+                    false,
+                    || program.mechanism(assembly, loads, sign, &ws.z),
+                );
+            let mut r = super::stands_at_zero(model, settings, result)?;
             r.solve_time_s = start.elapsed().as_secs_f64();
             return Ok(r);
         }

@@ -799,10 +799,15 @@ pub fn analyse_chain(
     }
     if conic_program && settings.working_set {
         if let Some(ws) = program.working_set(model, settings)? {
+            let status = ws.words(assembly.joints.len());
+            if ws.infeasible {
+                let mut r = StaticResult::unsolved(settings, ws.iterations, status, program.size());
+                r.solve_time_s = start.elapsed().as_secs_f64();
+                return Ok(r);
+            }
             let lambda = ws.x[0];
             let forces = program.forces(assembly, &ws.x);
             let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            let status = ws.words(assembly.joints.len());
             let result = StaticResult::unsolved(settings, ws.iterations, status, program.size())
                 .read_solution(
                     assembly,

@@ -1,36 +1,42 @@
-//! The chain program with crushing by a working set (issue 28): the crushing cones of only the
+//! The chain program with crushing by a working set (issue 28): the crushing laws of only the
 //! joints that matter, found by checking every joint at the solution.
 //!
 //! With finite compressive strength every joint of the chain program holds two rotated
 //! second-order cones (`2 c_i kappa >= N^2`, [`crate::interaction::crushing`]), which imply its
 //! two no-tension rows (`c_i >= 0`). At the optimum only a few of them bind: the hinges, each
-//! at the centre of its compressed zone. The method:
+//! at the centre of its compressed zone. Nothing here changes the program: every answer is
+//! certified against every row and cone of every joint, and what cannot be certified goes to
+//! the program on all joints ([`super::analyse_chain`], Clarabel).
 //!
-//! 1. Solve the rigid chain program by the active-set method (exact, microseconds). Its basis
-//!    rows are the rigid hinges (and sliding joints); the crushing hinges lie at or next to
-//!    them.
-//! 2. The working set W is those joints and their neighbours. The relaxed program keeps, for
-//!    each joint in W, its two crushing cones (hence its no-tension limits too), and the
-//!    friction rows found so far; it drops every row of the joints outside W. Its feasible set
-//!    contains the full program's, so its multiplier is at least the true one. It is bounded:
-//!    the cones of the rigid basis joints imply the basis rows, and the rigid program with
-//!    its basis rows alone has the rigid optimum, so the first relaxation's lambda is at most
-//!    the rigid multiplier, and later ones only add rows. Clarabel solves it (a few joints:
-//!    a few dozen rows).
-//! 3. At its solution, check every joint outside W against its crushing cones (which contain
-//!    the rigid no-tension limits `c_i >= 0`: a resultant outside the joint shows as a
-//!    violated cone) and every friction row left out, in O(n). In each run of consecutive
-//!    violated joints the worst one and its neighbours join W (likewise for friction rows);
-//!    solve again.
-//! 4. When nothing is violated, the solution satisfies every row and cone of the full
-//!    program and is optimal for a relaxation of it: it is optimal for the full program, the
-//!    same answer as Clarabel on all joints (to the solver's tolerance).
+//! 1. **The rigid optimum** by the active-set method (exact, microseconds): its basis rows are
+//!    the rigid hinges (and sliding joints); the crushing hinges lie at or next to them.
+//! 2. **An active set on the curved rows** ([`ChainProgram::curved_active_set`]): each
+//!    no-tension row `c_i >= 0` of a basis joint becomes its crushing law
+//!    `h = c_i - N^2 / (2 kappa) >= 0` (the cone, as a concave function of the four
+//!    unknowns; friction rows stay linear). Newton's method puts the four basis rows on their
+//!    surfaces, their multipliers follow from the objective's gradient, and while a row of any
+//!    joint is violated it enters the basis and the ratio test picks the row that leaves (a
+//!    dual simplex step on the rows' linearisations). It ends when the point satisfies the
+//!    crushing law and the friction rows of every joint (an O(n) check) with non-negative
+//!    multipliers: the KKT conditions of a convex program, hence its optimum, to round-off.
+//! 3. **Otherwise, Clarabel on a working set** ([`ChainProgram::conic_working_set`]): W is
+//!    the rigid basis joints and their neighbours. The relaxed program keeps, for each joint
+//!    in W, its two crushing cones (hence its no-tension limits too) and the friction rows
+//!    found so far; it drops every row of the joints outside W. Its feasible set contains the
+//!    full program's, so its multiplier is at least the true one; it is bounded, since the
+//!    cones of the rigid basis joints imply the basis rows and the rigid program with its
+//!    basis rows alone has the rigid optimum. At its solution every joint outside W is checked
+//!    against its crushing cones (which contain the rigid no-tension limits: a resultant
+//!    outside the joint shows as a violated cone) and every friction row left out; in each
+//!    run of consecutive violated joints the worst one and its neighbours join W, and it is
+//!    solved again. When nothing is violated the solution satisfies the full program and is
+//!    optimal for a relaxation of it: it is the full program's optimum. When the relaxed
+//!    program has no feasible point, neither has the full one: the structure cannot stand.
 //!
-//! This is the cutting-plane (constraint generation) scheme for convex programs, exact here
-//! because every constraint is checked at the end (e.g. Ben-Tal & Nemirovski, *Lectures on
-//! Modern Convex Optimization*, 2001, on adding violated cones). When the rigid solve does not
-//! finish, a relaxed solve is not `Solved`, lambda reaches the cap, or W grows past
-//! [`MAX_JOINTS`] joints or [`MAX_ROUNDS`] solves, the caller solves the program on all joints.
+//! This is constraint generation (cutting planes) for a convex program, exact because every
+//! constraint is checked at the end. When the rigid solve does not finish or hits the cap,
+//! a relaxed solve ends otherwise than solved or infeasible, or W grows past [`MAX_JOINTS`]
+//! joints or [`MAX_ROUNDS`] solves, the caller solves the program on all joints.
 
 use super::{ChainProgram, Outcome};
 use crate::model::Model;
@@ -55,12 +61,20 @@ pub(super) struct WorkingSet {
     pub iterations: u32,
     pub rounds: usize,
     pub joints: usize,
+    /// The relaxed program on the working set has no feasible point (Clarabel's certificate):
+    /// then neither has the full program, and `x`, `z` are empty.
+    pub infeasible: bool,
 }
 
 impl WorkingSet {
     /// How the optimum was found, for the result's `solver_status`.
     pub fn words(&self, joints: usize) -> String {
-        if self.rounds == 0 {
+        if self.infeasible {
+            format!(
+                "PrimalInfeasible; working set: the crushing cones of {} of {joints} joints admit no equilibrium, {} conic solves",
+                self.joints, self.rounds
+            )
+        } else if self.rounds == 0 {
             format!(
                 "active set on the crushing laws: {} hinge joints, all {joints} joints checked",
                 self.joints
@@ -276,6 +290,7 @@ impl ChainProgram {
                     iterations: (rigid.pivots as usize + pivots) as u32,
                     rounds: 0,
                     joints: joints.len(),
+                    infeasible: false,
                 });
             };
             // Ratio test: grad h_r = sum w_i grad h_i; y'_i = y_i - t w_i, y'_r = t.
@@ -334,10 +349,10 @@ impl ChainProgram {
         }
     }
 
-    /// The working-set method of the module docs. None sends the caller to the program on
-    /// all joints (the rigid solve did not finish, a relaxed solve was not `Solved`, lambda
-    /// reached the cap, or the working set grew too large); `Err` only for a solver setup
-    /// error.
+    /// The working-set method of the module docs: the optimum, or a proof that no equilibrium
+    /// exists. None sends the caller to the program on all joints (the rigid solve did not
+    /// finish, a relaxed solve ended otherwise, lambda reached the cap, or the working set
+    /// grew too large); `Err` only for a solver setup error.
     pub(super) fn working_set(
         &self,
         model: &Model,
@@ -347,8 +362,6 @@ impl ChainProgram {
         if nj == 0 || nj != model.assembly.joints.len() {
             return Ok(None);
         }
-        let first_friction = 2 * nj;
-        let nf = self.friction_joints.len();
         let Outcome::Optimal(rigid) = self.active_set(1.0, crate::outcome::LAMBDA_CAP) else {
             return Ok(None);
         };
@@ -358,6 +371,19 @@ impl ChainProgram {
         if let Some(found) = self.curved_active_set(&rigid) {
             return Ok(Some(found));
         }
+        self.conic_working_set(&rigid, settings)
+    }
+
+    /// Steps 2 to 4 of the module docs: Clarabel on the cones of a working set of joints,
+    /// seeded by the rigid optimum's basis joints and their neighbours, grown by the check.
+    fn conic_working_set(
+        &self,
+        rigid: &super::ActiveSet,
+        settings: &crate::statics::StaticSettings,
+    ) -> Result<Option<WorkingSet>, crate::error::AnalysisError> {
+        let nj = self.kappa.len();
+        let first_friction = 2 * nj;
+        let nf = self.friction_joints.len();
         let mut in_set = vec![false; nj];
         let mut friction_in = vec![false; 2 * nf];
         let add_joint = |k: usize, in_set: &mut [bool]| {
@@ -399,6 +425,18 @@ impl ChainProgram {
                 settings,
             )?;
             iterations += sol.iterations;
+            if sol.status == SolverStatus::PrimalInfeasible {
+                // No equilibrium satisfies the crushing laws of the working set alone, so
+                // none satisfies those of every joint: the structure cannot stand.
+                return Ok(Some(WorkingSet {
+                    x: Vec::new(),
+                    z: Vec::new(),
+                    iterations,
+                    rounds: round,
+                    joints: crush.len(),
+                    infeasible: true,
+                }));
+            }
             if sol.status != SolverStatus::Solved
                 || sol.x[0] >= crate::outcome::LAMBDA_CAP * (1.0 - 1e-6)
                 || sol.x.iter().any(|v| !v.is_finite())
@@ -413,6 +451,7 @@ impl ChainProgram {
                     iterations,
                     rounds: round,
                     joints: crush.len(),
+                    infeasible: false,
                 }));
             }
             for k in found.joints {

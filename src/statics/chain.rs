@@ -644,16 +644,22 @@ impl ChainProgram {
 }
 
 /// The least multiplier equilibrium allows on a chain (seismic forces toward `sign`), by the
-/// active-set method; None when the method does not finish (or the model is not a chain).
-/// The multipliers equilibrium allows form an interval, so the structure stands at lambda = 0
-/// exactly when this is at most 0 (and the largest at least 0).
-pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
-    // The active set solves linear programs only: with crushing cones the conic stand test
-    // decides.
-    if declines(model).is_some() || model.strength.is_finite() {
+/// active-set method (with crushing, and `settings.working_set`, the curved active set of
+/// [`working_set`] from its basis); None when the method does not finish (or the model is not
+/// a chain). The multipliers equilibrium allows form an interval (the program is convex), so
+/// the structure stands at lambda = 0 exactly when this is at most 0 (and the largest at
+/// least 0).
+pub(super) fn least_lambda(model: &Model, settings: &StaticSettings) -> Option<f64> {
+    // The conic stand test decides with crushing cones unless the working set may.
+    let crushing = model.strength.is_finite();
+    if declines(model).is_some() || (crushing && !settings.working_set) {
         return None;
     }
+    let sign = settings.direction.sign();
     let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, sign, None);
+    if crushing {
+        return program.least_lambda_crushing();
+    }
     let lambda = program.active_set(-1.0, LAMBDA_CAP).optimal()?.x[0];
     lambda.is_finite().then_some(lambda)
 }

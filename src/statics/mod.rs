@@ -246,7 +246,7 @@ fn stands_at_zero(
     // On a chain the least multiplier tells at the cost of one more active-set solve; the
     // phase-one program (a conic solve of the full program) otherwise.
     let why = match (settings.active_set)
-        .then(|| chain::least_lambda(model, settings.direction.sign()))
+        .then(|| chain::least_lambda(model, settings))
         .flatten()
     {
         Some(least) if least <= 0.0 => return Ok(result),

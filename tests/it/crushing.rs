@@ -623,6 +623,33 @@ fn working_set_equals_the_program_on_all_joints() {
             ));
         }
     }
+    // Leaning portals (a tall slender left pier, a squat right one): some stand only with a
+    // push toward +x, so the stand test at lambda = 0 decides (the least multiplier with
+    // crushing, by the curved active set, against the phase-one program on all joints).
+    let mut leaning = 0;
+    for height in [0.6, 1.0, 1.6] {
+        let text = format!(
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 16\n\
+             [piers.left]\nheight = {height}\nwidth = 0.3\ncourses = 4\n\
+             [piers.right]\nheight = 0.6\nwidth = 0.45\ncourses = 2\n"
+        );
+        let base = scene(&text);
+        let weight = model_of(&base).assembly.total_weight();
+        // sigma = W / (fc d t): from a strong material to one that crushes visibly.
+        for sigma in [0.01, 0.1, 0.3] {
+            let s = with_fc(
+                &base,
+                weight / (sigma * model_of(&base).strength.depth * 0.2),
+            );
+            let how = assert_working_set_exact(&model_of(&s), &format!("leaning {height} {sigma}"));
+            leaning += how
+                .iter()
+                .filter(|h| h.contains("the least multiplier equilibrium allows is"))
+                .count();
+            tally(how);
+        }
+    }
+    assert!(leaning > 0, "no leaning portal needed the stand test");
     println!("{curved} of {cases} analyses by the curved active set");
     // The fast path is the one that runs (the conic working set proves the structures that
     // cannot stand so); the program on all joints is for what neither certifies.

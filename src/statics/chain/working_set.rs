@@ -199,14 +199,16 @@ impl ChainProgram {
     /// The optimum with crushing by a dual active-set method on the curved rows (the crushing
     /// laws of [`Self::curved`], friction rows), started from the rigid optimum's basis: the
     /// basis rows are put on their surfaces by Newton's method (four equations in four
-    /// unknowns), their multipliers follow from `e_lambda = -sum y_i grad h_i`, and while a
+    /// unknowns), their multipliers follow from `objective e_lambda = -sum y_i grad h_i`
+    /// (`objective` +1 maximises lambda, -1 minimises it, as in [`Self::active_set`], whose
+    /// optimum `rigid` is with the same objective), and while a
     /// row is violated it enters and the ratio test on the multipliers picks the row that
     /// leaves (the dual simplex step on the rows' linearisations). It stops when every row of
     /// every joint holds (to round-off) with non-negative multipliers: the KKT conditions of
     /// a convex program, so the optimum. None when a Newton solve does not converge, a
     /// multiplier turns negative after it, or the pivots run out: the conic working set then
     /// decides.
-    fn curved_active_set(&self, rigid: &super::ActiveSet) -> Option<WorkingSet> {
+    fn curved_active_set(&self, rigid: &super::ActiveSet, objective: f64) -> Option<WorkingSet> {
         let nj = self.kappa.len();
         let m = self.dense.len();
         if rigid.duals.len() != 4 {
@@ -246,8 +248,8 @@ impl ChainProgram {
             if !converged {
                 return None;
             }
-            // Multipliers: e_lambda = -sum y_i grad h_i.
-            let y = Self::basis_solve(&rows, true, [-1.0, 0.0, 0.0, 0.0])?;
+            // Multipliers: objective * e_lambda = -sum y_i grad h_i.
+            let y = Self::basis_solve(&rows, true, [-objective, 0.0, 0.0, 0.0])?;
             if y.iter().any(|&v| v < -1e-12) {
                 return None;
             }
@@ -349,6 +351,17 @@ impl ChainProgram {
         }
     }
 
+    /// The least multiplier equilibrium allows with crushing, by the curved active set from
+    /// the rigid least multiplier's basis; None when either does not finish (the phase-one
+    /// program then decides whether the structure stands at lambda = 0).
+    pub(super) fn least_lambda_crushing(&self) -> Option<f64> {
+        let Outcome::Optimal(rigid) = self.active_set(-1.0, crate::outcome::LAMBDA_CAP) else {
+            return None;
+        };
+        let least = self.curved_active_set(&rigid, -1.0)?.x[0];
+        (least.is_finite() && least > -crate::outcome::LAMBDA_CAP * (1.0 - 1e-6)).then_some(least)
+    }
+
     /// The working-set method of the module docs: the optimum, or a proof that no equilibrium
     /// exists. None sends the caller to the program on all joints (the rigid solve did not
     /// finish, a relaxed solve ended otherwise, lambda reached the cap, or the working set
@@ -368,7 +381,7 @@ impl ChainProgram {
         if rigid.x[0] >= crate::outcome::LAMBDA_CAP * (1.0 - 1e-6) {
             return Ok(None);
         }
-        if let Some(found) = self.curved_active_set(&rigid) {
+        if let Some(found) = self.curved_active_set(&rigid, 1.0) {
             return Ok(Some(found));
         }
         self.conic_working_set(&rigid, settings)
@@ -462,5 +475,77 @@ impl ChainProgram {
             }
         }
         Ok(None)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::statics::StaticSettings;
+
+    fn model(n: usize, fc: f64, friction: f64) -> Model {
+        let text = format!(
+            "[arch]\nshape = \"circular\"\nradius = 5.0\nthickness = 0.75\nvoussoirs = {n}\n\
+             [material]\nunit_weight = 20000.0\ncompressive_strength = {fc:e}\nfriction = {friction}\n"
+        );
+        let scene = crate::scene::Scene::from_toml_str(&text, "test").expect("valid scene");
+        crate::scene::build(&scene).expect("valid model")
+    }
+
+    /// Clarabel with the cones of every joint, as `analyse_chain` solves it without the
+    /// working set.
+    fn all_joints(program: &ChainProgram, settings: &StaticSettings) -> f64 {
+        let conic = program.conic();
+        let sol = crate::statics::solve_conic(
+            &CscMatrix::zeros((4, 4)),
+            &conic.q,
+            &conic.a,
+            &conic.b,
+            &conic.cones,
+            settings,
+        )
+        .expect("solves");
+        assert_eq!(sol.status, SolverStatus::Solved);
+        sol.x[0]
+    }
+
+    #[test]
+    fn both_working_sets_equal_the_program_on_all_joints() {
+        // The conic working set is the curved active set's fallback, so the analyses rarely
+        // reach it: here both run on the same programs.
+        let settings = StaticSettings::default();
+        for (n, fc, mu) in [
+            (16, 1e6, f64::INFINITY),
+            (200, 2e7, f64::INFINITY),
+            (200, 1e6, f64::INFINITY),
+            (1000, 1e6, f64::INFINITY),
+            (64, 1e6, 0.4),
+        ] {
+            let m = model(n, fc, mu);
+            for sign in [1.0, -1.0] {
+                let program = ChainProgram::new(&m.assembly, &m.loads, m.strength, sign, None);
+                let Outcome::Optimal(rigid) = program.active_set(1.0, crate::outcome::LAMBDA_CAP)
+                else {
+                    panic!("rigid optimum");
+                };
+                let curved = program.curved_active_set(&rigid, 1.0).expect("certified");
+                let conic = program
+                    .conic_working_set(&rigid, &settings)
+                    .expect("solves")
+                    .expect("certified");
+                assert!(!conic.infeasible && conic.rounds >= 1);
+                let reference = all_joints(&program, &settings);
+                let label = format!("n = {n}, fc = {fc:e}, mu = {mu}, sign {sign}");
+                assert!((curved.x[0] - reference).abs() <= 1e-9, "{label}");
+                assert!((conic.x[0] - reference).abs() <= 1e-9, "{label}");
+                assert!(conic.joints < n / 2 + 4, "{label}: {} joints", conic.joints);
+                // Both certified optima lie in every joint's cones.
+                for x in [&curved.x, &conic.x] {
+                    for k in 0..program.kappa.len() {
+                        assert!(program.cone_violation(k, x) <= settings.tol_feas, "{label}");
+                    }
+                }
+            }
+        }
     }
 }

@@ -385,7 +385,8 @@ fn differences(a: &Value, b: &Value, path: &str, tol: &dyn Fn(&str) -> f64, out:
                 p.as_f64().unwrap_or(f64::NAN),
                 q.as_f64().unwrap_or(f64::NAN),
             );
-            if !((p - q).abs() <= tol(path) * p.abs().max(q.abs()).max(1.0)) {
+            let within = (p - q).abs() <= tol(path) * p.abs().max(q.abs()).max(1.0);
+            if !within {
                 out.push(format!("{path}: {p} vs {q}"));
             }
         }

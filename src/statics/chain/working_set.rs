@@ -400,9 +400,7 @@ impl ChainProgram {
         let mut in_set = vec![false; nj];
         let mut friction_in = vec![false; 2 * nf];
         let add_joint = |k: usize, in_set: &mut [bool]| {
-            for kk in k.saturating_sub(1)..(k + 2).min(nj) {
-                in_set[kk] = true;
-            }
+            in_set[k.saturating_sub(1)..(k + 2).min(nj)].fill(true);
         };
         for &(row, _) in &rigid.duals {
             if row < first_friction {

@@ -50,12 +50,45 @@ struct ActiveSet {
     pivots: u32,
 }
 
+/// Solve `G d = rhs` (`transpose`: `G^T d = rhs`) for the 4 x 4 matrix whose rows are
+/// `rows`: a basis of the active-set methods. None when singular or not finite.
+fn solve_basis(rows: [[f64; 4]; 4], transpose: bool, rhs: [f64; 4]) -> Option<[f64; 4]> {
+    let mut a = nalgebra::Matrix4::<f64>::zeros();
+    for (r, row) in rows.iter().enumerate() {
+        for (c, &v) in row.iter().enumerate() {
+            if transpose {
+                a[(c, r)] = v;
+            } else {
+                a[(r, c)] = v;
+            }
+        }
+    }
+    let x = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
+    x.iter()
+        .all(|v| v.is_finite())
+        .then(|| [x[0], x[1], x[2], x[3]])
+}
+
 /// The chain program as Clarabel takes it.
 struct ConicForm {
     a: CscMatrix<f64>,
     b: Vec<f64>,
     cones: Vec<SupportedConeT<f64>>,
     q: Vec<f64>,
+}
+
+impl ConicForm {
+    /// Clarabel's solution of the program under `settings`.
+    fn solve(&self, settings: &StaticSettings) -> Result<super::RawSolution, AnalysisError> {
+        solve_conic(
+            &CscMatrix::zeros((4, 4)),
+            &self.q,
+            &self.a,
+            &self.b,
+            &self.cones,
+            settings,
+        )
+    }
 }
 
 /// How the active-set method ended.
@@ -396,21 +429,8 @@ impl ChainProgram {
             a[col] = s;
             (a, BOX)
         };
-        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| -> Option<[f64; 4]> {
-            let mut a = nalgebra::Matrix4::<f64>::zeros();
-            for (r, &i) in basis.iter().enumerate() {
-                for (c, v) in row(i).0.into_iter().enumerate() {
-                    if transpose {
-                        a[(c, r)] = v;
-                    } else {
-                        a[(r, c)] = v;
-                    }
-                }
-            }
-            let x = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
-            x.iter()
-                .all(|v| v.is_finite())
-                .then(|| [x[0], x[1], x[2], x[3]])
+        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| {
+            solve_basis(basis.map(|i| row(i).0), transpose, rhs)
         };
         // The cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
         let mut basis = [m, m + 1, m + 3, m + 5];
@@ -693,8 +713,6 @@ fn active_set_result(
     program: &ChainProgram,
     settings: &StaticSettings,
 ) -> Option<StaticResult> {
-    let (assembly, loads) = (&model.assembly, &model.loads);
-    let sign = settings.direction.sign();
     let ActiveSet { x, duals, pivots } = match program.active_set(1.0, LAMBDA_CAP) {
         Outcome::Optimal(a) => a,
         Outcome::Infeasible { pivots } => {
@@ -715,26 +733,43 @@ fn active_set_result(
     for (i, y) in duals {
         z[i] = y;
     }
-    let forces = program.forces(assembly, &x);
-    let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-    let mut result = StaticResult::unsolved(
-        settings,
-        pivots,
-        "active set; exact vertex".to_string(),
-        program.size(),
-    )
-    .read_solution(
-        assembly,
-        model.strength,
-        settings,
-        lambda,
-        forces,
-        residual,
-        true,
-        || program.mechanism(assembly, loads, sign, &z),
-    );
+    let status = "active set; exact vertex".to_string();
+    let mut result = program.certified(model, settings, &x, &z, pivots, status, true);
     result.exact_vertex = true;
     Some(result)
+}
+
+impl ChainProgram {
+    /// The result of a solution the chain program's own methods certified: the point `x`,
+    /// the multipliers `z` of every row of `dense` (the mechanism), the iterations or pivots
+    /// and the solver's words; `capped` as in [`StaticResult::read_solution`].
+    #[allow(clippy::too_many_arguments)]
+    fn certified(
+        &self,
+        model: &Model,
+        settings: &StaticSettings,
+        x: &[f64],
+        z: &[f64],
+        iterations: u32,
+        status: String,
+        capped: bool,
+    ) -> StaticResult {
+        let (assembly, loads) = (&model.assembly, &model.loads);
+        let sign = settings.direction.sign();
+        let lambda = x[0];
+        let forces = self.forces(assembly, x);
+        let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+        StaticResult::unsolved(settings, iterations, status, self.size()).read_solution(
+            assembly,
+            model.strength,
+            settings,
+            lambda,
+            forces,
+            residual,
+            capped,
+            || self.mechanism(assembly, loads, sign, z),
+        )
+    }
 }
 
 /// Why the chain program does not represent a model; the dispatcher of [`super::analyse`]
@@ -811,49 +846,21 @@ pub fn analyse_chain(
                 r.solve_time_s = start.elapsed().as_secs_f64();
                 return Ok(r);
             }
-            let lambda = ws.x[0];
-            let forces = program.forces(assembly, &ws.x);
-            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            let result = StaticResult::unsolved(settings, ws.iterations, status, program.size())
-                .read_solution(
-                    assembly,
-                    model.strength,
-                    settings,
-                    lambda,
-                    forces,
-                    residual,
-                    false,
-                    || program.mechanism(assembly, loads, sign, &ws.z),
-                );
+            let result =
+                program.certified(model, settings, &ws.x, &ws.z, ws.iterations, status, false);
             let mut r = super::stands_at_zero(model, settings, result)?;
             r.solve_time_s = start.elapsed().as_secs_f64();
             return Ok(r);
         }
     }
-    let conic = program.conic();
-    let mut sol = solve_conic(
-        &CscMatrix::zeros((4, 4)),
-        &conic.q,
-        &conic.a,
-        &conic.b,
-        &conic.cones,
-        settings,
-    )?;
+    let mut sol = program.conic().solve(settings)?;
     let mut capped = false;
     if matches!(
         sol.status,
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         program = ChainProgram::new(assembly, loads, model.strength, sign, Some(LAMBDA_CAP));
-        let conic = program.conic();
-        sol = solve_conic(
-            &CscMatrix::zeros((4, 4)),
-            &conic.q,
-            &conic.a,
-            &conic.b,
-            &conic.cones,
-            settings,
-        )?;
+        sol = program.conic().solve(settings)?;
         capped = true;
     }
     let size = program.size();

@@ -40,7 +40,6 @@
 
 use super::{ChainProgram, Outcome};
 use crate::model::Model;
-use clarabel::algebra::CscMatrix;
 use clarabel::solver::SolverStatus;
 
 /// The most joints the working set may hold before the program on all joints is solved
@@ -180,20 +179,7 @@ impl ChainProgram {
 
     /// The 4 x 4 system of the basis gradients: solve `G d = rhs` (`transpose`: `G^T d = rhs`).
     fn basis_solve(rows: &[Curved; 4], transpose: bool, rhs: [f64; 4]) -> Option<[f64; 4]> {
-        let mut a = nalgebra::Matrix4::<f64>::zeros();
-        for (r, row) in rows.iter().enumerate() {
-            for (c, &v) in row.grad.iter().enumerate() {
-                if transpose {
-                    a[(c, r)] = v;
-                } else {
-                    a[(r, c)] = v;
-                }
-            }
-        }
-        let d = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
-        d.iter()
-            .all(|v| v.is_finite())
-            .then(|| [d[0], d[1], d[2], d[3]])
+        super::solve_basis(rows.map(|r| r.grad), transpose, rhs)
     }
 
     /// The optimum with crushing by a dual active-set method on the curved rows (the crushing
@@ -426,15 +412,7 @@ impl ChainProgram {
                 .filter(|&i| friction_in[i])
                 .map(|i| first_friction + i)
                 .collect();
-            let conic = self.conic_of(&linear, &crush);
-            let sol = super::solve_conic(
-                &CscMatrix::zeros((4, 4)),
-                &conic.q,
-                &conic.a,
-                &conic.b,
-                &conic.cones,
-                settings,
-            )?;
+            let sol = self.conic_of(&linear, &crush).solve(settings)?;
             iterations += sol.iterations;
             if sol.status == SolverStatus::PrimalInfeasible {
                 // No equilibrium satisfies the crushing laws of the working set alone, so
@@ -493,16 +471,7 @@ mod tests {
     /// Clarabel with the cones of every joint, as `analyse_chain` solves it without the
     /// working set.
     fn all_joints(program: &ChainProgram, settings: &StaticSettings) -> f64 {
-        let conic = program.conic();
-        let sol = crate::statics::solve_conic(
-            &CscMatrix::zeros((4, 4)),
-            &conic.q,
-            &conic.a,
-            &conic.b,
-            &conic.cones,
-            settings,
-        )
-        .expect("solves");
+        let sol = program.conic().solve(settings).expect("solves");
         assert_eq!(sol.status, SolverStatus::Solved);
         sol.x[0]
     }

@@ -69,6 +69,21 @@ fn solve_basis(rows: [[f64; 4]; 4], transpose: bool, rhs: [f64; 4]) -> Option<[f
         .then(|| [x[0], x[1], x[2], x[3]])
 }
 
+/// The dual simplex ratio test: of the basis rows with `w_k > 0`, the one whose multiplier
+/// `y_k` reaches 0 first as the entering row's multiplier `t` grows (`y_k - t w_k`), and `t`.
+fn ratio_test(y: &[f64; 4], w: &[f64; 4]) -> Option<(usize, f64)> {
+    let mut leave: Option<(usize, f64)> = None;
+    for k in 0..4 {
+        if w[k] > 1e-14 {
+            let t = y[k] / w[k];
+            if leave.is_none_or(|(_, best)| t < best) {
+                leave = Some((k, t));
+            }
+        }
+    }
+    leave
+}
+
 /// The chain program as Clarabel takes it.
 struct ConicForm {
     a: CscMatrix<f64>,
@@ -477,15 +492,7 @@ impl ChainProgram {
             let Some(w) = solve(&basis, true, row(r).0) else {
                 return Outcome::Failed;
             };
-            let mut leave: Option<(usize, f64)> = None;
-            for k in 0..4 {
-                if w[k] > 1e-14 {
-                    let t = y[k] / w[k];
-                    if leave.is_none_or(|(_, best)| t < best) {
-                        leave = Some((k, t));
-                    }
-                }
-            }
+            let leave = ratio_test(&y, &w);
             // No row can leave (every w_i <= 0): row r is violated at x, and since a_r =
             // sum w_i a_i and the basis rows are tight at x, any x' has g_r(x') = g_r(x) +
             // sum w_i g_i(x'), below g_r(x) < 0 wherever the basis rows hold: no point satisfies
@@ -734,32 +741,39 @@ fn active_set_result(
         z[i] = y;
     }
     let status = "active set; exact vertex".to_string();
-    let mut result = program.certified(model, settings, &x, &z, pivots, status, true);
+    let unsolved = StaticResult::unsolved(settings, pivots, status, program.size());
+    let mut result = program
+        .read_point(model, settings, &x, &z, unsolved, true, None)
+        .ok()?;
     result.exact_vertex = true;
     Some(result)
 }
 
 impl ChainProgram {
-    /// The result of a solution the chain program's own methods certified: the point `x`,
-    /// the multipliers `z` of every row of `dense` (the mechanism), the iterations or pivots
-    /// and the solver's words; `capped` as in [`StaticResult::read_solution`].
+    /// `result` with the solution `x` (multipliers `z` of every row of `dense`, read for the
+    /// mechanism) read into it; `capped` as in [`StaticResult::read_solution`]. With the
+    /// interior point's `solver` status, an AlmostSolved solution is refused when its equilibrium
+    /// residual is not small ([`check_almost_solved`]).
     #[allow(clippy::too_many_arguments)]
-    fn certified(
+    fn read_point(
         &self,
         model: &Model,
         settings: &StaticSettings,
         x: &[f64],
         z: &[f64],
-        iterations: u32,
-        status: String,
+        result: StaticResult,
         capped: bool,
-    ) -> StaticResult {
+        solver: Option<SolverStatus>,
+    ) -> Result<StaticResult, AnalysisError> {
         let (assembly, loads) = (&model.assembly, &model.loads);
         let sign = settings.direction.sign();
         let lambda = x[0];
         let forces = self.forces(assembly, x);
         let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-        StaticResult::unsolved(settings, iterations, status, self.size()).read_solution(
+        if let Some(status) = solver {
+            check_almost_solved(status, residual, self.force_scale, result.iterations)?;
+        }
+        Ok(result.read_solution(
             assembly,
             model.strength,
             settings,
@@ -768,7 +782,7 @@ impl ChainProgram {
             residual,
             capped,
             || self.mechanism(assembly, loads, sign, z),
-        )
+        ))
     }
 }
 
@@ -846,8 +860,9 @@ pub fn analyse_chain(
                 r.solve_time_s = start.elapsed().as_secs_f64();
                 return Ok(r);
             }
+            let unsolved = StaticResult::unsolved(settings, ws.iterations, status, program.size());
             let result =
-                program.certified(model, settings, &ws.x, &ws.z, ws.iterations, status, false);
+                program.read_point(model, settings, &ws.x, &ws.z, unsolved, false, None)?;
             let mut r = super::stands_at_zero(model, settings, result)?;
             r.solve_time_s = start.elapsed().as_secs_f64();
             return Ok(r);
@@ -876,20 +891,15 @@ pub fn analyse_chain(
                 result.solver_status.push_str("; exact vertex");
                 result.exact_vertex = true;
             }
-            let lambda = sol.x[0];
-            let forces = program.forces(assembly, &sol.x);
-            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            check_almost_solved(sol.status, residual, program.force_scale, sol.iterations)?;
-            result = result.read_solution(
-                assembly,
-                model.strength,
+            result = program.read_point(
+                model,
                 settings,
-                lambda,
-                forces,
-                residual,
+                &sol.x,
+                &sol.z,
+                result,
                 capped,
-                || program.mechanism(assembly, loads, sign, &sol.z),
-            );
+                Some(sol.status),
+            )?;
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;

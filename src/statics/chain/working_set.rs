@@ -283,16 +283,7 @@ impl ChainProgram {
             };
             // Ratio test: grad h_r = sum w_i grad h_i; y'_i = y_i - t w_i, y'_r = t.
             let w = Self::basis_solve(&rows, true, self.curved(r, &x).grad)?;
-            let mut leave: Option<(usize, f64)> = None;
-            for k in 0..4 {
-                if w[k] > 1e-14 {
-                    let t = y[k] / w[k];
-                    if leave.is_none_or(|(_, best)| t < best) {
-                        leave = Some((k, t));
-                    }
-                }
-            }
-            let (l, _) = leave?;
+            let (l, _) = super::ratio_test(&y, &w)?;
             basis[l] = r;
         }
         None

@@ -3,7 +3,10 @@
 //! n = 32, 200 and 1000 voussoirs, with its parts: the analysis (static bound and certified
 //! mechanism), the drawing (SVG) and the JSON. Run with `cargo bench --bench serve`. Target:
 //! well under the page's 50 ms budget at n <= 200 (the browser's own figure, from the
-//! end-to-end test, is in docs/web.md).
+//! end-to-end test, is in docs/web.md). Each n is timed rigid and with a finite compressive
+//! strength (`material.compressive_strength`, 20 and 1 MPa: the crushing working set of issue
+//! 28), and, with crushing, the analysis once more with the chain program on all joints
+//! (`StaticSettings::working_set` off: the page before issue 28).
 
 use axum::body::Body;
 use axum::http::Request;
@@ -44,13 +47,17 @@ fn main() {
     };
     println!("POST /api/analyze in process, semicircle t/R = 0.15 (median ms)");
     println!(
-        "{:>6} {:>10} {:>10} {:>10} {:>10} {:>10}",
-        "n", "request", "analysis", "svg", "json", "svg kB"
+        "{:>6} {:>8} {:>10} {:>10} {:>10} {:>10} {:>10} {:>14}",
+        "n", "fc MPa", "request", "analysis", "svg", "json", "svg kB", "all joints"
     );
-    for n in [32_i64, 200, 1000] {
+    for (n, fc) in [32_i64, 200, 1000]
+        .into_iter()
+        .flat_map(|n| [(n, f64::INFINITY), (n, 20e6), (n, 1e6)])
+    {
         let scene = match state
             .scene
             .with_value("arch.voussoirs", toml::Value::Integer(n))
+            .and_then(|s| s.with_value("material.compressive_strength", toml::Value::Float(fc)))
         {
             Ok(s) => s,
             Err(e) => panic!("scene: {e}"),
@@ -98,8 +105,21 @@ fn main() {
         let t_json = median_ms(reps, || {
             let _ = serde_json::to_string(&report::AnalysisReport::new(&scene, &a));
         });
+        let t_all = if fc.is_finite() {
+            let mut all = Options::default();
+            all.static_settings = all.static_settings.working_set(false);
+            format!(
+                "{:.3}",
+                median_ms(reps.min(30), || {
+                    let _ = analysis::analyse(&scene, &all);
+                })
+            )
+        } else {
+            "-".to_string()
+        };
         println!(
-            "{n:>6} {t_request:>10.3} {t_analysis:>10.3} {t_svg:>10.3} {t_json:>10.3} {:>10.1}",
+            "{n:>6} {:>8} {t_request:>10.3} {t_analysis:>10.3} {t_svg:>10.3} {t_json:>10.3} {:>10.1} {t_all:>14}",
+            fc / 1e6,
             svg_len as f64 / 1e3
         );
     }

@@ -32,6 +32,8 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{SolverStatus, SupportedConeT};
 use std::time::Instant;
 
+mod working_set;
+
 /// The joint force as an affine function of `x = [lambda, H, V, M0]` (SI units):
 /// `F = F0 + base + lambda * per`, moment about the reference point likewise.
 #[derive(Debug, Clone, Copy, Default)]
@@ -48,12 +50,60 @@ struct ActiveSet {
     pivots: u32,
 }
 
+/// Solve `G d = rhs` (`transpose`: `G^T d = rhs`) for the 4 x 4 matrix whose rows are
+/// `rows`: a basis of the active-set methods. None when singular or not finite.
+fn solve_basis(rows: [[f64; 4]; 4], transpose: bool, rhs: [f64; 4]) -> Option<[f64; 4]> {
+    let mut a = nalgebra::Matrix4::<f64>::zeros();
+    for (r, row) in rows.iter().enumerate() {
+        for (c, &v) in row.iter().enumerate() {
+            if transpose {
+                a[(c, r)] = v;
+            } else {
+                a[(r, c)] = v;
+            }
+        }
+    }
+    let x = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
+    x.iter()
+        .all(|v| v.is_finite())
+        .then(|| [x[0], x[1], x[2], x[3]])
+}
+
+/// The dual simplex ratio test: of the basis rows with `w_k > 0`, the one whose multiplier
+/// `y_k` reaches 0 first as the entering row's multiplier `t` grows (`y_k - t w_k`), and `t`.
+fn ratio_test(y: &[f64; 4], w: &[f64; 4]) -> Option<(usize, f64)> {
+    let mut leave: Option<(usize, f64)> = None;
+    for k in 0..4 {
+        if w[k] > 1e-14 {
+            let t = y[k] / w[k];
+            if leave.is_none_or(|(_, best)| t < best) {
+                leave = Some((k, t));
+            }
+        }
+    }
+    leave
+}
+
 /// The chain program as Clarabel takes it.
 struct ConicForm {
     a: CscMatrix<f64>,
     b: Vec<f64>,
     cones: Vec<SupportedConeT<f64>>,
     q: Vec<f64>,
+}
+
+impl ConicForm {
+    /// Clarabel's solution of the program under `settings`.
+    fn solve(&self, settings: &StaticSettings) -> Result<super::RawSolution, AnalysisError> {
+        solve_conic(
+            &CscMatrix::zeros((4, 4)),
+            &self.q,
+            &self.a,
+            &self.b,
+            &self.cones,
+            settings,
+        )
+    }
 }
 
 /// How the active-set method ended.
@@ -198,11 +248,21 @@ impl ChainProgram {
     /// The no-tension rows follow from the cones and are then left out (as in the full
     /// program).
     fn conic(&self) -> ConicForm {
-        let skip = self.no_tension_rows_implied();
-        let mut rows: Vec<([f64; 4], f64)> = self.dense[skip..].to_vec();
+        let linear: Vec<usize> = (self.no_tension_rows_implied()..self.dense.len()).collect();
+        let crush: Vec<usize> = (0..self.kappa.len()).collect();
+        self.conic_of(&linear, &crush)
+    }
+
+    /// Clarabel's form of a program made of some of the rows: the linear rows `linear`
+    /// (indices into `dense`), then the two crushing cones of each joint in `crush` (which
+    /// imply that joint's no-tension rows, so `linear` should not repeat them). With every
+    /// row, [`Self::conic`]; with fewer, a relaxation ([`working_set`]).
+    fn conic_of(&self, linear: &[usize], crush: &[usize]) -> ConicForm {
+        let mut rows: Vec<([f64; 4], f64)> = linear.iter().map(|&i| self.dense[i]).collect();
         let lin = rows.len();
         let scaled = |(coef, c): ([f64; 4], f64), f: f64| (coef.map(|v| f * v), f * c);
-        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+        for &k in crush {
+            let (r, kappa) = self.kappa[k];
             let (g2, g1) = (self.dense[2 * k], self.dense[2 * k + 1]);
             let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
             let mut sum = ([0.0; 4], w * (g1.1 + g2.1));
@@ -234,7 +294,7 @@ impl ChainProgram {
         if lin > 0 {
             cones.push(SupportedConeT::NonnegativeConeT(lin));
         }
-        cones.extend((0..2 * self.kappa.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
+        cones.extend((0..2 * crush.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
         ConicForm {
             a: CscMatrix::new(m, 4, colptr, rowval, nzval),
             b: rows.iter().map(|&(_, c)| c).collect(),
@@ -384,21 +444,8 @@ impl ChainProgram {
             a[col] = s;
             (a, BOX)
         };
-        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| -> Option<[f64; 4]> {
-            let mut a = nalgebra::Matrix4::<f64>::zeros();
-            for (r, &i) in basis.iter().enumerate() {
-                for (c, v) in row(i).0.into_iter().enumerate() {
-                    if transpose {
-                        a[(c, r)] = v;
-                    } else {
-                        a[(r, c)] = v;
-                    }
-                }
-            }
-            let x = a.lu().solve(&nalgebra::Vector4::from(rhs))?;
-            x.iter()
-                .all(|v| v.is_finite())
-                .then(|| [x[0], x[1], x[2], x[3]])
+        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| {
+            solve_basis(basis.map(|i| row(i).0), transpose, rhs)
         };
         // The cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
         let mut basis = [m, m + 1, m + 3, m + 5];
@@ -445,15 +492,7 @@ impl ChainProgram {
             let Some(w) = solve(&basis, true, row(r).0) else {
                 return Outcome::Failed;
             };
-            let mut leave: Option<(usize, f64)> = None;
-            for k in 0..4 {
-                if w[k] > 1e-14 {
-                    let t = y[k] / w[k];
-                    if leave.is_none_or(|(_, best)| t < best) {
-                        leave = Some((k, t));
-                    }
-                }
-            }
+            let leave = ratio_test(&y, &w);
             // No row can leave (every w_i <= 0): row r is violated at x, and since a_r =
             // sum w_i a_i and the basis rows are tight at x, any x' has g_r(x') = g_r(x) +
             // sum w_i g_i(x'), below g_r(x) < 0 wherever the basis rows hold: no point satisfies
@@ -498,22 +537,31 @@ impl ChainProgram {
     }
 
     /// Fold the duals of the crushing cones (after the linear rows in `z`) into multipliers of
-    /// the no-tension rows they are built from, so [`Self::mechanism`] reads them: the cone of
-    /// the row `g` with partner `h` holds `s = [r g + 1, r g - 1, w (g + h)]`
-    /// (`w = sqrt2 r / sqrt(kappa)`), so its dual `(z0, z1, z2)` acts on `g` with weight
-    /// `r (z0 + z1) + w z2` and on `h` with `w z2`.
+    /// the no-tension rows they are built from, so [`Self::mechanism`] reads them.
     fn fold_cone_duals(&self, z: &[f64]) -> Vec<f64> {
-        let skip = self.no_tension_rows_implied();
-        let m = self.rows - skip;
-        let mut y = vec![0.0; skip];
-        y.extend_from_slice(&z[..m]);
-        for (k, &(r, kappa)) in self.kappa.iter().enumerate() {
+        let linear: Vec<usize> = (self.no_tension_rows_implied()..self.dense.len()).collect();
+        let crush: Vec<usize> = (0..self.kappa.len()).collect();
+        self.fold_duals_of(z, &linear, &crush)
+    }
+
+    /// The duals `z` of [`Self::conic_of`]`(linear, crush)` as multipliers of every row of
+    /// `dense` (zero for the rows left out): the cone of the row `g` with partner `h` holds
+    /// `s = [r g + 1, r g - 1, w (g + h)]` (`w = sqrt2 r / sqrt(kappa)`), so its dual
+    /// `(z0, z1, z2)` acts on `g` with weight `r (z0 + z1) + w z2` and on `h` with `w z2`.
+    fn fold_duals_of(&self, z: &[f64], linear: &[usize], crush: &[usize]) -> Vec<f64> {
+        let mut y = vec![0.0; self.dense.len()];
+        for (&i, &zi) in linear.iter().zip(z) {
+            y[i] = zi;
+        }
+        let m = linear.len();
+        for (j, &k) in crush.iter().enumerate() {
+            let (r, kappa) = self.kappa[k];
             let w = std::f64::consts::SQRT_2 * r / kappa.sqrt();
             for (c, (g, h)) in [(2 * k, 2 * k + 1), (2 * k + 1, 2 * k)]
                 .into_iter()
                 .enumerate()
             {
-                let base = m + 6 * k + 3 * c;
+                let base = m + 6 * j + 3 * c;
                 let (z0, z1, z2) = (z[base], z[base + 1], z[base + 2]);
                 y[g] += r * (z0 + z1) + w * z2;
                 y[h] += w * z2;
@@ -623,16 +671,22 @@ impl ChainProgram {
 }
 
 /// The least multiplier equilibrium allows on a chain (seismic forces toward `sign`), by the
-/// active-set method; None when the method does not finish (or the model is not a chain).
-/// The multipliers equilibrium allows form an interval, so the structure stands at lambda = 0
-/// exactly when this is at most 0 (and the largest at least 0).
-pub(super) fn least_lambda(model: &Model, sign: f64) -> Option<f64> {
-    // The active set solves linear programs only: with crushing cones the conic stand test
-    // decides.
-    if declines(model).is_some() || model.strength.is_finite() {
+/// active-set method (with crushing, and `settings.working_set`, the curved active set of
+/// [`working_set`] from its basis); None when the method does not finish (or the model is not
+/// a chain). The multipliers equilibrium allows form an interval (the program is convex), so
+/// the structure stands at lambda = 0 exactly when this is at most 0 (and the largest at
+/// least 0).
+pub(super) fn least_lambda(model: &Model, settings: &StaticSettings) -> Option<f64> {
+    // The conic stand test decides with crushing cones unless the working set may.
+    let crushing = model.strength.is_finite();
+    if declines(model).is_some() || (crushing && !settings.working_set) {
         return None;
     }
+    let sign = settings.direction.sign();
     let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, sign, None);
+    if crushing {
+        return program.least_lambda_crushing();
+    }
     let lambda = program.active_set(-1.0, LAMBDA_CAP).optimal()?.x[0];
     lambda.is_finite().then_some(lambda)
 }
@@ -666,8 +720,6 @@ fn active_set_result(
     program: &ChainProgram,
     settings: &StaticSettings,
 ) -> Option<StaticResult> {
-    let (assembly, loads) = (&model.assembly, &model.loads);
-    let sign = settings.direction.sign();
     let ActiveSet { x, duals, pivots } = match program.active_set(1.0, LAMBDA_CAP) {
         Outcome::Optimal(a) => a,
         Outcome::Infeasible { pivots } => {
@@ -688,26 +740,50 @@ fn active_set_result(
     for (i, y) in duals {
         z[i] = y;
     }
-    let forces = program.forces(assembly, &x);
-    let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-    let mut result = StaticResult::unsolved(
-        settings,
-        pivots,
-        "active set; exact vertex".to_string(),
-        program.size(),
-    )
-    .read_solution(
-        assembly,
-        model.strength,
-        settings,
-        lambda,
-        forces,
-        residual,
-        true,
-        || program.mechanism(assembly, loads, sign, &z),
-    );
+    let status = "active set; exact vertex".to_string();
+    let unsolved = StaticResult::unsolved(settings, pivots, status, program.size());
+    let mut result = program
+        .read_point(model, settings, &x, &z, unsolved, true, None)
+        .ok()?;
     result.exact_vertex = true;
     Some(result)
+}
+
+impl ChainProgram {
+    /// `result` with the solution `x` (multipliers `z` of every row of `dense`, read for the
+    /// mechanism) read into it; `capped` as in [`StaticResult::read_solution`]. With the
+    /// interior point's `solver` status, an AlmostSolved solution is refused when its equilibrium
+    /// residual is not small ([`check_almost_solved`]).
+    #[allow(clippy::too_many_arguments)]
+    fn read_point(
+        &self,
+        model: &Model,
+        settings: &StaticSettings,
+        x: &[f64],
+        z: &[f64],
+        result: StaticResult,
+        capped: bool,
+        solver: Option<SolverStatus>,
+    ) -> Result<StaticResult, AnalysisError> {
+        let (assembly, loads) = (&model.assembly, &model.loads);
+        let sign = settings.direction.sign();
+        let lambda = x[0];
+        let forces = self.forces(assembly, x);
+        let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+        if let Some(status) = solver {
+            check_almost_solved(status, residual, self.force_scale, result.iterations)?;
+        }
+        Ok(result.read_solution(
+            assembly,
+            model.strength,
+            settings,
+            lambda,
+            forces,
+            residual,
+            capped,
+            || self.mechanism(assembly, loads, sign, z),
+        ))
+    }
 }
 
 /// Why the chain program does not represent a model; the dispatcher of [`super::analyse`]
@@ -776,30 +852,30 @@ pub fn analyse_chain(
             return Ok(r);
         }
     }
-    let conic = program.conic();
-    let mut sol = solve_conic(
-        &CscMatrix::zeros((4, 4)),
-        &conic.q,
-        &conic.a,
-        &conic.b,
-        &conic.cones,
-        settings,
-    )?;
+    if conic_program && settings.working_set {
+        if let Some(ws) = program.working_set(model, settings)? {
+            let status = ws.words(assembly.joints.len());
+            if ws.infeasible {
+                let mut r = StaticResult::unsolved(settings, ws.iterations, status, program.size());
+                r.solve_time_s = start.elapsed().as_secs_f64();
+                return Ok(r);
+            }
+            let unsolved = StaticResult::unsolved(settings, ws.iterations, status, program.size());
+            let result =
+                program.read_point(model, settings, &ws.x, &ws.z, unsolved, false, None)?;
+            let mut r = super::stands_at_zero(model, settings, result)?;
+            r.solve_time_s = start.elapsed().as_secs_f64();
+            return Ok(r);
+        }
+    }
+    let mut sol = program.conic().solve(settings)?;
     let mut capped = false;
     if matches!(
         sol.status,
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         program = ChainProgram::new(assembly, loads, model.strength, sign, Some(LAMBDA_CAP));
-        let conic = program.conic();
-        sol = solve_conic(
-            &CscMatrix::zeros((4, 4)),
-            &conic.q,
-            &conic.a,
-            &conic.b,
-            &conic.cones,
-            settings,
-        )?;
+        sol = program.conic().solve(settings)?;
         capped = true;
     }
     let size = program.size();
@@ -815,20 +891,15 @@ pub fn analyse_chain(
                 result.solver_status.push_str("; exact vertex");
                 result.exact_vertex = true;
             }
-            let lambda = sol.x[0];
-            let forces = program.forces(assembly, &sol.x);
-            let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
-            check_almost_solved(sol.status, residual, program.force_scale, sol.iterations)?;
-            result = result.read_solution(
-                assembly,
-                model.strength,
+            result = program.read_point(
+                model,
                 settings,
-                lambda,
-                forces,
-                residual,
+                &sol.x,
+                &sol.z,
+                result,
                 capped,
-                || program.mechanism(assembly, loads, sign, &sol.z),
-            );
+                Some(sol.status),
+            )?;
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;

@@ -5,8 +5,10 @@
 //! With rigid joints the program is linear (a conic program over the zero and nonnegative
 //! cones) and is solved with Clarabel; with a finite compressive strength (a rectangular stress
 //! block, [`crate::model::Strength`]; Gilbert, Casapulla & Ahmed's crushing extension, as in
-//! RING) every joint adds two rotated second-order cones, and the chain program goes to
-//! Clarabel too (its active set and exact vertex are for the linear program only). For associative (non-sliding or normality) joints its optimum is the
+//! RING) every joint adds two rotated second-order cones; the chain program is then solved by
+//! a working set (`chain/working_set.rs`: an active set on the curved crushing laws from the
+//! rigid hinges, Clarabel on the cones of a few joints next, every joint checked), Clarabel
+//! on all joints as the fallback. For associative (non-sliding or normality) joints its optimum is the
 //! collapse multiplier; the duals of the equilibrium rows are the virtual velocities of the
 //! blocks, i.e. the collapse mechanism.
 
@@ -246,7 +248,7 @@ fn stands_at_zero(
     // On a chain the least multiplier tells at the cost of one more active-set solve; the
     // phase-one program (a conic solve of the full program) otherwise.
     let why = match (settings.active_set)
-        .then(|| chain::least_lambda(model, settings.direction.sign()))
+        .then(|| chain::least_lambda(model, settings))
         .flatten()
     {
         Some(least) if least <= 0.0 => return Ok(result),

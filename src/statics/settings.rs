@@ -39,6 +39,12 @@ pub struct StaticSettings {
     /// faster than the interior point); the interior point runs when it does not finish.
     /// Default true; false runs the interior point alone (for cross-checks).
     pub active_set: bool,
+    /// With finite compressive strength, solve the chain program by its working set
+    /// (`statics::chain`'s `working_set`: the crushing cones of the rigid hinges and the
+    /// joints found violated, checked at every joint, so the same optimum); the program on
+    /// all joints when it does not finish. Default true; false solves the chain program with
+    /// the cones of every joint directly (as before issue 28, for cross-checks).
+    pub working_set: bool,
 }
 
 /// The static program to solve.
@@ -63,6 +69,7 @@ impl Default for StaticSettings {
             linear_solver: "qdldl".to_string(),
             program: Program::Auto,
             active_set: true,
+            working_set: true,
         }
     }
 }
@@ -82,6 +89,10 @@ impl StaticSettings {
     }
     pub fn active_set(mut self, on: bool) -> Self {
         self.active_set = on;
+        self
+    }
+    pub fn working_set(mut self, on: bool) -> Self {
+        self.working_set = on;
         self
     }
     pub fn program(mut self, program: Program) -> Self {

@@ -484,3 +484,175 @@ fn mirror_invariance_with_crushing() {
         assert!((x - y).abs() <= 1e-7 * x.max(1e-3), "{x} vs {y}");
     }
 }
+
+/// The crushing law checked on the answer itself, joint by joint (not through any program):
+/// no tension, and the resultant inside the joint by half the compressed zone at least,
+/// `|e| <= (L - N/(fc d))/2`, to round-off of the joint length.
+fn assert_crushing_law_holds(model: &Model, r: &statics::StaticResult, label: &str) {
+    let forces = r.forces.as_ref().expect("forces at collapse");
+    let fcd = model.strength.line_capacity();
+    for (k, (jt, f)) in model.assembly.joints.iter().zip(forces).enumerate() {
+        let len = jt.length();
+        assert!(f.n >= 0.0, "{label}: joint {k} in tension {}", f.n);
+        if f.n > 0.0 {
+            let reach = 0.5 * (len - f.n / fcd);
+            assert!(
+                (f.m / f.n).abs() <= reach + 1e-9 * len,
+                "{label}: joint {k}: |e| = {} beyond {reach}",
+                (f.m / f.n).abs()
+            );
+        }
+    }
+}
+
+/// The default chain program with crushing (its working set, issue 28) against the chain
+/// program with the cones of every joint (the answer before issue 28) and the full program,
+/// both directions: the same status, multiplier (1e-9), hinges and mechanism, equilibrium
+/// residual at round-off, the crushing law at every joint. Returns the default's solver
+/// status per direction.
+fn assert_working_set_exact(model: &Model, label: &str) -> Vec<String> {
+    let weight = model.assembly.total_weight();
+    let mut how = Vec::new();
+    for direction in [statics::Direction::Right, statics::Direction::Left] {
+        let run = |s: StaticSettings| statics::analyse(model, &s.direction(direction));
+        let ws = run(StaticSettings::default()).expect("solves");
+        let all = run(StaticSettings::default().working_set(false)).expect("solves");
+        let full = run(StaticSettings::default().program(Program::Full)).expect("solves");
+        let label = format!("{label} {direction:?}");
+        assert_eq!(ws.status, all.status, "{label}: {}", ws.solver_status);
+        assert_eq!(ws.status, full.status, "{label}: {}", ws.solver_status);
+        how.push(ws.solver_status.clone());
+        let (Some(a), Some(b), Some(c)) = (ws.lambda, all.lambda, full.lambda) else {
+            continue;
+        };
+        assert!(
+            (a - b).abs() <= 1e-9,
+            "{label}: working set {a}, all joints {b}"
+        );
+        assert!((a - c).abs() <= 1e-9, "{label}: working set {a}, full {c}");
+        let joints = |r: &statics::StaticResult| {
+            r.hinges
+                .iter()
+                .map(|h| (h.joint, h.end))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(joints(&ws), joints(&all), "{label}");
+        for (h, g) in ws.hinges.iter().zip(&all.hinges) {
+            assert!(
+                (h.offset - g.offset).abs() <= 1e-7 * h.offset.max(1e-3),
+                "{label}"
+            );
+        }
+        let forces = ws.forces.as_ref().expect("forces");
+        let sign = direction.sign();
+        let residual = equilibrium_residual(&model.assembly, &model.loads, forces, a, sign);
+        assert!(residual <= 1e-9 * weight, "{label}: residual {residual}");
+        assert!(ws.equilibrium_residual <= 1e-9 * weight, "{label}");
+        assert_crushing_law_holds(model, &ws, &label);
+        assert_eq!(ws.mechanism.len(), all.mechanism.len(), "{label}");
+        for (u, v) in ws.mechanism.iter().zip(&all.mechanism) {
+            for (p, q) in u.iter().zip(v) {
+                assert!((p - q).abs() <= 1e-6, "{label}: mechanism {u:?} vs {v:?}");
+            }
+        }
+    }
+    how
+}
+
+#[test]
+fn working_set_equals_the_program_on_all_joints() {
+    let (mut curved, mut fallback, mut cases) = (0, Vec::new(), 0);
+    let mut tally = |how: Vec<String>| {
+        cases += how.len();
+        for s in how {
+            if s.starts_with("active set on the crushing laws") {
+                curved += 1;
+            } else if !s.contains("working set") {
+                fallback.push(s);
+            }
+        }
+    };
+    // Shapes, portals, fill, point and live loads, both directions.
+    for name in [
+        "semicircular.toml",
+        "pointed.toml",
+        "basket.toml",
+        "segmental.toml",
+        "portal.toml",
+        "stepped_portal.toml",
+        "battered_portal.toml",
+        "loaded_portal.toml",
+        "filled_arch.toml",
+        "live_load_arch.toml",
+    ] {
+        let base = Scene::from_file(&data(name)).expect("bundled scene");
+        for fc in [1e8, 2e6, 5e5, 1.5e5] {
+            let s = with_fc(&base, fc);
+            tally(assert_working_set_exact(
+                &model_of(&s),
+                &format!("{name} {fc:e}"),
+            ));
+        }
+    }
+    // A range of n on the semicircle of the acceptance, strong to weak.
+    for n in [3, 8, 31, 64, 200, 500] {
+        for fc in [1e9, 2e7, 1e6, 3e5] {
+            let s = semicircle_r5(fc, 1.0)
+                .with_override(&format!("arch.voussoirs={n}"))
+                .expect("valid override");
+            tally(assert_working_set_exact(
+                &model_of(&s),
+                &format!("n = {n} {fc:e}"),
+            ));
+        }
+    }
+    // Finite friction (sliding rows in the basis) and a pointed arch on piers.
+    for (name, mu) in [
+        ("semicircular.toml", 0.4),
+        ("portal.toml", 0.5),
+        ("pointed.toml", 0.3),
+    ] {
+        let base = Scene::from_file(&data(name)).expect("bundled scene");
+        for fc in [2e7, 1e6] {
+            let s = with_fc(&base, fc)
+                .with_override(&format!("material.friction={mu}"))
+                .expect("valid override");
+            tally(assert_working_set_exact(
+                &model_of(&s),
+                &format!("{name} mu {mu} {fc:e}"),
+            ));
+        }
+    }
+    // Leaning portals (a tall slender left pier, a squat right one): some stand only with a
+    // push toward +x, so the stand test at lambda = 0 decides (the least multiplier with
+    // crushing, by the curved active set, against the phase-one program on all joints).
+    let mut leaning = 0;
+    for height in [0.6, 1.0, 1.6] {
+        let text = format!(
+            "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 16\n\
+             [piers.left]\nheight = {height}\nwidth = 0.3\ncourses = 4\n\
+             [piers.right]\nheight = 0.6\nwidth = 0.45\ncourses = 2\n"
+        );
+        let base = scene(&text);
+        let weight = model_of(&base).assembly.total_weight();
+        // sigma = W / (fc d t): from a strong material to one that crushes visibly.
+        for sigma in [0.01, 0.1, 0.3] {
+            let s = with_fc(
+                &base,
+                weight / (sigma * model_of(&base).strength.depth * 0.2),
+            );
+            let how = assert_working_set_exact(&model_of(&s), &format!("leaning {height} {sigma}"));
+            leaning += how
+                .iter()
+                .filter(|h| h.contains("the least multiplier equilibrium allows is"))
+                .count();
+            tally(how);
+        }
+    }
+    assert!(leaning > 0, "no leaning portal needed the stand test");
+    println!("{curved} of {cases} analyses by the curved active set");
+    // The fast path is the one that runs (the conic working set proves the structures that
+    // cannot stand so); the program on all joints is for what neither certifies.
+    assert!(4 * curved >= 3 * cases, "{curved} of {cases}");
+    assert!(fallback.is_empty(), "{fallback:?}");
+}

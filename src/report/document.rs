@@ -102,6 +102,11 @@ impl Section {
         self.push(Block::Warning(text.into()))
     }
 
+    /// Text shown as it is, line by line in a fixed-width font (a file quoted in full).
+    pub fn preformatted(&mut self, text: impl Into<String>) -> &mut Self {
+        self.push(Block::Preformatted(text.into()))
+    }
+
     /// Key-value rows.
     pub fn rows(&mut self, rows: Vec<Row>) -> &mut Self {
         self.push(Block::Rows(rows))
@@ -129,6 +134,8 @@ pub enum Block {
     Statement(String),
     /// A warning.
     Warning(String),
+    /// Text kept as it is, in a fixed-width font (a scene file quoted in full).
+    Preformatted(String),
     /// Named values.
     Rows(Vec<Row>),
     Table(Table),

@@ -34,6 +34,7 @@ pub fn print(doc: &Document) -> String {
                 }
                 Block::Item(t) => s.push_str(&format!("- {}\n", t.replace('\n', " "))),
                 Block::Warning(t) => s.push_str(&format!("> **Warning:** {t}\n\n")),
+                Block::Preformatted(t) => s.push_str(&format!("```\n{}\n```\n\n", t.trim_end())),
                 Block::Rows(rows) => {
                     for r in rows {
                         let unit = match r.value.unit() {

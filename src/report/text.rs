@@ -37,6 +37,7 @@ fn print_section(s: &mut String, section: &Section) {
             Block::Item(t) => indented(s, "    ", t),
             Block::Statement(t) => indented(s, "", t),
             Block::Warning(t) => indented(s, "", &format!("warning: {t}")),
+            Block::Preformatted(t) => indented(s, "    ", t),
             Block::Rows(rows) => {
                 for r in rows {
                     let value = with_unit(&r.value);

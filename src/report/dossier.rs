@@ -172,7 +172,7 @@ pub fn hand_in(scene: &Scene, source: &Source, d: &Dossier) -> HandIn {
                 "Minimum thickness",
             );
             doc.data = None;
-            doc.lead.push("The thinnest ring that stands under its permanent loads (lambda = 0); the geometric safety factor is the thickness over it (Heyman 1969).".into());
+            doc.lead.push("The thinnest ring that stands under its permanent loads (lambda = 0); the geometric safety factor is the thickness over it (Heyman's).".into());
             match figures::min_thickness(scene, &t.lower) {
                 Ok(Some(f)) => doc.figures.push(f),
                 Ok(None) => {}
@@ -304,7 +304,7 @@ fn identification(
         doc.untitled().line(notes.clone());
     }
     let sec = doc.section("Conclusion");
-    sec.statement(structure_words(scene, a));
+    sec.statement(conclusion_words(scene, a));
     if let Ok(t) = &d.thickness {
         if let Some(f) = t.lower.safety_factor {
             sec.statement(format!(
@@ -332,35 +332,6 @@ fn identification(
         }
     }
     doc
-}
-
-/// The headline of the analysis in words: what the structure does and by which bound.
-fn structure_words(scene: &Scene, a: &crate::analysis::SceneAnalysis) -> String {
-    let f = a.friction();
-    let what = shape_title(scene);
-    match (a.lower.status, a.lambda_governing()) {
-        (Status::CannotStand, _) => format!(
-            "The {what} cannot stand: no thrust line fits under its permanent loads alone, so it collapses without any horizontal action."
-        ),
-        (Status::NoCollapse, _) => format!(
-            "The {what} does not collapse: no load multiplier makes it a mechanism (the load drives no mechanism)."
-        ),
-        (Status::Collapse, Some(l)) => {
-            let name = if a.lambda_non_associative().is_some() && !f.exact {
-                "the non-associative multiplier (joints that slide without opening)".to_string()
-            } else {
-                static_bound_name(&f)
-            };
-            let mut s = format!(
-                "The {what} stands under its permanent loads and becomes a mechanism at lambda = {l:.6} ({name})."
-            );
-            if a.sliding_governs() {
-                s.push_str(" Sliding governs: joints slide in the collapse mechanism.");
-            }
-            s
-        }
-        (Status::Collapse, None) => format!("The {what} collapses (no multiplier found)."),
-    }
 }
 
 fn capitalised(key: &str) -> String {

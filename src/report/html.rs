@@ -240,7 +240,8 @@ fn caption(name: &str) -> &'static str {
 
 /// A figure inline: its SVG without the XML declaration and the namespace declarations (an
 /// HTML parser places `<svg>` in its namespace; an XML parser reads it as plain markup), its
-/// ids made unique in the page (`f3-...`, references rewritten), and its caption.
+/// ids made unique in the page (`f3-...`, references rewritten), and its caption (what it
+/// shows; the drawing's own title, with its numbers, is drawn in it).
 fn print_figure(s: &mut String, f: &Figure, number: usize) {
     let mut svg = f.svg.trim().to_string();
     if svg.starts_with("<?xml") {
@@ -259,26 +260,12 @@ fn print_figure(s: &mut String, f: &Figure, number: usize) {
         .replace(" id=\"", &format!(" id=\"{prefix}"))
         .replace("url(#", &format!("url(#{prefix}"))
         .replace("href=\"#", &format!("href=\"#{prefix}"));
-    // The drawing's title: in the page, the figure's caption says what it is, and the title
-    // element inside an inline SVG shows only as a tooltip.
-    let title = svg_title(&svg);
     s.push_str(&format!("<figure id=\"figure-{number}\">\n"));
     s.push_str(&svg);
     s.push_str(&format!(
-        "\n<figcaption>Figure {number}: {}{}</figcaption>\n</figure>\n",
+        "\n<figcaption>Figure {number}: {}</figcaption>\n</figure>\n",
         caption(f.name),
-        title.map_or(String::new(), |t| format!(
-            " ({})",
-            t.replace('\n', "; ")
-        ))
     ));
-}
-
-/// The text of an SVG's `<title>`, markup as it is (it is already escaped).
-fn svg_title(svg: &str) -> Option<&str> {
-    let start = svg.find("<title>")? + "<title>".len();
-    let end = svg[start..].find("</title>")? + start;
-    Some(&svg[start..end])
 }
 
 #[cfg(test)]
@@ -332,6 +319,6 @@ mod tests {
         print_figure(&mut s, &f, 2);
         assert!(!s.contains("<?xml") && !s.contains("xmlns"), "{s}");
         assert!(s.contains("<g id=\"f2-a\" fill=\"url(#f2-a)\"/>"), "{s}");
-        assert!(s.contains("Figure 2: the structure drawn to scale (t)"), "{s}");
+        assert!(s.contains("Figure 2: the structure drawn to scale</figcaption>"), "{s}");
     }
 }

@@ -371,7 +371,11 @@ fn structure(scene: &Scene, d: &Dossier) -> Document {
         ],
         rows: Vec::new(),
     };
-    scene_rows(&mut table, "", scene.table());
+    // The identification and the site have chapters of their own.
+    let mut keys = scene.table().clone();
+    keys.remove("report");
+    keys.remove("site");
+    scene_rows(&mut table, "", &keys);
     doc.section("Geometry, materials, loads, supports and ties (the scene's keys)")
         .table(table);
     doc

@@ -9,7 +9,8 @@
 //! and a heading with what follows it are never split across pages, and each page has a
 //! header with the report's title and its page number (CSS paged media margin boxes).
 //!
-//! Each chapter's title is a level-2 heading, its lead its first paragraphs, each section a
+//! A list of contents (links within the page) opens it. Each chapter's title is a level-2
+//! heading, its lead its first paragraphs, each section a
 //! level-3 heading over its sentences (paragraphs), list items (a list), statements
 //! (paragraphs in bold), warnings (boxed), key-value rows (a two-column table), tables and
 //! preformatted text; then its figures, numbered through the report, each with its caption.
@@ -74,6 +75,10 @@ td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
 table.rows th { color: var(--ink); font-weight: normal; }
 td.scene { font-family: "DejaVu Sans Mono", "Liberation Mono", monospace; font-size: 8.5pt; }
 pre { font-family: "DejaVu Sans Mono", "Liberation Mono", monospace; font-size: 8pt; background: #f6f4f0; border: 1px solid var(--rule); padding: 2mm 3mm; white-space: pre-wrap; overflow-wrap: anywhere; }
+nav.contents { font-family: "DejaVu Sans", "Liberation Sans", Arial, sans-serif; font-size: 9.5pt; border: 1px solid var(--rule); padding: 2mm 5mm; margin-bottom: 4mm; }
+nav.contents ol { margin: 1mm 0; padding-left: 6mm; columns: 2; }
+nav.contents a { color: var(--ink); text-decoration: none; }
+p.contents-title { font-weight: bold; margin: 0; color: var(--muted); }
 figure { margin: 4mm 0; text-align: center; }
 figure svg { width: 100%; height: auto; max-height: 150mm; }
 figcaption { font-size: 9pt; color: var(--muted); margin-top: 1mm; }
@@ -102,6 +107,16 @@ pub fn print(title: &str, chapters: &[Chapter]) -> String {
         "<header class=\"title\">\n<h1>{}</h1>\n</header>\n",
         escape(title)
     ));
+    // The contents, linked to the chapters in the page.
+    s.push_str("<nav class=\"contents\">\n<p class=\"contents-title\">Contents</p>\n<ol>\n");
+    for (i, chapter) in chapters.iter().enumerate() {
+        s.push_str(&format!(
+            "<li><a href=\"#chapter-{}\">{}</a></li>\n",
+            i + 1,
+            escape(&chapter.doc.title)
+        ));
+    }
+    s.push_str("</ol>\n</nav>\n");
     let mut figure_number = 0;
     for (i, chapter) in chapters.iter().enumerate() {
         let doc = &chapter.doc;

@@ -617,7 +617,8 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
 #[pyfunction]
 #[pyo3(signature = (scene, dem = false))]
 fn report_html_json(py: Python<'_>, scene: &Scene, dem: bool) -> PyResult<(String, String)> {
-    let text = toml::to_string(scene.inner.table()).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let text =
+        toml::to_string(scene.inner.table()).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let lib_scene = scene.inner.clone();
     let (lib_scene, d) = interruptible(py, Arc::default(), move || {
         let d = voussoir::dossier::run(&lib_scene, &voussoir::dossier::DossierOptions { dem });

@@ -153,7 +153,10 @@ fn print_pdf(browser: &Path, html: &str, pdf: &Path) -> Result<(), Error> {
         .arg("--disable-gpu")
         // The page's own header (title, page numbers) replaces the browser's date and URL.
         .arg("--no-pdf-header-footer")
-        .arg(format!("--user-data-dir={}", dir.path().join("profile").display()))
+        .arg(format!(
+            "--user-data-dir={}",
+            dir.path().join("profile").display()
+        ))
         .arg(format!("--print-to-pdf={}", printed.display()))
         .arg(format!("file://{}", page.display()))
         .stdin(Stdio::null())
@@ -178,7 +181,9 @@ fn print_pdf(browser: &Path, html: &str, pdf: &Path) -> Result<(), Error> {
             Err(e) => return Err(fail(e.to_string())),
         }
     };
-    let bytes = std::fs::read(&printed).ok().filter(|b| b.starts_with(b"%PDF"));
+    let bytes = std::fs::read(&printed)
+        .ok()
+        .filter(|b| b.starts_with(b"%PDF"));
     let Some(bytes) = bytes.filter(|_| status.success()) else {
         let mut stderr = String::new();
         if let Some(mut e) = child.stderr.take() {

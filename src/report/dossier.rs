@@ -182,10 +182,7 @@ pub fn hand_in(scene: &Scene, source: &Source, d: &Dossier) -> HandIn {
                 }
             }
             chapters.push(doc);
-            (
-                Some(MinThicknessReport::new(scene, &a.model, t)),
-                None,
-            )
+            (Some(MinThicknessReport::new(scene, &a.model, t)), None)
         }
         Err(why) => {
             let mut doc = Document::new("Minimum thickness");
@@ -213,7 +210,11 @@ pub fn hand_in(scene: &Scene, source: &Source, d: &Dossier) -> HandIn {
         min_thickness_note,
         assessment,
         assessment_note,
-        sensitivity: d.sensitivity.iter().map(|s| sensitivity_row(a, s)).collect(),
+        sensitivity: d
+            .sensitivity
+            .iter()
+            .map(|s| sensitivity_row(a, s))
+            .collect(),
         sensitivity_skipped: d
             .sensitivity_skipped
             .iter()
@@ -336,8 +337,9 @@ fn identification(
 
 fn capitalised(key: &str) -> String {
     let mut c = key.chars();
-    c.next()
-        .map_or(String::new(), |f| f.to_uppercase().collect::<String>() + c.as_str())
+    c.next().map_or(String::new(), |f| {
+        f.to_uppercase().collect::<String>() + c.as_str()
+    })
 }
 
 /// The scene file's name (the origin without the overrides it lists).
@@ -391,7 +393,9 @@ fn scene_rows(out: &mut Table, prefix: &str, table: &toml::Table) {
             format!("{prefix}.{key}")
         };
         match value {
-            toml::Value::Table(t) if t.values().any(|v| !v.is_table() && !is_tables(v)) || t.is_empty() => {
+            toml::Value::Table(t)
+                if t.values().any(|v| !v.is_table() && !is_tables(v)) || t.is_empty() =>
+            {
                 scene_rows(out, &name, t)
             }
             toml::Value::Table(t) => scene_rows(out, &name, t),
@@ -495,7 +499,11 @@ fn seismic(
             doc.data = None;
             let name = scene_name(scene);
             let name = name.rsplit('/').next().unwrap_or(&name);
-            figure(&mut doc, "capacity curve", figures::assessment_capacity(all, name));
+            figure(
+                &mut doc,
+                "capacity curve",
+                figures::assessment_capacity(all, name),
+            );
             figure(&mut doc, "ADRS plot", figures::assessment_adrs(all, name));
             figure(
                 &mut doc,
@@ -603,10 +611,7 @@ fn limits(scene: &Scene, d: &Dossier) -> Document {
 fn reproducibility(scene: &Scene, source: &Source, d: &Dossier) -> Document {
     let mut doc = Document::new("Reproducibility");
     let mut rows = vec![
-        Row::new(
-            "voussoir version",
-            Value::text(env!("CARGO_PKG_VERSION")),
-        ),
+        Row::new("voussoir version", Value::text(env!("CARGO_PKG_VERSION"))),
         Row::new("scene file", Value::text(scene_name(scene))),
         Row::new("SHA-256 of the scene file", Value::text(source.sha256())),
     ];
@@ -625,6 +630,7 @@ fn reproducibility(scene: &Scene, source: &Source, d: &Dossier) -> Document {
         }),
     ));
     doc.untitled().rows(rows);
-    doc.section("The scene file in full").preformatted(source.text.clone());
+    doc.section("The scene file in full")
+        .preformatted(source.text.clone());
     doc
 }

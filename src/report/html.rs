@@ -176,10 +176,9 @@ fn print_section(s: &mut String, section: &Section) {
             Block::Statement(t) => {
                 s.push_str(&format!("<p class=\"statement\">{}</p>\n", lines(t)))
             }
-            Block::Warning(t) => s.push_str(&format!(
-                "<p class=\"warning\">Warning: {}</p>\n",
-                lines(t)
-            )),
+            Block::Warning(t) => {
+                s.push_str(&format!("<p class=\"warning\">Warning: {}</p>\n", lines(t)))
+            }
             Block::Preformatted(t) => s.push_str(&format!("<pre>{}</pre>\n", escape(t))),
             Block::Rows(rows) => {
                 s.push_str("<table class=\"rows\">\n<tbody>\n");
@@ -316,7 +315,10 @@ mod tests {
                 new_page: false,
             }],
         );
-        assert!(html.contains("<h2>1. Results &amp; &lt;more&gt;</h2>"), "{html}");
+        assert!(
+            html.contains("<h2>1. Results &amp; &lt;more&gt;</h2>"),
+            "{html}"
+        );
         assert!(html.contains("<h3>lambda &lt; 1</h3>"));
         assert!(html.contains("<ul>\n<li>one</li>\n<li>two</li>\n</ul>"));
         assert!(html.contains("<td class=\"num\">0.25 m</td>"));
@@ -334,6 +336,9 @@ mod tests {
         print_figure(&mut s, &f, 2);
         assert!(!s.contains("<?xml") && !s.contains("xmlns"), "{s}");
         assert!(s.contains("<g id=\"f2-a\" fill=\"url(#f2-a)\"/>"), "{s}");
-        assert!(s.contains("Figure 2: the structure drawn to scale</figcaption>"), "{s}");
+        assert!(
+            s.contains("Figure 2: the structure drawn to scale</figcaption>"),
+            "{s}"
+        );
     }
 }

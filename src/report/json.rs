@@ -601,8 +601,11 @@ impl AnalysisReport {
             Err(note) => report.kinematic_note = Some(note.clone()),
         }
         report.kinematic_search = a.kinematic_search;
-        if let (Ok(k), Some(crate::kinematic::Search::Exhaustive | crate::kinematic::Search::Local)) =
-            (&a.upper, a.kinematic_search) {
+        if let (
+            Ok(k),
+            Some(crate::kinematic::Search::Exhaustive | crate::kinematic::Search::Local),
+        ) = (&a.upper, a.kinematic_search)
+        {
             report.kinematic_admissible = Some(k.admissible);
         }
         report.set_non_associative(a);

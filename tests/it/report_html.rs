@@ -28,7 +28,10 @@ fn report(scene: &Path, args: &[&str]) -> (String, serde_json::Value) {
         String::from_utf8_lossy(&out.stderr)
     );
     let json = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
-    (std::fs::read_to_string(&html).expect("report written"), json)
+    (
+        std::fs::read_to_string(&html).expect("report written"),
+        json,
+    )
 }
 
 /// The page parsed as XML (it is XHTML-compatible), with its doctype.
@@ -100,7 +103,10 @@ fn json_numbers(v: &serde_json::Value, out: &mut Vec<f64>) {
             // A hinge's place on a circular ring centred at the origin (the bundled portal's),
             // as the summary prints it: its polar angle and its angle from the vertical
             // (report::words::joint_angles_deg), from the position the JSON gives.
-            if let (Some(x), Some(y)) = (o.get("x").and_then(|v| v.as_f64()), o.get("y").and_then(|v| v.as_f64())) {
+            if let (Some(x), Some(y)) = (
+                o.get("x").and_then(|v| v.as_f64()),
+                o.get("y").and_then(|v| v.as_f64()),
+            ) {
                 let polar = y.atan2(x).to_degrees();
                 out.extend([polar, (90.0 - polar).abs()]);
             }
@@ -167,13 +173,16 @@ fn tokens(text: &str) -> Vec<Token> {
                     j += 1;
                 }
                 let digits: String = chars[e0..j].iter().collect();
-                exponent = digits.parse::<i32>().unwrap_or(0)
-                    * if chars[i + 1] == '-' { -1 } else { 1 };
+                exponent =
+                    digits.parse::<i32>().unwrap_or(0) * if chars[i + 1] == '-' { -1 } else { 1 };
                 i = j;
             }
         }
         // A dotted section number (C8.7.1) or a version (0.1.0) is no number.
-        if i < chars.len() && chars[i] == '.' && i + 1 < chars.len() && chars[i + 1].is_ascii_digit()
+        if i < chars.len()
+            && chars[i] == '.'
+            && i + 1 < chars.len()
+            && chars[i + 1].is_ascii_digit()
         {
             while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
                 i += 1;
@@ -181,11 +190,7 @@ fn tokens(text: &str) -> Vec<Token> {
             continue;
         }
         let body: String = chars[start..i].iter().collect();
-        let text = if sign {
-            format!("-{body}")
-        } else {
-            body
-        };
+        let text = if sign { format!("-{body}") } else { body };
         let value: f64 = text.replace('−', "-").parse().unwrap_or(f64::NAN);
         // `-` before a number is a minus only where the report writes signed values; a
         // range or a dash before a number is read as a sign too, so both signs are tried.
@@ -215,7 +220,9 @@ fn matches(t: &Token, numbers: &[f64]) -> bool {
 /// The chapters of the page: (title, element).
 fn chapters<'a>(doc: &'a roxmltree::Document<'a>) -> Vec<(String, roxmltree::Node<'a, 'a>)> {
     doc.descendants()
-        .filter(|n| n.has_tag_name("section") && n.attribute("class").is_some_and(|c| c.contains("chapter")))
+        .filter(|n| {
+            n.has_tag_name("section") && n.attribute("class").is_some_and(|c| c.contains("chapter"))
+        })
         .map(|n| {
             let title = n
                 .children()
@@ -321,7 +328,9 @@ fn check(scene: &Path, args: &[&str]) -> (String, serde_json::Value) {
         };
         for t in tokens(&body) {
             // Ordinals of chapters and figures are the page's own.
-            if body.contains(&format!("Figure {}:", t.text)) || title.starts_with(&format!("{}.", t.text)) {
+            if body.contains(&format!("Figure {}:", t.text))
+                || title.starts_with(&format!("{}.", t.text))
+            {
                 continue;
             }
             assert!(
@@ -371,7 +380,10 @@ fn chapter_text(html: &str, what: &str) -> String {
         .iter()
         .find(|(t, _)| t.contains(what))
         .unwrap_or_else(|| panic!("no chapter {what}"));
-    text_of(*node).split_whitespace().collect::<Vec<_>>().join(" ")
+    text_of(*node)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 #[test]
@@ -417,7 +429,9 @@ fn a_failing_structure_is_said_to_fail() {
     assert!(!json["assessment"]["passes"].as_bool().expect("verdict"));
     let conclusion = chapter_text(&html, "Identification");
     assert!(
-        conclusion.contains("the mechanism does not pass: neither the linear nor the nonlinear check is satisfied"),
+        conclusion.contains(
+            "the mechanism does not pass: neither the linear nor the nonlinear check is satisfied"
+        ),
         "{conclusion}"
     );
     let seismic = chapter_text(&html, "Seismic check");
@@ -438,7 +452,10 @@ fn a_structure_that_cannot_stand_is_said_to_and_has_no_assessment() {
         "{conclusion}"
     );
     assert!(conclusion.contains("(below 1: this arch cannot stand)"));
-    assert!(conclusion.contains("Seismic check: not made"), "{conclusion}");
+    assert!(
+        conclusion.contains("Seismic check: not made"),
+        "{conclusion}"
+    );
 }
 
 #[test]
@@ -455,7 +472,9 @@ fn a_block_scene_without_a_chain_mechanism_says_what_is_not_computed() {
         };
         for w in xs.windows(2) {
             let (a, b, y1) = (w[0], w[1], y0 + h);
-            polys.push(format!("[[{a}, {y0}], [{b}, {y0}], [{b}, {y1}], [{a}, {y1}]]"));
+            polys.push(format!(
+                "[[{a}, {y0}], [{b}, {y0}], [{b}, {y1}], [{a}, {y1}]]"
+            ));
         }
     }
     let text = format!(
@@ -472,7 +491,10 @@ fn a_block_scene_without_a_chain_mechanism_says_what_is_not_computed() {
         "{conclusion}"
     );
     let t = chapter_text(&html, "Minimum thickness");
-    assert!(t.contains("No minimum thickness") && t.contains("parametric"), "{t}");
+    assert!(
+        t.contains("No minimum thickness") && t.contains("parametric"),
+        "{t}"
+    );
     let s = chapter_text(&html, "Sensitivity");
     assert!(s.contains("arch.thickness not varied: the structure is the user's own blocks"));
 }
@@ -487,7 +509,9 @@ fn sliding_joints_are_said_to_slide_and_the_bound_named() {
     assert_eq!(a["friction_exact"], false);
     assert_eq!(a["sliding_governs"], true);
     let conclusion = chapter_text(&html, "Identification");
-    let na = a["lambda_non_associative"].as_f64().expect("non-associative");
+    let na = a["lambda_non_associative"]
+        .as_f64()
+        .expect("non-associative");
     assert!(
         conclusion.contains(&format!(
             "lambda = {na:.6} (the non-associative multiplier, joints that slide without opening). Sliding governs"
@@ -514,7 +538,10 @@ fn the_report_section_is_checked_like_any_scene_table() {
         .expect("runs");
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("report.authr") && err.contains("author"), "{err}");
+    assert!(
+        err.contains("report.authr") && err.contains("author"),
+        "{err}"
+    );
     // A TOML date is the same words as a string.
     let (_dir2, path) = scene_file(&format!("{text}\n[report]\ndate = 2026-11-26\n"));
     let (_, json) = report(&path, &[]);

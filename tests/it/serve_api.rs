@@ -1429,7 +1429,12 @@ fn the_report_is_the_clis_report_of_the_downloaded_toml() {
     // same page.
     let strip = |html: &str| -> Vec<String> {
         html.lines()
-            .filter(|l| !l.contains(" ms") && !l.contains("scene.toml") && !l.contains("Scene file") && !l.contains("scene file</th>"))
+            .filter(|l| {
+                !l.contains(" ms")
+                    && !l.contains("scene.toml")
+                    && !l.contains("Scene file")
+                    && !l.contains("scene file</th>")
+            })
             .map(str::to_string)
             .collect()
     };

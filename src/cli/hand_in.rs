@@ -48,11 +48,7 @@ pub const CHROMIUM_NAMES: &[&str] = &[
 const PDF_TIMEOUT: Duration = Duration::from_secs(120);
 
 pub fn run(args: Args) -> Result<String, Error> {
-    let mut scene = args.scene.load()?;
-    let sets: Vec<String> = args.site.iter().map(|s| format!("site.{s}")).collect();
-    if !sets.is_empty() {
-        scene = scene.with_overrides(&sets)?;
-    }
+    let (scene, sets) = args.scene.load_with_site(&args.site)?;
     args.scene
         .outputs(&scene)
         .output("-o", args.output.as_deref(), Format::Html)

@@ -206,6 +206,14 @@ impl Value {
         }
     }
 
+    /// The value as text with its unit, `0.106 m`, `4.2 %`.
+    pub fn with_unit(&self) -> String {
+        match self.unit() {
+            "" => self.show(),
+            unit => format!("{} {unit}", self.show()),
+        }
+    }
+
     /// The unit, empty when none.
     pub fn unit(&self) -> &'static str {
         match self {
@@ -280,6 +288,33 @@ pub struct Figure {
     pub name: &'static str,
     /// The SVG document.
     pub svg: String,
+}
+
+/// A document with a block of each kind, for the printers' tests: "Page", an intro, a
+/// section "Results" with a line, two items, a row, a warning and a table whose first column
+/// is headed `first`.
+#[cfg(test)]
+pub fn sample(first: &str) -> Document {
+    let mut doc = Document::new("Page");
+    doc.lead.push("An intro.".into());
+    doc.section("Results")
+        .line("A sentence.")
+        .item("one")
+        .item("two")
+        .rows(vec![Row::new(
+            "t",
+            Value::Number {
+                value: 0.25,
+                digits: 2,
+                unit: "m",
+            },
+        )])
+        .warning("careful")
+        .table(Table {
+            columns: vec![Column::left(first, 3), Column::right("c", 4)],
+            rows: vec![vec![Value::text("x"), Value::number(1.5, 1)]],
+        });
+    doc
 }
 
 /// The JSON contract's object of each command (`--json`), serialized as the object itself.

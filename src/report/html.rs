@@ -191,7 +191,7 @@ fn print_section(s: &mut String, section: &Section) {
                         } else {
                             "num"
                         },
-                        escape(&with_unit(&r.value))
+                        escape(&r.value.with_unit())
                     ));
                 }
                 s.push_str("</tbody>\n</table>\n");
@@ -203,14 +203,6 @@ fn print_section(s: &mut String, section: &Section) {
         s.push_str("</ul>\n");
     }
     s.push_str("</div>\n");
-}
-
-/// A value with its unit, `0.106 m`, `4.2 %`.
-fn with_unit(v: &Value) -> String {
-    match v.unit() {
-        "" => v.show(),
-        unit => format!("{} {unit}", v.show()),
-    }
 }
 
 fn table(s: &mut String, t: &Table) {
@@ -233,7 +225,7 @@ fn table(s: &mut String, t: &Table) {
             s.push_str(&format!(
                 "<td class=\"{}\">{}</td>",
                 class(c.align),
-                escape(&with_unit(v))
+                escape(&v.with_unit())
             ));
         }
         s.push_str("</tr>\n");
@@ -285,29 +277,12 @@ fn print_figure(s: &mut String, f: &Figure, number: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::document::{Column, Row};
 
     #[test]
     fn chapters_sections_and_tables_are_escaped_markup() {
-        let mut doc = Document::new("Results & <more>");
-        doc.lead.push("An intro.".into());
-        doc.section("lambda < 1")
-            .line("A sentence.")
-            .item("one")
-            .item("two")
-            .rows(vec![Row::new(
-                "t",
-                Value::Number {
-                    value: 0.25,
-                    digits: 2,
-                    unit: "m",
-                },
-            )])
-            .warning("careful")
-            .table(Table {
-                columns: vec![Column::left("a", 3), Column::right("c", 4)],
-                rows: vec![vec![Value::text("x\"y"), Value::number(1.5, 1)]],
-            });
+        let mut doc = crate::report::document::sample("a<b");
+        doc.title = "Results & more".into();
+        doc.section("lambda < 1").line("x\"y");
         let html = print(
             "A \"title\"",
             &[Chapter {
@@ -315,15 +290,16 @@ mod tests {
                 new_page: false,
             }],
         );
-        assert!(
-            html.contains("<h2>1. Results &amp; &lt;more&gt;</h2>"),
-            "{html}"
-        );
-        assert!(html.contains("<h3>lambda &lt; 1</h3>"));
+        assert!(html.contains("<h2>1. Results &amp; more</h2>"), "{html}");
+        assert!(html.contains("<p class=\"lead\">An intro.</p>"));
+        assert!(html.contains("<h3>lambda &lt; 1</h3>\n<p>x&quot;y</p>"));
         assert!(html.contains("<ul>\n<li>one</li>\n<li>two</li>\n</ul>"));
         assert!(html.contains("<td class=\"num\">0.25 m</td>"));
-        assert!(html.contains("<td class=\"text\">x&quot;y</td><td class=\"num\">1.5</td>"));
+        assert!(html.contains("<p class=\"warning\">Warning: careful</p>"));
+        assert!(html.contains("<th class=\"text\">a&lt;b</th>"));
+        assert!(html.contains("<td class=\"text\">x</td><td class=\"num\">1.5</td>"));
         assert!(html.contains("content: \"A \\22 title\\22 \""));
+        assert!(html.contains("<li><a href=\"#chapter-1\">Results &amp; more</a></li>"));
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! chain mechanism and of one with sliding joints says so in words. The print to PDF in
 //! headless Chromium is tests/e2e/report.test.mjs.
 
-use crate::common::{data, scene_file, voussoir};
+use crate::common::{data, rect_polygons, running_bond_wall_rects, scene_file, voussoir};
 use sha2::{Digest, Sha256};
 use std::path::Path;
 
@@ -461,25 +461,9 @@ fn a_structure_that_cannot_stand_is_said_to_and_has_no_assessment() {
 #[test]
 fn a_block_scene_without_a_chain_mechanism_says_what_is_not_computed() {
     // The running-bond wall of docs/dem.md: no chain, so the general kinematic program.
-    let h = 0.4;
-    let mut polys = Vec::new();
-    for c in 0..3 {
-        let y0 = c as f64 * h;
-        let xs: &[f64] = if c % 2 == 0 {
-            &[0.0, 0.6, 1.2]
-        } else {
-            &[0.0, 0.3, 0.9, 1.2]
-        };
-        for w in xs.windows(2) {
-            let (a, b, y1) = (w[0], w[1], y0 + h);
-            polys.push(format!(
-                "[[{a}, {y0}], [{b}, {y0}], [{b}, {y1}], [{a}, {y1}]]"
-            ));
-        }
-    }
     let text = format!(
-        "[blocks]\npolygons = [{}]\n[material]\nfriction = 0.6\n[site]\nag = 0.2\nsoil = \"B\"\nF0 = 2.4\nTc_star = 0.3\n",
-        polys.join(", ")
+        "[blocks]\npolygons = {}\n[material]\nfriction = 0.6\n[site]\nag = 0.2\nsoil = \"B\"\nF0 = 2.4\nTc_star = 0.3\n",
+        rect_polygons(&running_bond_wall_rects())
     );
     let (_dir, path) = scene_file(&text);
     let (html, json) = check(&path, &[]);

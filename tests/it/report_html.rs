@@ -531,3 +531,27 @@ fn the_report_section_is_checked_like_any_scene_table() {
     let (_, json) = report(&path, &[]);
     assert_eq!(json["identification"]["date"], "2026-11-26");
 }
+
+#[test]
+fn with_dem_the_report_gives_the_dems_bracket_as_the_json_has_it() {
+    let (html, json) = check(&data("portal.toml"), &["--dem"]);
+    let dem = &json["analysis"]["dem"];
+    let (stands, collapses) = (
+        dem["lambda_stands"].as_f64().expect("stands"),
+        dem["lambda_collapses"].as_f64().expect("collapses"),
+    );
+    // The DEM's bracket holds the collapse multiplier of infinite friction (no sliding: the
+    // static and the kinematic bound agree) to within its width.
+    let lambda = json["analysis"]["lambda_lower"].as_f64().expect("lambda");
+    assert!(
+        stands < collapses && (stands - lambda).abs() < 0.05 && (collapses - lambda).abs() < 0.05
+    );
+    let results = chapter_text(&html, "Results");
+    assert!(
+        results.contains(&format!(
+            "DEM (Coulomb contacts, no dilatancy): stands at {stands:.6}, collapses at {collapses:.6}"
+        )),
+        "{results}"
+    );
+    assert!(chapter_text(&html, "Method").contains("The discrete element check"));
+}

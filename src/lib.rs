@@ -12,6 +12,7 @@ pub mod blocks;
 pub mod convergence;
 pub mod dem;
 pub mod dem_settings;
+pub mod dossier;
 pub mod drawing;
 pub mod error;
 pub mod geometry;

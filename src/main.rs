@@ -46,6 +46,10 @@ enum Command {
     /// mechanism redrawn live, on a JSON API (127.0.0.1 only)
     #[cfg(feature = "serve")]
     Serve(cli::serve::Args),
+    /// The hand-in report: one self-contained HTML document (and a PDF through headless
+    /// Chromium) with the structure, the method, both bounds, the minimum thickness, the
+    /// seismic check at the [site], the sensitivity and what reproduces it
+    Report(cli::hand_in::Args),
     /// Validation: every published or independent result voussoir is compared with,
     /// recomputed now (--markdown writes docs/validation.md)
     Validate(cli::validate::Args),
@@ -61,6 +65,7 @@ fn main() -> ExitCode {
         Command::Convergence(a) => cli::convergence::run(a),
         Command::Assess(a) => cli::assess::run(a),
         Command::Retrofit(a) => cli::retrofit::run(a),
+        Command::Report(a) => cli::hand_in::run(a),
         Command::Validate(a) => cli::validate::run(a),
         #[cfg(feature = "serve")]
         Command::Serve(a) => cli::serve::run(a),

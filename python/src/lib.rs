@@ -611,6 +611,28 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
     to_json(&report::retrofit::RetrofitReport::new(&lib_scene, &r))
 }
 
+/// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).
+/// The report's input text (quoted in full, hashed) is the scene as `Scene.to_toml()` writes
+/// it, which reproduces it; `dem` adds the DEM's bracket as `--dem`.
+#[pyfunction]
+#[pyo3(signature = (scene, dem = false))]
+fn report_html_json(py: Python<'_>, scene: &Scene, dem: bool) -> PyResult<(String, String)> {
+    let text =
+        toml::to_string(scene.inner.table()).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, d) = interruptible(py, Arc::default(), move || {
+        let d = voussoir::dossier::run(&lib_scene, &voussoir::dossier::DossierOptions { dem });
+        (lib_scene, d)
+    })?;
+    let d = d.map_err(|e| analysis_error(py, &e))?;
+    let source = report::dossier::Source {
+        text,
+        overrides: Vec::new(),
+    };
+    let r = report::dossier::hand_in(&lib_scene, &source, &d);
+    Ok((r.html(), r.json()))
+}
+
 /// `dem --json` of a scene, as JSON text. The bracket search runs on a worker thread: Ctrl-C
 /// raises `KeyboardInterrupt` at once, and the run in progress finishes on its thread (the
 /// library's DEM has no stop flag yet) with its result dropped.
@@ -1074,6 +1096,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
     m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
+    m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;
     m.add_function(wrap_pyfunction!(assess_json, m)?)?;
     m.add_function(wrap_pyfunction!(assess_svg, m)?)?;

@@ -21,6 +21,7 @@ Units are SI (m, N); angles in scene keys ending in ``_deg`` are degrees. The di
 from __future__ import annotations
 
 import json
+import os
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -47,11 +48,13 @@ __all__ = [
     "DynamicResult",
     "IdaResult",
     "PulseCurveResult",
+    "HandInReport",
     "analyze",
     "min_thickness",
     "retrofit",
     "dem",
     "assess",
+    "report",
     "dem_dynamic",
     "dem_ida",
     "dem_pulse_curve",
@@ -385,6 +388,56 @@ def assess(
             scene, which, direction, points, control_block, incremental
         ),
     )
+
+
+class HandInReport(Report):
+    """The result of :func:`report`: ``html``, the hand-in report as one self-contained HTML
+    page (what ``voussoir report -o FILE`` writes), and the fields of ``voussoir report
+    --json`` (``analysis``, ``min_thickness``, ``assessment``, ``sensitivity``,
+    ``scene_sha256``, ``voussoir_version``, ...). ``save(path)`` writes the page; Jupyter shows
+    it inline."""
+
+    __slots__ = ("html",)
+
+    def __init__(self, data: Dict[str, Any], html: str):
+        super().__init__(data)
+        object.__setattr__(self, "html", html)
+
+    def save(self, path: Union[str, os.PathLike[str]]) -> None:
+        """Write the page (UTF-8) to ``path``; print it to PDF with a browser, or with
+        ``voussoir report --pdf``."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.html)
+
+    def _repr_html_(self) -> str:
+        return self.html
+
+    def __getstate__(self) -> Dict[str, Any]:
+        return {"data": self._data, "html": self.html}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        super().__setstate__(state["data"])
+        object.__setattr__(self, "html", state["html"])
+
+
+def report(
+    scene: Scene,
+    site: Optional[Mapping[str, Any]] = None,
+    *,
+    dem: bool = False,
+) -> HandInReport:
+    """The hand-in report of ``scene`` (docs/report.md), as ``voussoir report``: the
+    structure, the method, both bounds, the minimum thickness, the seismic check when the
+    scene has a ``[site]`` (``site``: keys to set over it, as ``--site KEY=VALUE``), the
+    sensitivity to the thickness and the friction (-10 % / +10 %) and what reproduces it.
+    ``dem=True`` adds the DEM's bracket (``--dem``). The page quotes and hashes the scene as
+    ``scene.to_toml()`` writes it. Raises :class:`SceneError` or :class:`AnalysisError` as
+    :func:`analyze` does; what cannot be computed for a scene (an assessment of a structure
+    that cannot stand) is said in the page and in ``assessment_note``."""
+    if site:
+        scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
+    html, text = _voussoir.report_html_json(scene, dem)
+    return HandInReport(json.loads(text), html)
 
 
 class DynamicResult(Report):

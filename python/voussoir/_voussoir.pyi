@@ -86,6 +86,9 @@ def min_thickness_json(
 def retrofit_json(scene: Scene, target_lambda: float) -> str:
     """``voussoir retrofit --json`` of a scene, as JSON text."""
 
+def report_html_json(scene: Scene, dem: bool = False) -> Tuple[str, str]:
+    """``voussoir report`` of a scene: the report's HTML and its JSON text."""
+
 def dem_json(scene: Scene, tolerance: float = 0.01, from_static: bool = False) -> str:
     """``voussoir dem --json`` of a scene, as JSON text."""
 

@@ -51,11 +51,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
-    let mut scene = args.scene.load()?;
-    if !args.site.is_empty() {
-        let sets: Vec<String> = args.site.iter().map(|s| format!("site.{s}")).collect();
-        scene = scene.with_overrides(&sets)?;
-    }
+    let (scene, _) = args.scene.load_with_site(&args.site)?;
     args.scene
         .outputs(&scene)
         .output("--svg", args.svg.as_deref(), super::Format::Svg)

@@ -9,6 +9,7 @@ pub mod analyze;
 pub mod assess;
 pub mod convergence;
 pub mod dem;
+pub mod hand_in;
 pub mod min_thickness;
 pub mod outputs;
 pub mod retrofit;
@@ -138,6 +139,17 @@ impl SceneArgs {
             }
         }
         Ok(scene)
+    }
+
+    /// Read the scene as [`Self::load`] does, then set the `[site]` keys given as
+    /// `--site KEY=VALUE` (each an override `site.KEY=VALUE`); the scene and those overrides.
+    pub fn load_with_site(&self, site: &[String]) -> Result<(Scene, Vec<String>), Error> {
+        let mut scene = self.load()?;
+        let sets: Vec<String> = site.iter().map(|s| format!("site.{s}")).collect();
+        if !sets.is_empty() {
+            scene = scene.with_overrides(&sets)?;
+        }
+        Ok((scene, sets))
     }
 
     /// The command's files, starting with the inputs of `scene` (the scene file and its

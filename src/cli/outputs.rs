@@ -28,9 +28,9 @@ pub enum Format {
     // For the outputs of `dem` (--animation, snapshots) once it checks them here.
     #[allow(dead_code)]
     Json,
-    #[allow(dead_code)]
     Html,
     Markdown,
+    Pdf,
 }
 
 impl Format {
@@ -42,6 +42,7 @@ impl Format {
             Format::Json => "json",
             Format::Html => "html",
             Format::Markdown => "md",
+            Format::Pdf => "pdf",
         }
     }
 
@@ -53,6 +54,7 @@ impl Format {
             Format::Json => "a JSON document",
             Format::Html => "an HTML page",
             Format::Markdown => "a Markdown page",
+            Format::Pdf => "a PDF document",
         }
     }
 

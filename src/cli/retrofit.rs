@@ -37,11 +37,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
-    let mut scene = args.scene.load()?;
-    let sets: Vec<String> = args.site.iter().map(|s| format!("site.{s}")).collect();
-    if !sets.is_empty() {
-        scene = scene.with_overrides(&sets)?;
-    }
+    let (scene, _) = args.scene.load_with_site(&args.site)?;
     args.scene
         .outputs(&scene)
         .output("--svg", args.svg.as_deref(), Format::Svg)

@@ -102,6 +102,11 @@ impl Section {
         self.push(Block::Warning(text.into()))
     }
 
+    /// Text shown as it is, line by line in a fixed-width font (a file quoted in full).
+    pub fn preformatted(&mut self, text: impl Into<String>) -> &mut Self {
+        self.push(Block::Preformatted(text.into()))
+    }
+
     /// Key-value rows.
     pub fn rows(&mut self, rows: Vec<Row>) -> &mut Self {
         self.push(Block::Rows(rows))
@@ -129,6 +134,8 @@ pub enum Block {
     Statement(String),
     /// A warning.
     Warning(String),
+    /// Text kept as it is, in a fixed-width font (a scene file quoted in full).
+    Preformatted(String),
     /// Named values.
     Rows(Vec<Row>),
     Table(Table),
@@ -196,6 +203,14 @@ impl Value {
             Value::Scientific { value, digits } => format!("{value:.digits$e}"),
             Value::Count(n) => n.to_string(),
             Value::Text(t) => t.clone(),
+        }
+    }
+
+    /// The value as text with its unit, `0.106 m`, `4.2 %`.
+    pub fn with_unit(&self) -> String {
+        match self.unit() {
+            "" => self.show(),
+            unit => format!("{} {unit}", self.show()),
         }
     }
 
@@ -273,6 +288,33 @@ pub struct Figure {
     pub name: &'static str,
     /// The SVG document.
     pub svg: String,
+}
+
+/// A document with a block of each kind, for the printers' tests: "Page", an intro, a
+/// section "Results" with a line, two items, a row, a warning and a table whose first column
+/// is headed `first`.
+#[cfg(test)]
+pub fn sample(first: &str) -> Document {
+    let mut doc = Document::new("Page");
+    doc.lead.push("An intro.".into());
+    doc.section("Results")
+        .line("A sentence.")
+        .item("one")
+        .item("two")
+        .rows(vec![Row::new(
+            "t",
+            Value::Number {
+                value: 0.25,
+                digits: 2,
+                unit: "m",
+            },
+        )])
+        .warning("careful")
+        .table(Table {
+            columns: vec![Column::left(first, 3), Column::right("c", 4)],
+            rows: vec![vec![Value::text("x"), Value::number(1.5, 1)]],
+        });
+    doc
 }
 
 /// The JSON contract's object of each command (`--json`), serialized as the object itself.

@@ -357,6 +357,10 @@ pub struct AnalysisReport {
     /// kinematic search ran.
     pub kinematic_search: Option<crate::kinematic::Search>,
     pub kinematic_time_s: Option<f64>,
+    /// Added: the admissible mechanisms the exhaustive or local search valued (the summary's
+    /// "over N admissible mechanisms"); null for the certified and the general search and
+    /// when none ran.
+    pub kinematic_admissible: Option<u64>,
     /// Continuous model (only with `--continuous`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda_continuous: Option<Option<f64>>,
@@ -597,6 +601,13 @@ impl AnalysisReport {
             Err(note) => report.kinematic_note = Some(note.clone()),
         }
         report.kinematic_search = a.kinematic_search;
+        if let (
+            Ok(k),
+            Some(crate::kinematic::Search::Exhaustive | crate::kinematic::Search::Local),
+        ) = (&a.upper, a.kinematic_search)
+        {
+            report.kinematic_admissible = Some(k.admissible);
+        }
         report.set_non_associative(a);
         report.gap = a.gap();
         report.sliding_governs = a.sliding_governs();
@@ -680,6 +691,7 @@ impl AnalysisReport {
             kinematic_note: None,
             kinematic_search: None,
             kinematic_time_s: None,
+            kinematic_admissible: None,
             lambda_continuous: None,
             continuous_hinges: None,
             continuous_note: None,

@@ -34,6 +34,7 @@ pub fn print(doc: &Document) -> String {
                 }
                 Block::Item(t) => s.push_str(&format!("- {}\n", t.replace('\n', " "))),
                 Block::Warning(t) => s.push_str(&format!("> **Warning:** {t}\n\n")),
+                Block::Preformatted(t) => s.push_str(&format!("```\n{}\n```\n\n", t.trim_end())),
                 Block::Rows(rows) => {
                     for r in rows {
                         let unit = match r.value.unit() {
@@ -80,29 +81,10 @@ fn table(s: &mut String, t: &Table) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::document::{Column, Row};
 
     #[test]
     fn headings_paragraphs_lists_and_tables() {
-        let mut doc = Document::new("Page");
-        doc.lead.push("An intro.".into());
-        doc.section("Results")
-            .line("A sentence.")
-            .item("one")
-            .item("two")
-            .rows(vec![Row::new(
-                "t",
-                Value::Number {
-                    value: 0.25,
-                    digits: 2,
-                    unit: "m",
-                },
-            )])
-            .warning("careful")
-            .table(Table {
-                columns: vec![Column::left("a|b", 3), Column::right("c", 4)],
-                rows: vec![vec![Value::text("x"), Value::number(1.5, 1)]],
-            });
+        let doc = crate::report::document::sample("a|b");
         assert_eq!(
             print(&doc),
             "# Page\n\nAn intro.\n\n## Results\n\nA sentence.\n\n- one\n- two\n- t: 0.25 m\n\n> **Warning:** careful\n\n| a\\|b | c |\n|---|---:|\n| x | 1.5 |\n"

@@ -3,7 +3,8 @@
 //! with it), with the drawings and charts chosen in one place ([`figures`]); one printer per
 //! format turns it into output: [`text`] (the terminal), [`json`] (the JSON contract, its
 //! serde structs in [`json`] and [`assessment`]), [`csv`] (the thrust line and the
-//! document's tables), [`markdown`] (a page, such as docs/validation.md). [`words`] holds the words they share; [`animation`] the HTML page of a
+//! document's tables), [`markdown`] (a page, such as docs/validation.md), [`html`] (the hand-in report of
+//! [`dossier`], `voussoir report`). [`words`] holds the words they share; [`animation`] the HTML page of a
 //! dynamic run.
 
 pub mod animation;
@@ -11,7 +12,9 @@ pub mod assessment;
 pub mod csv;
 pub mod document;
 pub mod documents;
+pub mod dossier;
 pub mod figures;
+pub mod html;
 pub mod json;
 pub mod markdown;
 pub mod retrofit;

@@ -37,22 +37,15 @@ fn print_section(s: &mut String, section: &Section) {
             Block::Item(t) => indented(s, "    ", t),
             Block::Statement(t) => indented(s, "", t),
             Block::Warning(t) => indented(s, "", &format!("warning: {t}")),
+            Block::Preformatted(t) => indented(s, "    ", t),
             Block::Rows(rows) => {
                 for r in rows {
-                    let value = with_unit(&r.value);
+                    let value = r.value.with_unit();
                     indented(s, "  ", &format!("{} = {value}", r.key));
                 }
             }
             Block::Table(t) => table(s, t),
         }
-    }
-}
-
-/// A value with its unit, `0.106 m`.
-fn with_unit(v: &Value) -> String {
-    match v.unit() {
-        "" => v.show(),
-        unit => format!("{} {unit}", v.show()),
     }
 }
 

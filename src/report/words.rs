@@ -548,3 +548,38 @@ pub fn non_associative_words(na: &crate::statics::NonAssociative) -> String {
         ),
     }
 }
+
+/// The analysis in one sentence, for the conclusion of a report: whether the structure
+/// stands, the multiplier that governs and which bound or law it is (docs/friction.md), and
+/// whether sliding governs, in the summaries' words.
+pub fn conclusion_words(scene: &Scene, a: &crate::analysis::SceneAnalysis) -> String {
+    let f = a.friction();
+    let what = shape_title(scene);
+    match (a.lower.status, a.lambda_governing()) {
+        (Status::CannotStand, _) if a.sliding_governs() => format!(
+            "The {what} cannot stand: with mu = {} the structure slides under its permanent loads alone, so it cannot stand.",
+            num(scene.material.friction)
+        ),
+        (Status::CannotStand, _) => format!(
+            "The {what} cannot stand: no thrust line fits under its permanent loads alone, so it collapses without any horizontal action."
+        ),
+        (Status::NoCollapse, _) => format!(
+            "The {what} does not collapse: no admissible mechanism is driven by the load."
+        ),
+        (Status::Collapse, Some(l)) => {
+            let name = if a.lambda_non_associative().is_some() && !f.exact {
+                "the non-associative multiplier, joints that slide without opening".to_string()
+            } else {
+                static_bound_name(&f)
+            };
+            let mut s = format!(
+                "The {what} stands under its permanent loads and becomes a mechanism at lambda = {l:.6} ({name})."
+            );
+            if a.sliding_governs() {
+                s.push_str(" Sliding governs: joints slide in the collapse mechanism.");
+            }
+            s
+        }
+        (Status::Collapse, None) => format!("The {what} collapses, with no multiplier found."),
+    }
+}

@@ -198,6 +198,9 @@ pub struct Scene {
     pub dem: Table,
     /// `[site]`, when given: the seismic site for `voussoir assess` ([`crate::spectrum`]).
     pub site: Option<crate::spectrum::Site>,
+    /// `[report]`, when given: who and what the hand-in report (`voussoir report`) is
+    /// about. No analysis reads it.
+    pub report: Option<ReportInfo>,
     /// Where the scene came from (file path or "<string>"), for messages.
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
@@ -559,6 +562,7 @@ const SECTIONS: &[&str] = &[
     "reinforcements",
     "arcade",
     "spandrel",
+    "report",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -1055,6 +1059,9 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         action,
         dem,
         site,
+        report: section(&table, "report", origin)?
+            .map(|t| parse_report(Section::new("report", t, origin)))
+            .transpose()?,
         origin: origin.to_string(),
         table,
         base_dir: base_dir.map(Path::to_path_buf),
@@ -1072,6 +1079,63 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         p.apply_table(&scene.dem, &scene.origin)?;
     }
     Ok(scene)
+}
+
+/// The keys of `[report]`, in the order the report's identification lists them.
+pub const REPORT_KEYS: &[&str] = &["title", "structure", "location", "author", "date", "notes"];
+
+/// `[report]`: words for the hand-in report's identification, each optional (docs/geometry.md).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReportInfo {
+    pub title: Option<String>,
+    pub structure: Option<String>,
+    pub location: Option<String>,
+    pub author: Option<String>,
+    /// As written: a string, or a TOML date (`date = 2026-11-26`) in its TOML form.
+    pub date: Option<String>,
+    pub notes: Option<String>,
+}
+
+impl ReportInfo {
+    /// The keys given, with their words, in [`REPORT_KEYS`]' order.
+    pub fn entries(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("title", &self.title),
+            ("structure", &self.structure),
+            ("location", &self.location),
+            ("author", &self.author),
+            ("date", &self.date),
+            ("notes", &self.notes),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.as_deref().map(|v| (k, v)))
+        .collect()
+    }
+}
+
+fn parse_report(mut s: Section) -> Result<ReportInfo, SceneError> {
+    s.check_known(REPORT_KEYS, "")?;
+    let mut words = |key: &'static str| -> Result<Option<String>, SceneError> {
+        match s.table.get(key) {
+            None => Ok(None),
+            // A date written as a TOML date rather than a string is the same words.
+            Some(Value::Datetime(d)) if key == "date" => {
+                s.used.insert(key);
+                Ok(Some(d.to_string()))
+            }
+            Some(_) => s.string(key, None).map(Some),
+        }
+    };
+    let info = ReportInfo {
+        title: words("title")?,
+        structure: words("structure")?,
+        location: words("location")?,
+        author: words("author")?,
+        date: words("date")?,
+        notes: words("notes")?,
+    };
+    s.finish("")?;
+    Ok(info)
 }
 
 fn parse_arch(mut s: Section) -> Result<ArchSpec, SceneError> {

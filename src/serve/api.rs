@@ -6,6 +6,9 @@
 //!   --json` prints, plus `svg` (the drawing `analyze --svg` writes), `toml` and
 //!   `elapsed_ms`.
 //! - `POST /api/sweep`: a scene, a key and a range -> one row per value, as `voussoir sweep`.
+//! - `POST /api/report`: a scene -> `html`, the hand-in report `voussoir report` writes for
+//!   the scene as the page's TOML download has it (its text is the report's input, hashed and
+//!   quoted in full), with `elapsed_ms`.
 //!
 //! Every refusal is a JSON object `{"error", "key", "kind"}`: 400 for a request that cannot be
 //! analysed (malformed JSON, an invalid scene, a limit exceeded), 413 for a body over the
@@ -539,6 +542,35 @@ pub async fn analyze(
         json!(start.elapsed().as_secs_f64() * 1e3),
     );
     Ok(Json(JsonValue::Object(out)).into_response())
+}
+
+/// `POST /api/report`: the hand-in report of the request's scene ([`crate::dossier`], the
+/// page's "Report .html" download). The report's input is the scene as the page's TOML
+/// download writes it, so saving that file and running `voussoir report` on it gives the same
+/// report, hash included.
+pub async fn report(
+    State(state): State<Arc<ServerState>>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Response, ApiError> {
+    let start = Instant::now();
+    let body = body.map_err(|e| body_error(e, &state.limits))?;
+    let body = json_object(&body)?;
+    let (scene, _) = request_scene(&body, &state, &["scene", "direction"])?;
+    let html = blocking(move || {
+        let text = scene_toml(&scene, Direction::Right, scene.base_dir())?;
+        let d = crate::dossier::run(&scene, &crate::dossier::DossierOptions::default())?;
+        let source = report::dossier::Source {
+            text,
+            overrides: Vec::new(),
+        };
+        Ok(report::dossier::hand_in(&scene, &source, &d).html())
+    })
+    .await?;
+    Ok(Json(json!({
+        "html": html,
+        "elapsed_ms": start.elapsed().as_secs_f64() * 1e3,
+    }))
+    .into_response())
 }
 
 /// Whether a scene key is a count (`arch.voussoirs`, `piers.courses`, `piers.left.courses`).

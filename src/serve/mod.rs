@@ -146,6 +146,7 @@ pub fn router(state: Arc<ServerState>) -> axum::Router {
         .route("/api/parameters", get(api::parameters))
         .route("/api/analyze", post(api::analyze))
         .route("/api/sweep", post(api::sweep))
+        .route("/api/report", post(api::report))
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
         .layer(axum::middleware::from_fn_with_state(

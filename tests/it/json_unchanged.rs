@@ -36,6 +36,7 @@ const ADDED: &[&str] = &[
     "fixed",
     "mended",
     "mechanism_sliding",
+    "kinematic_admissible",
     "lambda_non_associative",
     "non_associative_converged",
     "non_associative_iterations",

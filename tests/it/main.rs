@@ -35,6 +35,7 @@ mod non_associative;
 mod piers;
 mod proptest_scenes;
 mod reduced;
+mod report_html;
 mod reports;
 mod retrofit;
 mod serve_api;

@@ -1401,3 +1401,58 @@ fn a_live_scene_is_analysed_and_a_direction_for_it_refused() {
         .expect("message")
         .contains("live"));
 }
+
+/// Issue 27: the page's "Report .html" download is `voussoir report` of the scene the TOML
+/// download writes: the same chapters and numbers, the same SHA-256 of the same text.
+#[test]
+fn the_report_is_the_clis_report_of_the_downloaded_toml() {
+    let s = state();
+    let scene = get_json(&s, "/api/scene");
+    let (status, answer) = post(&s, "/api/analyze", &json!({"scene": scene["scene"]}));
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let toml_text = answer["toml"].as_str().expect("toml").to_string();
+    let (status, report) = post(&s, "/api/report", &json!({"scene": scene["scene"]}));
+    assert_eq!(status, StatusCode::OK, "{report}");
+    let page = report["html"].as_str().expect("html");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, &toml_text).expect("write");
+    let out = assert_cmd::Command::cargo_bin("voussoir")
+        .expect("binary")
+        .arg("report")
+        .arg(&path)
+        .output()
+        .expect("run");
+    assert!(out.status.success());
+    let cli = String::from_utf8(out.stdout).expect("utf-8");
+    // Where the scene came from and the wall times in the summaries differ; the rest is the
+    // same page.
+    let strip = |html: &str| -> Vec<String> {
+        html.lines()
+            .filter(|l| {
+                !l.contains(" ms")
+                    && !l.contains("scene.toml")
+                    && !l.contains("Scene file")
+                    && !l.contains("scene file</th>")
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    let (a, b) = (strip(page), strip(cli.trim_end()));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x, y);
+    }
+    use sha2::Digest;
+    let sha: String = sha2::Sha256::digest(toml_text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    assert!(page.contains(&sha));
+    // An invalid scene is refused as /api/analyze refuses it.
+    let mut bad = scene["scene"].clone();
+    bad["arch"]["thickness"] = json!(-1.0);
+    let (status, err) = post(&s, "/api/report", &json!({"scene": bad}));
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{err}");
+    assert_eq!(err["key"], "arch.thickness");
+}

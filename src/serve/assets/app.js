@@ -688,6 +688,7 @@
     if (svg) drawing.replaceChildren(svg);
     else drawing.replaceChildren(placeholder('The server sent no drawing.'));
     state.last = result;
+    state.lastScene = sent;
     state.lastOk = true;
     document.body.classList.remove('stale');
     showResult(result);
@@ -795,7 +796,7 @@
   // ---- downloads ----------------------------------------------------------------------------
 
   function setDownloads(enabled) {
-    for (const id of ['v-dl-toml', 'v-dl-svg', 'v-dl-json']) $(id).disabled = !enabled;
+    for (const id of ['v-dl-toml', 'v-dl-svg', 'v-dl-json', 'v-dl-report']) $(id).disabled = !enabled;
   }
 
   function baseName() {
@@ -818,6 +819,29 @@
     a.click();
     a.remove();
     setTimeout(() => URL.revokeObjectURL(url), 10000);
+  }
+
+  // The hand-in report (POST /api/report, what `voussoir report` writes) of the scene last
+  // analysed: several analyses on the server, so the button says it is busy meanwhile.
+  async function downloadReport() {
+    if (!state.last) return;
+    const button = $('v-dl-report');
+    const name = baseName();
+    const body = JSON.stringify({ scene: clone(state.lastScene || state.scene) });
+    button.disabled = true;
+    button.classList.add('busy');
+    try {
+      const outcome = await readJson(await fetch('/api/report', {
+        method: 'POST', headers: { 'content-type': 'application/json' }, body,
+      }));
+      if (outcome.ok) download(outcome.body.html, 'text/html', name + '-report.html');
+      else showMessage('No report: ' + outcome.body.error);
+    } catch (e) {
+      showMessage('No report: the server did not answer (' + e.message + ')');
+    } finally {
+      button.classList.remove('busy');
+      button.disabled = !state.last;
+    }
   }
 
   function analysisJson(r) {
@@ -1106,6 +1130,7 @@
     state.widened.clear();
     markPreset();
     buildForm();
+    $('v-dl-report').addEventListener('click', downloadReport);
     requestAnalysis(null);
     firstSweep();
   }

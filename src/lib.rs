@@ -15,6 +15,7 @@ pub mod dem_settings;
 pub mod drawing;
 pub mod error;
 pub mod geometry;
+pub mod hazard;
 pub mod interaction;
 pub mod kinematic;
 pub mod model;

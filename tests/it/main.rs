@@ -23,6 +23,7 @@ mod extremes;
 mod fixed_blocks;
 mod friction;
 mod general_kinematic;
+mod hazard;
 mod json_contract;
 mod json_unchanged;
 mod kinematic;

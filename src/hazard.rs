@@ -5,19 +5,21 @@
 //! Equations and data:
 //! - NTC 2018 (D.M. 17/01/2018) §2.4.3: the reference period `V_R = V_N C_U`, with the
 //!   nominal life `V_N` (years, §2.4.1) and the coefficient of the use class, `C_U` = 0.7,
-//!   1.0, 1.5, 2.0 for classes I-IV (Tab. 2.4.II); "se V_R <= 35 anni si pone comunque
-//!   V_R = 35 anni".
+//!   1.0, 1.5, 2.0 for classes I-IV (Tab. 2.4.II); at least 35 years, the floor of NTC 2008
+//!   §2.4.3 ("se V_R <= 35 anni si pone comunque V_R = 35 anni"), kept here: it matters only
+//!   where `V_N C_U` < 35 years (temporary constructions), whose return periods would
+//!   otherwise fall below the grid's 30 years at SLO and SLD.
 //! - NTC 2018 §3.2.1, Tab. 3.2.I: the probability of exceedance in `V_R` of each limit state,
-//!   `P_VR` = 81 % (SLO), 63 % (SLD), 10 % (SLV), 5 % (SLC); and the return period (Circolare
-//!   2019 C3.2.1, eq. C3.2.1) `T_R = -V_R / ln(1 - P_VR)` (so V_N = 50 years, class II, SLV
-//!   gives `T_R = -50 / ln 0.9` = 474.6 years, the 475 years of the grid).
+//!   `P_VR` = 81 % (SLO), 63 % (SLD), 10 % (SLV), 5 % (SLC); and the return period (NTC 2008
+//!   Allegato A) `T_R = -V_R / ln(1 - P_VR)` (so V_N = 50 years, class II, SLV gives
+//!   `T_R = -50 / ln 0.9` = 474.6 years, the 475 years of the grid).
 //! - NTC 2008 (D.M. 14/01/2008) Allegato B, Tabella 1, which NTC 2018 §3.2 keeps: the
 //!   reference grid of 10,751 nodes (`ID`, longitude, latitude; about 5.5 km apart) with
 //!   `ag` (in g/10 in the table; in g here), `F0` and `Tc*` (s) at the nine return periods
 //!   30, 50, 72, 101, 140, 201, 475, 975, 2475 years.
 //! - NTC 2008 Allegato A: a parameter `p` at a point is the mean of its values `p_i` at the
 //!   four nodes of the grid's cell that contains the point, weighted by the inverse of the
-//!   distances `d_i` from the point, `p = sum(p_i / d_i) / sum(1 / d_i)` (eq. 1); between the
+//!   distances `d_i` from the point, `p = sum(p_i / d_i) / sum(1 / d_i)` ("eq. 1" below); between the
 //!   tabulated return periods `T_R1 < T_R < T_R2`,
 //!   `log p = log p1 + log(p2 / p1) log(T_R / T_R1) / log(T_R2 / T_R1)` (eq. 2), with `p1`,
 //!   `p2` the site's values (eq. 1) at `T_R1`, `T_R2`.
@@ -45,7 +47,7 @@ use std::sync::OnceLock;
 /// The return periods of the grid's columns (years), NTC 2008 Allegato B.
 pub const RETURN_PERIODS: [f64; 9] = [30.0, 50.0, 72.0, 101.0, 140.0, 201.0, 475.0, 975.0, 2475.0];
 
-/// The least reference period (years), NTC 2018 §2.4.3.
+/// The least reference period (years), NTC 2008 §2.4.3.
 pub const MIN_REFERENCE_PERIOD: f64 = 35.0;
 
 /// Nodes to a row of the national grid's numbering.
@@ -136,12 +138,13 @@ impl UseClass {
     }
 }
 
-/// `V_R = max(V_N C_U, 35)` (years), NTC 2018 §2.4.3.
+/// `V_R = max(V_N C_U, 35)` (years): NTC 2018 §2.4.3 with the floor of NTC 2008 §2.4.3.
 pub fn reference_period(nominal_life: f64, class: UseClass) -> f64 {
     (nominal_life * class.cu()).max(MIN_REFERENCE_PERIOD)
 }
 
-/// `T_R = -V_R / ln(1 - P_VR)` (years), Circolare 2019 eq. C3.2.1.
+/// `T_R = -V_R / ln(1 - P_VR)` (years): the return period whose probability of exceedance in
+/// `V_R` is `P_VR` for Poisson occurrences (NTC 2008 Allegato A).
 pub fn return_period(reference_period: f64, state: LimitState) -> f64 {
     -reference_period / (1.0 - state.p_vr()).ln()
 }
@@ -211,7 +214,7 @@ impl Grid {
         static GRID: OnceLock<Option<Grid>> = OnceLock::new();
         GRID.get_or_init(|| {
             const ROW_BYTES: usize = 30 * 8;
-            if BUNDLED.is_empty() || BUNDLED.len() % ROW_BYTES != 0 {
+            if BUNDLED.is_empty() || !BUNDLED.len().is_multiple_of(ROW_BYTES) {
                 return None;
             }
             let f = |b: &[u8]| {
@@ -419,7 +422,7 @@ pub struct SiteHazard {
 }
 
 /// Where the bundled grid's values come from, in the JSON.
-pub const SOURCE: &str = "NTC 2008 Allegato B, Tabella 1 (national hazard grid), interpolated by Allegato A eq. 1 (4 nodes, inverse distance) and eq. 2 (log between return periods)";
+pub const SOURCE: &str = "NTC 2008 Allegato B, Tabella 1 (national hazard grid), interpolated by Allegato A (the cell's 4 nodes weighted by inverse distance; eq. 2, logarithmic between return periods)";
 
 /// The hazard of a site on `grid` (NTC 2018 §2.4.3, §3.2.1; NTC 2008 Allegati A, B).
 pub fn site_hazard(

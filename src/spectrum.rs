@@ -477,26 +477,30 @@ fn site_hazard(
             "must be the nominal life V_N in years, above 0 and at most 1000 (NTC 2018 Tab. 2.4.I: 10 temporary, 50 ordinary, 100 strategic constructions)",
         ));
     }
-    let use_class = match word("use_class")? {
-        None => DEFAULT_USE_CLASS,
-        Some(c) => UseClass::parse(&c).ok_or_else(|| {
+    let use_class = one_of(
+        word("use_class")?,
+        UseClass::parse,
+        DEFAULT_USE_CLASS,
+        |v| {
             bad(
                 "use_class",
-                format!("\"{c}\""),
+                v,
                 "unknown use class (allowed: I, II, III, IV; NTC 2018 §2.4.2)",
             )
-        })?,
-    };
-    let limit_state = match word("limit_state")? {
-        None => DEFAULT_LIMIT_STATE,
-        Some(l) => LimitState::parse(&l).ok_or_else(|| {
+        },
+    )?;
+    let limit_state = one_of(
+        word("limit_state")?,
+        LimitState::parse,
+        DEFAULT_LIMIT_STATE,
+        |v| {
             bad(
                 "limit_state",
-                format!("\"{l}\""),
+                v,
                 "unknown limit state (allowed: SLO, SLD, SLV, SLC; NTC 2018 §3.2.1)",
             )
-        })?,
-    };
+        },
+    )?;
     let hazard_error = |source: HazardError| SceneError::Hazard {
         origin: origin.to_string(),
         key: key(match source {
@@ -516,6 +520,20 @@ fn site_hazard(
     )
     .map(Some)
     .map_err(hazard_error)
+}
+
+/// A word of a closed list read by `parse`, `default` when the key is absent, and `bad` of
+/// the quoted word when `parse` does not know it.
+fn one_of<T>(
+    word: Option<String>,
+    parse: fn(&str) -> Option<T>,
+    default: T,
+    bad: impl FnOnce(String) -> SceneError,
+) -> Result<T, SceneError> {
+    match word {
+        None => Ok(default),
+        Some(w) => parse(&w).ok_or_else(|| bad(format!("\"{w}\""))),
+    }
 }
 
 /// The horizontal elastic spectrum of a site (NTC 2018 §3.2.3.2.1), 5 % damping.

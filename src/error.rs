@@ -66,6 +66,57 @@ pub enum SceneError {
     /// Options that do not fit together (e.g. `--x` without `--svg`).
     #[error("{0}")]
     Usage(String),
+    /// The site's hazard from its coordinates (`[site] latitude`, `longitude`) could not be
+    /// had: the point lies outside the national grid, its return period outside the grid's,
+    /// or this build has no grid. `key` is the key it is about (`site.latitude` for the
+    /// point, `site.limit_state` for the return period).
+    #[error("{origin}: `{key}`: {source}")]
+    Hazard {
+        origin: String,
+        key: String,
+        #[source]
+        source: HazardError,
+    },
+}
+
+/// `" (T_R = -V_R / ln(1 - P_VR), V_R = .. years, SLx)"` when known.
+fn period_context(v_r: Option<f64>, limit_state: Option<&str>) -> String {
+    match (v_r, limit_state) {
+        (Some(v), Some(l)) => format!(" (T_R = -V_R / ln(1 - P_VR), V_R = {v} years, {l})"),
+        _ => String::new(),
+    }
+}
+
+/// Why the seismic hazard of NTC 2018 (ag, F0, Tc* of the national grid, NTC 2008
+/// Allegati A and B) cannot be given for a site (`crate::hazard`).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum HazardError {
+    /// The point is in no cell of the grid (Allegato B, Tabella 1): at sea, abroad, or on
+    /// one of the islands whose constant values Allegato B gives in Tabella 2, which is not
+    /// bundled.
+    #[error(
+        "latitude {latitude}, longitude {longitude} lies outside the national hazard grid of NTC 2008 Allegato B, Tabella 1 (the mainland, Sicily, Ischia, Procida and Capri, by the grid's four-node cells); \
+         the other islands have the constant values of Allegato B, Tabella 2, which voussoir does not bundle: for such a site give ag, F0 and Tc_star instead"
+    )]
+    OutsideGrid { latitude: f64, longitude: f64 },
+    /// The return period lies outside the grid's 30 to 2475 years.
+    #[error(
+        "the return period T_R = {t_r:.1} years{} lies outside the 30 to 2475 years the grid tabulates; \
+         voussoir does not extrapolate the hazard (NTC 2008 Allegato A interpolates between tabulated periods only): give ag, F0 and Tc_star instead",
+        period_context(*.v_r, *.limit_state)
+    )]
+    ReturnPeriod {
+        t_r: f64,
+        /// The reference period `V_R` (years) it came from, when it came from a site.
+        v_r: Option<f64>,
+        /// The limit state it came from, when it came from a site.
+        limit_state: Option<&'static str>,
+    },
+    /// This build was made without the grid's data file (data/hazard/README.md).
+    #[error(
+        "this build of voussoir has no NTC 2008 hazard grid (its data file was not found when it was built: data/hazard/README.md says where it goes); give ag, F0 and Tc_star instead of latitude and longitude"
+    )]
+    NotBundled,
 }
 
 impl SceneError {
@@ -76,7 +127,8 @@ impl SceneError {
             | SceneError::MissingKey { key, .. }
             | SceneError::WrongType { key, .. }
             | SceneError::OutOfRange { key, .. }
-            | SceneError::BadBlocks { key, .. } => Some(key),
+            | SceneError::BadBlocks { key, .. }
+            | SceneError::Hazard { key, .. } => Some(key),
             _ => None,
         }
     }

@@ -16,6 +16,7 @@ pub mod dossier;
 pub mod drawing;
 pub mod error;
 pub mod geometry;
+pub mod hazard;
 pub mod interaction;
 pub mod kinematic;
 pub mod model;

@@ -17,8 +17,13 @@
 //!
 //! Units: `ag` is given in g (as the Italian hazard maps give it); spectral accelerations are
 //! returned in m/s^2, displacements in m, periods in s.
+//!
+//! The site's `ag`, `F0` and `Tc*` are either given (`ag`, `F0`, `Tc_star`) or taken from the
+//! national hazard grid at the site's coordinates (`latitude`, `longitude`, with
+//! `nominal_life`, `use_class` and `limit_state`: [`crate::hazard`]).
 
-use crate::error::{did_you_mean, SceneError};
+use crate::error::{did_you_mean, HazardError, SceneError};
+use crate::hazard::{self, Grid, LimitState, SiteHazard, UseClass};
 use toml::{Table, Value};
 
 /// Standard gravity (m/s^2), the g that `ag` is a fraction of.
@@ -36,7 +41,21 @@ pub const SITE_KEYS: &[&str] = &[
     "Z",
     "H",
     "T1",
+    "latitude",
+    "longitude",
+    "nominal_life",
+    "use_class",
+    "limit_state",
 ];
+
+/// Default nominal life `V_N` (years) of a site given by its coordinates: ordinary
+/// constructions (NTC 2018 Tab. 2.4.I, "costruzioni con livelli di prestazioni ordinari").
+pub const DEFAULT_NOMINAL_LIFE: f64 = 50.0;
+/// Default use class of a site given by its coordinates: II, ordinary use (NTC 2018 §2.4.2).
+pub const DEFAULT_USE_CLASS: UseClass = UseClass::II;
+/// Default limit state of a site given by its coordinates: SLV (life safety), the state of
+/// the checks of Circolare 2019 C8.7.1 that `voussoir assess` makes.
+pub const DEFAULT_LIMIT_STATE: LimitState = LimitState::SLV;
 
 /// Default structure (behaviour) factor of the linear kinematic check (Circolare 2019
 /// C8.7.1.2.1: q = 2.0).
@@ -170,6 +189,10 @@ pub struct Site {
     pub h: Option<f64>,
     /// First period (s) of the building (needed when `Z > 0`).
     pub t1: Option<f64>,
+    /// Where `ag`, `F0` and `Tc*` came from when the site was given by its coordinates
+    /// (`latitude`, `longitude`): the national grid's values there; `None` when they were
+    /// given.
+    pub hazard: Option<SiteHazard>,
 }
 
 impl Site {
@@ -225,12 +248,21 @@ impl Site {
                 }),
             }
         };
-        let ag = number("ag")?.ok_or_else(|| {
-            missing(
-                "ag",
-                "peak ground acceleration on rock, in g, e.g. ag = 0.25",
-            )
-        })?;
+        let hazard = site_hazard(table, origin, &number, &word)?;
+        let given = |k: &str, what: &str| -> Result<f64, SceneError> {
+            match &hazard {
+                None => number(k)?.ok_or_else(|| missing(k, what)),
+                Some(h) => Ok(match k {
+                    "ag" => h.params.ag,
+                    "F0" => h.params.f0,
+                    _ => h.params.tc_star,
+                }),
+            }
+        };
+        let ag = given(
+            "ag",
+            "peak ground acceleration on rock, in g, e.g. ag = 0.25 (or the site's latitude and longitude)",
+        )?;
         if !(ag.is_finite() && ag > 0.0 && ag <= 2.0) {
             return Err(bad(
                 "ag",
@@ -257,21 +289,17 @@ impl Site {
                 )
             })?,
         };
-        let f0 = number("F0")?.ok_or_else(|| {
-            missing(
-                "F0",
-                "maximum spectral amplification of the site, e.g. F0 = 2.4",
-            )
-        })?;
+        let f0 = given(
+            "F0",
+            "maximum spectral amplification of the site, e.g. F0 = 2.4 (or the site's latitude and longitude)",
+        )?;
         if !(f0.is_finite() && (1.0..=5.0).contains(&f0)) {
             return Err(bad("F0", f0.to_string(), "must be from 1 to 5"));
         }
-        let tc_star = number("Tc_star")?.ok_or_else(|| {
-            missing(
-                "Tc_star",
-                "upper corner period on rock Tc* (s), e.g. Tc_star = 0.3",
-            )
-        })?;
+        let tc_star = given(
+            "Tc_star",
+            "upper corner period on rock Tc* (s), e.g. Tc_star = 0.3 (or the site's latitude and longitude)",
+        )?;
         if !(tc_star.is_finite() && tc_star > 0.0 && tc_star <= 2.0) {
             return Err(bad(
                 "Tc_star",
@@ -343,12 +371,18 @@ impl Site {
             z,
             h,
             t1,
+            hazard,
         })
     }
 
-    /// The same site with another `ag` (in g).
+    /// The same site with another `ag` (in g). The grid's values no longer apply to it, so
+    /// it has no `hazard`.
     pub fn with_ag(&self, ag: f64) -> Site {
-        Site { ag, ..self.clone() }
+        Site {
+            ag,
+            hazard: None,
+            ..self.clone()
+        }
     }
 
     /// The elastic spectrum of this site.
@@ -359,6 +393,146 @@ impl Site {
     /// Whether the mechanism sits above ground level (`Z > 0`).
     pub fn elevated(&self) -> bool {
         self.z > 0.0
+    }
+}
+
+/// The hazard of a `[site]` given by its coordinates: `latitude` and `longitude` (degrees),
+/// `nominal_life` (years, default 50), `use_class` (`"I"`..`"IV"`, default `"II"`) and
+/// `limit_state` (`"SLO"`, `"SLD"`, `"SLV"`, `"SLC"`, default `"SLV"`) give `ag`, `F0` and
+/// `Tc*` on the national grid ([`crate::hazard`]); `None` for a site whose `ag`, `F0` and
+/// `Tc_star` are given. Giving both is an error, and so are the three design keys without
+/// coordinates (they would be ignored).
+fn site_hazard(
+    table: &Table,
+    origin: &str,
+    number: &dyn Fn(&str) -> Result<Option<f64>, SceneError>,
+    word: &dyn Fn(&str) -> Result<Option<String>, SceneError>,
+) -> Result<Option<SiteHazard>, SceneError> {
+    let key = |k: &str| format!("site.{k}");
+    let bad = |k: &str, v: String, allowed: &str| SceneError::OutOfRange {
+        origin: origin.to_string(),
+        key: key(k),
+        value: v,
+        allowed: allowed.to_string(),
+    };
+    let latitude = number("latitude")?;
+    let longitude = number("longitude")?;
+    if latitude.is_none() && longitude.is_none() {
+        for k in ["nominal_life", "use_class", "limit_state"] {
+            if let Some(v) = table.get(k) {
+                return Err(bad(
+                    k,
+                    v.to_string(),
+                    "is read only with the site's latitude and longitude (it chooses the return period of the hazard taken from the national grid); with ag, F0 and Tc_star given, those are the hazard",
+                ));
+            }
+        }
+        return Ok(None);
+    }
+    let missing = |k: &str, what: &str| SceneError::MissingKey {
+        origin: origin.to_string(),
+        key: key(k),
+        what: what.to_string(),
+    };
+    let latitude = latitude.ok_or_else(|| {
+        missing(
+            "latitude",
+            "the site's latitude in degrees, north positive, given with its longitude",
+        )
+    })?;
+    let longitude = longitude.ok_or_else(|| {
+        missing(
+            "longitude",
+            "the site's longitude in degrees, east positive, given with its latitude",
+        )
+    })?;
+    if !(latitude.is_finite() && (-90.0..=90.0).contains(&latitude)) {
+        return Err(bad(
+            "latitude",
+            latitude.to_string(),
+            "must be a latitude in degrees, from -90 to 90",
+        ));
+    }
+    if !(longitude.is_finite() && (-180.0..=180.0).contains(&longitude)) {
+        return Err(bad(
+            "longitude",
+            longitude.to_string(),
+            "must be a longitude in degrees, from -180 to 180",
+        ));
+    }
+    for k in ["ag", "F0", "Tc_star"] {
+        if let Some(v) = table.get(k) {
+            return Err(bad(
+                k,
+                v.to_string(),
+                "give either the site's latitude and longitude (ag, F0 and Tc* then come from the national hazard grid) or ag, F0 and Tc_star, not both",
+            ));
+        }
+    }
+    let nominal_life = number("nominal_life")?.unwrap_or(DEFAULT_NOMINAL_LIFE);
+    if !(nominal_life.is_finite() && nominal_life > 0.0 && nominal_life <= 1000.0) {
+        return Err(bad(
+            "nominal_life",
+            nominal_life.to_string(),
+            "must be the nominal life V_N in years, above 0 and at most 1000 (NTC 2018 Tab. 2.4.I: 10 temporary, 50 ordinary, 100 strategic constructions)",
+        ));
+    }
+    let use_class = one_of(
+        word("use_class")?,
+        UseClass::parse,
+        DEFAULT_USE_CLASS,
+        |v| {
+            bad(
+                "use_class",
+                v,
+                "unknown use class (allowed: I, II, III, IV; NTC 2018 §2.4.2)",
+            )
+        },
+    )?;
+    let limit_state = one_of(
+        word("limit_state")?,
+        LimitState::parse,
+        DEFAULT_LIMIT_STATE,
+        |v| {
+            bad(
+                "limit_state",
+                v,
+                "unknown limit state (allowed: SLO, SLD, SLV, SLC; NTC 2018 §3.2.1)",
+            )
+        },
+    )?;
+    let hazard_error = |source: HazardError| SceneError::Hazard {
+        origin: origin.to_string(),
+        key: key(match source {
+            HazardError::ReturnPeriod { .. } => "limit_state",
+            _ => "latitude",
+        }),
+        source,
+    };
+    let grid = Grid::bundled().map_err(hazard_error)?;
+    hazard::site_hazard(
+        grid,
+        latitude,
+        longitude,
+        nominal_life,
+        use_class,
+        limit_state,
+    )
+    .map(Some)
+    .map_err(hazard_error)
+}
+
+/// A word of a closed list read by `parse`, `default` when the key is absent, and `bad` of
+/// the quoted word when `parse` does not know it.
+fn one_of<T>(
+    word: Option<String>,
+    parse: fn(&str) -> Option<T>,
+    default: T,
+    bad: impl FnOnce(String) -> SceneError,
+) -> Result<T, SceneError> {
+    match word {
+        None => Ok(default),
+        Some(w) => parse(&w).ok_or_else(|| bad(format!("\"{w}\""))),
     }
 }
 

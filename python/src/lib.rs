@@ -152,6 +152,9 @@ fn scene_error(py: Python<'_>, e: &LibSceneError) -> PyErr {
         LibSceneError::BadBlocks { origin, key, .. } => {
             ("bad_blocks", Some(origin.clone()), Some(key.clone()), None)
         }
+        LibSceneError::Hazard { origin, key, .. } => {
+            ("hazard", Some(origin.clone()), Some(key.clone()), None)
+        }
         LibSceneError::Usage(_) => ("usage", None, None, None),
     };
     let err = SceneError::new_err(e.to_string());

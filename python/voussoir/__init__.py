@@ -375,8 +375,9 @@ def assess(
     governing, or only ``direction`` (``"right"`` or ``"left"``, as ``--direction``).
 
     ``site``: keys of the ``[site]`` table to set (``{"ag": 0.25, "soil": "B", "F0": 2.4,
-    "Tc_star": 0.3}``, as ``--site KEY=VALUE``) over the scene's own. ``points``,
-    ``control_block`` and ``incremental`` as ``--points``, ``--control-block`` and
+    "Tc_star": 0.3}``, or ``{"latitude": 42.35, "longitude": 13.4, "soil": "B"}`` for the
+    values of the national hazard grid there, as ``--site KEY=VALUE``) over the scene's own.
+    ``points``, ``control_block`` and ``incremental`` as ``--points``, ``--control-block`` and
     ``--incremental``. Raises :class:`AnalysisError`
     when a direction has no mechanism with a capacity curve (the message says why)."""
     if site:

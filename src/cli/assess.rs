@@ -10,7 +10,8 @@ pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
     /// Set a key of the scene's [site] table, e.g. --site ag=0.25 --site soil=B (repeatable;
-    /// keys: ag, soil, topography, F0, Tc_star, q, FC, Z, H, T1)
+    /// keys: ag, soil, topography, F0, Tc_star, q, FC, Z, H, T1; or latitude, longitude,
+    /// nominal_life, use_class, limit_state for ag, F0, Tc_star of the national hazard grid)
     #[arg(long = "site", value_name = "KEY=VALUE")]
     site: Vec<String>,
     /// Print one JSON object instead of the summary

@@ -6,6 +6,7 @@ use crate::analysis::Assessment;
 use crate::analysis::SiteAssessment;
 use crate::assembly::Hinge;
 use crate::assess::{CapacityPoint, Check, ParticipatingMass, Satisfied, TieOnCurve, RULE};
+use crate::hazard::SiteHazard;
 use crate::outcome::Direction;
 use crate::report::SceneReport;
 use crate::scene::Scene;
@@ -32,6 +33,23 @@ pub struct SiteReport {
     pub h: Option<f64>,
     #[serde(rename = "T1")]
     pub t1: Option<f64>,
+    /// Added: the site's coordinates (degrees) and design, present only for a site given by
+    /// its coordinates (`ag`, `F0`, `Tc_star` above are then the grid's values there).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub latitude: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub longitude: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nominal_life: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub use_class: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit_state: Option<&'static str>,
+    /// Added, with the coordinates: how the grid gave `ag`, `F0`, `Tc*` (`C_U`, `V_R`,
+    /// `P_VR`, `T_R`, the values, the return periods and the cell's four nodes with their
+    /// distances; docs/assessment.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hazard: Option<SiteHazard>,
 }
 
 impl SiteReport {
@@ -47,6 +65,12 @@ impl SiteReport {
             z: s.z,
             h: s.h,
             t1: s.t1,
+            latitude: s.hazard.as_ref().map(|h| h.latitude),
+            longitude: s.hazard.as_ref().map(|h| h.longitude),
+            nominal_life: s.hazard.as_ref().map(|h| h.nominal_life),
+            use_class: s.hazard.as_ref().map(|h| h.use_class.as_str()),
+            limit_state: s.hazard.as_ref().map(|h| h.limit_state.as_str()),
+            hazard: s.hazard.clone(),
         }
     }
 }

@@ -978,13 +978,19 @@ pub fn assessment(scene: &Scene, all: &Assessment) -> Document {
     let (v, s) = (&g.verdict, &g.site);
     let sp = &v.spectrum;
     let mut doc = Document::new(format!("Scene: {}", scene.origin));
+    // Values the grid gave are interpolated: shown to the digits that mean something (the
+    // JSON keeps them whole); given values as given.
+    let shown = |x: f64, digits: usize| match s.hazard {
+        Some(_) => format!("{x:.digits$}"),
+        None => format!("{x}"),
+    };
     let t = doc.section(format!(
         "Site: ag = {} g, soil {}, topography {}, F0 = {}, Tc* = {} s, q = {}{}",
-        s.ag,
+        shown(s.ag, 4),
         s.soil.as_str(),
         s.topography.as_str(),
-        s.f0,
-        s.tc_star,
+        shown(s.f0, 3),
+        shown(s.tc_star, 3),
         s.q,
         if s.elevated() {
             format!(
@@ -997,6 +1003,9 @@ pub fn assessment(scene: &Scene, all: &Assessment) -> Document {
             String::new()
         }
     ));
+    if let Some(h) = &s.hazard {
+        t.line(crate::report::words::hazard_words(h));
+    }
     t.line(format!(
         "spectrum: S = SS ST = {:.3} x {:.2}, TB = {:.3} s, TC = {:.3} s, TD = {:.3} s",
         sp.ss, sp.st, sp.tb, sp.tc, sp.td

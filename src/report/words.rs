@@ -3,6 +3,7 @@
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointKind};
 use crate::geometry::Stereotomy;
+use crate::hazard::SiteHazard;
 use crate::kinematic::Family;
 use crate::model::Model;
 use crate::outcome::Status;
@@ -38,6 +39,37 @@ pub fn num(x: f64) -> String {
     }
     let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
     format!("{rounded}")
+}
+
+/// How the national hazard grid gave a site's `ag`, `F0`, `Tc*` (NTC 2018 §2.4.3, §3.2.1;
+/// NTC 2008 Allegati A, B), in one line.
+pub fn hazard_words(h: &SiteHazard) -> String {
+    let ids: Vec<String> = h.nodes.iter().map(|n| n.id.to_string()).collect();
+    let between = if h.return_periods[0] == h.return_periods[1] {
+        format!("the grid's T_R = {} years column", h.return_periods[0])
+    } else {
+        format!(
+            "log-interpolated between T_R = {} and {} years",
+            h.return_periods[0], h.return_periods[1]
+        )
+    };
+    format!(
+        "hazard at latitude {}, longitude {}: V_N = {} years, use class {} (C_U = {}), V_R = {} years; {} (P_VR = {} %): T_R = {:.1} years; ag = {:.4} g, F0 = {:.3}, Tc* = {:.3} s from the NTC 2008 Allegato B grid, nodes {} (inverse distance), {}",
+        num(h.latitude),
+        num(h.longitude),
+        num(h.nominal_life),
+        h.use_class.as_str(),
+        num(h.cu),
+        num(h.v_r),
+        h.limit_state.as_str(),
+        num(100.0 * h.p_vr),
+        h.t_r,
+        h.params.ag,
+        h.params.f0,
+        h.params.tc_star,
+        ids.join(", "),
+        between
+    )
 }
 
 /// A small dimensionless number (a relative gap or difference, a residual) in scientific

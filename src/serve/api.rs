@@ -88,6 +88,7 @@ impl From<SceneError> for ApiError {
             SceneError::BadVariation { .. } => "bad_variation",
             SceneError::BadChart { .. } => "bad_chart",
             SceneError::BadBlocks { .. } => "bad_blocks",
+            SceneError::Hazard { .. } => "hazard",
             SceneError::Usage(_) => "usage",
         };
         let key = e.key().map(str::to_string);

@@ -374,7 +374,8 @@ fn dem_started_on_the_curve_returns_below_alpha_and_runs_away_above() {
     }
 }
 
-fn site(text: &str) -> Result<Site, voussoir::error::SceneError> {
+/// The `[site]` table `text` of a small arch scene, read (also for `hazard.rs`).
+pub(crate) fn site(text: &str) -> Result<Site, voussoir::error::SceneError> {
     let scene = Scene::from_toml_str(
         &format!(
             "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 8\n[site]\n{text}"

@@ -24,6 +24,7 @@ mod extremes;
 mod fixed_blocks;
 mod friction;
 mod general_kinematic;
+mod hazard;
 mod incremental;
 mod json_contract;
 mod json_unchanged;

@@ -953,7 +953,16 @@ pub fn assess(
     };
     let capacity =
         crate::assess::capacity(&analysis.model, &mechanism, options.direction(), &settings)
-            .map_err(|e| AnalysisError::Other(e.to_string()))?;
+            .map_err(|e| {
+                // Sliding explains a missing curve better than the curve's own failure: a
+                // sliding mechanism has none (rotation_governs words it the same way).
+                let sliding = analysis.lower.sliding.len();
+                AnalysisError::Other(if sliding > 0 {
+                    format!("{sliding} joint(s) slide at collapse: sliding governs, and a sliding mechanism has no capacity curve in this model ({e})")
+                } else {
+                    e.to_string()
+                })
+            })?;
     let verdict = crate::assess::verdict(&analysis.model, &capacity, &site);
     Ok(SiteAssessment {
         analysis,

@@ -471,7 +471,8 @@ fn a_block_scene_without_a_chain_mechanism_says_what_is_not_computed() {
     assert!(json["min_thickness"].is_null() && json["assessment"].is_null());
     let conclusion = chapter_text(&html, "Identification");
     assert!(
-        conclusion.contains("Seismic check: not made (no capacity curve for a general"),
+        conclusion.contains("Seismic check: not made (")
+            && conclusion.contains("slide at collapse: sliding governs"),
         "{conclusion}"
     );
     let t = chapter_text(&html, "Minimum thickness");

@@ -68,8 +68,8 @@ pub const GAP_TOL: f64 = 1e-7;
 /// moment capacity `N l / 2` against turning back; it must exceed the path's drift (the
 /// midpoint rule leaves a hinge's two copies about 1e-7 of the size apart after a hundred
 /// steps), or round-off alone makes the displaced structure look unable to stand. On the
-/// bundled portal the curve ends (cannot stand) at d_k = 52.4 mm with 1e-7, 53.0 mm with
-/// 1e-5 and 72 mm with 1e-3: it converges as the length falls.
+/// bundled portal the curve ends (cannot stand) at d_k = 51.8 mm with 1e-7 and 1e-5, and at
+/// 71.6 mm with 1e-3: it converges as the length falls.
 pub const POINT_LENGTH: f64 = 1e-5;
 /// Steps aimed at between rest and `alpha = 0`.
 pub const TARGET_STEPS: f64 = 100.0;

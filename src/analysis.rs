@@ -924,7 +924,7 @@ pub fn assess(
     seismic_only(scene, "a seismic assessment (assess)")?;
     let site = scene.site.clone().ok_or_else(|| {
         AnalysisError::Other(format!(
-            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3",
+            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3 (or --site latitude=42.35 --site longitude=13.40 --site soil=B for the national hazard grid, docs/assessment.md)",
             scene.origin
         ))
     })?;

@@ -238,7 +238,7 @@ pub fn design_for_site(
 ) -> Result<SiteRetrofit, AnalysisError> {
     if scene.site.is_none() {
         return Err(AnalysisError::Other(format!(
-            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3",
+            "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3 (or --site latitude=42.35 --site longitude=13.40 --site soil=B for the national hazard grid, docs/assessment.md)",
             scene.origin
         )));
     }

@@ -52,7 +52,7 @@
 //! change along the path (a new hinge forms, a contact is lost), which is what re-solving
 //! captures.
 
-use super::AssessError;
+use super::{AssessError, Rigid};
 use crate::assembly::{Assembly, Joint, JointEnd};
 use crate::geometry::Vec2;
 use crate::kinematic::general::{joint_rates, least_mechanism, Least, MOVES_REL_TOL};
@@ -122,14 +122,12 @@ pub struct Path {
 
 /// Where a block's motion `m` takes point `p` of that block (`c` its centroid at rest).
 fn place(c: Vec2, m: (Vec2, f64), p: Vec2) -> Vec2 {
-    let (sn, cs) = m.1.sin_cos();
-    let r = p - c;
-    c + m.0 + Vec2::new(cs * r.x - sn * r.y, sn * r.x + cs * r.y)
+    Rigid::of_block(c, m).apply(p)
 }
 
+/// `v` turned by `angle` (rad).
 fn rotate(v: Vec2, angle: f64) -> Vec2 {
-    let (sn, cs) = angle.sin_cos();
-    Vec2::new(cs * v.x - sn * v.y, sn * v.x + cs * v.y)
+    Rigid::rotation(Vec2::zeros(), angle).apply(v)
 }
 
 /// How a joint at rest touches in a displaced configuration.
@@ -184,11 +182,7 @@ pub fn displaced(
         blocks: rest.blocks.clone(),
         joints,
     };
-    for (block, &m) in assembly.blocks.iter_mut().zip(moves) {
-        let c = block.centroid;
-        block.polygon = block.polygon.iter().map(|p| place(c, m, *p)).collect();
-        block.centroid = c + m.0;
-    }
+    super::move_blocks(&mut assembly.blocks, moves);
     let model = Model {
         assembly,
         loads: model.loads.moved(moves),

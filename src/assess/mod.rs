@@ -83,6 +83,16 @@ pub struct Rigid {
 }
 
 impl Rigid {
+    /// The motion of a block whose centroid, at `centroid` at rest, has moved by `m.0` and
+    /// turned by `m.1` about itself (the form of [`Linkage::placements`]).
+    pub fn of_block(centroid: Vec2, m: (Vec2, f64)) -> Rigid {
+        Rigid {
+            from: centroid,
+            to: centroid + m.0,
+            angle: m.1,
+        }
+    }
+
     fn rotation(about: Vec2, angle: f64) -> Rigid {
         Rigid {
             from: about,
@@ -286,15 +296,7 @@ impl Linkage {
     pub fn moved_model(&self, model: &Model, config: &Configuration) -> Model {
         let moves = self.placements(&model.assembly, config);
         let mut assembly = model.assembly.clone();
-        for (block, &(d, angle)) in assembly.blocks.iter_mut().zip(&moves) {
-            let m = Rigid {
-                from: block.centroid,
-                to: block.centroid + d,
-                angle,
-            };
-            block.polygon = block.polygon.iter().map(|p| m.apply(*p)).collect();
-            block.centroid = m.apply(block.centroid);
-        }
+        move_blocks(&mut assembly.blocks, &moves);
         Model {
             assembly,
             loads: model.loads.moved(&moves),
@@ -302,6 +304,15 @@ impl Linkage {
             ties: model.ties.clone(),
             strips: model.strips.clone(),
         }
+    }
+}
+
+/// Move every block (its outline and centroid) by its placement in `moves`.
+fn move_blocks(blocks: &mut [crate::assembly::Block], moves: &[(Vec2, f64)]) {
+    for (block, &m) in blocks.iter_mut().zip(moves) {
+        let r = Rigid::of_block(block.centroid, m);
+        block.polygon = block.polygon.iter().map(|p| r.apply(*p)).collect();
+        block.centroid = r.apply(block.centroid);
     }
 }
 

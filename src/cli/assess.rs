@@ -27,6 +27,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     mechanism_svg: Option<std::path::PathBuf>,
     /// Where the mechanism is drawn: the fraction (0..1) of the rotation at which alpha = 0
+    /// (of d_k0 on the incremental route)
     #[arg(long, default_value_t = 0.5)]
     at: f64,
     /// Points of the capacity curve

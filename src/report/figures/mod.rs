@@ -208,8 +208,17 @@ pub fn assessment_mechanism(all: &Assessment, title: &str, at: f64) -> Result<Fi
         .unwrap_or_default();
     let drawing = Drawing {
         title: format!(
-            "{title} ({})\nmechanism turned by {u:.4} rad: control displacement dₖ = {:.1} mm, α = {alpha:.4} (α₀ = {:.4})",
+            "{title} ({})\n{}: control displacement dₖ = {:.1} mm, α = {alpha:.4} (α₀ = {:.4})",
             assessed_direction(all),
+            match a.capacity.motion {
+                // The incremental path is followed in d_k; its control block may not turn
+                // (a lintel that translates).
+                crate::assess::Motion::Incremental(_) => format!(
+                    "mechanism moved {:.0} % of the way to dₖ₀ (incremental)",
+                    100.0 * at
+                ),
+                crate::assess::Motion::Linkage(_) => format!("mechanism turned by {u:.4} rad"),
+            },
             1e3 * d_k,
             a.capacity.alpha0
         ),

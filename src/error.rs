@@ -369,6 +369,22 @@ pub enum RecordError {
     },
 }
 
+/// A request or a result `voussoir records` refuses (`records`): the flag and its value,
+/// or the period where the mean spectrum misses the code's tolerance.
+#[derive(Debug, Error, PartialEq)]
+pub enum RecordsError {
+    #[error("{flag} {value}: {allowed}")]
+    Flag {
+        flag: &'static str,
+        value: String,
+        allowed: String,
+    },
+    /// The matching did not bring the mean spectrum within the tolerance (then nothing is
+    /// written).
+    #[error("the mean spectrum of the records is {shortfall_pct:.1} % below the target at T = {period:.3} s, more than the 10 % NTC 2018 §3.2.3.6 allows; try another --seed or more --count")]
+    Tolerance { period: f64, shortfall_pct: f64 },
+}
+
 /// A failure of an analysis that is not a physical answer (those are statuses, not errors).
 #[derive(Debug, Error)]
 pub enum AnalysisError {
@@ -416,4 +432,7 @@ pub enum Error {
     /// A validation case could not be computed (`voussoir validate`).
     #[error("validation: {0}")]
     Validation(String),
+    /// Artificial records refused (`voussoir records`).
+    #[error(transparent)]
+    Records(#[from] RecordsError),
 }

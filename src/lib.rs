@@ -22,6 +22,7 @@ pub mod kinematic;
 pub mod model;
 pub mod outcome;
 pub mod overrides;
+pub mod records;
 pub mod report;
 pub mod retrofit;
 pub mod scene;

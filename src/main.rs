@@ -50,6 +50,9 @@ enum Command {
     /// Chromium) with the structure, the method, both bounds, the minimum thickness, the
     /// seismic check at the [site], the sensitivity and what reproduces it
     Report(cli::hand_in::Args),
+    /// Spectrum-compatible artificial accelerograms (AT2 files) for the NTC 2018 elastic
+    /// spectrum of a site: the mean 5 %-damped spectrum within the code's 10 % (§3.2.3.6)
+    Records(cli::records::Args),
     /// Validation: every published or independent result voussoir is compared with,
     /// recomputed now (--markdown writes docs/validation.md)
     Validate(cli::validate::Args),
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
         Command::Retrofit(a) => cli::retrofit::run(a),
         Command::Report(a) => cli::hand_in::run(a),
         Command::Validate(a) => cli::validate::run(a),
+        Command::Records(a) => cli::records::run(a),
         #[cfg(feature = "serve")]
         Command::Serve(a) => cli::serve::run(a),
     };

@@ -12,6 +12,7 @@ pub mod dem;
 pub mod hand_in;
 pub mod min_thickness;
 pub mod outputs;
+pub mod records;
 pub mod retrofit;
 #[cfg(feature = "serve")]
 pub mod serve;

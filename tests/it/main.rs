@@ -35,6 +35,7 @@ mod local_search;
 mod non_associative;
 mod piers;
 mod proptest_scenes;
+mod records;
 mod reduced;
 mod report_html;
 mod reports;

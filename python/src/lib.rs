@@ -995,6 +995,21 @@ fn variation(key: &str, values: &Bound<'_, PyAny>) -> PyResult<Variation> {
     })
 }
 
+/// The values of one varied key as a sweep reads them (a string in the CLI's syntax
+/// expanded), in order: what `voussoir._dask` splits a sweep's cases by.
+#[pyfunction]
+fn variation_values<'py>(
+    py: Python<'py>,
+    key: &str,
+    values: &Bound<'py, PyAny>,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    variation(key, values)?
+        .values
+        .iter()
+        .map(|v| from_toml(py, v))
+        .collect()
+}
+
 /// A sweep row as a dict with the columns of the CLI's CSV: the varied keys, `status,
 /// lambda_lower, lambda_upper, gap, hinges, solve_time_s`, the extra columns, the ratios not
 /// varied, and `error`. Missing numbers (and undefined ratios) are None.
@@ -1106,6 +1121,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dem_dynamic_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_pulse_curve_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(variation_values, m)?)?;
     m.add("VoussoirError", py.get_type::<VoussoirError>())?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;

@@ -35,3 +35,60 @@ def test_dask_local_cluster_equals_local_sweep():
     strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
     assert strip(remote) == strip(local)
     assert {r["status"] for r in local} >= {"collapse"}
+
+
+def test_sweep_with_a_client_gives_the_local_rows_in_chunks():
+    # `client=` splits the product into chunks on any case boundary (here across both keys:
+    # chunks of 5 cases over 3 x 7 thicknesses), after a local pilot; the rows come back in
+    # the local order. A string in the CLI's syntax is expanded as the local sweep does.
+    from voussoir import _dask
+
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
+    vary = {"arch.eccentricity": [0.0, 0.1, 0.2], "arch.thickness": "0.08:0.14:0.01"}
+    local = voussoir.sweep(scene, vary)
+    assert len(local) == 21
+    strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        chunked = voussoir.sweep(scene, vary, client=client, chunk=5, progress=False)
+        sized = voussoir.sweep(scene, vary, client=client)
+        rows, plan = _dask.sweep(
+            client, scene, vary, (False, False, "certified", 200), chunk=5, progress=False
+        )
+    assert strip(chunked) == strip(local)
+    assert strip(sized) == strip(local)
+    assert strip(rows) == strip(local)
+    # With a given chunk the pilot is one case, then ceil(20 / 5) chunks run remotely.
+    assert plan.pilot_cases == 1 and plan.chunk_cases == 5 and plan.chunks == 4
+    assert plan.overhead_s > 0.0 and plan.case_s > 0.0
+
+
+def test_chunks_cover_the_product_in_order():
+    from voussoir._dask import _pieces, chunk_cases
+
+    sizes = [3, 4, 5]
+    flat = [(i, j, k) for i in range(3) for j in range(4) for k in range(5)]
+    for lo in range(0, 61, 7):
+        for hi in range(lo, 61, 11):
+            cases = [
+                (i, j, k)
+                for (a, b), (c, d), (e, f) in _pieces(sizes, lo, hi)
+                for i in range(a, b) for j in range(c, d) for k in range(e, f)
+            ]
+            assert cases == flat[lo:hi]
+    # The rule: the overhead within 10 % of a chunk's work.
+    h, c = 0.002, 3e-5
+    m = chunk_cases(h, c)
+    assert h <= 0.10 * m * c + 1e-15 and h > 0.10 * (m - 1) * c
+
+
+def test_the_text_progress_bar_counts_to_the_total(capsys):
+    from voussoir._dask import _TextBar
+
+    bar = _TextBar(10, "sweep")
+    bar.update(4)
+    bar.update(6)
+    bar.close()
+    err = capsys.readouterr().err
+    assert "sweep: 4/10 (40 %)" in err and "sweep: 10/10 (100 %)" in err

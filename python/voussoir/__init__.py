@@ -589,6 +589,9 @@ def sweep(
     kinematic: str = "certified",
     kinematic_max_joints: int = KINEMATIC_DEFAULT_MAX_JOINTS,
     as_frame: bool = False,
+    client: Any = None,
+    progress: bool = True,
+    chunk: Optional[int] = None,
 ):
     """A parametric sweep: every combination of the values in ``vary`` (dict order: the
     first key changes slowest), solved in parallel with the GIL released, as
@@ -606,10 +609,21 @@ def sweep(
     with status ``"error"``; unknown keys and values of the wrong type raise
     :class:`SceneError` before anything is solved. With ``as_frame=True``, a
     ``pandas.DataFrame`` (pandas must be installed).
+
+    With ``client`` (a ``dask.distributed.Client``) the cases run on its cluster: the first
+    ones locally to measure a case's cost, the rest in chunks sized so that the scheduler's
+    per-task overhead, measured on the client, stays under 10 % of a chunk's time (or of
+    ``chunk`` cases when given); the rows stream back with a progress bar (tqdm's when
+    installed; ``progress=False`` hides it) and are returned in the local sweep's order, the
+    same rows (docs/python.md, "Scaling a study out with Dask").
     """
-    rows = _voussoir.sweep_rows(
-        scene, dict(vary), continuous, dem, kinematic, kinematic_max_joints
-    )
+    options = (continuous, dem, kinematic, kinematic_max_joints)
+    if client is not None:
+        from . import _dask
+
+        rows, _ = _dask.sweep(client, scene, dict(vary), options, progress=progress, chunk=chunk)
+    else:
+        rows = _voussoir.sweep_rows(scene, dict(vary), *options)
     if as_frame:
         return _frame(rows)
     return rows

@@ -156,3 +156,6 @@ def sweep_rows(
     kinematic_max_joints: int = 200,
 ) -> List[Dict[str, Any]]:
     """The rows of a sweep, with the columns of the CLI's CSV."""
+
+def variation_values(key: str, values: Any) -> List[Any]:
+    """One varied key's values as a sweep reads them (a CLI string expanded), in order."""

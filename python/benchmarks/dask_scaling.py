@@ -1,0 +1,63 @@
+"""Scaling of ``voussoir.sweep(..., client=...)`` on a ``LocalCluster`` of 1, 2, ... worker
+processes (one thread each, one core each: ``RAYON_NUM_THREADS=1``), against the local sweep
+on one core; the figures of docs/performance.md ("Sweeps on Dask").
+
+    python python/benchmarks/dask_scaling.py [MAX_WORKERS]
+
+Prints, per worker count, the best of three wall times, the chunk plan (measured per-task
+overhead, per-case cost, cases per chunk) and the speed-up over the local sweep, with the
+load average of the machine (other jobs share it).
+"""
+
+import os
+import sys
+import time
+from pathlib import Path
+
+# One core per worker process and for the local sweep: the speed-up is then the workers'.
+os.environ["RAYON_NUM_THREADS"] = "1"
+
+import voussoir  # noqa: E402
+from voussoir import _dask  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def best_of(n, f):
+    times, out = [], None
+    for _ in range(n):
+        t0 = time.perf_counter()
+        out = f()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def main():
+    from distributed import Client, LocalCluster
+
+    max_workers = int(sys.argv[1]) if len(sys.argv) > 1 else os.cpu_count() or 1
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
+    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": "0.08:0.2:0.0002"}
+    options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
+    local_s, local = best_of(3, lambda: voussoir.sweep(scene, vary))
+    strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
+    print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
+    print(f"local sweep, one core: {len(local)} cases in {local_s:.2f} s")
+    for workers in range(1, max_workers + 1):
+        with LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster, Client(cluster) as client:
+            run = lambda: _dask.sweep(client, scene, vary, options, progress=False)
+            best_of(1, run)  # warm the workers (import, first task)
+            t, (rows, plan) = best_of(3, run)
+        assert strip(rows) == strip(local)
+        print(
+            f"{workers} worker(s): {t:.2f} s, speed-up {local_s / t:.2f}; "
+            f"overhead {plan.overhead_s * 1e3:.2f} ms/task, case {plan.case_s * 1e6:.1f} us, "
+            f"chunk {plan.chunk_cases} cases x {plan.chunks} (pilot {plan.pilot_cases}), "
+            f"overhead share {100 * plan.overhead_share:.1f} %; load {os.getloadavg()}"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -84,6 +84,15 @@ fn generate(out: &Path, extra: &[&str]) -> std::process::Output {
         .expect("runs")
 }
 
+/// Assert that a run succeeded, showing its stderr otherwise.
+fn succeeded(run: &std::process::Output) {
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}
+
 fn read_all(dir: &Path, count: usize) -> Vec<GroundMotion> {
     (1..=count)
         .map(|k| {
@@ -142,11 +151,7 @@ fn records_meet_the_ntc_tolerance_and_the_dem_reads_them() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("records");
     let run = generate(&out, &["--count", "7", "--duration", "20", "--seed", "11"]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    succeeded(&run);
     let records = read_all(&out, 7);
     for r in &records {
         assert_eq!(r.time.len(), 2001);
@@ -168,29 +173,17 @@ fn records_meet_the_ntc_tolerance_and_the_dem_reads_them() {
     // (tan alpha = 0.1, uplift at 0.1 g) rocks.
     let pga = records[0].pga() / STANDARD_GRAVITY;
     assert!(pga > 0.1 && pga < 1.0, "PGA {pga} g");
+    let record = out.join("record_01.AT2");
+    let record = record.to_str().expect("a UTF-8 path");
     let dem = |b: f64| {
-        let scene = dir.path().join(format!("block_{b}.toml"));
-        std::fs::write(
-            &scene,
-            format!(
+        common::json_of(
+            &["dem", "--json", "--record", record],
+            &format!(
                 "[blocks]\npolygons = [[[{l}, 0.0], [{r}, 0.0], [{r}, 1.0], [{l}, 1.0]]]\n[material]\nfriction = \"inf\"\n",
                 l = -0.5 * b,
                 r = 0.5 * b
             ),
         )
-        .expect("scene");
-        let run = common::voussoir()
-            .args(["dem", "--json", "--record"])
-            .arg(out.join("record_01.AT2"))
-            .arg(&scene)
-            .output()
-            .expect("runs");
-        assert!(
-            run.status.success(),
-            "{}",
-            String::from_utf8_lossy(&run.stderr)
-        );
-        serde_json::from_slice::<serde_json::Value>(&run.stdout).expect("JSON")
     };
     let stocky = dem(1.0);
     assert_eq!(stocky["status"], "survives", "{stocky}");
@@ -220,11 +213,7 @@ fn a_structural_period_stretches_the_check_to_two_t() {
             "1.5",
         ],
     );
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    succeeded(&run);
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(text.contains("0.15-3.00 s"), "{text}");
     let (t, ratio) = worst_ratio(&read_all(&out, 3), &check_periods(0.15, 3.0));

@@ -16,8 +16,8 @@ pub struct Args {
     /// latitude, longitude, nominal_life, use_class, limit_state for the national hazard grid)
     #[arg(long = "site", value_name = "KEY=VALUE")]
     site: Vec<String>,
-    /// Number of records (NTC 2018 §3.2.3.6 and Circolare 2019 ask for at least 3; 7 let the
-    /// mean of the results be used)
+    /// Number of records (NTC 2018 §7.3.5: with 7 or more the mean of the results may be
+    /// used, with fewer, at least 3, the worst)
     #[arg(long, default_value_t = 7)]
     count: usize,
     /// Duration of each record (s); NTC 2018 §3.2.3.6 asks for 25 s (a 10 s pseudo-stationary

@@ -44,8 +44,8 @@ fn settings(
     b.build().expect("valid settings")
 }
 
-/// n, statics::analyse time, time per iteration, iterations, setup time, faer time.
-type Row = (f64, f64, f64, f64, f64, f64);
+/// n, statics::analyse time, time per iteration, iterations, setup time.
+type Row = (f64, f64, f64, f64, f64);
 
 struct Split {
     assembly: f64,
@@ -92,8 +92,8 @@ fn split(scene: &Scene, s: clarabel::solver::DefaultSettings<f64>) -> Split {
 fn main() {
     let ns = [16usize, 32, 64, 128, 256, 512, 1000, 2000];
     println!("Static solve, semicircle t/R = 0.15 (median of repeated runs, one thread)\n");
-    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | statics::analyse_full ms | faer ms |");
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| n | lambda_lower | iter | KKT nnz | L nnz | assembly ms | build ms | setup ms | iterations ms | ms/iter | statics::analyse_full ms |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for n in ns {
         let scene = semicircle(n);
@@ -120,22 +120,8 @@ fn main() {
                 })
                 .collect(),
         );
-        let faer = median(
-            (0..reps)
-                .map(|_| {
-                    let t = Instant::now();
-                    let m = voussoir::scene::build(&scene).expect("valid model");
-                    let s = StaticSettings {
-                        linear_solver: "faer".into(),
-                        ..StaticSettings::default()
-                    };
-                    statics::analyse_full(&m, &s).expect("solves");
-                    t.elapsed().as_secs_f64()
-                })
-                .collect(),
-        );
         println!(
-            "| {n} | {:.6} | {it} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {:.3} | {:.3} |",
+            "| {n} | {:.6} | {it} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {:.3} |",
             parts[0].lambda,
             parts[0].nnz_kkt,
             parts[0].nnz_l,
@@ -144,10 +130,9 @@ fn main() {
             setup * 1e3,
             solve * 1e3,
             solve * 1e3 / it as f64,
-            full * 1e3,
-            faer * 1e3
+            full * 1e3
         );
-        rows.push((n as f64, full, solve / it as f64, it as f64, setup, faer));
+        rows.push((n as f64, full, solve / it as f64, it as f64, setup));
     }
     let fit = |f: fn(&Row) -> f64| {
         let pts: Vec<(f64, f64)> = rows
@@ -158,12 +143,11 @@ fn main() {
         loglog_slope(&pts).map_or("-".to_string(), |e| format!("{e:.2}"))
     };
     println!(
-        "\nfitted exponents (n >= 64, least squares on log-log): statics::analyse_full n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}, faer n^{}",
+        "\nfitted exponents (n >= 64, least squares on log-log): statics::analyse_full n^{}, ms per iteration n^{}, iterations n^{}, setup n^{}",
         fit(|r| r.1),
         fit(|r| r.2),
         fit(|r| r.3),
-        fit(|r| r.4),
-        fit(|r| r.5)
+        fit(|r| r.4)
     );
 
     // What Clarabel's robustness machinery costs at n = 1000. The defaults stay: iterative
@@ -173,13 +157,12 @@ fn main() {
     println!("|---|---:|---:|---:|");
     let scene = semicircle(1000);
     type Tweak = fn(&mut DefaultSettingsBuilder<f64>);
-    let tweaks: [(&str, &str, Tweak); 7] = [
+    let tweaks: [(&str, &str, Tweak); 6] = [
         (
             "default (qdldl, IR reltol 1e-13, reg 1e-8)",
             "qdldl",
             |_| {},
         ),
-        ("faer", "faer", |_| {}),
         ("no iterative refinement", "qdldl", |b| {
             b.iterative_refinement_enable(false);
         }),

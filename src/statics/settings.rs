@@ -29,9 +29,10 @@ pub struct StaticSettings {
     /// A joint is a hinge when its resultant lies within `hinge_tolerance * L` of an end
     /// (L = joint length), and slides when `|V| >= (1 - hinge_tolerance) mu N`. Default 1e-6.
     pub hinge_tolerance: f64,
-    /// Clarabel's sparse LDL factorisation: "qdldl" (default) or "faer". Measured on
-    /// semicircles of 16..2000 voussoirs they are within 10% of each other, qdldl ahead
-    /// beyond 256 voussoirs.
+    /// Clarabel's sparse LDL factorisation: "qdldl", the only one built in. Clarabel's
+    /// optional faer LDL was measured within the noise of qdldl on semicircles of 16 to 2000
+    /// voussoirs and cost a quarter of the clean build, so voussoir no longer builds it
+    /// (issue 28; docs/performance.md).
     pub linear_solver: String,
     /// Which static program [`crate::statics::analyse`] solves. Default [`Program::Auto`].
     pub program: Program,
@@ -136,11 +137,11 @@ impl StaticSettings {
                 "a number > 0 and at most 0.1 (a fraction of the joint length)",
             );
         }
-        if !matches!(self.linear_solver.as_str(), "qdldl" | "faer") {
+        if self.linear_solver != "qdldl" {
             return bad(
                 "static linear_solver",
                 format!("\"{}\"", self.linear_solver),
-                "\"qdldl\" or \"faer\"",
+                "\"qdldl\" (Clarabel's faer LDL is not built in: it measured no faster)",
             );
         }
         Ok(())
@@ -179,6 +180,13 @@ mod tests {
             e.contains("linear_solver") && e.contains("\"mumps\""),
             "{e}"
         );
+        // Clarabel's faer LDL is no longer built in (issue 28): asking for it says so.
+        let s = StaticSettings {
+            linear_solver: "faer".into(),
+            ..StaticSettings::default()
+        };
+        let e = s.validate().expect_err("refused").to_string();
+        assert!(e.contains("\"faer\"") && e.contains("not built in"), "{e}");
         let e = StaticSettings::default()
             .hinge_tolerance(0.5)
             .validate()

@@ -24,6 +24,7 @@ pub mod outcome;
 pub mod overrides;
 pub mod report;
 pub mod retrofit;
+pub mod roll;
 pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;

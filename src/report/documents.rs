@@ -198,7 +198,7 @@ pub fn roll(scene: &Scene, r: &crate::roll::Roll) -> Document {
     }));
     if let Some(c) = &r.critical {
         sec.line(format!(
-            "The least static multiplier of the grid is at {} m; the position is refined between its neighbours by golden section, and the analysis below is at the critical position.",
+            "The least static multiplier of the grid is at {:.6} m; the position is refined between its neighbours by golden section, and the analysis below is at the critical position.",
             c.grid_position
         ));
     }

@@ -340,13 +340,18 @@ impl<'a> Placement<'a> {
     }
 
     /// The top of the structure over `x`: the point of the highest roof edge there, and that
-    /// edge; None where no roof edge lies under x (off the structure).
+    /// edge; None where no roof edge lies under x (off the structure). Over a joint (two
+    /// edges as high) the first edge in the roof's order, so that a load there rests on the
+    /// block a point load there would (the first in chain order).
     fn roof_at(&self, x: f64) -> Option<(Vec2, &RoofEdge)> {
         self.roof
             .iter()
             .filter(|e| e.a.x - self.tol <= x && x <= e.b.x + self.tol)
             .map(|e| (e.at(x.clamp(e.a.x, e.b.x)), e))
-            .max_by(|p, q| p.0.y.total_cmp(&q.0.y))
+            .fold(None, |best: Option<(Vec2, &RoofEdge)>, c| match best {
+                Some(b) if b.0.y >= c.0.y => Some(b),
+                _ => Some(c),
+            })
     }
 
     /// Where a load standing at `x` stands: on the road surface `surface` (a fill's) where

@@ -38,6 +38,7 @@ mod proptest_scenes;
 mod reduced;
 mod report_html;
 mod reports;
+mod rolling;
 mod retrofit;
 mod serve_api;
 mod static_bound;

@@ -49,10 +49,13 @@ fn main() {
         let (t, r) = pool.install(|| time(5, || roll::roll(&scene, &spec, &Options::default())));
         let r = r.expect("roll");
         assert_eq!(r.points.len(), 200);
-        let agree = r.points.iter().all(|p| match (p.lambda_lower, p.lambda_upper) {
-            (Some(l), Some(u)) => (l - u).abs() <= 1e-6 * l.max(1.0),
-            _ => false,
-        });
+        let agree = r
+            .points
+            .iter()
+            .all(|p| match (p.lambda_lower, p.lambda_upper) {
+                (Some(l), Some(u)) => (l - u).abs() <= 1e-6 * l.max(1.0),
+                _ => false,
+            });
         let c = r.critical.as_ref().expect("critical position");
         println!(
             "| {label} | {} | {:.4} | {:.6} | {agree} | {:.1} | {:.3} |",

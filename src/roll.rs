@@ -57,8 +57,9 @@ impl std::str::FromStr for Target {
         let bad = || AnalysisError::Settings {
             setting: "--roll".into(),
             value: text.into(),
-            allowed: "loads[K] or vehicles[K] (K counts the [[loads]] or [[vehicles]] entries from 0)"
-                .into(),
+            allowed:
+                "loads[K] or vehicles[K] (K counts the [[loads]] or [[vehicles]] entries from 0)"
+                    .into(),
         };
         let t = text.trim();
         let (list, rest) = if let Some(r) = t.strip_prefix("loads[") {
@@ -115,9 +116,7 @@ impl RollSpec {
             return Err(bad(
                 "--step",
                 self.step,
-                &format!(
-                    "large enough that --from..--to holds at most {MAX_POSITIONS} positions"
-                ),
+                &format!("large enough that --from..--to holds at most {MAX_POSITIONS} positions"),
             ));
         }
         Ok((0..=n as usize)
@@ -170,7 +169,10 @@ pub fn scene_at(scene: &Scene, target: Target, x: f64) -> Result<Scene, SceneErr
             None => Err(count(scene, "loads", scene.loads.len(), k).unwrap_err()),
             Some(LoadSpec::Line { from_x, to_x, .. }) => scene.with_values(&[
                 (&format!("loads[{k}].from_x"), Value::Float(x)),
-                (&format!("loads[{k}].to_x"), Value::Float(x + (to_x - from_x))),
+                (
+                    &format!("loads[{k}].to_x"),
+                    Value::Float(x + (to_x - from_x)),
+                ),
             ]),
             Some(LoadSpec::Point { .. }) => {
                 let y = crate::scene::standing_heights(scene, &[x])?[0].ok_or_else(|| {
@@ -328,10 +330,7 @@ mod tests {
     #[test]
     fn targets_parse() {
         assert_eq!("loads[2]".parse::<Target>().unwrap(), Target::Load(2));
-        assert_eq!(
-            "vehicles[0]".parse::<Target>().unwrap(),
-            Target::Vehicle(0)
-        );
+        assert_eq!("vehicles[0]".parse::<Target>().unwrap(), Target::Vehicle(0));
         assert!("load[0]".parse::<Target>().is_err());
         assert!("vehicles[x]".parse::<Target>().is_err());
     }

@@ -585,9 +585,11 @@ fn roll_json(
     };
     let svg_err = |e: voussoir::drawing::svg::SvgError| PyValueError::new_err(e.to_string());
     let chart = report::figures::roll_chart(&lib_scene, &r).map_err(svg_err)?;
-    let c = r.critical.as_ref().expect("an analysis has a critical position");
-    let drawing =
-        report::analysis_svg(&c.scene, &c.analysis, side).map_err(svg_err)?;
+    let c = r
+        .critical
+        .as_ref()
+        .expect("an analysis has a critical position");
+    let drawing = report::analysis_svg(&c.scene, &c.analysis, side).map_err(svg_err)?;
     Ok((to_json(data)?, drawing, chart.svg))
 }
 

@@ -54,10 +54,20 @@ pub struct Args {
     #[arg(long, value_name = "TARGET", requires_all = ["from", "to", "step"])]
     roll: Option<String>,
     /// First position of --roll (m)
-    #[arg(long, value_name = "X0", requires = "roll", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "X0",
+        requires = "roll",
+        allow_negative_numbers = true
+    )]
     from: Option<f64>,
     /// Last position of --roll (m), included when reached
-    #[arg(long, value_name = "X1", requires = "roll", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "X1",
+        requires = "roll",
+        allow_negative_numbers = true
+    )]
     to: Option<f64>,
     /// Distance between positions of --roll (m)
     #[arg(long, value_name = "DX", requires = "roll")]

@@ -411,8 +411,7 @@ impl Structure {
             matches!(
                 l.source,
                 crate::model::LoadSource::Load(_) | crate::model::LoadSource::Vehicle(..)
-            )
-                && !spread.iter().any(|s| s.source == l.source)
+            ) && !spread.iter().any(|s| s.source == l.source)
                 && matches!(asm.blocks[l.block].kind, BlockKind::Voussoir(_))
         };
         let ring_points: Vec<&crate::model::AppliedLoad> =

@@ -675,8 +675,8 @@ fn place_vehicle(
             live: v.live,
             seismic: false,
         };
-        let placed = standing
-            .is_some_and(|at| placement.place_standing(case, at, weight, law, load));
+        let placed =
+            standing.is_some_and(|at| placement.place_standing(case, at, weight, law, load));
         if !placed {
             return Err(off(format!(
                 "every axle must stand on the structure: axle {p} (at + {}) lies at x = {x}, off it ({})",

@@ -167,7 +167,10 @@ mod tests {
             m += u * q * (u1 - u0) / n as f64;
         }
         let (bf, bm) = boussinesq_share(d, u0, u1);
-        assert!((bf - f).abs() < 1e-9 && (bm - m).abs() < 1e-9, "{bf} {f} {bm} {m}");
+        assert!(
+            (bf - f).abs() < 1e-9 && (bm - m).abs() < 1e-9,
+            "{bf} {f} {bm} {m}"
+        );
         // The whole line carries the whole load, with no moment about its line.
         let (all, moment) = boussinesq_share(d, -1e9, 1e9);
         assert!((all - 1.0).abs() < 1e-8 && moment.abs() < 1e-8);

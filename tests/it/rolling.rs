@@ -98,10 +98,7 @@ fn four_hinge_lambda(
         Vec2::new(-w * r.y, w * r.x)
     };
     let power = |loads: &[(usize, Vec2, Vec2)]| -> f64 {
-        loads
-            .iter()
-            .map(|&(k, p, f)| f.dot(&velocity(k, p)))
-            .sum()
+        loads.iter().map(|&(k, p, f)| f.dot(&velocity(k, p))).sum()
     };
     -power(permanent) / power(live)
 }
@@ -155,7 +152,10 @@ fn rolled_point_load_minimum_is_golden_section_and_virtual_work() {
     let r = roll_of(&text, Target::Load(0), -0.8, 0.8, 0.05);
     assert_eq!(r.points.len(), 33);
     for q in &r.points {
-        let (l, u) = (q.lambda_lower.expect("lower"), q.lambda_upper.expect("upper"));
+        let (l, u) = (
+            q.lambda_lower.expect("lower"),
+            q.lambda_upper.expect("upper"),
+        );
         assert!(
             (l - u).abs() <= 1e-8 * l.max(1.0),
             "x = {}: {l} vs {u}",
@@ -219,7 +219,10 @@ fn rolled_point_load_minimum_is_golden_section_and_virtual_work() {
         "roll {lambda}, virtual work {vw}"
     );
     let upper = c.analysis.lambda_upper().expect("upper bound");
-    assert!((upper - vw).abs() <= 1e-8 * vw, "kinematic {upper}, vw {vw}");
+    assert!(
+        (upper - vw).abs() <= 1e-8 * vw,
+        "kinematic {upper}, vw {vw}"
+    );
 }
 
 /// The symmetric arch's critical position is found on both sides: rolled over the left half
@@ -249,7 +252,11 @@ fn critical_position_is_found_on_both_sides() {
         let (a, b) = (&whole.points[i], &whole.points[m - 1 - i]);
         assert!((a.position + b.position).abs() < 1e-12);
         let (la, lb) = (a.lambda_lower.unwrap(), b.lambda_lower.unwrap());
-        assert!((la - lb).abs() <= 1e-8 * la, "x = {}: {la} vs {lb}", a.position);
+        assert!(
+            (la - lb).abs() <= 1e-8 * la,
+            "x = {}: {la} vs {lb}",
+            a.position
+        );
     }
     // The critical multiplier of the whole span is that of either side.
     let lw = whole.critical.unwrap().analysis.lower.lambda.unwrap();
@@ -294,7 +301,11 @@ fn vehicle_axles_are_point_loads_on_the_top() {
         );
         let l = static_lambda(&text);
         let got = q.lambda_lower.unwrap();
-        assert!((got - l).abs() <= 1e-10 * l, "at {}: {got} vs {l}", q.position);
+        assert!(
+            (got - l).abs() <= 1e-10 * l,
+            "at {}: {got} vs {l}",
+            q.position
+        );
     }
 }
 
@@ -581,12 +592,28 @@ fn cli_roll_json_and_chart() {
     let (dir, path) = common::scene_file(&text);
     let chart = dir.path().join("roll.svg");
     let out = common::voussoir()
-        .args(["analyze", "--json", "--roll", "vehicles[0]", "--from", "-1.0", "--to", "0.7", "--step", "0.1", "--roll-svg"])
+        .args([
+            "analyze",
+            "--json",
+            "--roll",
+            "vehicles[0]",
+            "--from",
+            "-1.0",
+            "--to",
+            "0.7",
+            "--step",
+            "0.1",
+            "--roll-svg",
+        ])
         .arg(&chart)
         .arg(&path)
         .output()
         .expect("runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     let r = &v["roll"];
     assert_eq!(r["target"], "vehicles[0]");

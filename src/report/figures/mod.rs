@@ -144,21 +144,21 @@ pub fn roll_chart(scene: &Scene, r: &crate::roll::Roll) -> Result<Figure, SvgErr
         ),
         crate::roll::Target::Load(_) => format!("{target}"),
     };
-    let critical = r.critical.as_ref().and_then(|c| {
-        c.analysis
-            .lower
-            .lambda
-            .map(|l| (c.position, l))
-    });
+    let critical = r
+        .critical
+        .as_ref()
+        .and_then(|c| c.analysis.lower.lambda.map(|l| (c.position, l)));
     let lower: Vec<(f64, f64)> = r
         .points
         .iter()
         .map(|p| (p.position, p.lambda_lower.unwrap_or(f64::NAN)))
         .collect();
     let mut series = vec![Series::line(
-        r.critical.as_ref().map_or("static lower bound".into(), |c| {
-            static_bound_name(&c.analysis.friction())
-        }),
+        r.critical
+            .as_ref()
+            .map_or("static lower bound".into(), |c| {
+                static_bound_name(&c.analysis.friction())
+            }),
         lower,
         critical,
     )];

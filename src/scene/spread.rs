@@ -157,7 +157,7 @@ mod tests {
     #[test]
     fn boussinesq_share_is_the_integral_of_flamant() {
         // Against a fine midpoint rule of q(u) and u q(u).
-        let (d, u0, u1) = (0.7, -0.4, 1.3);
+        let (d, u0, u1): (f64, f64, f64) = (0.7, -0.4, 1.3);
         let n = 200_000;
         let (mut f, mut m) = (0.0, 0.0);
         for i in 0..n {

@@ -339,10 +339,10 @@ fn filled(level: f64, spread: &str, load: &str) -> String {
 #[test]
 fn spread_point_load_is_the_equivalent_line_load() {
     let (level, f) = (1.3, 4000.0);
-    for (x, deg) in [(-0.42, 26.6), (0.13, 45.0), (-0.71, 10.0)] {
+    for (x, deg) in [(-0.42, 26.6f64), (0.13, 45.0), (-0.71, 10.0)] {
         let (y, _) = extrados(x);
         let d = level - y;
-        let w = 2.0 * d * (deg as f64).to_radians().tan();
+        let w = 2.0 * d * deg.to_radians().tan();
         let on_fill = filled(
             level,
             &format!("spread_deg = {deg:?}"),

@@ -5,6 +5,7 @@
 //! models, and bad input named by its key.
 
 use crate::common;
+use crate::live_loads::four_hinge_lambda;
 use voussoir::analysis::{self, Options};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
@@ -61,46 +62,6 @@ fn static_lambda(text: &str) -> f64 {
         .lower
         .lambda
         .expect("a multiplier")
-}
-
-/// The virtual work of the four-hinge mechanism with hinges `(joint, point)` in chain order:
-/// blocks before the first hinge's joint still, the first group turning about A, the last
-/// about D, the middle one about the intersection of lines AB and DC; lambda = -(power of
-/// the permanent loads) / (power of the live ones).
-fn four_hinge_lambda(
-    hinges: &[(usize, Vec2)],
-    permanent: &[(usize, Vec2, Vec2)],
-    live: &[(usize, Vec2, Vec2)],
-) -> f64 {
-    assert_eq!(hinges.len(), 4);
-    let [(ja, a), (jb, b), (jc, c), (jd, d)] = [hinges[0], hinges[1], hinges[2], hinges[3]];
-    let (u, v) = (b - a, c - d);
-    let det = u.x * (-v.y) - u.y * (-v.x);
-    let rhs = d - a;
-    let s = (rhs.x * (-v.y) - rhs.y * (-v.x)) / det;
-    let i = a + s * u;
-    let w1 = 1.0;
-    let w2 = w1 * (b - a).dot(&(b - i)) / (b - i).norm_squared();
-    let w3 = w2 * (c - i).dot(&(c - d)) / (c - d).norm_squared();
-    let velocity = |block: usize, p: Vec2| {
-        let (w, o) = if block < ja {
-            (0.0, a)
-        } else if block < jb {
-            (w1, a)
-        } else if block < jc {
-            (w2, i)
-        } else if block < jd {
-            (w3, d)
-        } else {
-            (0.0, d)
-        };
-        let r = p - o;
-        Vec2::new(-w * r.y, w * r.x)
-    };
-    let power = |loads: &[(usize, Vec2, Vec2)]| -> f64 {
-        loads.iter().map(|&(k, p, f)| f.dot(&velocity(k, p))).sum()
-    };
-    -power(permanent) / power(live)
 }
 
 /// The test's own golden-section search for the least of `f` over `[lo, hi]`.
@@ -346,7 +307,7 @@ fn spread_point_load_is_the_equivalent_line_load() {
         let on_fill = filled(
             level,
             &format!("spread_deg = {deg:?}"),
-            &format!("[[loads]]\ntype = \"point\"\nat = [{x:?}, {level:?}]\nforce = [0.0, {:?}]\nlive = true\n", -f),
+            &live_point([x, level], [0.0, -f]),
         );
         let line = filled(
             level,
@@ -377,13 +338,9 @@ fn spread_point_load_is_the_equivalent_line_load() {
         let zero = filled(
             level,
             "spread_deg = 0.0",
-            &format!("[[loads]]\ntype = \"point\"\nat = [{x:?}, {level:?}]\nforce = [0.0, {:?}]\nlive = true\n", -f),
+            &live_point([x, level], [0.0, -f]),
         );
-        let below = filled(
-            level,
-            "",
-            &format!("[[loads]]\ntype = \"point\"\nat = [{x:?}, {y:?}]\nforce = [0.0, {:?}]\nlive = true\n", -f),
-        );
+        let below = filled(level, "", &live_point([x, y], [0.0, -f]));
         assert_same_loads(
             &common::model_of(&scene(&zero)),
             &common::model_of(&scene(&below)),
@@ -399,11 +356,7 @@ fn spread_point_load_is_the_equivalent_line_load() {
 #[test]
 fn no_fill_above_leaves_the_load_unchanged() {
     let crown = R + 0.5 * T;
-    let point = filled(
-        crown,
-        "",
-        &format!("[[loads]]\ntype = \"point\"\nat = [0.0, {crown:?}]\nforce = [0.0, -3000.0]\nlive = true\n"),
-    );
+    let point = filled(crown, "", &live_point([0.0, crown], [0.0, -3000.0]));
     for law in ["spread_deg = 30.0", "spread = \"boussinesq\""] {
         let vehicle = filled(
             crown,
@@ -432,7 +385,7 @@ fn boussinesq_spread_carries_flamant_share() {
         let text = filled(
             level,
             "spread = \"boussinesq\"",
-            &format!("[[loads]]\ntype = \"point\"\nat = [{x:?}, {level:?}]\nforce = [0.0, {:?}]\nlive = true\n", -f),
+            &live_point([x, level], [0.0, -f]),
         );
         let model = common::model_of(&scene(&text));
         let q = |u: f64| ((u / d).atan() + u * d / (u * u + d * d)) / std::f64::consts::PI;
@@ -491,43 +444,72 @@ fn built_in_load_models() {
     assert!(a.gap().unwrap() < 1e-8);
 }
 
+/// A live point load's `[[loads]]` entry.
+fn live_point(at: [f64; 2], force: [f64; 2]) -> String {
+    format!(
+        "[[loads]]\ntype = \"point\"\nat = [{:?}, {:?}]\nforce = [{:?}, {:?}]\nlive = true\n",
+        at[0], at[1], force[0], force[1]
+    )
+}
+
 /// Bad input is refused with the key, the file and the value named.
 #[test]
 fn bad_input_names_the_key() {
     let live = "[action]\nkind = \"live\"\n";
     let cases: [(String, &str, &str); 10] = [
         (
-            format!("{}{live}[[vehicles]]\naxles = [[0.0, 1000.0], [1.5, 1000.0]]\nat = 0.0\n", base()),
+            format!(
+                "{}{live}[[vehicles]]\naxles = [[0.0, 1000.0], [1.5, 1000.0]]\nat = 0.0\n",
+                base()
+            ),
             "vehicles[0].at",
             "x = 1.5",
         ),
         (
-            filled(1.3, "spread_deg = -5.0", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.3]\nforce = [0.0, -1.0]\nlive = true\n"),
+            filled(
+                1.3,
+                "spread_deg = -5.0",
+                &live_point([0.0, 1.3], [0.0, -1.0]),
+            ),
             "fill.spread_deg",
             "-5",
         ),
         (
-            filled(1.3, "spread = \"elastic\"", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.3]\nforce = [0.0, -1.0]\nlive = true\n"),
+            filled(
+                1.3,
+                "spread = \"elastic\"",
+                &live_point([0.0, 1.3], [0.0, -1.0]),
+            ),
             "fill.spread",
             "elastic",
         ),
         (
-            filled(1.3, "spread = \"boussinesq\"\nspread_deg = 30.0", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.3]\nforce = [0.0, -1.0]\nlive = true\n"),
+            filled(
+                1.3,
+                "spread = \"boussinesq\"\nspread_deg = 30.0",
+                &live_point([0.0, 1.3], [0.0, -1.0]),
+            ),
             "fill.spread",
             "boussinesq",
         ),
         (
-            filled(1.3, "surface = 0.5", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.3]\nforce = [0.0, -1.0]\nlive = true\n"),
+            filled(1.3, "surface = 0.5", &live_point([0.0, 1.3], [0.0, -1.0])),
             "fill.surface",
             "0.5",
         ),
         (
-            format!("{}{live}[[vehicles]]\naxles = [[0.0, -1000.0]]\nat = 0.0\n", base()),
+            format!(
+                "{}{live}[[vehicles]]\naxles = [[0.0, -1000.0]]\nat = 0.0\n",
+                base()
+            ),
             "vehicles[0].axles",
             "-1000",
         ),
         (
-            format!("{}{live}[[vehicles]]\nname = \"EN1991-2 LM1\"\naxles = [[0.0, 1.0]]\nat = 0.0\n", base()),
+            format!(
+                "{}{live}[[vehicles]]\nname = \"EN1991-2 LM1\"\naxles = [[0.0, 1.0]]\nat = 0.0\n",
+                base()
+            ),
             "vehicles[0].axles",
             "built-in",
         ),
@@ -537,12 +519,12 @@ fn bad_input_names_the_key() {
             "EN1991-2 LM71",
         ),
         (
-            filled(1.3, "", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.2]\nforce = [500.0, -1.0]\nlive = true\n"),
+            filled(1.3, "", &live_point([0.0, 1.2], [500.0, -1.0])),
             "loads[0].force",
             "500",
         ),
         (
-            filled(1.3, "", "[[loads]]\ntype = \"point\"\nat = [0.0, 1.5]\nforce = [0.0, -1.0]\nlive = true\n"),
+            filled(1.3, "", &live_point([0.0, 1.5], [0.0, -1.0])),
             "loads[0].at",
             "1.5",
         ),

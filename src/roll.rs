@@ -227,6 +227,9 @@ pub fn roll(scene: &Scene, spec: &RollSpec, options: &Options) -> Result<Roll, A
                 lambda_upper: a.lambda_upper(),
             })
         })
+        .collect::<Vec<Result<RollPoint, AnalysisError>>>()
+        // The first position's error (in order along x), whichever thread met it first.
+        .into_iter()
         .collect::<Result<Vec<_>, AnalysisError>>()?;
     let key = |p: &RollPoint| p.lambda_lower.unwrap_or(f64::INFINITY);
     let best = (0..points.len())

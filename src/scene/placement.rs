@@ -2,7 +2,7 @@
 //! act on a built assembly, one path for the parametric arch (and piers) and for the user's
 //! blocks. A [`Placement`] knows which block holds a point (and which lies nearest, for the
 //! error), and the structure's roof: its upward-facing edges, left end first, straight or arcs
-//! of the extrados. [`place`] turns the scene's loads, fill and ties into the load case and the
+//! of the extrados. [`place`] turns the scene's loads, vehicles, fill and ties into the load case and the
 //! anchored ties through it; [`Placement::new`] builds it for either [`Structure`].
 //!
 //! The scene-key contract:
@@ -34,7 +34,19 @@
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap` (line)
 //!   or its own weight (fill) at the same point;
 //! - a tie's anchor is the block that holds its point, as a point load's is (or the ground:
-//!   [`super::ties::anchor_ties`]).
+//!   [`super::ties::anchor_ties`]);
+//! - a load standing on the structure: a vertical point load outside every block but in the
+//!   fill (above the top of the structure at its x, not above the fill's road surface), and
+//!   each axle of `[[vehicles]]` (on the road surface over a fill, on the top otherwise):
+//!   the top at x is the highest roof edge over x (over a joint, the first in the roof's
+//!   order, the block a point load there would rest on); the load is spread through the depth
+//!   of fill between it and the top by the fill's law ([`super::spread`]): at an angle, a line
+//!   load `F / w` over the width `w` under it, placed as any line load (and kept whole for the
+//!   continuous model); by Boussinesq, Flamant's share on each roof piece at its centroid;
+//!   with no depth or no spread, a point load at the top. What falls past the ends of the top
+//!   rests on the ground. An axle off the top is an error naming `vehicles[k].at`;
+//! - a vehicle's distributed part beyond its axles (LM71's `qvk`) is a line load from its gap
+//!   past the outer axles to the ends of the top, on each side.
 
 use super::spread::{self, Law};
 use super::vehicles::VehicleSpec;

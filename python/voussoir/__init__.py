@@ -296,7 +296,7 @@ class RollResult(Result):
 
     def __init__(self, data: dict, svg, chart_svg: str) -> None:
         super().__init__(data, svg)
-        self.chart_svg = chart_svg
+        object.__setattr__(self, "chart_svg", chart_svg)
 
 
 def roll(

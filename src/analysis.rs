@@ -516,6 +516,22 @@ fn continuous_of(
             "it models one ring (on its piers) as a continuum; an arcade of several bays or a spandrel wall is no such chain (the static program and the DEM apply)".to_string(),
         ));
     }
+    let boussinesq = scene
+        .fill
+        .as_ref()
+        .is_some_and(|f| f.dispersal.law() == crate::scene::spread::Law::Boussinesq);
+    let standing = !scene.vehicles.is_empty()
+        || scene
+            .loads
+            .iter()
+            .any(|l| matches!(l, crate::scene::LoadSpec::Point { .. }));
+    if boussinesq && standing {
+        // The Boussinesq spread reaches the voussoirs as one resultant per extrados edge;
+        // the continuous model would take each as a point load, not the spread stress.
+        return Err(KinematicError::Continuous(
+            "a point load or an axle spread by spread = \"boussinesq\" reaches the voussoirs as one resultant per extrados edge, which the continuous model cannot place along the ring (spread_deg spreads a uniform load, which it takes)".to_string(),
+        ));
+    }
     if !arch.joints.is_radial() {
         // Its sections are radial cuts of the ring: with other joints the discrete arch is
         // not a subdivision of that continuum, so the model does not bound it.

@@ -25,6 +25,7 @@ pub mod overrides;
 pub mod records;
 pub mod report;
 pub mod retrofit;
+pub mod roll;
 pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;

@@ -535,6 +535,64 @@ fn analyze_json(
     to_json(&report::AnalysisReport::new(&lib_scene, &a))
 }
 
+/// `analyze --roll TARGET --from --to --step --json` of a scene, as JSON text, with the
+/// drawing of the structure at the critical position (`--svg`) and the chart of the
+/// multiplier against the position (`--roll-svg`), both as SVG text (empty when the structure
+/// stands nowhere). Solved on a worker thread, Ctrl-C answered.
+#[pyfunction]
+#[pyo3(signature = (scene, target, start, stop, step, direction = None, kinematic = "certified", kinematic_max_joints = analysis::KINEMATIC_DEFAULT_MAX_JOINTS, friction = "auto"))]
+#[allow(clippy::too_many_arguments)]
+fn roll_json(
+    py: Python<'_>,
+    scene: &Scene,
+    target: &str,
+    start: f64,
+    stop: f64,
+    step: f64,
+    direction: Option<&str>,
+    kinematic: &str,
+    kinematic_max_joints: usize,
+    friction: &str,
+) -> PyResult<(String, String, String)> {
+    let options = options(
+        py,
+        &scene.inner,
+        direction,
+        false,
+        kinematic,
+        kinematic_max_joints,
+        friction,
+    )?;
+    let side = options.direction();
+    let spec = voussoir::roll::RollSpec {
+        target: target.parse().map_err(|e| analysis_error(py, &e))?,
+        from: start,
+        to: stop,
+        step,
+        refine: true,
+    };
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, r) = interruptible(py, Arc::default(), move || {
+        let r = voussoir::roll::roll(&lib_scene, &spec, &options);
+        (lib_scene, r)
+    })?;
+    let r = r.map_err(|e| analysis_error(py, &e))?;
+    let doc = report::documents::roll(&lib_scene, &r);
+    let Some(report::Data::Analysis(data)) = &doc.data else {
+        // No position stands: the roll object alone.
+        let json = serde_json::json!({ "roll": report::RollReport::new(&r) });
+        return Ok((json.to_string(), String::new(), String::new()));
+    };
+    let svg_err = |e: voussoir::drawing::svg::SvgError| PyValueError::new_err(e.to_string());
+    let chart = report::figures::roll_chart(&lib_scene, &r).map_err(svg_err)?;
+    let c = r
+        .critical
+        .as_ref()
+        .expect("an analysis has a critical position");
+    let drawing = report::analysis_svg(&c.scene, &c.analysis, side).map_err(svg_err)?;
+    Ok((to_json(data)?, drawing, chart.svg))
+}
+
 /// The drawing `analyze --svg` writes (blocks, thrust line, hinges, mechanism, loads), as SVG
 /// text: `report::analysis_svg` of the same analysis as `analyze_json`.
 #[pyfunction]
@@ -1116,6 +1174,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;
+    m.add_function(wrap_pyfunction!(roll_json, m)?)?;
     m.add_function(wrap_pyfunction!(assess_json, m)?)?;
     m.add_function(wrap_pyfunction!(assess_svg, m)?)?;
     m.add_function(wrap_pyfunction!(dem_dynamic_json, m)?)?;

@@ -50,6 +50,8 @@ __all__ = [
     "PulseCurveResult",
     "HandInReport",
     "analyze",
+    "roll",
+    "RollResult",
     "min_thickness",
     "retrofit",
     "dem",
@@ -280,6 +282,45 @@ def analyze(
     args = (scene, direction, continuous, kinematic, kinematic_max_joints, friction)
     text = _voussoir.analyze_json(*args)
     return Result(json.loads(text), lambda: _voussoir.analysis_svg(*args))
+
+
+class RollResult(Result):
+    """The result of :func:`roll`: the fields of ``voussoir analyze --roll ... --json``, the
+    analysis at the critical position (``lambda_lower``, ``hinges``, ``mechanism``, ...), and
+    ``roll``: ``target``, ``positions``, ``status``, ``lambda_lower``, ``lambda_upper`` (one per
+    position), ``critical_position`` (refined by golden section) and
+    ``critical_grid_position``. ``chart_svg`` is the chart of ``--roll-svg`` (both bounds
+    against the position)."""
+
+    __slots__ = ("chart_svg",)
+
+    def __init__(self, data: dict, svg, chart_svg: str) -> None:
+        super().__init__(data, svg)
+        object.__setattr__(self, "chart_svg", chart_svg)
+
+
+def roll(
+    scene: Scene,
+    target: str,
+    start: float,
+    stop: float,
+    step: float,
+    direction: Optional[str] = None,
+    *,
+    kinematic: str = "certified",
+    kinematic_max_joints: int = KINEMATIC_DEFAULT_MAX_JOINTS,
+    friction: str = "auto",
+) -> RollResult:
+    """A moving load, as ``voussoir analyze SCENE --roll TARGET --from START --to STOP --step
+    STEP``: ``target`` is ``"loads[K]"`` (a point load standing on the top at each position,
+    or a line load by its ``from_x``) or ``"vehicles[K]"`` (by its first axle); both bounds
+    at every position, the critical position refined and analysed again (docs/geometry.md,
+    "Moving loads"). The other arguments are :func:`analyze`'s. Raises :class:`AnalysisError`
+    for a bad range or target and :class:`SceneError` for a load off the structure."""
+    text, drawing, chart = _voussoir.roll_json(
+        scene, target, start, stop, step, direction, kinematic, kinematic_max_joints, friction
+    )
+    return RollResult(json.loads(text), lambda: drawing, chart)
 
 
 def min_thickness(

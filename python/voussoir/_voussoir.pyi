@@ -92,6 +92,20 @@ def report_html_json(scene: Scene, dem: bool = False) -> Tuple[str, str]:
 def dem_json(scene: Scene, tolerance: float = 0.01, from_static: bool = False) -> str:
     """``voussoir dem --json`` of a scene, as JSON text."""
 
+def roll_json(
+    scene: Scene,
+    target: str,
+    start: float,
+    stop: float,
+    step: float,
+    direction: Optional[str] = None,
+    kinematic: str = "certified",
+    kinematic_max_joints: int = 200,
+    friction: str = "auto",
+) -> Tuple[str, str, str]:
+    """``voussoir analyze --roll ... --json`` of a scene, as JSON text, with the drawing at the
+    critical position and the chart of the multiplier against the position (SVG text)."""
+
 def analysis_svg(
     scene: Scene,
     direction: str = "right",

@@ -4,6 +4,7 @@ use super::{draw, write_atomically, Dir, Format, SceneArgs};
 use voussoir::analysis;
 use voussoir::error::Error;
 use voussoir::report;
+use voussoir::roll;
 use voussoir::statics::StaticSettings;
 
 #[derive(clap::Args)]
@@ -47,6 +48,33 @@ pub struct Args {
     /// associative, the non-associative and the DEM's multipliers sit
     #[arg(long)]
     dem: bool,
+    /// Move a load along x and analyse the scene at each position: loads[K] (a point load
+    /// standing on the top, or a line load by its from_x) or vehicles[K] (by its first axle);
+    /// the summary, --json and --svg are then the analysis at the critical position
+    #[arg(long, value_name = "TARGET", requires_all = ["from", "to", "step"])]
+    roll: Option<String>,
+    /// First position of --roll (m)
+    #[arg(
+        long,
+        value_name = "X0",
+        requires = "roll",
+        allow_negative_numbers = true
+    )]
+    from: Option<f64>,
+    /// Last position of --roll (m), included when reached
+    #[arg(
+        long,
+        value_name = "X1",
+        requires = "roll",
+        allow_negative_numbers = true
+    )]
+    to: Option<f64>,
+    /// Distance between positions of --roll (m)
+    #[arg(long, value_name = "DX", requires = "roll")]
+    step: Option<f64>,
+    /// Draw the multiplier against the position of --roll to this SVG file
+    #[arg(long, value_name = "FILE", requires = "roll")]
+    roll_svg: Option<std::path::PathBuf>,
 }
 
 pub fn run(args: Args) -> Result<String, Error> {
@@ -55,6 +83,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         .outputs(&scene)
         .output("--thrust-csv", args.thrust_csv.as_deref(), Format::Csv)
         .output("--svg", args.svg.as_deref(), Format::Svg)
+        .output("--roll-svg", args.roll_svg.as_deref(), Format::Svg)
         .check()?;
     // The range of --tolerance is the library's to check (StaticSettings::validate), so
     // Python and the page's server refuse the same values.
@@ -70,7 +99,38 @@ pub fn run(args: Args) -> Result<String, Error> {
         friction: args.friction.into(),
         dem: args.dem,
     };
-    let a = analysis::analyse(&scene, &options)?;
+    let rolled = match &args.roll {
+        Some(target) => {
+            let spec = roll::RollSpec {
+                target: target.parse()?,
+                from: args.from.unwrap_or_default(),
+                to: args.to.unwrap_or_default(),
+                step: args.step.unwrap_or_default(),
+                refine: true,
+            };
+            let r = roll::roll(&scene, &spec, &options)?;
+            if r.critical.is_none() {
+                let mut doc = report::documents::roll(&scene, &r);
+                doc.figures.extend(draw(args.roll_svg.as_deref(), || {
+                    report::figures::roll_chart(&scene, &r)
+                })?);
+                return Ok(super::print(&doc, args.json));
+            }
+            Some(r)
+        }
+        None => None,
+    };
+    // With --roll, everything below is the analysis at the critical position.
+    let (scene, a) = match &rolled {
+        Some(r) => {
+            let c = r.critical.as_ref().expect("checked above");
+            (c.scene.clone(), c.analysis.clone())
+        }
+        None => {
+            let a = analysis::analyse(&scene, &options)?;
+            (scene, a)
+        }
+    };
     let (assembly, result) = (&a.model.assembly, &a.lower);
     if let Some(path) = &args.thrust_csv {
         if result.forces.is_some() {
@@ -88,7 +148,16 @@ pub fn run(args: Args) -> Result<String, Error> {
     let figure = draw(args.svg.as_deref(), || {
         report::figures::analysis(&scene, &a, options.direction())
     })?;
-    let mut doc = report::documents::analysis(&scene, &a);
+    let mut doc = match &rolled {
+        Some(r) => {
+            let mut doc = report::documents::roll(&scene, r);
+            doc.figures.extend(draw(args.roll_svg.as_deref(), || {
+                report::figures::roll_chart(&scene, r)
+            })?);
+            doc
+        }
+        None => report::documents::analysis(&scene, &a),
+    };
     doc.figures.extend(figure);
     Ok(super::print(&doc, args.json))
 }

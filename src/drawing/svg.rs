@@ -1159,11 +1159,17 @@ impl LoadMarks {
             .filter_map(|a| a.region.clone())
             .filter(|r| r.len() >= 3)
             .collect();
-        let mut groups: std::collections::BTreeMap<usize, Vec<&AppliedLoad>> = Default::default();
+        // One group per load: an entry of [[loads]], or one part of a vehicle (an axle, or
+        // its distributed load on one side), keyed in that order.
+        let mut groups: std::collections::BTreeMap<(usize, usize, usize), Vec<&AppliedLoad>> =
+            Default::default();
         for a in applied {
-            if let LoadSource::Load(k) = a.source {
-                groups.entry(k).or_default().push(a);
-            }
+            let key = match a.source {
+                LoadSource::Load(k) => (0, k, 0),
+                LoadSource::Vehicle(k, p) => (1, k, p),
+                _ => continue,
+            };
+            groups.entry(key).or_default().push(a);
         }
         let fmax = groups
             .values()

@@ -408,8 +408,10 @@ impl Structure {
         // a section its polar angle lies on. The piers keep the loads of their blocks.
         let spread: Vec<SpreadLoad> = model.loads.spread().to_vec();
         let ring_point = |l: &&crate::model::AppliedLoad| {
-            matches!(l.source, crate::model::LoadSource::Load(_))
-                && !spread.iter().any(|s| s.source == l.source)
+            matches!(
+                l.source,
+                crate::model::LoadSource::Load(_) | crate::model::LoadSource::Vehicle(..)
+            ) && !spread.iter().any(|s| s.source == l.source)
                 && matches!(asm.blocks[l.block].kind, BlockKind::Voussoir(_))
         };
         let ring_points: Vec<&crate::model::AppliedLoad> =

@@ -82,15 +82,19 @@ pub enum LoadSource {
     Load(usize),
     /// The scene's `[fill]`.
     Fill,
+    /// Part `p` of entry k of the scene's `[[vehicles]]`: its axle p, or (p at or past the
+    /// axle count) the distributed load beyond its axles (LM71's), one part per side.
+    Vehicle(usize, usize),
 }
 
 impl std::fmt::Display for LoadSource {
-    /// The scene's name of the load: `self-weight`, `loads[k]`, `fill`.
+    /// The scene's name of the load: `self-weight`, `loads[k]`, `fill`, `vehicles[k] part p`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             LoadSource::SelfWeight => write!(f, "self-weight"),
             LoadSource::Load(k) => write!(f, "loads[{k}]"),
             LoadSource::Fill => write!(f, "fill"),
+            LoadSource::Vehicle(k, p) => write!(f, "vehicles[{k}] part {p}"),
         }
     }
 }

@@ -3,7 +3,7 @@
 //! [`super::json`]). The words they use are in [`super::words`].
 
 use super::assessment::{ag_text, direction_words, verdict_line, verdict_word, AssessmentReport};
-use super::document::{Column, Data, Document, Table, Value};
+use super::document::{Column, Data, Document, Section, Table, Value};
 use super::words::*;
 use super::{
     AnalysisReport, DemReport, DynamicReport, IdaReport, MinThicknessReport, PulseCurveReport,
@@ -171,6 +171,62 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
     }
     friction_section(&mut doc, a);
     doc.with_data(Data::Analysis(Box::new(AnalysisReport::new(scene, a))))
+}
+
+/// `analyze --roll`: the multiplier at every position of the moving load, then the analysis
+/// at its critical position (its mechanism); the JSON is that analysis's object with `roll`.
+pub fn roll(scene: &Scene, r: &crate::roll::Roll) -> Document {
+    let mut doc = match &r.critical {
+        Some(c) => analysis(&c.scene, &c.analysis),
+        None => Document::new(&scene.origin),
+    };
+    let target = r.spec.target;
+    let mut sec = Section::new(Some(match &r.critical {
+        Some(c) => format!(
+            "Moving load {target}: critical position {:.6} m (lambda = {}), from {} positions {} to {} m every {} m",
+            c.position,
+            c.analysis.lower.lambda.map_or("none".into(), |l| format!("{l:.6}")),
+            r.points.len(),
+            r.spec.from,
+            r.spec.to,
+            r.spec.step
+        ),
+        None => format!(
+            "Moving load {target}: the structure cannot stand at any of the {} positions",
+            r.points.len()
+        ),
+    }));
+    if let Some(c) = &r.critical {
+        sec.line(format!(
+            "The least static multiplier of the grid is at {:.6} m; the position is refined between its neighbours by golden section, and the analysis below is at the critical position.",
+            c.grid_position
+        ));
+    }
+    sec.table(Table {
+        columns: vec![
+            Column::right("position_m", 12),
+            Column::left("status", 14),
+            Column::right("lambda_lower", 14),
+            Column::right("lambda_upper", 14),
+        ],
+        rows: r
+            .points
+            .iter()
+            .map(|p| {
+                vec![
+                    Value::number(p.position, 4),
+                    Value::text(p.status.as_str()),
+                    Value::maybe(p.lambda_lower, 6, "none"),
+                    Value::maybe(p.lambda_upper, 6, "none"),
+                ]
+            })
+            .collect(),
+    });
+    doc.sections.insert(0, sec);
+    if let Some(Data::Analysis(report)) = &mut doc.data {
+        report.roll = Some(super::json::RollReport::new(r));
+    }
+    doc
 }
 
 /// The non-associative multiplier and the DEM check, when they ran: where the associative,

@@ -235,6 +235,10 @@ pub struct LoadsReport {
     /// The `[[loads]]` entries as read (`type`, and `at`/`force` or `from_x`/`to_x`/
     /// `intensity`, and `seismic`).
     pub loads: Vec<LoadSpec>,
+    /// Added: the `[[vehicles]]` entries as read (name, axles, at, live, and `beyond`, the
+    /// distributed load past the axles of a built-in model), absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub vehicles: Vec<crate::scene::vehicles::VehicleSpec>,
     /// `[fill]` as read, or null.
     pub fill: Option<FillSpec>,
     /// `[seismic] vertical_ratio`.
@@ -263,6 +267,7 @@ impl LoadsReport {
             live_weight: model.loads.live_magnitude(),
             tilt_deg: None,
             loads: scene.loads.clone(),
+            vehicles: scene.vehicles.clone(),
             fill: scene.fill.clone(),
             vertical_ratio: scene.seismic.vertical_ratio,
             permanent_weight: model.loads.permanent_weight(),
@@ -374,6 +379,44 @@ pub struct AnalysisReport {
     /// The bonded strips (`[[reinforcements]]`), in the scene's order, with their force at
     /// each joint they cross.
     pub reinforcements: Vec<ReinforcementReport>,
+    /// Added: the moving load (`analyze --roll`), absent otherwise; the rest of the object is
+    /// then the analysis at its critical position.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roll: Option<RollReport>,
+}
+
+/// A moving load's multipliers at every position (`analyze --roll`, [`crate::roll`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct RollReport {
+    /// What moved: `loads[k]` or `vehicles[k]`.
+    pub target: String,
+    /// The positions (m): a vehicle's first axle, a point load's x, a line load's from_x.
+    pub positions: Vec<f64>,
+    /// The static status at each position.
+    pub status: Vec<Status>,
+    /// The static multiplier (lower bound) at each position.
+    pub lambda_lower: Vec<Option<f64>>,
+    /// The kinematic multiplier (upper bound) at each position, null where none ran.
+    pub lambda_upper: Vec<Option<f64>>,
+    /// The critical position (m): the least static multiplier, refined between the grid
+    /// neighbours by golden section; null when the structure stands nowhere.
+    pub critical_position: Option<f64>,
+    /// The grid position with the least static multiplier (m).
+    pub critical_grid_position: Option<f64>,
+}
+
+impl RollReport {
+    pub fn new(r: &crate::roll::Roll) -> Self {
+        RollReport {
+            target: r.spec.target.to_string(),
+            positions: r.points.iter().map(|p| p.position).collect(),
+            status: r.points.iter().map(|p| p.status).collect(),
+            lambda_lower: r.points.iter().map(|p| p.lambda_lower).collect(),
+            lambda_upper: r.points.iter().map(|p| p.lambda_upper).collect(),
+            critical_position: r.critical.as_ref().map(|c| c.position),
+            critical_grid_position: r.critical.as_ref().map(|c| c.grid_position),
+        }
+    }
 }
 
 /// A bonded strip and its forces at collapse.
@@ -697,6 +740,7 @@ impl AnalysisReport {
             continuous_note: None,
             ties: TieReport::all(model, r),
             reinforcements: ReinforcementReport::all(scene, model, r),
+            roll: None,
         }
     }
 }

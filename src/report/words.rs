@@ -383,12 +383,40 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
             num(f.unit_weight),
             if f.seismic { "" } else { ", not seismic" }
         ));
+        let d = &f.dispersal;
+        if d.surface.is_some() || d.spread_deg.is_some() || d.spread.is_some() {
+            let law = match d.law() {
+                crate::scene::spread::Law::Boussinesq => "spread by Boussinesq".to_string(),
+                crate::scene::spread::Law::Angle(a) if a > 0.0 => {
+                    format!("spread at {} deg", num(a.to_degrees()))
+                }
+                _ => "not spread".to_string(),
+            };
+            parts.push(format!(
+                "loads on the road surface y = {} m {law} through the fill",
+                num(d.surface(f.level))
+            ));
+        }
+    }
+    for v in &scene.vehicles {
+        parts.push(format!(
+            "vehicle {} ({}, first at x = {} m{})",
+            v.name,
+            count(v.axles.len() as u64, "axle", "axles"),
+            num(v.at),
+            if v.beyond.is_some() {
+                ", distributed load beyond"
+            } else {
+                ""
+            }
+        ));
     }
     let r = scene.seismic.vertical_ratio;
     if r != 0.0 {
         parts.push(format!("vertical seismic ratio {}", num(r)));
     }
-    let live = scene.loads.iter().filter(|l| l.live()).count() as u64;
+    let live = (scene.loads.iter().filter(|l| l.live()).count()
+        + scene.vehicles.iter().filter(|v| v.live).count()) as u64;
     if live > 0 {
         parts.push(format!("{live} live (multiplied by lambda)"));
     }

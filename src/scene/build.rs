@@ -42,13 +42,9 @@ pub fn build_for_design(scene: &Scene) -> Result<Model, SceneError> {
     build_model(scene)
 }
 
-fn build_model(scene: &Scene) -> Result<Model, SceneError> {
-    BUILDS.with(|b| b.set(b.get() + 1));
-    let strength = crate::model::Strength {
-        compressive: scene.material.compressive_strength,
-        depth: scene.material.depth,
-    };
-    let (assembly, layout) = match (&scene.arch, &scene.blocks) {
+/// The assembly of a scene and the structure loads are placed on.
+fn structure(scene: &Scene) -> Result<(Assembly, Structure), SceneError> {
+    Ok(match (&scene.arch, &scene.blocks) {
         (Some(a), _) => {
             let (assembly, layout) = build_assembly(scene, a)?;
             (assembly, Structure::Arch(layout))
@@ -72,7 +68,30 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
                 what: "the [arch] table or [blocks]".into(),
             })
         }
+    })
+}
+
+/// The height a load standing at each of `xs` stands at (see `Placement::stand`): the fill's
+/// road surface when the scene has a fill, the top of the structure otherwise; None where no
+/// block's top lies under x (off the structure). A moving load (`crate::roll`) asks this once
+/// for all its positions.
+pub fn standing_heights(scene: &Scene, xs: &[f64]) -> Result<Vec<Option<f64>>, SceneError> {
+    let (assembly, layout) = structure(scene)?;
+    let placement = Placement::new(&assembly, layout);
+    let surface = scene.fill.as_ref().map(|f| f.dispersal.surface(f.level));
+    Ok(xs
+        .iter()
+        .map(|&x| placement.stand(x, surface).map(|p| p.y))
+        .collect())
+}
+
+fn build_model(scene: &Scene) -> Result<Model, SceneError> {
+    BUILDS.with(|b| b.set(b.get() + 1));
+    let strength = crate::model::Strength {
+        compressive: scene.material.compressive_strength,
+        depth: scene.material.depth,
     };
+    let (assembly, layout) = structure(scene)?;
     let (loads, ties) = placement::place(scene, &Placement::new(&assembly, layout))?;
     let strips = super::reinforcements::strips(&scene.reinforcements, &assembly, &scene.origin)?;
     Ok(Model {

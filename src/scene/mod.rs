@@ -11,11 +11,13 @@ mod piers;
 mod placement;
 pub mod reinforcements;
 pub mod spandrel;
+pub mod spread;
 pub mod ties;
 pub mod units;
 mod user_blocks;
+pub mod vehicles;
 pub use arcade::ArcadeSpec;
-pub use build::{build, build_for_design, builds_on_this_thread};
+pub use build::{build, build_for_design, builds_on_this_thread, standing_heights};
 pub use piers::{Pier, PierProfile, Piers};
 pub use spandrel::SpandrelSpec;
 pub use user_blocks::{BlockSource, BlocksSpec};
@@ -159,6 +161,10 @@ pub struct FillSpec {
     /// Unit weight (N/m^3), times the scene depth.
     pub unit_weight: f64,
     pub seismic: bool,
+    /// Where loads on the fill stand and how they spread to the extrados (`surface`,
+    /// `spread_deg`, `spread`: [`spread`]).
+    #[serde(flatten)]
+    pub dispersal: spread::Dispersal,
 }
 
 /// The seismic action beyond its horizontal component.
@@ -183,6 +189,8 @@ pub struct Scene {
     pub material: Material,
     /// Loads beyond self-weight (`[[loads]]`), in file order.
     pub loads: Vec<LoadSpec>,
+    /// Trains of axles (`[[vehicles]]`), in file order.
+    pub vehicles: Vec<vehicles::VehicleSpec>,
     /// Tie rods (`[[ties]]`), in file order.
     pub ties: Vec<ties::TieSpec>,
     /// Bonded strips (`[[reinforcements]]`), in file order.
@@ -468,6 +476,9 @@ fn set_dotted(table: &mut Table, key: &str, value: Value) -> Result<(), String> 
     if let Some(rest) = key.strip_prefix("reinforcements[") {
         return set_entry(table, "reinforcements", key, rest, value);
     }
+    if let Some(rest) = key.strip_prefix("vehicles[") {
+        return set_entry(table, "vehicles", key, rest, value);
+    }
     let parts: Vec<&str> = key.split('.').collect();
     // One pier of a portal is set with three parts: `piers.left.height`.
     let pier_side =
@@ -517,6 +528,7 @@ fn set_entry(
     let example = match list {
         "ties" => "capacity",
         "reinforcements" => "tensile_capacity",
+        "vehicles" => "at",
         _ => "intensity",
     };
     let form = || {
@@ -563,6 +575,7 @@ const SECTIONS: &[&str] = &[
     "arcade",
     "spandrel",
     "report",
+    "vehicles",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -1009,6 +1022,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
     };
     let dem = section(&table, "dem", origin)?.cloned().unwrap_or_default();
     let loads = parse_loads(&table, origin)?;
+    let vehicles = vehicles::parse(&table, origin)?;
     let ties = ties::parse_ties(&table, origin)?;
     let reinforcements = reinforcements::parse(&table, origin)?;
     let fill = match section(&table, "fill", origin)? {
@@ -1043,6 +1057,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         ),
         &table,
         &loads,
+        &vehicles,
     )?;
     let scene = Scene {
         arch,
@@ -1052,6 +1067,7 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         spandrel,
         material,
         loads,
+        vehicles,
         ties,
         reinforcements,
         fill,
@@ -1545,7 +1561,10 @@ fn parse_fill(
     arch: Option<&ArchSpec>,
     spandrel: Option<&SpandrelSpec>,
 ) -> Result<FillSpec, SceneError> {
-    s.check_known(FILL_KEYS, "")?;
+    let keys: Vec<&str> = FILL_KEYS.iter().chain(spread::KEYS).copied().collect();
+    s.check_known(&keys, "")?;
+    let crown = arch.map(|a| a.shape.crown_extrados(a.thickness));
+    let dispersal = spread::parse(&mut s, crown)?;
     let level = s.finite("level", "y of the fill's top surface in metres")?;
     if level.abs() > MAX_LENGTH {
         return Err(s.out_of_range(
@@ -1597,6 +1616,7 @@ fn parse_fill(
         level,
         unit_weight,
         seismic,
+        dispersal,
     })
 }
 
@@ -1606,6 +1626,7 @@ fn parse_action(
     mut s: Section,
     table: &Table,
     loads: &[LoadSpec],
+    vehicles: &[vehicles::VehicleSpec],
 ) -> Result<crate::model::Action, SceneError> {
     use crate::model::Action;
     s.check_known(ACTION_KEYS, "")?;
@@ -1622,11 +1643,11 @@ fn parse_action(
                 "a live action takes no [seismic] table: lambda multiplies the live loads, not a ground motion (remove [seismic], or use kind = \"seismic\")",
             ));
         }
-        if !loads.iter().any(LoadSpec::live) {
+        if !loads.iter().any(LoadSpec::live) && !vehicles.iter().any(|v| v.live) {
             return Err(s.out_of_range(
                 "kind",
                 "\"live\"",
-                "a live action needs at least one [[loads]] entry with live = true (lambda multiplies those loads and nothing else)",
+                "a live action needs at least one [[loads]] entry with live = true, or a live [[vehicles]] entry (lambda multiplies those loads and nothing else)",
             ));
         }
     }

@@ -2,7 +2,7 @@
 //! act on a built assembly, one path for the parametric arch (and piers) and for the user's
 //! blocks. A [`Placement`] knows which block holds a point (and which lies nearest, for the
 //! error), and the structure's roof: its upward-facing edges, left end first, straight or arcs
-//! of the extrados. [`place`] turns the scene's loads, fill and ties into the load case and the
+//! of the extrados. [`place`] turns the scene's loads, vehicles, fill and ties into the load case and the
 //! anchored ties through it; [`Placement::new`] builds it for either [`Structure`].
 //!
 //! The scene-key contract:
@@ -34,13 +34,27 @@
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap` (line)
 //!   or its own weight (fill) at the same point;
 //! - a tie's anchor is the block that holds its point, as a point load's is (or the ground:
-//!   [`super::ties::anchor_ties`]).
+//!   [`super::ties::anchor_ties`]);
+//! - a load standing on the structure: a vertical point load outside every block but in the
+//!   fill (above the top of the structure at its x, not above the fill's road surface), and
+//!   each axle of `[[vehicles]]` (on the road surface over a fill, on the top otherwise):
+//!   the top at x is the highest roof edge over x (over a joint, the first in the roof's
+//!   order, the block a point load there would rest on); the load is spread through the depth
+//!   of fill between it and the top by the fill's law ([`super::spread`]): at an angle, a line
+//!   load `F / w` over the width `w` under it, placed as any line load (and kept whole for the
+//!   continuous model); by Boussinesq, Flamant's share on each roof piece at its centroid;
+//!   with no depth or no spread, a point load at the top. What falls past the ends of the top
+//!   rests on the ground. An axle off the top is an error naming `vehicles[k].at`;
+//! - a vehicle's distributed part beyond its axles (LM71's `qvk`) is a line load from its gap
+//!   past the outer axles to the ends of the top, on each side.
 
+use super::spread::{self, Law};
+use super::vehicles::VehicleSpec;
 use super::{ties, LoadSpec, Scene};
 use crate::assembly::{Assembly, BlockKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, SpreadLoad, Tie};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Spread, SpreadLoad, Tie};
 
 /// Where the parametric arch's blocks sit in its assembly (see `scene::build`).
 pub(super) struct ArchLayout {
@@ -288,6 +302,23 @@ impl<'a> Placement<'a> {
 
     /// The shares of a line load over `[from_x, to_x]` (see the module docs).
     fn line_pieces(&self, from_x: f64, to_x: f64) -> Vec<Piece> {
+        self.spans(from_x, to_x)
+            .into_iter()
+            .filter_map(|(lo, hi, e)| {
+                // A piece over a fixed block rests on it.
+                Some(Piece {
+                    block: e.block?,
+                    point: e.at(0.5 * (lo + hi)),
+                    length: hi - lo,
+                })
+            })
+            .collect()
+    }
+
+    /// The pieces `(x0, x1, edge)` of `[from_x, to_x]` and the roof edges that carry them:
+    /// over the rings' extrados every edge it overlaps, elsewhere the highest edge over each
+    /// piece between the ends of the edges (see the module docs).
+    fn spans(&self, from_x: f64, to_x: f64) -> Vec<(f64, f64, &RoofEdge)> {
         match self.structure {
             Structure::Arch(_) if !self.on_top() => self
                 .roof
@@ -295,12 +326,7 @@ impl<'a> Placement<'a> {
                 .filter_map(|e| {
                     let lo = from_x.max(e.a.x);
                     let hi = to_x.min(e.b.x);
-                    let block = e.block?;
-                    (hi > lo).then(|| Piece {
-                        block,
-                        point: e.at(0.5 * (lo + hi)),
-                        length: hi - lo,
-                    })
+                    (hi > lo).then_some((lo, hi, e))
                 })
                 .collect(),
             _ => {
@@ -313,18 +339,120 @@ impl<'a> Placement<'a> {
                     );
                 }
                 self.under_top(cuts)
-                    .into_iter()
-                    .filter_map(|(x0, x1, e)| {
-                        // A piece over a fixed block rests on it.
-                        Some(Piece {
-                            block: e.block?,
-                            point: e.at(0.5 * (x0 + x1)),
-                            length: x1 - x0,
-                        })
-                    })
-                    .collect()
             }
         }
+    }
+
+    /// The x-range of the structure's top: from the left end of its leftmost roof edge to
+    /// the right end of its rightmost (None without a roof).
+    fn roof_range(&self) -> Option<(f64, f64)> {
+        let lo = self.roof.iter().map(|e| e.a.x).reduce(f64::min)?;
+        let hi = self.roof.iter().map(|e| e.b.x).reduce(f64::max)?;
+        Some((lo, hi))
+    }
+
+    /// The top of the structure over `x`: the point of the highest roof edge there, and that
+    /// edge; None where no roof edge lies under x (off the structure). Over a joint (two
+    /// edges as high) the first edge in the roof's order, so that a load there rests on the
+    /// block a point load there would (the first in chain order).
+    fn roof_at(&self, x: f64) -> Option<(Vec2, &RoofEdge)> {
+        self.roof
+            .iter()
+            .filter(|e| e.a.x - self.tol <= x && x <= e.b.x + self.tol)
+            .map(|e| (e.at(x.clamp(e.a.x, e.b.x)), e))
+            .fold(None, |best: Option<(Vec2, &RoofEdge)>, c| match best {
+                Some(b) if b.0.y >= c.0.y => Some(b),
+                _ => Some(c),
+            })
+    }
+
+    /// Where a load standing at `x` stands: on the road surface `surface` (a fill's) where
+    /// that lies above the structure's top, on the top at x otherwise; None off the
+    /// structure (no roof edge under x).
+    pub(super) fn stand(&self, x: f64, surface: Option<f64>) -> Option<Vec2> {
+        let (top, _) = self.roof_at(x)?;
+        Some(match surface {
+            Some(y) if y > top.y => Vec2::new(x, y),
+            _ => top,
+        })
+    }
+
+    /// The x-range of the top as words, for errors.
+    fn roof_range_words(&self) -> String {
+        match self.roof_range() {
+            Some((lo, hi)) => format!("the top of the structure runs from x = {lo} to {hi} m"),
+            None => "the structure has no upward-facing top".into(),
+        }
+    }
+
+    /// Place a downward load `weight` (N) standing at `p` (on the top of the structure or in
+    /// the fill above it) on the blocks under it, spread by `law` over the depth between `p`
+    /// and the top at its x ([`spread`]): the shares of `load` go into `case`, with a spread
+    /// load for the continuous model when the law makes them a uniform line load. False when
+    /// no roof edge lies under p (off the structure).
+    fn place_standing(
+        &self,
+        case: &mut LoadCase,
+        p: Vec2,
+        weight: f64,
+        law: Law,
+        load: Standing,
+    ) -> bool {
+        let Some((top, edge)) = self.roof_at(p.x) else {
+            return false;
+        };
+        let depth = (p.y - top.y).max(0.0);
+        let share = |case: &mut LoadCase, block: usize, point: Vec2, w: f64| {
+            case.add(
+                AppliedLoad {
+                    block,
+                    point,
+                    force: Vec2::new(0.0, -w),
+                    seismic_weight: if load.seismic { w } else { 0.0 },
+                    live: false,
+                    source: load.source,
+                    region: None,
+                }
+                .live(load.live),
+            );
+        };
+        match law {
+            Law::Angle(theta) if spread::width(depth, theta) > self.tol => {
+                let w = spread::width(depth, theta);
+                let (x0, x1) = (p.x - 0.5 * w, p.x + 0.5 * w);
+                let q = weight / w;
+                for piece in self.line_pieces(x0, x1) {
+                    share(case, piece.block, piece.point, q * piece.length);
+                }
+                case.add_spread(SpreadLoad {
+                    kind: Spread::Line {
+                        from_x: x0,
+                        to_x: x1,
+                        intensity: q,
+                    },
+                    seismic: load.seismic,
+                    live: load.live,
+                    source: load.source,
+                });
+            }
+            Law::Boussinesq if depth > self.tol => {
+                let (lo, hi) = self.roof_range().unwrap_or((p.x, p.x));
+                for (a, b, e) in self.spans(lo, hi) {
+                    let (f, m) = spread::boussinesq_share(depth, a - p.x, b - p.x);
+                    if let (Some(block), true) = (e.block, f > 0.0) {
+                        let u = (m / f).clamp(a - p.x, b - p.x);
+                        share(case, block, e.at(p.x + u), weight * f);
+                    }
+                }
+            }
+            // No spread (an angle of 0, or no fill between the load and the top).
+            _ => {
+                if let Some(block) = edge.block {
+                    share(case, block, top, weight);
+                }
+            }
+        }
+        true
     }
 
     /// The fill regions below `level` (see the module docs).
@@ -406,6 +534,11 @@ pub(super) fn place(
     let mut case = LoadCase::self_weight(placement.assembly)
         .with_vertical_ratio(scene.seismic.vertical_ratio)
         .with_action(scene.action);
+    // The fill's road surface and the law loads standing on it spread by.
+    let fill = scene
+        .fill
+        .as_ref()
+        .map(|f| (f.dispersal.surface(f.level), f.dispersal.law()));
     for (k, spec) in scene.loads.iter().enumerate() {
         match *spec {
             LoadSpec::Point {
@@ -415,14 +548,42 @@ pub(super) fn place(
                 live,
             } => {
                 let p = Vec2::new(at[0], at[1]);
-                let block = placement.locate(p).ok_or_else(|| SceneError::OutOfRange {
-                    origin: origin.clone(),
-                    key: format!("loads[{k}].at"),
-                    value: format!("[{}, {}]", at[0], at[1]),
-                    allowed: placement.outside(p),
-                })?;
                 let force = Vec2::new(force[0], force[1]);
-                case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
+                if let Some(block) = placement.locate(p) {
+                    case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
+                    continue;
+                }
+                // Outside every block: a load standing in the fill (up to its road surface)
+                // reaches the structure through it.
+                let in_fill = fill.as_ref().is_some_and(|(surface, _)| {
+                    p.y <= surface + placement.tol
+                        && placement
+                            .roof_at(p.x)
+                            .is_some_and(|(top, _)| p.y >= top.y - placement.tol)
+                });
+                if !in_fill {
+                    return Err(SceneError::OutOfRange {
+                        origin: origin.clone(),
+                        key: format!("loads[{k}].at"),
+                        value: format!("[{}, {}]", at[0], at[1]),
+                        allowed: placement.outside(p),
+                    });
+                }
+                if force.x != 0.0 || force.y > 0.0 {
+                    return Err(SceneError::OutOfRange {
+                        origin: origin.clone(),
+                        key: format!("loads[{k}].force"),
+                        value: format!("[{}, {}]", force[0], force[1]),
+                        allowed: "a load standing in the fill (its point lies above the structure, below the fill's surface) spreads through it, so it must act straight down: [0, -F]".into(),
+                    });
+                }
+                let law = fill.as_ref().map_or(Law::Angle(0.0), |f| f.1);
+                let load = Standing {
+                    source: LoadSource::Load(k),
+                    live,
+                    seismic: seismic && !live,
+                };
+                placement.place_standing(&mut case, p, -force.y, law, load);
             }
             LoadSpec::Line {
                 from_x,
@@ -485,8 +646,97 @@ pub(super) fn place(
             ));
         }
     }
+    for (k, v) in scene.vehicles.iter().enumerate() {
+        place_vehicle(&mut case, placement, k, v, fill, origin)?;
+    }
     let ties = ties::anchor_ties(&scene.ties, placement, origin)?;
     Ok((case, ties))
+}
+
+/// Where a load standing on the structure came from, and what it is.
+#[derive(Clone, Copy)]
+struct Standing {
+    source: LoadSource,
+    live: bool,
+    seismic: bool,
+}
+
+/// The loads of vehicle `k`, `v`: each axle standing on the road surface of `fill` (its
+/// surface and spread law) or, without a fill, on the top of the structure at its x; the
+/// distributed part beyond the axles (LM71's) a line load from its gap past the outer axles to
+/// the ends of the structure's top. A vehicle carries no seismic mass.
+fn place_vehicle(
+    case: &mut LoadCase,
+    placement: &Placement,
+    k: usize,
+    v: &VehicleSpec,
+    fill: Option<(f64, Law)>,
+    origin: &str,
+) -> Result<(), SceneError> {
+    let off = |why: String| SceneError::OutOfRange {
+        origin: origin.to_string(),
+        key: format!("vehicles[{k}].at"),
+        value: v.at.to_string(),
+        allowed: why,
+    };
+    let (surface, law) = fill.map_or((None, Law::Angle(0.0)), |(s, l)| (Some(s), l));
+    for (p, (x, weight)) in v.axle_positions().enumerate() {
+        let standing = placement.stand(x, surface);
+        let load = Standing {
+            source: LoadSource::Vehicle(k, p),
+            live: v.live,
+            seismic: false,
+        };
+        let placed =
+            standing.is_some_and(|at| placement.place_standing(case, at, weight, law, load));
+        if !placed {
+            return Err(off(format!(
+                "every axle must stand on the structure: axle {p} (at + {}) lies at x = {x}, off it ({})",
+                v.axles[p].0,
+                placement.roof_range_words()
+            )));
+        }
+    }
+    if let (Some((q, gap)), Some((lo, hi))) = (v.beyond, placement.roof_range()) {
+        let (first, last) = v.extent();
+        let sides = [(lo, first - gap), (last + gap, hi)];
+        for (side, (x0, x1)) in sides.into_iter().enumerate() {
+            if x1 <= x0 {
+                continue;
+            }
+            let source = LoadSource::Vehicle(k, v.axles.len() + side);
+            for Piece {
+                block,
+                point,
+                length,
+            } in placement.line_pieces(x0, x1)
+            {
+                case.add(
+                    AppliedLoad {
+                        block,
+                        point,
+                        force: Vec2::new(0.0, -q * length),
+                        seismic_weight: 0.0,
+                        live: false,
+                        source,
+                        region: None,
+                    }
+                    .live(v.live),
+                );
+            }
+            case.add_spread(SpreadLoad {
+                kind: Spread::Line {
+                    from_x: x0,
+                    to_x: x1,
+                    intensity: q,
+                },
+                seismic: false,
+                live: v.live,
+                source,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Centre and radius of the extrados arc of voussoir `j`.

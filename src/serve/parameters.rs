@@ -152,6 +152,18 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("../../data/filled_arch.toml"),
         ranges: &[("arch.thickness", 0.15, 1.0), ("fill.level", 2.2, 5.0)],
     },
+    Preset {
+        name: "bridge",
+        label: "Arch bridge under a moving tandem",
+        toml: include_str!("../../data/rolling_bridge.toml"),
+        // The tandem (1.2 m long) stays on the 6.45 m extrados; the fill stays above the
+        // crown of the thickest ring (3 + 0.9 / 2 = 3.45 m).
+        ranges: &[
+            ("vehicles[0].at", -3.2, 2.0),
+            ("arch.thickness", 0.3, 0.9),
+            ("fill.level", 3.5, 5.0),
+        ],
+    },
 ];
 
 /// The sliders, in the order the page lists them.
@@ -559,6 +571,23 @@ pub const SLIDERS: &[Slider] = &[
         arch_shapes: &[],
         absent: None,
         help: "Intensity of the second [[loads]] entry, when it is a line load (downward).",
+        shape_steps: &[],
+        not_with: &[],
+        pier_shapes: &[],
+        list: false,
+    },
+    Slider {
+        key: "vehicles[0].at",
+        label: "Vehicle position (vehicles[0])",
+        unit: "m",
+        min: -10.0,
+        max: 10.0,
+        step: 0.05,
+        integer: false,
+        section: "vehicles",
+        arch_shapes: &[],
+        absent: None,
+        help: "x of the first axle of the first [[vehicles]] entry: move it and the adequacy factor (the collapse load as a multiple of the vehicle) follows; its chart is lambda against the position.",
         shape_steps: &[],
         not_with: &[],
         pier_shapes: &[],

@@ -74,8 +74,10 @@ export function launchBrowser() {
 }
 
 // `voussoir analyze SCENE --json [--set KEY=VALUE ...] [--direction D]`, parsed.
+// `direction` null: no --direction (a live action has none).
 export function analyze(scene, sets = {}, direction = 'right') {
-  const args = ['analyze', scene, '--json', '--direction', direction];
+  const args = ['analyze', scene, '--json'];
+  if (direction !== null) args.push('--direction', direction);
   for (const [k, v] of Object.entries(sets)) args.push('--set', `${k}=${v}`);
   return JSON.parse(execFileSync(BIN, args, { cwd: ROOT, encoding: 'utf8' }));
 }

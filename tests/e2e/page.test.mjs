@@ -318,6 +318,37 @@ test('the line-load slider of the loaded portal gives the CLI\'s values for that
   }
 });
 
+test('the bridge preset: the axle slider moves the tandem and the adequacy factor follows the CLI', async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  try {
+    await page.click('#v-shapes button[data-preset="bridge"]');
+    await settled(page);
+    const bridge = scenePath('rolling_bridge.toml');
+    assertShows(await shown(page), analyze(bridge, {}, null), 'bridge as bundled');
+    const at = field(page, 'vehicles[0].at');
+    assert.equal(await at.row.count(), 1, 'the vehicle position has a field');
+    const before = Number(await at.number.inputValue());
+    const swept = page.waitForResponse((r) => r.url().endsWith('/api/sweep'));
+    await at.slider.focus();
+    for (let i = 0; i < 6; i++) await page.keyboard.press('ArrowRight');
+    await settled(page);
+    const value = Number(await at.number.inputValue());
+    assert.ok(value > before, `the tandem moved right from ${before}: ${value}`);
+    const cli = analyze(bridge, { 'vehicles[0].at': value }, null);
+    assertShows(await shown(page), cli, `vehicles[0].at = ${value}`);
+    assert.notEqual(cli.lambda_lower, analyze(bridge, {}, null).lambda_lower, 'the position matters');
+    // The chart is lambda against the position: every row a position on the arch.
+    const rows = (await (await swept).json()).rows;
+    assert.ok(rows.length > 2 && rows.every((r) => typeof r.lambda_lower === 'number'),
+      'every position of the chart has a multiplier');
+    await chartSettled(page);
+    assert.match(await page.locator('#v-chart-title').textContent(), /vehicle position/i);
+    assert.deepEqual(unexpected(problems), []);
+  } finally {
+    await context.close();
+  }
+});
+
 test('the chart recovers once a refused value is corrected', async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   try {

@@ -52,7 +52,7 @@ fn single_block_overturned_by_a_live_push() {
 /// blocks before hinge A's joint are still; block group AB turns about A, CD about D, and BC
 /// about the instantaneous centre where lines AB and DC meet. `loads` are `(block, point,
 /// force)` of the permanent loads and `live` those lambda multiplies.
-fn four_hinge_lambda(
+pub(crate) fn four_hinge_lambda(
     hinges: &[(usize, Vec2)],
     permanent: &[(usize, Vec2, Vec2)],
     live: &[(usize, Vec2, Vec2)],

@@ -40,6 +40,7 @@ mod reduced;
 mod report_html;
 mod reports;
 mod retrofit;
+mod rolling;
 mod serve_api;
 mod static_bound;
 mod strips;

@@ -217,6 +217,18 @@ fn every_preset_analyses_to_the_library_value_in_both_directions() {
         let scene = Scene::from_toml_str(p.toml, name).expect("preset scene");
         let mut by_direction = Vec::new();
         for (dir, text) in [(Direction::Right, "right"), (Direction::Left, "left")] {
+            if dir == Direction::Left && scene.action == voussoir::model::Action::Live {
+                // A live action (the bridge's moving tandem) has no direction: the left one
+                // is refused as the CLI's --direction is.
+                let (status, refused) = post(
+                    &s,
+                    "/api/analyze",
+                    &json!({"scene": scene_value, "direction": text}),
+                );
+                assert_eq!(status, StatusCode::BAD_REQUEST, "{name}: {refused}");
+                assert_eq!(refused["kind"], "not_for_action", "{name}");
+                continue;
+            }
             let expected = library_lambda(&scene, dir);
             let (status, wrapped) = post(
                 &s,
@@ -240,6 +252,9 @@ fn every_preset_analyses_to_the_library_value_in_both_directions() {
             name,
             "circular" | "pointed" | "basket" | "portal" | "tied_portal" | "arcade"
         );
+        if by_direction.len() < 2 {
+            continue;
+        }
         let differ = (by_direction[0] - by_direction[1]).abs();
         if symmetric {
             assert!(differ < 1e-9, "{name}: {by_direction:?}");

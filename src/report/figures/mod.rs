@@ -133,6 +133,64 @@ pub fn analysis(
     })
 }
 
+/// `analyze --roll`'s chart: the static (lower bound) and kinematic (upper bound)
+/// multipliers against the moving load's position, the critical position marked.
+pub fn roll_chart(scene: &Scene, r: &crate::roll::Roll) -> Result<Figure, SvgError> {
+    let target = r.spec.target;
+    let what = match target {
+        crate::roll::Target::Vehicle(k) => format!(
+            "vehicle {} (x of its first axle)",
+            scene.vehicles.get(k).map_or("?", |v| v.name.as_str())
+        ),
+        crate::roll::Target::Load(_) => format!("{target}"),
+    };
+    let critical = r
+        .critical
+        .as_ref()
+        .and_then(|c| c.analysis.lower.lambda.map(|l| (c.position, l)));
+    let lower: Vec<(f64, f64)> = r
+        .points
+        .iter()
+        .map(|p| (p.position, p.lambda_lower.unwrap_or(f64::NAN)))
+        .collect();
+    let mut series = vec![Series::line(
+        r.critical
+            .as_ref()
+            .map_or("static lower bound".into(), |c| {
+                static_bound_name(&c.analysis.friction())
+            }),
+        lower,
+        critical,
+    )];
+    if r.points.iter().any(|p| p.lambda_upper.is_some()) {
+        series.push(Series::line(
+            "kinematic (upper bound)",
+            r.points
+                .iter()
+                .map(|p| (p.position, p.lambda_upper.unwrap_or(f64::NAN)))
+                .collect(),
+            None,
+        ));
+    }
+    let title = match critical {
+        Some((x, l)) => format!(
+            "{}: moving load {target}\ncritical position x = {x:.4} m, lambda = {l:.6}",
+            shape_title(scene)
+        ),
+        None => format!("{}: moving load {target}", shape_title(scene)),
+    };
+    of_chart(
+        "roll",
+        &Chart {
+            title,
+            x_label: format!("position of {what} (m)"),
+            y_label: "collapse multiplier lambda".into(),
+            legend_title: None,
+            series,
+        },
+    )
+}
+
 /// `min-thickness`'s figure: the thrust line at the minimum thickness under the permanent
 /// loads; `None` when there is no minimum thickness.
 pub fn min_thickness(scene: &Scene, m: &MinThickness) -> Result<Option<Figure>, SvgError> {

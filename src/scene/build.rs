@@ -73,7 +73,19 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
             })
         }
     };
-    let (loads, ties) = placement::place(scene, &Placement::new(&assembly, layout))?;
+    let placement = Placement::new(&assembly, layout);
+    let (loads, ties) = placement::place(scene, &placement)?;
+    let passive = match &scene.fill {
+        Some(fill @ super::FillSpec {
+            passive: Some(spec),
+            ..
+        }) => placement.passive_faces(
+            fill.level,
+            spec.coefficient() * fill.unit_weight * scene.material.depth,
+        ),
+        _ => Vec::new(),
+    };
+    drop(placement);
     let strips = super::reinforcements::strips(&scene.reinforcements, &assembly, &scene.origin)?;
     Ok(Model {
         assembly,
@@ -81,6 +93,7 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
         strength,
         ties,
         strips,
+        passive,
     })
 }
 

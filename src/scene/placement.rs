@@ -33,6 +33,9 @@
 //!   there, a pier top or any other block top under the level is filled too;
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap` (line)
 //!   or its own weight (fill) at the same point;
+//! - with `[fill] passive = true`, the faces against the fill take the fill's passive reaction
+//!   ([`Placement::passive_faces`]): over the arch every extrados edge under the level, over
+//!   the user's blocks every face with fill just outside it;
 //! - a tie's anchor is the block that holds its point, as a point load's is (or the ground:
 //!   [`super::ties::anchor_ties`]).
 
@@ -40,7 +43,7 @@ use super::{ties, LoadSpec, Scene};
 use crate::assembly::{Assembly, BlockKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, SpreadLoad, Tie};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Passive, SpreadLoad, Tie};
 
 /// Where the parametric arch's blocks sit in its assembly (see `scene::build`).
 pub(super) struct ArchLayout {
@@ -374,6 +377,82 @@ impl<'a> Placement<'a> {
                     .collect()
             }
         }
+    }
+
+    /// The faces against a fill of level `level` whose passive pressure per unit depth is
+    /// `coefficient` (N/m^3, `m_p K_p gamma d`; see `crate::interaction::passive`): over the
+    /// rings, each voussoir's extrados edge (its chord; the horizontal force of a pressure
+    /// depends on the ends' heights alone); over the user's blocks or a spandrel wall, each
+    /// face of a block with fill just outside it (above the highest roof edge there, below the
+    /// level, in no other block), so a block's side beside the fill is one too. Faces that
+    /// face straight up or down take no horizontal reaction and are left out.
+    pub(super) fn passive_faces(&self, level: f64, coefficient: f64) -> Vec<Passive> {
+        match self.structure {
+            Structure::Arch(_) if !self.on_top() => self
+                .roof
+                .iter()
+                .filter_map(|e| {
+                    let block = e.block?;
+                    if !matches!(
+                        self.assembly.blocks[block].kind,
+                        BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
+                    ) {
+                        return None;
+                    }
+                    // Left to right on an upward-facing edge: rising, its outward normal
+                    // points to -x; falling, to +x.
+                    let into = if e.b.y > e.a.y { -1.0 } else { 1.0 };
+                    Passive::face(block, e.a, e.b, into, level, coefficient)
+                })
+                .collect(),
+            _ => {
+                let eps = 1e3 * self.tol.max(1e-12 * self.assembly.size());
+                let mut faces = Vec::new();
+                for (i, b) in self.assembly.blocks.iter().enumerate() {
+                    let poly = &b.polygon;
+                    let orient = orientation(poly);
+                    let m = poly.len();
+                    for k in 0..m {
+                        let (p, q) = (poly[k], poly[(k + 1) % m]);
+                        let d = q - p;
+                        let len = d.norm();
+                        if len <= self.tol {
+                            continue;
+                        }
+                        // The outward normal of a counter-clockwise outline is (dy, -dx).
+                        let n = orient * Vec2::new(d.y, -d.x) / len;
+                        if n.x.abs() <= 1e-9 {
+                            continue;
+                        }
+                        let Some(face) = Passive::face(i, p, q, n.x.signum(), level, coefficient)
+                        else {
+                            continue;
+                        };
+                        let out = 0.5 * (face.a + face.b) + eps * n;
+                        if self.in_fill(out, level, i) {
+                            faces.push(face);
+                        }
+                    }
+                }
+                faces
+            }
+        }
+    }
+
+    /// Whether `p` lies in the fill up to `level`: below it, above the highest roof edge over
+    /// its x (the fill rests on the structure's top), and in no block but `own`.
+    fn in_fill(&self, p: Vec2, level: f64, own: usize) -> bool {
+        if p.y >= level || self.fixed_at(p).is_some() {
+            return false;
+        }
+        let under = self
+            .roof
+            .iter()
+            .filter(|e| e.a.x <= p.x && p.x <= e.b.x)
+            .map(|e| e.at(p.x).y)
+            .fold(f64::NEG_INFINITY, f64::max);
+        under < p.y
+            && !(0..self.assembly.blocks.len()).any(|j| j != own && self.contains(j, p))
     }
 
     /// The pieces `(x0, x1, edge)` between consecutive `cuts` (sorted here), each with the

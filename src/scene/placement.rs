@@ -451,7 +451,9 @@ impl<'a> Placement<'a> {
             .filter(|e| e.a.x <= p.x && p.x <= e.b.x)
             .map(|e| e.at(p.x).y)
             .fold(f64::NEG_INFINITY, f64::max);
-        under < p.y
+        // No roof edge over its x: no fill there (the fill rests on the structure's top).
+        under.is_finite()
+            && under < p.y
             && !(0..self.assembly.blocks.len()).any(|j| j != own && self.contains(j, p))
     }
 
@@ -544,7 +546,9 @@ pub(super) fn place(
         let gamma = fill.unit_weight * scene.material.depth;
         case.add_spread(SpreadLoad::fill(fill.level, gamma, fill.seismic));
         let regions = placement.fill_regions(fill.level);
-        if regions.is_empty() {
+        // A fill over fixed blocks alone weighs on no block, but it may still lie against a
+        // block's side (its passive resistance).
+        if regions.is_empty() && !placement.roof.iter().any(|e| e.a.y.min(e.b.y) < fill.level) {
             // Over the parametric arch the level is not below the crown (checked as the scene
             // is read), so some voussoir always has a region.
             return Err(SceneError::OutOfRange {

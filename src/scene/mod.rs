@@ -160,6 +160,7 @@ pub struct FillSpec {
     pub unit_weight: f64,
     pub seismic: bool,
     /// The fill's passive resistance (`passive = true`), when switched on.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub passive: Option<PassiveSpec>,
 }
 

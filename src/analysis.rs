@@ -401,7 +401,8 @@ fn upper_bound(
             Err(why) => not_certified = why,
         }
     }
-    if !model.passive.is_empty() && !(options.kinematic == KinematicMode::Exhaustive && small) {
+    let exhaustive_asked = options.kinematic == KinematicMode::Exhaustive && small;
+    if !model.passive.is_empty() && !exhaustive_asked {
         // A passive face whose reaction lies strictly inside its interval at collapse does not
         // move horizontally in the collapse mechanism: one more constraint, met by a fifth
         // hinge, outside the four-hinge families the chain searches enumerate. The general

@@ -200,7 +200,9 @@ mod tests {
         assert!((f.cap - 10.0 * 1.5 * 1.5 / 2.0).abs() < 1e-12);
         assert!((f.point.y - 0.5).abs() < 1e-12);
         assert!((f.point.x - 1.0).abs() < 1e-12);
-        assert!(Passive::face(0, Vec2::new(0.0, 2.0), Vec2::new(1.0, 3.0), 1.0, 1.5, 1.0).is_none());
+        assert!(
+            Passive::face(0, Vec2::new(0.0, 2.0), Vec2::new(1.0, 3.0), 1.0, 1.5, 1.0).is_none()
+        );
         assert!((rankine_kp(30f64.to_radians()) - 3.0).abs() < 1e-12);
     }
 }

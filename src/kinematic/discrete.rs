@@ -100,7 +100,12 @@ pub(crate) struct Chain {
 /// The twist of the block after `slot` chain joints (see [`ChainTie`]) in the motion `m` of
 /// the active joints `js`: the running sum of the relative twists before it; the bodies
 /// before the first active joint, and after the last on a two-support chain, are fixed.
-fn twist_at_slot(slot: Option<usize>, js: &[usize], m: &super::Motion, closed: bool) -> super::Twist {
+fn twist_at_slot(
+    slot: Option<usize>,
+    js: &[usize],
+    m: &super::Motion,
+    closed: bool,
+) -> super::Twist {
     let Some(slot) = slot else { return [0.0; 3] };
     // Active joints before the block.
     let k = js.partition_point(|&j| j < slot);

@@ -205,12 +205,7 @@ impl Model {
             .chain(as_ground_ties)
             .collect();
         let passive = (0..self.passive.len()).map(|k| passive.get(k).copied().unwrap_or(0.0));
-        let f: Vec<f64> = ties
-            .iter()
-            .chain(strips)
-            .copied()
-            .chain(passive)
-            .collect();
+        let f: Vec<f64> = ties.iter().chain(strips).copied().chain(passive).collect();
         residuals(&self.assembly, &self.loads, forces, &all, &f, lambda, sign)
     }
 }

@@ -383,6 +383,14 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
             num(f.unit_weight),
             if f.seismic { "" } else { ", not seismic" }
         ));
+        if let Some(p) = &f.passive {
+            parts.push(format!(
+                "the fill's passive resistance (phi = {} deg, K_p = {}, mobilisation {})",
+                num(p.friction.to_degrees()),
+                num(crate::interaction::passive::rankine_kp(p.friction)),
+                num(p.mobilisation)
+            ));
+        }
     }
     let r = scene.seismic.vertical_ratio;
     if r != 0.0 {

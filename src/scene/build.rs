@@ -76,10 +76,12 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
     let placement = Placement::new(&assembly, layout);
     let (loads, ties) = placement::place(scene, &placement)?;
     let passive = match &scene.fill {
-        Some(fill @ super::FillSpec {
-            passive: Some(spec),
-            ..
-        }) => placement.passive_faces(
+        Some(
+            fill @ super::FillSpec {
+                passive: Some(spec),
+                ..
+            },
+        ) => placement.passive_faces(
             fill.level,
             spec.coefficient() * fill.unit_weight * scene.material.depth,
         ),

@@ -41,8 +41,8 @@
 
 use super::problem::{Objective, StaticProblem};
 use super::{
-    check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips, read_ties, run,
-    slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
+    check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips,
+    read_ties, run, slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
 };
 use crate::assembly::JointForce;
 use crate::error::AnalysisError;

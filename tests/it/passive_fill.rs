@@ -68,7 +68,12 @@ fn a_block_with_fill_against_one_face_gives_the_closed_form() {
         "passive = true\nfriction_deg = {PHI_DEG}\n"
     )));
     let model = common::model_of(&scene);
-    assert_eq!(model.passive.len(), 1, "one face against the fill: {:?}", model.passive);
+    assert_eq!(
+        model.passive.len(),
+        1,
+        "one face against the fill: {:?}",
+        model.passive
+    );
     assert!(close(model.passive[0].cap, pp, 1e-12));
     assert!(close(model.passive[0].point.y, yp, 1e-12));
     let right = static_lambda(&scene, Direction::Right);
@@ -143,7 +148,10 @@ fn static_equals_kinematic_on_filled_arches_with_passive_resistance() {
                 close(upper, lower, 1e-8),
                 "{dir:?} {mode:?}: static {lower} vs kinematic {upper}"
             );
-            assert!(lower > bare * 1.05, "{dir:?}: passive {lower} vs bare {bare}");
+            assert!(
+                lower > bare * 1.05,
+                "{dir:?}: passive {lower} vs bare {bare}"
+            );
             assert!(voussoir::interaction::passive::governs(&a.lower.passive));
         }
     }
@@ -160,7 +168,10 @@ fn static_equals_kinematic_under_a_live_load_with_passive_fill() {
         .expect("runs");
     let lower = a.lower.lambda.expect("collapse");
     let upper = a.lambda_upper().expect("an upper bound");
-    assert!(close(upper, lower, 1e-8), "static {lower} vs kinematic {upper}");
+    assert!(
+        close(upper, lower, 1e-8),
+        "static {lower} vs kinematic {upper}"
+    );
     let bare_text = text.replace("passive = true\n", "");
     let bare = analysis::analyse(
         &common::scene(&bare_text),
@@ -215,7 +226,11 @@ fn bad_passive_input_is_refused_naming_the_key() {
             "fill.friction_deg",
             "from 0 to below 90",
         ),
-        ("passive = true\n", "fill.friction_deg", "passive = true needs"),
+        (
+            "passive = true\n",
+            "fill.friction_deg",
+            "passive = true needs",
+        ),
         ("passive = \"yes\"\n", "fill.passive", ""),
     ] {
         let e = Scene::from_toml_str(&block_scene(extra), "t")

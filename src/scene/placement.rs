@@ -342,16 +342,8 @@ impl<'a> Placement<'a> {
         };
         match self.structure {
             Structure::Arch(_) if !self.on_top() => self
-                .roof
-                .iter()
-                .filter_map(|e| {
-                    let block = e.block?;
-                    matches!(
-                        self.assembly.blocks[block].kind,
-                        BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
-                    )
-                    .then(|| region(block, e.a, e.b, e.arc))?
-                })
+                .extrados()
+                .filter_map(|(block, e)| region(block, e.a, e.b, e.arc))
                 .collect(),
             _ => {
                 let cuts = self.roof.iter().flat_map(|e| [e.a.x, e.b.x]).collect();
@@ -379,6 +371,19 @@ impl<'a> Placement<'a> {
         }
     }
 
+    /// The rings' extrados edges among the roof edges, with their voussoirs (pier tops
+    /// carry no fill).
+    fn extrados(&self) -> impl Iterator<Item = (usize, &RoofEdge)> + '_ {
+        self.roof.iter().filter_map(|e| {
+            let block = e.block?;
+            matches!(
+                self.assembly.blocks[block].kind,
+                BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
+            )
+            .then_some((block, e))
+        })
+    }
+
     /// The faces against a fill of level `level` whose passive pressure per unit depth is
     /// `coefficient` (N/m^3, `m_p K_p gamma d`; see `crate::interaction::passive`): over the
     /// rings, each voussoir's extrados edge (its chord; the horizontal force of a pressure
@@ -389,16 +394,8 @@ impl<'a> Placement<'a> {
     pub(super) fn passive_faces(&self, level: f64, coefficient: f64) -> Vec<Passive> {
         match self.structure {
             Structure::Arch(_) if !self.on_top() => self
-                .roof
-                .iter()
-                .filter_map(|e| {
-                    let block = e.block?;
-                    if !matches!(
-                        self.assembly.blocks[block].kind,
-                        BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
-                    ) {
-                        return None;
-                    }
+                .extrados()
+                .filter_map(|(block, e)| {
                     // Left to right on an upward-facing edge: rising, its outward normal
                     // points to -x; falling, to +x.
                     let into = if e.b.y > e.a.y { -1.0 } else { 1.0 };

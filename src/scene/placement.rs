@@ -403,7 +403,9 @@ impl<'a> Placement<'a> {
                 })
                 .collect(),
             _ => {
-                let eps = 1e3 * self.tol.max(1e-12 * self.assembly.size());
+                // How far outside a face its test point lies: beyond the joint tolerance (so
+                // a neighbour across a joint holds it), a small part of the face.
+                let eps = (4.0 * self.tol).max(1e-9 * self.assembly.size());
                 let mut faces = Vec::new();
                 for (i, b) in self.assembly.blocks.iter().enumerate() {
                     let poly = &b.polygon;
@@ -425,7 +427,8 @@ impl<'a> Placement<'a> {
                         else {
                             continue;
                         };
-                        let out = 0.5 * (face.a + face.b) + eps * n;
+                        let reach = eps.min(0.1 * (face.b - face.a).norm());
+                        let out = 0.5 * (face.a + face.b) + reach * n;
                         if self.in_fill(out, level, i) {
                             faces.push(face);
                         }

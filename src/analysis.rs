@@ -401,6 +401,24 @@ fn upper_bound(
             Err(why) => not_certified = why,
         }
     }
+    let exhaustive_asked = options.kinematic == KinematicMode::Exhaustive && small;
+    if !model.passive.is_empty() && !exhaustive_asked {
+        // A passive face whose reaction lies strictly inside its interval at collapse does not
+        // move horizontally in the collapse mechanism: one more constraint, met by a fifth
+        // hinge, outside the four-hinge families the chain searches enumerate. The general
+        // program (the static program's exact dual) takes any mechanism.
+        let (k, search) = general(model, options);
+        let k = k.map(|mut k| {
+            if !not_certified.is_empty() {
+                k.note = Some(format!(
+                    "{} (the static hinges' mechanism was not certified: {not_certified})",
+                    k.note.unwrap_or_default()
+                ));
+            }
+            k
+        });
+        return (k, search);
+    }
     if small {
         let k = kinematic::analyse(model, &settings).map_err(|e| e.to_string());
         return (k, Some(Search::Exhaustive));

@@ -27,7 +27,9 @@
 //! - **Closed forms derived by hand** (no paper needed, but independent of the programs): a
 //!   block b x h on the ground rocks at lambda = b/h; with a compressive strength fc at
 //!   (b - W/(fc d))/h (the stress block of width W/(fc d) at the toe); with friction mu < b/h
-//!   it slides at lambda = mu; the DEM's quasi-static bracket of the rocking block contains b/h.
+//!   it slides at lambda = mu; the DEM's quasi-static bracket of the rocking block contains b/h;
+//!   with the fill's passive resistance on one face, `(W b/2 + P_p L/3)/(W h/2)` with
+//!   Rankine's `P_p = m_p K_p gamma L^2/2` (`crate::interaction::passive`).
 
 use crate::analysis::{self, DemOptions};
 use crate::error::Error;
@@ -393,6 +395,29 @@ pub fn cases() -> Result<Vec<Case>, Error> {
         computed: static_lambda(&block(b, h, mu, f64::INFINITY)?)?,
         tolerance: 1e-8,
         note: "the static program; sliding without rotation has no dilatancy to gain, so this is also the non-associative value.".into(),
+    });
+    // The fill's passive resistance on one face of a block (`[fill] passive`).
+    let (bp, hp, level, phi_deg, m) = (0.6, 2.0, 1.2, 30.0, 0.33);
+    let kp = (std::f64::consts::FRAC_PI_4 + 0.5 * f64::to_radians(phi_deg))
+        .tan()
+        .powi(2);
+    let pp = m * kp * 18000.0 * level * level / 2.0;
+    let wp = 20000.0 * bp * hp;
+    out.push(Case {
+        id: "block_passive_fill",
+        structure: format!("one block {bp} x {hp} m on a fixed base, fill to y = {level} m (18 kN/m^3, phi = {phi_deg} deg) against one face, passive_mobilisation = {m}"),
+        quantity: "lambda (toward the fill)",
+        source: "(W b/2 + P_p L/3) / (W h/2), P_p = m K_p gamma L^2/2 (Rankine, K_p = tan^2(45 + phi/2))",
+        reference: Reference::ClosedForm,
+        expected: (wp * bp / 2.0 + pp * level / 3.0) / (wp * hp / 2.0),
+        computed: static_lambda(&Scene::from_toml_str(
+            &format!(
+                "[blocks]\npolygons = [[[0, 0], [{bp}, 0], [{bp}, {hp}], [0, {hp}]], [[0, -0.5], [5, -0.5], [5, 0], [0, 0]]]\nfixed = [[3.0, -0.25]]\n[material]\nunit_weight = 20000.0\ndepth = 1.0\nfriction = \"inf\"\n[fill]\nlevel = {level}\nunit_weight = 18000.0\npassive = true\nfriction_deg = {phi_deg}\npassive_mobilisation = {m}\n"
+            ),
+            "validation",
+        )?)?,
+        tolerance: 1e-7,
+        note: "the full static program with the face's passive reaction (one-sided, up to its cap; an interior-point solve, hence 1e-7); the block topples about its toe on the fill's side, pushing its face into the fill.".into(),
     });
     let dem = analysis::dem(
         &block(0.2, 1.0, f64::INFINITY, f64::INFINITY)?,

@@ -189,6 +189,7 @@ pub fn displaced(
         strength: model.strength,
         ties: Vec::new(),
         strips: Vec::new(),
+        passive: Vec::new(),
     };
     (model, of)
 }
@@ -358,6 +359,11 @@ pub fn follow(
     if !model.strips.is_empty() {
         return Err(AssessError::Strips {
             count: model.strips.len(),
+        });
+    }
+    if !model.passive.is_empty() {
+        return Err(AssessError::Passive {
+            count: model.passive.len(),
         });
     }
     let rest = &model.assembly;

@@ -68,6 +68,8 @@ pub enum AssessError {
     NoSeismicWork,
     #[error("the capacity curve does not follow bonded strips ({count} joints crossed) through the finite motion of the mechanism: a rigid-plastic strip debonds at the first opening of its joint, and what it carries after needs a bond-slip law this model does not have; so the reinforced structure is not assessed rather than assessed without them; the static and kinematic multipliers with the strips are given by `voussoir analyze`")]
     Strips { count: usize },
+    #[error("the capacity curve does not follow the fill's passive resistance ({count} faces against the fill): the reaction grows with the face's movement into the fill (the mobilisation) in a way this rigid-plastic model does not describe along the finite motion of the mechanism; so the structure is not assessed rather than assessed without it; the static and kinematic multipliers with it are given by `voussoir analyze`")]
+    Passive { count: usize },
 }
 
 /// `(F, point, seismic weight)` of a load.
@@ -303,6 +305,7 @@ impl Linkage {
             strength: model.strength,
             ties: model.ties.clone(),
             strips: model.strips.clone(),
+            passive: model.passive.clone(),
         }
     }
 }
@@ -730,6 +733,11 @@ pub fn capacity(
     if !model.strips.is_empty() {
         return Err(AssessError::Strips {
             count: model.strips.len(),
+        });
+    }
+    if !model.passive.is_empty() {
+        return Err(AssessError::Passive {
+            count: model.passive.len(),
         });
     }
     if settings.incremental || mechanism.family == Family::General {

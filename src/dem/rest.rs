@@ -199,10 +199,11 @@ pub fn rest_test(model: &Model, params: &IntegrationParameters) -> RestTest {
 }
 
 /// Whether the permanent loads of `model` are exactly its seismic weights: every load a
-/// weight `W_s` straight down at its own point, no live load, no tie, no strip.
+/// weight `W_s` straight down at its own point, no live load, no tie, no strip, no passive fill.
 fn homogeneous(model: &Model) -> bool {
     model.ties.is_empty()
         && model.strips.is_empty()
+        && model.passive.is_empty()
         && model.loads.applied().iter().all(|l| {
             l.source == LoadSource::SelfWeight
                 || (!l.live

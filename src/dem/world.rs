@@ -99,6 +99,9 @@ pub(crate) struct Bar {
     pub plastic: f64,
     /// Tension of the last step (N).
     pub force: f64,
+    /// Whether the capacity grows with the permanent loads as they are ramped in (the fill's
+    /// passive reaction, proportional to the fill's weight): `gravity * capacity`.
+    pub capacity_with_gravity: bool,
 }
 
 /// The load factors the protocol applies.
@@ -258,6 +261,7 @@ impl World {
                         capacity: t.capacity,
                         plastic: 0.0,
                         force: 0.0,
+                        capacity_with_gravity: false,
                     }
                 })
                 .chain(model.strips.iter().map(|s| {
@@ -276,6 +280,32 @@ impl World {
                         capacity: s.capacity,
                         plastic: 0.0,
                         force: 0.0,
+                        capacity_with_gravity: false,
+                    }
+                }))
+                .chain(model.passive.iter().map(|p| {
+                    // The fill's passive reaction: a one-sided horizontal spring that pushes
+                    // the face's point back out of the fill, elastic up to its cap and
+                    // perfectly plastic beyond (`crate::interaction::passive`). It is a bar
+                    // from the point to a ground anchor far on the structure's side (`reach`,
+                    // a hundred times the structure's size, so its line stays horizontal to
+                    // 1 % of the point's vertical movement over that size), in tension when
+                    // the point moves into the fill and slack when it moves away. Its
+                    // stiffness is the contacts' normal stiffness, as a tie's: the fill is
+                    // as rigid as the joints, the DEM's image of the rigid-plastic limit
+                    // analyses (a real fill needs far larger movements to mobilise its
+                    // passive pressure, which the mobilisation factor stands for).
+                    let reach = 100.0 * size;
+                    Bar {
+                        bodies: [Some(p.block), None],
+                        anchors: [p.point, p.point + reach * p.direction()],
+                        rest_length: reach,
+                        stiffness: params.normal_stiffness,
+                        prestress: 0.0,
+                        capacity: p.cap,
+                        plastic: 0.0,
+                        force: 0.0,
+                        capacity_with_gravity: true,
                     }
                 }))
                 .collect(),
@@ -479,12 +509,16 @@ impl World {
             let e = (b - a) / length;
             let trial =
                 gravity * bar.prestress + bar.stiffness * (length - bar.rest_length - bar.plastic);
-            let force = if trial > bar.capacity {
-                // Yield: the bar lengthens plastically at the capacity.
-                bar.plastic = length
-                    - bar.rest_length
-                    - (bar.capacity - gravity * bar.prestress) / bar.stiffness;
+            let capacity = if bar.capacity_with_gravity {
+                gravity * bar.capacity
+            } else {
                 bar.capacity
+            };
+            let force = if trial > capacity {
+                // Yield: the bar lengthens plastically at the capacity.
+                bar.plastic =
+                    length - bar.rest_length - (capacity - gravity * bar.prestress) / bar.stiffness;
+                capacity
             } else {
                 trial.max(0.0)
             };

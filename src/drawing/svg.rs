@@ -103,6 +103,8 @@ pub mod colours {
     pub const TIE: RGBColor = RGBColor(0x37, 0x47, 0x4F);
     /// Bonded strips.
     pub const STRIP: RGBColor = RGBColor(0x00, 0x89, 0x7B);
+    /// The fill's passive resistance: the faces against the fill and their reactions.
+    pub const PASSIVE: RGBColor = RGBColor(0x8D, 0x5A, 0x2B);
 }
 
 use colours::*;
@@ -161,6 +163,11 @@ pub struct Drawing<'a> {
     pub strips: &'a [crate::model::Strip],
     /// Their forces at collapse (`StaticResult::strips`): debonded joints are marked.
     pub strip_forces: &'a [crate::model::StripForce],
+    /// The fill's passive faces (`Model::passive`), drawn along the face.
+    pub passive: &'a [crate::model::Passive],
+    /// Their reactions at collapse (`StaticResult::passive`): an arrow out of the fill, its
+    /// length in proportion to the reaction (solid at the cap, light below it).
+    pub passive_forces: &'a [crate::model::PassiveForce],
 }
 
 impl<'a> Drawing<'a> {
@@ -369,6 +376,16 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             "bonded strip"
         };
         legend.push((Glyph::Line(STRIP, 4, false), words.into()));
+    }
+    if !drawing.passive.is_empty() {
+        let words = if crate::interaction::passive::governs(drawing.passive_forces) {
+            "face against the fill; arrow: its passive reaction at collapse (solid: at its cap, governing)"
+        } else if drawing.passive_forces.iter().any(|f| f.force > 0.0) {
+            "face against the fill; arrow: its passive reaction at collapse"
+        } else {
+            "face against the fill (passive resistance)"
+        };
+        legend.push((Glyph::Line(PASSIVE, 4, false), words.into()));
     }
     if !drawing.ties.is_empty() {
         let words = if drawing.tie_forces.is_empty() {
@@ -587,6 +604,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     }
     if !drawing.strips.is_empty() {
         svg.raw("strips", &strips_svg(assembly, drawing, &frame));
+    }
+    if !drawing.passive.is_empty() {
+        svg.raw("passive", &passive_svg(drawing, &frame));
     }
 
     // Everything drawn so far that the seismic arrow should not cover, in pixels.
@@ -1511,6 +1531,48 @@ fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
                 hex(STRIP)
             ));
         }
+    }
+    text
+}
+
+/// The fill's passive faces: a line along each face under the level, and at collapse an
+/// arrow from the reaction point out of the fill, up to 40 px for the largest reaction, solid
+/// where the reaction is at its cap.
+fn passive_svg(drawing: &Drawing, frame: &Frame) -> String {
+    let mut text = String::new();
+    for p in drawing.passive {
+        let (a, b) = (frame.pxf(p.a), frame.pxf(p.b));
+        text.push_str(&format!(
+            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" stroke-width=\"4\" stroke-linecap=\"round\" stroke-opacity=\"0.8\"/>\n",
+            a.0,
+            a.1,
+            b.0,
+            b.1,
+            hex(PASSIVE)
+        ));
+    }
+    let largest = drawing
+        .passive_forces
+        .iter()
+        .fold(0.0_f64, |m, f| m.max(f.force));
+    if largest <= 0.0 {
+        return text;
+    }
+    for (p, f) in drawing.passive.iter().zip(drawing.passive_forces) {
+        if f.force <= 1e-9 * largest {
+            continue;
+        }
+        let tip = frame.pxf(p.point);
+        // The reaction pushes toward -into: the arrow comes from the fill's side (+into in
+        // the drawing's x, which grows to the right as the model's does).
+        let len = 8.0 + 32.0 * f.force / largest;
+        let tail = (tip.0 + p.into * len, tip.1);
+        let colour = if f.yielded {
+            PASSIVE
+        } else {
+            RGBColor(0xC8, 0xA8, 0x8A)
+        };
+        text.push_str(&arrow_svg(tail, tip, colour, 2.0, 8.0));
     }
     text
 }

@@ -17,17 +17,21 @@
 //! - [`tie`]: tie rods, a force between two anchor points in tension only, bounded by its
 //!   prestress and its capacity;
 //! - [`strip`]: bonded strips, a tension at a joint's reinforced end up to the strip's
-//!   capacity.
+//!   capacity;
+//! - [`passive`]: the fill's passive resistance, a one-sided horizontal reaction on a face
+//!   against the fill up to its mobilised passive force.
 //!
 //! A new interaction is one more file here and one more loop in the methods that take it; a
 //! method that cannot represent a kind refuses the model by a typed reason.
 
 pub mod contact;
 pub mod crushing;
+pub mod passive;
 pub mod strip;
 pub mod tie;
 
 pub use crushing::Strength;
+pub use passive::{Passive, PassiveForce};
 pub use strip::{Strip, StripForce};
 pub use tie::{Anchor, Tie, TieForce};
 

@@ -799,6 +799,11 @@ pub fn continuous(
             count: model.strips.len(),
         });
     }
+    if !model.passive.is_empty() {
+        return Err(KinematicError::Passive {
+            count: model.passive.len(),
+        });
+    }
     if model.strength.is_finite() {
         return Err(KinematicError::FiniteStrength {
             compressive_strength: model.strength.compressive,

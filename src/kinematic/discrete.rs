@@ -92,6 +92,33 @@ pub(crate) struct Chain {
     /// Bonded strips: the tensile capacity at each joint's ends `[p1, p2]` (N), empty
     /// without strips.
     strips: Vec<[f64; 2]>,
+    /// The fill's passive faces, with the place of their blocks along the chain (as a tie's
+    /// anchors), empty without `[fill] passive`.
+    passive: Vec<(crate::model::Passive, usize)>,
+}
+
+/// The twist of the block after `slot` chain joints (see [`ChainTie`]) in the motion `m` of
+/// the active joints `js`: the running sum of the relative twists before it; the bodies
+/// before the first active joint, and after the last on a two-support chain, are fixed.
+fn twist_at_slot(
+    slot: Option<usize>,
+    js: &[usize],
+    m: &super::Motion,
+    closed: bool,
+) -> super::Twist {
+    let Some(slot) = slot else { return [0.0; 3] };
+    // Active joints before the block.
+    let k = js.partition_point(|&j| j < slot);
+    if k == 0 || (closed && k == js.len()) {
+        return [0.0; 3];
+    }
+    let mut t = [0.0; 3];
+    for r in &m.rel[..k] {
+        for (tc, rc) in t.iter_mut().zip(r) {
+            *tc += rc;
+        }
+    }
+    t
 }
 
 /// A tie rod of a chain: the tie, and for each anchor (from, to) the number of chain joints
@@ -110,22 +137,7 @@ impl ChainTie {
     /// twists; the bodies before the first active joint, and after the last on a two-support
     /// chain, are fixed.
     fn dissipation(&self, js: &[usize], m: &super::Motion, closed: bool) -> f64 {
-        let twist_of = |slot: Option<usize>| -> super::Twist {
-            let Some(slot) = slot else { return [0.0; 3] };
-            // Active joints before the block.
-            let k = js.partition_point(|&j| j < slot);
-            if k == 0 || (closed && k == js.len()) {
-                return [0.0; 3];
-            }
-            let mut t = [0.0; 3];
-            for r in &m.rel[..k] {
-                for (tc, rc) in t.iter_mut().zip(r) {
-                    *tc += rc;
-                }
-            }
-            t
-        };
-        let twists = [twist_of(self.slots[0]), twist_of(self.slots[1])];
+        let twists = self.slots.map(|s| twist_at_slot(s, js, m, closed));
         let rate = self.tie.elongation_rate(|block, q| {
             let t = if block == self.tie.from.block {
                 twists[0]
@@ -175,6 +187,7 @@ impl Chain {
                 }
                 s
             },
+            passive: model.passive.iter().map(|p| (*p, p.block + 1)).collect(),
         }
     }
 
@@ -207,6 +220,7 @@ impl Chain {
             closed: true,
             ties: Vec::new(),
             strips: Vec::new(),
+            passive: Vec::new(),
         }
     }
 
@@ -242,6 +256,11 @@ impl Chain {
             } else {
                 keep.iter().map(|&j| self.strips[j]).collect()
             },
+            passive: self
+                .passive
+                .iter()
+                .map(|&(p, s)| (p, keep.partition_point(|&j| j < s)))
+                .collect(),
         }
     }
 
@@ -296,6 +315,12 @@ impl Chain {
                 g += self.strip_dissipation(j, m.rel[k]);
             }
         }
+        // The fill's passive faces (`crate::interaction::passive`): the cap times the rate
+        // at which the face's point moves into the fill.
+        for (face, slot) in &self.passive {
+            let t = twist_at_slot(Some(*slot), &js[..count], &m, self.closed);
+            g += face.dissipation(super::velocity(t, face.point).x);
+        }
         Some((ax, g, m))
     }
 
@@ -317,10 +342,11 @@ impl Chain {
             .sum()
     }
 
-    /// Whether the chain has tie rods or bonded strips (the searches' closed forms then hand
-    /// every admissible mechanism to [`Chain::evaluate`], which adds their dissipation).
+    /// Whether the chain has tie rods, bonded strips or passive fill (the searches' closed
+    /// forms then hand every admissible mechanism to [`Chain::evaluate`], which adds their
+    /// dissipation).
     fn has_dissipation(&self) -> bool {
-        !self.ties.is_empty() || !self.strips.is_empty()
+        !self.ties.is_empty() || !self.strips.is_empty() || !self.passive.is_empty()
     }
 }
 
@@ -757,6 +783,13 @@ fn certify_held(
             .map(|k| {
                 let r = super::rot(points[k]);
                 chain.strip_dissipation(js[k], [c[k] * r[0], c[k] * r[1], c[k] * r[2]])
+            })
+            .sum::<f64>()
+        + chain
+            .passive
+            .iter()
+            .map(|(face, slot)| {
+                face.dissipation(super::velocity(twist_of(Some(*slot)), face.point).x)
             })
             .sum::<f64>();
     if ax <= 0.0 {

@@ -29,6 +29,8 @@
 //! (the support function of `[P, C]`): `t_k >= C de_k`, `t_k >= P de_k`. Bonded strips
 //! (`crate::interaction::strip`) dissipate `F max(dn, 0) = F dn` at their reinforced end,
 //! which admissibility keeps opening or closed (`dn >= 0`), so their dissipation is linear.
+//! The fill's passive faces (`crate::interaction::passive`) dissipate `P max(v_in, 0)` at the
+//! rate `v_in` their point moves into the fill: `t_k >= P v_in`, `t_k >= 0`.
 //!
 //! The action's power `A` (the power of what lambda multiplies, [`LoadCase::variable`]) is
 //! normalised, `A = 1`, and the work balance `G + D` (`G = -` the power of the permanent loads
@@ -198,7 +200,7 @@ impl Program {
         let fs = loads.force_scale();
         let centroids: Vec<Vec2> = (0..nb).map(|i| loads.reference(i)).collect();
         let nt = model.ties.len();
-        let columns = 3 * nb + nt;
+        let columns = 3 * nb + nt + model.passive.len();
         let rel = |expr: &mut Vec<(usize, f64)>, j: usize, dir: Vec2, point: Vec2, f: f64| {
             let jt = &assembly.joints[j];
             velocity_along(expr, &centroids, ls, jt.to, dir, point, f);
@@ -279,6 +281,19 @@ impl Program {
             for (c, v) in dn {
                 q[c] += s.capacity / fs * v;
             }
+        }
+        // The fill's passive faces: t_k >= P (into . v(point)) and t_k >= 0 (over the force
+        // scale), the support function of the reaction's interval [0, P].
+        for (k, p) in model.passive.iter().enumerate() {
+            let col = 3 * nb + nt + k;
+            q[col] = 1.0;
+            let mut vin = Vec::new();
+            let into = Vec2::new(p.into, 0.0);
+            velocity_along(&mut vin, &centroids, ls, Some(p.block), into, p.point, 1.0);
+            let mut row = vec![(col, 1.0)];
+            row.extend(vin.iter().map(|&(c, v)| (c, -p.cap / fs * v)));
+            rows.nonnegative(&row);
+            rows.nonnegative(&[(col, 1.0)]);
         }
         // Clarabel's form: the zero cone's rows, then the nonnegative cone's.
         let neq = rows.b_eq.len();
@@ -421,7 +436,12 @@ pub fn virtual_work(model: &Model, twists: &[Twist], sign: f64) -> (f64, f64, f6
             s.dissipation((v(jt.to, p) - v(jt.from, p)).dot(&jt.normal()))
         })
         .sum();
-    (a, g, ties + strips)
+    let passive: f64 = model
+        .passive
+        .iter()
+        .map(|p| p.dissipation(v(Some(p.block), p.point).x))
+        .sum();
+    (a, g, ties + strips + passive)
 }
 
 /// A mechanism checked by its certificate.
@@ -616,6 +636,7 @@ pub fn analyse_general(
     let symmetric = model.loads.is_self_weight_only()
         && model.ties.is_empty()
         && model.strips.is_empty()
+        && model.passive.is_empty()
         && crate::statics::mirror_symmetric(assembly);
     let lower = if symmetric {
         Solved::Infeasible

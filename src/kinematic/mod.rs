@@ -116,6 +116,8 @@ pub enum KinematicError {
     Ties { count: usize },
     #[error("the continuous model's hinges fall anywhere on the ring, not at the joints bonded strips cross, so it does not model bonded strips ({count} joints crossed); it is not run rather than report the unreinforced arch's multiplier")]
     Strips { count: usize },
+    #[error("the continuous model's hinges fall anywhere on the ring, but the fill's passive reactions act on the voussoirs' extrados edges ({count} faces against the fill), so it does not model the fill's passive resistance; it is not run rather than report the multiplier without it")]
+    Passive { count: usize },
 }
 
 /// Default half-width (joints) of the window of the local search around each static hinge.

@@ -13,7 +13,9 @@ pub use loads::{AppliedLoad, LoadCase, LoadSource, SeismicMass, Spread, SpreadLo
 
 use crate::assembly::{Assembly, JointForce};
 pub use crate::interaction::tie::DEFAULT_ULTIMATE_STRAIN;
-pub use crate::interaction::{Anchor, Strength, Strip, StripForce, Tie, TieForce};
+pub use crate::interaction::{
+    Anchor, Passive, PassiveForce, Strength, Strip, StripForce, Tie, TieForce,
+};
 
 /// Blocks and joints with their loads.
 #[derive(Debug, Clone)]
@@ -27,6 +29,9 @@ pub struct Model {
     pub ties: Vec<Tie>,
     /// Bonded strips (`crate::interaction::strip`), one per joint a strip crosses.
     pub strips: Vec<Strip>,
+    /// The fill's passive resistance (`crate::interaction::passive`), one per face against
+    /// the fill; empty unless `[fill] passive = true`.
+    pub passive: Vec<Passive>,
 }
 
 impl Model {
@@ -39,6 +44,7 @@ impl Model {
             strength: Strength::rigid(),
             ties: Vec::new(),
             strips: Vec::new(),
+            passive: Vec::new(),
         }
     }
 
@@ -82,6 +88,13 @@ impl Model {
                 )));
             }
         }
+        for (k, p) in self.passive.iter().enumerate() {
+            if let Some(problem) = p.problem(self.assembly.blocks.len()) {
+                return Err(crate::error::AnalysisError::Other(format!(
+                    "passive face {k}: {problem}"
+                )));
+            }
+        }
         Ok(())
     }
 
@@ -116,16 +129,35 @@ impl Model {
                     ..*s
                 })
                 .collect(),
+            passive: self
+                .passive
+                .iter()
+                .map(|p| p.mirrored(self.assembly.blocks.len() - 1 - p.block))
+                .collect(),
         }
     }
 
     /// [`equilibrium_residual`] with the ties' forces `ties` and the strips' `strips` (N, in
-    /// their orders) as well.
+    /// their orders) as well, and no passive reaction.
     pub fn equilibrium_residual(
         &self,
         forces: &[JointForce],
         ties: &[f64],
         strips: &[f64],
+        lambda: f64,
+        sign: f64,
+    ) -> f64 {
+        self.residual_with_passive(forces, ties, strips, &[], lambda, sign)
+    }
+
+    /// [`Model::equilibrium_residual`] with the passive reactions `passive` (N, in face
+    /// order; missing ones are zero) as well.
+    pub fn residual_with_passive(
+        &self,
+        forces: &[JointForce],
+        ties: &[f64],
+        strips: &[f64],
+        passive: &[f64],
         lambda: f64,
         sign: f64,
     ) -> f64 {
@@ -149,8 +181,31 @@ impl Model {
                 ultimate_strain: f64::INFINITY,
             }
         });
-        let all: Vec<Tie> = self.ties.iter().cloned().chain(as_ties).collect();
-        let f: Vec<f64> = ties.iter().chain(strips).copied().collect();
+        // A passive reaction pushes its block away from the fill: a tie from its point to a
+        // point of the ground just out of the fill (the offset is along the force).
+        let scale = self.assembly.size();
+        let as_ground_ties = self.passive.iter().map(|p| Tie {
+            from: Anchor {
+                block: Some(p.block),
+                point: p.point,
+            },
+            to: Anchor {
+                block: None,
+                point: p.point + 1e-3 * scale * p.direction(),
+            },
+            capacity: p.cap,
+            prestress: 0.0,
+            ultimate_strain: f64::INFINITY,
+        });
+        let all: Vec<Tie> = self
+            .ties
+            .iter()
+            .cloned()
+            .chain(as_ties)
+            .chain(as_ground_ties)
+            .collect();
+        let passive = (0..self.passive.len()).map(|k| passive.get(k).copied().unwrap_or(0.0));
+        let f: Vec<f64> = ties.iter().chain(strips).copied().chain(passive).collect();
         residuals(&self.assembly, &self.loads, forces, &all, &f, lambda, sign)
     }
 }

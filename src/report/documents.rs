@@ -358,6 +358,9 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                 sec.line("bonded strips at collapse:");
                 sec.items(strip_items(model, &r.strips));
             }
+            if !model.passive.is_empty() {
+                sec.line(super::words::passive_words(&r.passive));
+            }
             sec.line(format!(
                 "equilibrium residual {} N ({} of the weight)",
                 sci(r.equilibrium_residual, 2),

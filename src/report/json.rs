@@ -383,6 +383,12 @@ pub struct AnalysisReport {
     /// then the analysis at its critical position.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roll: Option<RollReport>,
+    /// Added: the fill's passive faces (`[fill] passive = true`), with their reactions at
+    /// collapse; empty without passive fill.
+    pub passive: Vec<PassiveReport>,
+    /// Added: whether the fill's passive resistance governs the collapse (some face's
+    /// reaction is at its cap: the fill yields in the mechanism).
+    pub passive_governs: bool,
 }
 
 /// A moving load's multipliers at every position (`analyze --roll`, [`crate::roll`]).
@@ -416,6 +422,51 @@ impl RollReport {
             critical_position: r.critical.as_ref().map(|c| c.position),
             critical_grid_position: r.critical.as_ref().map(|c| c.grid_position),
         }
+    }
+}
+
+/// A face against the fill and its passive reaction at collapse.
+#[derive(Debug, Clone, Serialize)]
+pub struct PassiveReport {
+    /// The block (index in `blocks`) whose face lies against the fill.
+    pub block: usize,
+    /// The face's ends under the fill level (m).
+    pub from: [f64; 2],
+    pub to: [f64; 2],
+    /// Where the reaction acts (m): the centroid of the pressure diagram.
+    pub point: [f64; 2],
+    /// The direction the face moves into the fill: +1 (+x) or -1 (-x); the reaction pushes
+    /// the other way.
+    pub into: f64,
+    /// The largest reaction, m_p K_p sigma_v h (N).
+    pub cap: f64,
+    /// The reaction at collapse (N), null when the structure does not collapse.
+    pub force: Option<f64>,
+    /// Whether it is at its cap, null without collapse.
+    pub yielded: Option<bool>,
+}
+
+impl PassiveReport {
+    /// The passive faces of `model` with the reactions of `r`.
+    pub fn all(model: &Model, r: &StaticResult) -> Vec<PassiveReport> {
+        model
+            .passive
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let f = r.passive.get(k);
+                PassiveReport {
+                    block: p.block,
+                    from: xy(p.a),
+                    to: xy(p.b),
+                    point: xy(p.point),
+                    into: p.into,
+                    cap: p.cap,
+                    force: f.map(|f| f.force),
+                    yielded: f.map(|f| f.yielded),
+                }
+            })
+            .collect()
     }
 }
 
@@ -741,6 +792,8 @@ impl AnalysisReport {
             ties: TieReport::all(model, r),
             reinforcements: ReinforcementReport::all(scene, model, r),
             roll: None,
+            passive: PassiveReport::all(model, r),
+            passive_governs: crate::interaction::passive::governs(&r.passive),
         }
     }
 }

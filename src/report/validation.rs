@@ -74,6 +74,6 @@ pub fn document(cases: &[Case], version: &str) -> Document {
     doc.section("Not compared yet")
         .item("tilting-table tests of block portals, walls and arches on skewbacks: their published angles are not at hand here with the geometry they need")
         .item("the running-bond wall panel of Ferris & Tin-Loi (2001) under non-associative friction: not reproduced (docs/friction.md)")
-        .item("full-scale collapse tests of arch bridges (issue 29)");
+        .item("full-scale collapse tests of arch bridges (issue 29): the TRL reports' abstracts give the measured collapse loads but not the whole geometry a model needs (rise, ring thickness, fill depth, width between the parapets, unit weights), so none is modelled yet: Prestwood (TRRL RR110: brick segmental ring 220 mm thick, a line load across the full width at 1/4 span, a four-hinge mechanism at 228 kN) and Preston (RR110: elliptical sandstone ring 360 mm, crushing under the load at 2110 kN); Torksey (RR159: three-ring brick arch, span 4.90 m, 1080 kN at 1/4 span, snap-through of three hinges) and Shinafoot (RR159: rubble masonry, span 6.16 m, a four-hinge mechanism at 2524 kN); Strathmashie (RR201: rubble masonry, span 9.42 m, 1325 kN at 1/4 span) and Barlae (RR201: skew 29 deg, square span 8.53 m, 2900 kN). Each is to be modelled from its report (trl.co.uk/reports/RR110, RR159, RR201) with and without the fill's passive resistance (`[fill] passive`) and load spread");
     doc
 }

@@ -397,6 +397,14 @@ pub fn describe_loads(scene: &Scene, model: &Model) -> String {
                 num(d.surface(f.level))
             ));
         }
+        if let Some(p) = &f.passive {
+            parts.push(format!(
+                "the fill's passive resistance (phi = {} deg, K_p = {}, mobilisation {})",
+                num(p.friction.to_degrees()),
+                num(crate::interaction::passive::rankine_kp(p.friction)),
+                num(p.mobilisation)
+            ));
+        }
     }
     for v in &scene.vehicles {
         parts.push(format!(
@@ -641,5 +649,29 @@ pub fn conclusion_words(scene: &Scene, a: &crate::analysis::SceneAnalysis) -> St
             s
         }
         (Status::Collapse, None) => format!("The {what} collapses, with no multiplier found."),
+    }
+}
+
+/// What the fill's passive resistance does at collapse (`[fill] passive = true`): whether it
+/// governs (some face's reaction at its cap: the fill yields in the mechanism) and how much
+/// of it is mobilised.
+pub fn passive_words(forces: &[crate::model::PassiveForce]) -> String {
+    let at_cap = forces.iter().filter(|f| f.yielded && f.force > 0.0).count();
+    let total: f64 = forces.iter().map(|f| f.force).sum();
+    let cap: f64 = forces.iter().map(|f| f.cap).sum();
+    if crate::interaction::passive::governs(forces) {
+        format!(
+            "the fill's passive resistance GOVERNS: {at_cap} of {} faces against the fill push back at their cap (m_p K_p sigma_v h), {:.3} kN of {:.3} kN in all: the multiplier counts on the fill yielding there",
+            forces.len(),
+            total / 1e3,
+            cap / 1e3
+        )
+    } else {
+        format!(
+            "the fill's passive resistance does not govern: no face against the fill is at its cap ({} faces, {:.3} kN mobilised of {:.3} kN)",
+            forces.len(),
+            total / 1e3,
+            cap / 1e3
+        )
     }
 }

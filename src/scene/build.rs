@@ -92,7 +92,21 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
         depth: scene.material.depth,
     };
     let (assembly, layout) = structure(scene)?;
-    let (loads, ties) = placement::place(scene, &Placement::new(&assembly, layout))?;
+    let placement = Placement::new(&assembly, layout);
+    let (loads, ties) = placement::place(scene, &placement)?;
+    let passive = match &scene.fill {
+        Some(
+            fill @ super::FillSpec {
+                passive: Some(spec),
+                ..
+            },
+        ) => placement.passive_faces(
+            fill.level,
+            spec.coefficient() * fill.unit_weight * scene.material.depth,
+        ),
+        _ => Vec::new(),
+    };
+    drop(placement);
     let strips = super::reinforcements::strips(&scene.reinforcements, &assembly, &scene.origin)?;
     Ok(Model {
         assembly,
@@ -100,6 +114,7 @@ fn build_model(scene: &Scene) -> Result<Model, SceneError> {
         strength,
         ties,
         strips,
+        passive,
     })
 }
 

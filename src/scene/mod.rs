@@ -165,6 +165,27 @@ pub struct FillSpec {
     /// `spread_deg`, `spread`: [`spread`]).
     #[serde(flatten)]
     pub dispersal: spread::Dispersal,
+    /// The fill's passive resistance (`passive = true`), when switched on.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub passive: Option<PassiveSpec>,
+}
+
+/// `[fill] passive = true`: the fill resists the extrados moving into it
+/// (`crate::interaction::passive`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PassiveSpec {
+    /// The fill's angle of friction (radians, from `friction_deg`), 0 to < pi/2.
+    pub friction: f64,
+    /// The mobilised fraction of the passive pressure (`passive_mobilisation`), 0..1.
+    pub mobilisation: f64,
+}
+
+impl PassiveSpec {
+    /// The passive pressure per unit depth below the level and per unit unit weight:
+    /// `m_p K_p`.
+    pub fn coefficient(&self) -> f64 {
+        self.mobilisation * crate::interaction::passive::rankine_kp(self.friction)
+    }
 }
 
 /// The seismic action beyond its horizontal component.
@@ -600,7 +621,15 @@ const MATERIAL_KEYS: &[&str] = &[
     "compressive_strength",
     "tie_design_strength",
 ];
-const FILL_KEYS: &[&str] = &["level", "unit_weight", "seismic", "live"];
+const FILL_KEYS: &[&str] = &[
+    "level",
+    "unit_weight",
+    "seismic",
+    "live",
+    "passive",
+    "friction_deg",
+    "passive_mobilisation",
+];
 const ACTION_KEYS: &[&str] = &["kind"];
 const SEISMIC_KEYS: &[&str] = &["vertical_ratio"];
 /// The keys of a `[[loads]]` entry every type takes, and those each type adds.
@@ -1589,6 +1618,7 @@ fn parse_fill(
             "a fill is a permanent load and cannot be live: give a live load as [[loads]] with live = true",
         ));
     }
+    let passive = parse_passive(&mut s)?;
     s.finish("")?;
     if let Some(wall) = spandrel {
         if level <= wall.level {
@@ -1617,7 +1647,47 @@ fn parse_fill(
         unit_weight,
         seismic,
         dispersal,
+        passive,
     })
+}
+
+/// `[fill] passive`, `friction_deg` and `passive_mobilisation`: the fill's passive resistance
+/// (off by default; on, it needs the fill's angle of friction).
+fn parse_passive(s: &mut Section) -> Result<Option<PassiveSpec>, SceneError> {
+    let on = s.boolean("passive", false)?;
+    let friction_deg = s.opt_f64("friction_deg")?;
+    if let Some(phi) = friction_deg {
+        if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
+            return Err(s.out_of_range(
+                "friction_deg",
+                phi,
+                "the fill's angle of friction must be a number from 0 to below 90 (degrees)",
+            ));
+        }
+    }
+    let mobilisation = s
+        .opt_f64("passive_mobilisation")?
+        .unwrap_or(crate::interaction::passive::DEFAULT_MOBILISATION);
+    if !(mobilisation.is_finite() && (0.0..=1.0).contains(&mobilisation)) {
+        return Err(s.out_of_range(
+            "passive_mobilisation",
+            mobilisation,
+            "the mobilised fraction of the passive pressure must be a number from 0 to 1",
+        ));
+    }
+    if !on {
+        return Ok(None);
+    }
+    let Some(phi) = friction_deg else {
+        return Err(s.missing(
+            "friction_deg",
+            "the fill's angle of friction in degrees, which passive = true needs for K_p = tan^2(45 + phi/2)",
+        ));
+    };
+    Ok(Some(PassiveSpec {
+        friction: phi.to_radians(),
+        mobilisation,
+    }))
 }
 
 /// `[action]`: what lambda multiplies. A live action needs live loads, and takes no

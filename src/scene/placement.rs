@@ -33,6 +33,9 @@
 //!   there, a pier top or any other block top under the level is filled too;
 //! - a seismic load is also a seismic mass of weight `|force_y|` (point), `q * overlap` (line)
 //!   or its own weight (fill) at the same point;
+//! - with `[fill] passive = true`, the faces against the fill take the fill's passive reaction
+//!   ([`Placement::passive_faces`]): over the arch every extrados edge under the level, over
+//!   the user's blocks every face with fill just outside it;
 //! - a tie's anchor is the block that holds its point, as a point load's is (or the ground:
 //!   [`super::ties::anchor_ties`]);
 //! - a load standing on the structure: a vertical point load outside every block but in the
@@ -54,7 +57,7 @@ use super::{ties, LoadSpec, Scene};
 use crate::assembly::{Assembly, BlockKind};
 use crate::error::SceneError;
 use crate::geometry::{circular_segment, cross, polygon_area_centroid, ArchGeometry, Vec2};
-use crate::model::{AppliedLoad, LoadCase, LoadSource, Spread, SpreadLoad, Tie};
+use crate::model::{AppliedLoad, LoadCase, LoadSource, Passive, Spread, SpreadLoad, Tie};
 
 /// Where the parametric arch's blocks sit in its assembly (see `scene::build`).
 pub(super) struct ArchLayout {
@@ -467,16 +470,8 @@ impl<'a> Placement<'a> {
         };
         match self.structure {
             Structure::Arch(_) if !self.on_top() => self
-                .roof
-                .iter()
-                .filter_map(|e| {
-                    let block = e.block?;
-                    matches!(
-                        self.assembly.blocks[block].kind,
-                        BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
-                    )
-                    .then(|| region(block, e.a, e.b, e.arc))?
-                })
+                .extrados()
+                .filter_map(|(block, e)| region(block, e.a, e.b, e.arc))
                 .collect(),
             _ => {
                 let cuts = self.roof.iter().flat_map(|e| [e.a.x, e.b.x]).collect();
@@ -502,6 +497,92 @@ impl<'a> Placement<'a> {
                     .collect()
             }
         }
+    }
+
+    /// The rings' extrados edges among the roof edges, with their voussoirs (pier tops
+    /// carry no fill).
+    fn extrados(&self) -> impl Iterator<Item = (usize, &RoofEdge)> + '_ {
+        self.roof.iter().filter_map(|e| {
+            let block = e.block?;
+            matches!(
+                self.assembly.blocks[block].kind,
+                BlockKind::Voussoir(_) | BlockKind::BayVoussoir(..)
+            )
+            .then_some((block, e))
+        })
+    }
+
+    /// The faces against a fill of level `level` whose passive pressure per unit depth is
+    /// `coefficient` (N/m^3, `m_p K_p gamma d`; see `crate::interaction::passive`): over the
+    /// rings, each voussoir's extrados edge (its chord; the horizontal force of a pressure
+    /// depends on the ends' heights alone); over the user's blocks or a spandrel wall, each
+    /// face of a block with fill just outside it (above the highest roof edge there, below the
+    /// level, in no other block), so a block's side beside the fill is one too. Faces that
+    /// face straight up or down take no horizontal reaction and are left out.
+    pub(super) fn passive_faces(&self, level: f64, coefficient: f64) -> Vec<Passive> {
+        match self.structure {
+            Structure::Arch(_) if !self.on_top() => self
+                .extrados()
+                .filter_map(|(block, e)| {
+                    // Left to right on an upward-facing edge: rising, its outward normal
+                    // points to -x; falling, to +x.
+                    let into = if e.b.y > e.a.y { -1.0 } else { 1.0 };
+                    Passive::face(block, e.a, e.b, into, level, coefficient)
+                })
+                .collect(),
+            _ => {
+                // How far outside a face its test point lies: beyond the joint tolerance (so
+                // a neighbour across a joint holds it), a small part of the face.
+                let eps = (4.0 * self.tol).max(1e-9 * self.assembly.size());
+                let mut faces = Vec::new();
+                for (i, b) in self.assembly.blocks.iter().enumerate() {
+                    let poly = &b.polygon;
+                    let orient = orientation(poly);
+                    let m = poly.len();
+                    for k in 0..m {
+                        let (p, q) = (poly[k], poly[(k + 1) % m]);
+                        let d = q - p;
+                        let len = d.norm();
+                        if len <= self.tol {
+                            continue;
+                        }
+                        // The outward normal of a counter-clockwise outline is (dy, -dx).
+                        let n = orient * Vec2::new(d.y, -d.x) / len;
+                        if n.x.abs() <= 1e-9 {
+                            continue;
+                        }
+                        let Some(face) = Passive::face(i, p, q, n.x.signum(), level, coefficient)
+                        else {
+                            continue;
+                        };
+                        let reach = eps.min(0.1 * (face.b - face.a).norm());
+                        let out = 0.5 * (face.a + face.b) + reach * n;
+                        if self.in_fill(out, level, i) {
+                            faces.push(face);
+                        }
+                    }
+                }
+                faces
+            }
+        }
+    }
+
+    /// Whether `p` lies in the fill up to `level`: below it, above the highest roof edge over
+    /// its x (the fill rests on the structure's top), and in no block but `own`.
+    fn in_fill(&self, p: Vec2, level: f64, own: usize) -> bool {
+        if p.y >= level || self.fixed_at(p).is_some() {
+            return false;
+        }
+        let under = self
+            .roof
+            .iter()
+            .filter(|e| e.a.x <= p.x && p.x <= e.b.x)
+            .map(|e| e.at(p.x).y)
+            .fold(f64::NEG_INFINITY, f64::max);
+        // No roof edge over its x: no fill there (the fill rests on the structure's top).
+        under.is_finite()
+            && under < p.y
+            && !(0..self.assembly.blocks.len()).any(|j| j != own && self.contains(j, p))
     }
 
     /// The pieces `(x0, x1, edge)` between consecutive `cuts` (sorted here), each with the
@@ -626,7 +707,9 @@ pub(super) fn place(
         let gamma = fill.unit_weight * scene.material.depth;
         case.add_spread(SpreadLoad::fill(fill.level, gamma, fill.seismic));
         let regions = placement.fill_regions(fill.level);
-        if regions.is_empty() {
+        // A fill over fixed blocks alone weighs on no block, but it may still lie against a
+        // block's side (its passive resistance).
+        if regions.is_empty() && !placement.roof.iter().any(|e| e.a.y.min(e.b.y) < fill.level) {
             // Over the parametric arch the level is not below the crown (checked as the scene
             // is read), so some voussoir always has a region.
             return Err(SceneError::OutOfRange {

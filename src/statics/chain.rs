@@ -798,6 +798,9 @@ pub enum Declined {
     /// Bonded strips carry tension across joints, which the chain program's no-tension rows
     /// do not allow.
     Strips,
+    /// The fill's passive reactions are forces from the ground on single blocks, unknowns
+    /// the chain's three redundants do not describe.
+    Passive,
 }
 
 impl Declined {
@@ -808,6 +811,9 @@ impl Declined {
             }
             Declined::Ties => "the reduced static program does not model tie rods",
             Declined::Strips => "the reduced static program does not model bonded strips",
+            Declined::Passive => {
+                "the reduced static program does not model the fill's passive resistance"
+            }
         }
     }
 }
@@ -820,6 +826,8 @@ pub fn declines(model: &Model) -> Option<Declined> {
         Some(Declined::Ties)
     } else if !model.strips.is_empty() {
         Some(Declined::Strips)
+    } else if !model.passive.is_empty() {
+        Some(Declined::Passive)
     } else {
         None
     }

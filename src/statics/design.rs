@@ -62,6 +62,7 @@ fn program(
             model.strength,
             &model.ties,
             &model.strips,
+            &model.passive,
             sign,
             &design,
             crate::interaction::contact::ShearLimit::Coulomb,

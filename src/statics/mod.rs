@@ -31,7 +31,7 @@ pub use settings::{Program, StaticSettings};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
-use crate::model::{Model, Strength, StripForce, TieForce};
+use crate::model::{Model, PassiveForce, Strength, StripForce, TieForce};
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use std::time::Instant;
 
@@ -86,6 +86,9 @@ pub struct StaticResult {
     /// The bonded strips' forces at collapse, in strip order (empty without strips or
     /// collapse).
     pub strips: Vec<StripForce>,
+    /// The fill's passive reactions at collapse, in face order (empty without
+    /// `[fill] passive` or collapse).
+    pub passive: Vec<PassiveForce>,
 }
 
 /// Run the static analysis of `model` (an assembly and its loads).
@@ -122,6 +125,7 @@ pub fn analyse_full(
         strength,
         &model.ties,
         &model.strips,
+        &model.passive,
         Objective::MaxLambda { sign, cap: None },
     );
     let mut sol = run(&problem, settings)?;
@@ -138,6 +142,7 @@ pub fn analyse_full(
             strength,
             &model.ties,
             &model.strips,
+            &model.passive,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
@@ -155,8 +160,15 @@ pub fn analyse_full(
             let forces = read_forces(assembly, &problem, &sol.x);
             let tension = read_ties(&problem, &sol.x);
             let strip_tension = read_strips(&problem, &sol.x);
-            let residual =
-                model.equilibrium_residual(&forces, &tension, &strip_tension, lambda, sign);
+            let passive = read_passive(&problem, &sol.x);
+            let residual = model.residual_with_passive(
+                &forces,
+                &tension,
+                &strip_tension,
+                &passive,
+                lambda,
+                sign,
+            );
             check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
             result = result.read_solution(
                 assembly,
@@ -169,7 +181,7 @@ pub fn analyse_full(
                 || read_mechanism(assembly, &problem, &sol.z),
             );
             if result.status == Status::Collapse {
-                result.set_tensions(model, &tension, &strip_tension);
+                result.set_tensions(model, &tension, &strip_tension, &passive);
                 // A joint whose contact resultant sits at one end is no hinge while a strip
                 // on its other end holds below its capacity: it cannot open there.
                 result.hinges.retain(|h| {
@@ -218,12 +230,14 @@ pub(crate) fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
     })
 }
 
-/// Whether `model` is its own mirror image under self-weight alone, with no ties or strips: its
+/// Whether `model` is its own mirror image under self-weight alone, with no ties, strips or
+/// passive fill: its
 /// multipliers toward the right and the left are then the same.
 pub fn symmetric_self_weight(model: &Model) -> bool {
     model.loads.is_self_weight_only()
         && model.ties.is_empty()
         && model.strips.is_empty()
+        && model.passive.is_empty()
         && mirror_symmetric(&model.assembly)
 }
 
@@ -241,6 +255,7 @@ fn stands_at_zero(
         || (model.loads.is_self_weight_only()
             && model.ties.is_empty()
             && model.strips.is_empty()
+            && model.passive.is_empty()
             && mirror_symmetric(&model.assembly))
     {
         return Ok(result);
@@ -273,8 +288,15 @@ fn stands_at_zero(
 }
 
 impl StaticResult {
-    /// The ties' and the strips' forces from their tensions (N, in their order).
-    fn set_tensions(&mut self, model: &Model, ties: &[f64], strips: &[f64]) {
+    /// The ties' and the strips' forces from their tensions, and the passive reactions (N, in
+    /// their order).
+    fn set_tensions(&mut self, model: &Model, ties: &[f64], strips: &[f64], passive: &[f64]) {
+        self.passive = model
+            .passive
+            .iter()
+            .zip(passive)
+            .map(|(p, &f)| p.force_of(f))
+            .collect();
         self.ties = model
             .ties
             .iter()
@@ -313,6 +335,7 @@ impl StaticResult {
             model,
             ties: Vec::new(),
             strips: Vec::new(),
+            passive: Vec::new(),
         }
     }
 
@@ -467,6 +490,14 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
                 m: 0.5 * (c2 - c1) * jt.length(),
             }
         })
+        .collect()
+}
+
+/// The passive reactions (N), in face order.
+fn read_passive(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
+    p.passive_columns
+        .iter()
+        .map(|&c| x[c] * p.force_scale)
         .collect()
 }
 
@@ -631,6 +662,7 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
         model.strength,
         &model.ties,
         &model.strips,
+        &model.passive,
         Objective::MinTension,
     );
     let sol = run(&problem, settings)?;
@@ -646,10 +678,11 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
     let tau = sol.x[0];
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
-    let residual = model.equilibrium_residual(
+    let residual = model.residual_with_passive(
         &forces,
         &read_ties(&problem, &sol.x),
         &read_strips(&problem, &sol.x),
+        &read_passive(&problem, &sol.x),
         0.0,
         1.0,
     );

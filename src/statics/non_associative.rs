@@ -41,8 +41,8 @@
 
 use super::problem::{Objective, StaticProblem};
 use super::{
-    check_almost_solved, problem_size, read_forces, read_mechanism, read_strips, read_ties, run,
-    slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
+    check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips,
+    read_ties, run, slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
 };
 use crate::assembly::JointForce;
 use crate::error::AnalysisError;
@@ -184,6 +184,7 @@ fn solve_fixed(
             model.strength,
             &model.ties,
             &model.strips,
+            &model.passive,
             ShearLimit::Fixed(capacity),
             objective,
         )
@@ -217,7 +218,9 @@ fn solve_fixed(
     let forces = read_forces(&model.assembly, &problem, x);
     let tension = read_ties(&problem, x);
     let strip_tension = read_strips(&problem, x);
-    let residual = model.equilibrium_residual(&forces, &tension, &strip_tension, lambda, sign);
+    let passive = read_passive(&problem, x);
+    let residual =
+        model.residual_with_passive(&forces, &tension, &strip_tension, &passive, lambda, sign);
     check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
     let mut result = StaticResult::unsolved(
         settings,
@@ -238,7 +241,7 @@ fn solve_fixed(
         || read_mechanism(&model.assembly, &problem, &sol.z),
     );
     result.lambda = Some(lambda);
-    result.set_tensions(model, &tension, &strip_tension);
+    result.set_tensions(model, &tension, &strip_tension, &passive);
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(Some(Iterate {
         lambda,

@@ -34,7 +34,7 @@
 
 use crate::assembly::Assembly;
 use crate::interaction::contact::{self, ShearLimit};
-use crate::interaction::{crushing, Rows, Strip, Tie};
+use crate::interaction::{crushing, Passive, Rows, Strip, Tie};
 use crate::model::{LoadCase, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
@@ -56,6 +56,8 @@ pub struct StaticProblem {
     pub tie_columns: Vec<usize>,
     /// Column of each strip's tension (over the force scale), in strip order.
     pub strip_columns: Vec<usize>,
+    /// Column of each passive reaction (over the force scale), in face order.
+    pub passive_columns: Vec<usize>,
     /// Number of equality rows (3 per block).
     pub equality_rows: usize,
     /// Number of inequality rows.
@@ -100,17 +102,20 @@ impl StaticProblem {
         strength: Strength,
         objective: Objective,
     ) -> StaticProblem {
-        Self::with_interactions(assembly, loads, strength, &[], &[], objective)
+        Self::with_interactions(assembly, loads, strength, &[], &[], &[], objective)
     }
 
     /// The program with every interaction: the contacts, their crushing cones when
-    /// `strength` is finite, and the tie rods `ties`.
+    /// `strength` is finite, the tie rods `ties`, the strips `strips` and the fill's passive
+    /// reactions `passive`.
+    #[allow(clippy::too_many_arguments)]
     pub fn with_interactions(
         assembly: &Assembly,
         loads: &LoadCase,
         strength: Strength,
         ties: &[Tie],
         strips: &[Strip],
+        passive: &[Passive],
         objective: Objective,
     ) -> StaticProblem {
         Self::with_shear_limit(
@@ -119,6 +124,7 @@ impl StaticProblem {
             strength,
             ties,
             strips,
+            passive,
             ShearLimit::Coulomb,
             objective,
         )
@@ -126,12 +132,14 @@ impl StaticProblem {
 
     /// [`StaticProblem::with_interactions`] with the contacts' shear bounded by `shear`
     /// (Coulomb's law, or fixed capacities: the non-associative iteration's programs).
+    #[allow(clippy::too_many_arguments)]
     pub fn with_shear_limit(
         assembly: &Assembly,
         loads: &LoadCase,
         strength: Strength,
         ties: &[Tie],
         strips: &[Strip],
+        passive: &[Passive],
         shear: ShearLimit<'_>,
         objective: Objective,
     ) -> StaticProblem {
@@ -141,12 +149,13 @@ impl StaticProblem {
             Objective::LeastFriction { sign, .. } => (sign, None, false),
         };
         let mut rows = Rows::new(assembly, loads.force_scale(), relax);
-        let (friction_joints, tie_columns, strip_columns) = program_rows(
+        let (friction_joints, tie_columns, strip_columns, passive_columns) = program_rows(
             assembly,
             loads,
             strength,
             ties,
             strips,
+            passive,
             sign,
             &[],
             shear,
@@ -169,10 +178,12 @@ impl StaticProblem {
             }
             let mut p = Self::assemble_with(rows, q, friction_joints, tie_columns);
             p.strip_columns = strip_columns;
+            p.passive_columns = passive_columns;
             return p;
         }
         let mut p = Self::assemble(rows, friction_joints, tie_columns, relax);
         p.strip_columns = strip_columns;
+        p.passive_columns = passive_columns;
         p
     }
 
@@ -194,8 +205,8 @@ impl StaticProblem {
 /// loads (the action toward `sign` times column 0, the permanent loads on the right-hand
 /// side) and every interaction. `design[k]`, when given for tie k, is the column of its
 /// capacity, an unknown of a retrofit design (`crate::statics::design`); `shear` bounds the
-/// contacts' shear ([`ShearLimit`]). Returns the joints with friction rows, the ties' columns
-/// and the strips'.
+/// contacts' shear ([`ShearLimit`]). Returns the joints with friction rows, the ties' columns,
+/// the strips' and the passive reactions'.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn program_rows(
     assembly: &Assembly,
@@ -203,11 +214,12 @@ pub(crate) fn program_rows(
     strength: Strength,
     ties: &[Tie],
     strips: &[Strip],
+    passive: &[Passive],
     sign: f64,
     design: &[Option<usize>],
     shear: ShearLimit<'_>,
     rows: &mut Rows,
-) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+) -> (Vec<usize>, Vec<usize>, Vec<usize>, Vec<usize>) {
     let relax = rows.relax;
     let fs = rows.force_scale;
     let ls = rows.length_scale;
@@ -250,7 +262,8 @@ pub(crate) fn program_rows(
             .iter()
             .map(|s| s.static_rows(assembly, rows))
             .collect();
-        (friction_joints, tie_columns, strip_columns)
+        let passive_columns = passive.iter().map(|p| p.static_rows(rows)).collect();
+        (friction_joints, tie_columns, strip_columns, passive_columns)
     }
 }
 
@@ -306,6 +319,7 @@ impl StaticProblem {
             friction_joints,
             tie_columns,
             strip_columns: Vec::new(),
+            passive_columns: Vec::new(),
             equality_rows,
             inequality_rows,
             cone_rows,

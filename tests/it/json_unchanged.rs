@@ -45,6 +45,8 @@ const ADDED: &[&str] = &[
     "non_associative_note",
     "lambda_governing",
     "dem",
+    "passive",
+    "passive_governs",
 ];
 
 /// The kinematic fields of an assembly that is not a chain as the baseline wrote them, before

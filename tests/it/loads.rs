@@ -557,6 +557,7 @@ fn single_block_overturns_at_b_over_h_plus_r_b() {
                 strength: voussoir::model::Strength::rigid(),
                 ties: Vec::new(),
                 strips: Vec::new(),
+                passive: Vec::new(),
             };
             // Overturning about the toe (b/2, 0): lambda W h/2 + r lambda W b/2 = W b/2.
             let expected = b / (h + r * b);

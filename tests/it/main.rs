@@ -33,6 +33,7 @@ mod live_loads;
 mod loads;
 mod local_search;
 mod non_associative;
+mod passive_fill;
 mod piers;
 mod proptest_scenes;
 mod records;

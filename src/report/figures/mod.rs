@@ -74,6 +74,7 @@ pub fn scene(scene: &Scene, model: &crate::model::Model) -> Result<Figure, SvgEr
         loads: Some(&model.loads),
         ties: &model.ties,
         strips: &model.strips,
+        passive: &model.passive,
         ..Default::default()
     };
     of_drawing("structure", &model.assembly, &drawing)
@@ -116,6 +117,8 @@ pub fn analysis_svg(
         tie_forces: &result.ties,
         strips: &a.model.strips,
         strip_forces: &result.strips,
+        passive: &a.model.passive,
+        passive_forces: &result.passive,
         ..Default::default()
     };
     structure_svg(&a.model.assembly, &drawing)

@@ -615,4 +615,14 @@ fn chain_program_with_ties_equals_the_full_program() {
     // The grid holds both kinds of tie and a structure that cannot stand.
     assert!(yielded[0] >= 10 && yielded[1] >= 10, "{yielded:?}");
     assert!(cannot_stand >= 2, "{cannot_stand}");
+    // With crushing the chain program declines ties (its working set on the crushing laws
+    // has the redundants alone), and the full program answers.
+    let crushing = tied_portal(1500.0, -0.05).replace(
+        "friction = inf",
+        "friction = inf\ncompressive_strength = 5e6",
+    );
+    let model = voussoir::scene::build(&scene(&crushing)).expect("builds");
+    assert_eq!(statics::declines(&model), Some(statics::Declined::Ties));
+    let r = statics::analyse(&model, &StaticSettings::default()).expect("full program");
+    assert_eq!(r.status, Status::Collapse);
 }

@@ -19,6 +19,20 @@
 //! rotation about p2 (or p1) for a no-tension row, a dilatant slip for a friction row; summed
 //! from the ground, they are the blocks' velocities in the collapse mechanism.
 //!
+//! **Tie rods** (issue 24) keep this structure: a tie's tension `T` (between its prestress
+//! and its capacity) pulls its `from` block along `e` and its `to` block back, so it is one
+//! more load on those blocks, and every joint past an anchored block carries `T` times that
+//! pull in its running sum. Each tie adds one unknown `T_t` (over the force scale) and its two
+//! bounds as rows; the active set then works in `4 + ties` unknowns, and returns among the
+//! optimal equilibria the one whose ties carry least (a small weight on the tensions in the
+//! objective, its optimum checked to be the largest multiplier's). **Bonded strips** need no
+//! unknown without crushing: a strip's tension `0 <= S <= F` at a joint end only adds to that
+//! end's contact force and to the contact's normal force (the joint transmits the same total
+//! force), so `S = F` satisfies every row any `S` does, and a strip is `F` added to the
+//! constants of its end's no-tension row and of the joint's Coulomb rows; the reported
+//! tension is the least the joint's equilibrium asks for. With crushing (cones bound the
+//! contact force from above) ties and strips are declined ([`declines`]).
+//!
 //! Lengths are divided by the structure's size and forces by the loads' scale, as in the full
 //! program, and Clarabel solves it (a linear program over the nonnegative cone).
 
@@ -507,19 +521,20 @@ impl ChainProgram {
     }
 
     /// Value of row `i` at `x`, and the sum of the magnitudes of its terms (its scale).
-    #[inline(always)]
     fn row_value(&self, i: usize, x: &[f64]) -> (f64, f64) {
+        self.row_value_split(i, &[x[0], x[1], x[2], x[3]], &x[4..])
+    }
+
+    /// [`Self::row_value`] with `x` split into the redundants `x4` and the tensions `xt`
+    /// (split once by the active set's scan of every row).
+    #[inline(always)]
+    fn row_value_split(&self, i: usize, x4: &[f64; 4], xt: &[f64]) -> (f64, f64) {
         let (coef, c) = &self.dense[i];
-        let x4 = [x[0], x[1], x[2], x[3]];
-        let mut g: f64 = coef.iter().zip(&x4).map(|(a, b)| a * b).sum::<f64>();
-        let mut size: f64 = coef
-            .iter()
-            .zip(&x4)
-            .map(|(a, b)| (a * b).abs())
-            .sum::<f64>();
+        let mut g: f64 = coef.iter().zip(x4).map(|(a, b)| a * b).sum::<f64>();
+        let mut size: f64 = coef.iter().zip(x4).map(|(a, b)| (a * b).abs()).sum::<f64>();
         let nt = self.ties;
         if nt > 0 {
-            for (a, b) in self.tie_coef[i * nt..(i + 1) * nt].iter().zip(&x[4..]) {
+            for (a, b) in self.tie_coef[i * nt..(i + 1) * nt].iter().zip(xt) {
                 g += a * b;
                 size += (a * b).abs();
             }
@@ -625,8 +640,8 @@ impl ChainProgram {
         })
     }
 
-    /// The optimum by a dual active-set (dual simplex) method on the four unknowns: a basis of
-    /// four tight rows whose multipliers are non-negative (so no mechanism of the basis can
+    /// The optimum by a dual active-set (dual simplex) method on the four unknowns (and one
+    /// per tie, whose rows the basis then counts too): a basis of four tight rows whose multipliers are non-negative (so no mechanism of the basis can
     /// raise lambda) is kept while the most violated row enters and the row the ratio test
     /// picks leaves. It starts from an artificial box (`lambda <= LAMBDA_CAP`, the redundants
     /// bounded far beyond any equilibrium), so the first basis is dual feasible; every
@@ -700,6 +715,12 @@ impl ChainProgram {
         let first_tie = 2 * self.sums.len() + 2 * self.friction_joints.len();
         let mut basis = vec![m, m + 1, m + 3, m + 5];
         basis.extend((0..nt).map(|t| first_tie + 2 * t + 1));
+        let mut in_basis = vec![false; m];
+        for &i in &basis {
+            if i < m {
+                in_basis[i] = true;
+            }
+        }
         let mut y = vec![0.0; n];
         y[0] = 1.0;
         y[4..].fill(weight);
@@ -711,14 +732,30 @@ impl ChainProgram {
             };
             // The most violated row, relative to the size of its terms.
             let mut worst: Option<(usize, f64)> = None;
-            for i in 0..m {
-                if basis.contains(&i) {
-                    continue;
-                }
-                let (g, size) = self.row_value(i, &x);
+            let (x4, xt) = ([x[0], x[1], x[2], x[3]], &x[4..]);
+            let mut consider = |i: usize, g: f64, size: f64| {
                 let v = g / size.max(1e-300);
                 if v < -1e-13 && worst.is_none_or(|(_, w)| v < w) {
                     worst = Some((i, v));
+                }
+            };
+            if nt == 0 {
+                // The redundants alone: the hot loop of every untied chain.
+                for (i, (a, c)) in self.dense.iter().enumerate() {
+                    if in_basis[i] {
+                        continue;
+                    }
+                    let g: f64 = a.iter().zip(&x4).map(|(p, q)| p * q).sum::<f64>() + c;
+                    let size: f64 =
+                        a.iter().zip(&x4).map(|(p, q)| (p * q).abs()).sum::<f64>() + c.abs();
+                    consider(i, g, size);
+                }
+            } else {
+                for i in 0..m {
+                    if !in_basis[i] {
+                        let (g, size) = self.row_value_split(i, &x4, xt);
+                        consider(i, g, size);
+                    }
                 }
             }
             let Some((r, _)) = worst else {
@@ -775,6 +812,10 @@ impl ChainProgram {
                 y[k] -= t * w[k];
             }
             y[l] = t;
+            if basis[l] < m {
+                in_basis[basis[l]] = false;
+            }
+            in_basis[r] = true;
             basis[l] = r;
         }
         Outcome::Failed
@@ -785,7 +826,7 @@ impl ChainProgram {
         let cone_rows = 6 * self.kappa.len();
         let inequality_rows = self.rows - self.no_tension_rows_implied();
         ModelSize {
-            variables: 4,
+            variables: 4 + self.ties,
             constraints: inequality_rows + cone_rows,
             equality_rows: 0,
             inequality_rows,

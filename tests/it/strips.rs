@@ -203,16 +203,7 @@ fn chain_program_with_strips_equals_the_full_program() {
                     let model = voussoir::scene::build(&s).expect("builds");
                     assert!(statics::declines(&model).is_none(), "a chain with strips");
                     for d in [Direction::Right, Direction::Left] {
-                        let chain =
-                            statics::analyse(&model, &StaticSettings::default().direction(d))
-                                .expect("chain program");
-                        let full = statics::analyse(
-                            &model,
-                            &StaticSettings::default()
-                                .direction(d)
-                                .program(statics::Program::Full),
-                        )
-                        .expect("full program");
+                        let (chain, full) = common::chain_and_full(&model, d);
                         let what =
                             format!("{face} {from}..{to}, F {f}, friction {friction}, {d:?}");
                         assert_eq!(chain.status, full.status, "{what}");

@@ -564,15 +564,7 @@ fn chain_program_with_ties_equals_the_full_program() {
             assert!(statics::declines(&model).is_none(), "a chain with ties");
             let w = model.assembly.total_weight();
             for d in [Direction::Right, Direction::Left] {
-                let chain = statics::analyse(&model, &StaticSettings::default().direction(d))
-                    .expect("chain program");
-                let full = statics::analyse(
-                    &model,
-                    &StaticSettings::default()
-                        .direction(d)
-                        .program(statics::Program::Full),
-                )
-                .expect("full program");
+                let (chain, full) = common::chain_and_full(&model, d);
                 let what = format!("{ties:?}, friction {friction}, {d:?}");
                 assert_eq!(chain.status, full.status, "{what}");
                 if chain.status != Status::Collapse {

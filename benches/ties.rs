@@ -1,8 +1,8 @@
 //! Tie rods (issue 24's benchmark): the static bound and the upper bound of a portal with 0, 1
-//! and 4 ties at n = 64 and 1000 voussoirs, as `analyze` runs them. Plain `harness = false`
-//! program printing a Markdown table; run with `cargo bench --bench ties`. Target: no more than
-//! 2x the tie-free time (not met yet: the chain program in four unknowns declines tied models,
-//! so they go to the full conic program; see docs/performance.md).
+//! and 4 ties at n = 64 and 1000 voussoirs, each method timed on its own and the whole
+//! analysis as `analyze` runs it. Plain `harness = false` program printing a Markdown table;
+//! run with `cargo bench --bench ties`. Target: no more than 2x the tie-free time (the chain
+//! program takes each tie as one more unknown; figures in docs/performance.md).
 
 mod common;
 

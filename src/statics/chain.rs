@@ -751,11 +751,9 @@ impl ChainProgram {
                     consider(i, g, size);
                 }
             } else {
-                for i in 0..m {
-                    if !in_basis[i] {
-                        let (g, size) = self.row_value_split(i, &x4, xt);
-                        consider(i, g, size);
-                    }
+                for (i, _) in in_basis.iter().enumerate().filter(|(_, &b)| !b) {
+                    let (g, size) = self.row_value_split(i, &x4, xt);
+                    consider(i, g, size);
                 }
             }
             let Some((r, _)) = worst else {

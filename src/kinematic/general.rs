@@ -633,11 +633,7 @@ pub fn analyse_general(
     // The bottom of the interval: symmetric about 0 for a structure that is its own mirror
     // image under self-weight alone (the mirror of a mechanism driven by the action is one
     // driven against it, with the same G), so only the other structures need the program.
-    let symmetric = model.loads.is_self_weight_only()
-        && model.ties.is_empty()
-        && model.strips.is_empty()
-        && model.passive.is_empty()
-        && crate::statics::mirror_symmetric(assembly);
+    let symmetric = crate::statics::symmetric_self_weight(model);
     let lower = if symmetric {
         Solved::Infeasible
     } else {

@@ -19,6 +19,20 @@
 //! rotation about p2 (or p1) for a no-tension row, a dilatant slip for a friction row; summed
 //! from the ground, they are the blocks' velocities in the collapse mechanism.
 //!
+//! **Tie rods** (issue 24) keep this structure: a tie's tension `T` (between its prestress
+//! and its capacity) pulls its `from` block along `e` and its `to` block back, so it is one
+//! more load on those blocks, and every joint past an anchored block carries `T` times that
+//! pull in its running sum. Each tie adds one unknown `T_t` (over the force scale) and its two
+//! bounds as rows; the active set then works in `4 + ties` unknowns, and returns among the
+//! optimal equilibria the one whose ties carry least (a small weight on the tensions in the
+//! objective, its optimum checked to be the largest multiplier's). **Bonded strips** need no
+//! unknown without crushing: a strip's tension `0 <= S <= F` at a joint end only adds to that
+//! end's contact force and to the contact's normal force (the joint transmits the same total
+//! force), so `S = F` satisfies every row any `S` does, and a strip is `F` added to the
+//! constants of its end's no-tension row and of the joint's Coulomb rows; the reported
+//! tension is the least the joint's equilibrium asks for. With crushing (cones bound the
+//! contact force from above) ties and strips are declined ([`declines`]).
+//!
 //! Lengths are divided by the structure's size and forces by the loads' scale, as in the full
 //! program, and Clarabel solves it (a linear program over the nonnegative cone).
 
@@ -26,7 +40,7 @@ use super::{check_almost_solved, solve_conic, ModelSize, StaticResult, StaticSet
 use crate::assembly::{Assembly, JointForce};
 use crate::error::AnalysisError;
 use crate::geometry::{cross, Vec2};
-use crate::model::{equilibrium_residual, LoadCase, Model, Strength};
+use crate::model::{LoadCase, Model};
 use crate::outcome::{Status, LAMBDA_CAP};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{SolverStatus, SupportedConeT};
@@ -69,11 +83,124 @@ fn solve_basis(rows: [[f64; 4]; 4], transpose: bool, rhs: [f64; 4]) -> Option<[f
         .then(|| [x[0], x[1], x[2], x[3]])
 }
 
+/// A basis of the active set in `n` unknowns, factored once per pivot for both of the
+/// pivot's solves (`G x = rhs` and `G^T w = a_r`): the four redundants' 4 x 4 by
+/// [`solve_basis`] (as the method always solved it), a larger one (the ties' tensions besides)
+/// by an LU factorisation with partial pivoting, `P G = L U`, in buffers reused from pivot to
+/// pivot.
+struct Basis {
+    n: usize,
+    /// The rows of `G` (row after row), then its factors in place (`L` unit lower, `U` upper).
+    lu: Vec<f64>,
+    /// `perm[i]`: the row of `G` in row `i` of the factors.
+    perm: Vec<usize>,
+    /// Whether the factorisation found `G` regular.
+    regular: bool,
+}
+
+impl Basis {
+    fn new(n: usize) -> Basis {
+        Basis {
+            n,
+            lu: vec![0.0; n * n],
+            perm: (0..n).collect(),
+            regular: false,
+        }
+    }
+
+    /// The rows of `G` to fill (row after row); [`Basis::factor`] next.
+    fn rows_mut(&mut self) -> &mut [f64] {
+        &mut self.lu
+    }
+
+    /// Factor the rows filled in (nothing to do for the 4 x 4, solved afresh each time).
+    fn factor(&mut self) {
+        let n = self.n;
+        self.regular = true;
+        if n == 4 {
+            return;
+        }
+        let a = &mut self.lu;
+        for (i, p) in self.perm.iter_mut().enumerate() {
+            *p = i;
+        }
+        for k in 0..n {
+            let p = (k..n)
+                .max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs()))
+                .unwrap_or(k);
+            let pivot = a[p * n + k];
+            if pivot == 0.0 || !pivot.is_finite() {
+                self.regular = false;
+                return;
+            }
+            if p != k {
+                for c in 0..n {
+                    a.swap(p * n + c, k * n + c);
+                }
+                self.perm.swap(p, k);
+            }
+            for i in k + 1..n {
+                let f = a[i * n + k] / pivot;
+                a[i * n + k] = f;
+                for c in k + 1..n {
+                    a[i * n + c] -= f * a[k * n + c];
+                }
+            }
+        }
+    }
+
+    /// `G x = rhs` (`transpose`: `G^T x = rhs`); None when singular or not finite.
+    fn solve(&self, transpose: bool, rhs: &[f64]) -> Option<Vec<f64>> {
+        let (n, a) = (self.n, &self.lu);
+        if !self.regular {
+            return None;
+        }
+        if n == 4 {
+            let r = |i: usize| [a[4 * i], a[4 * i + 1], a[4 * i + 2], a[4 * i + 3]];
+            let rhs = [rhs[0], rhs[1], rhs[2], rhs[3]];
+            return solve_basis([r(0), r(1), r(2), r(3)], transpose, rhs).map(|x| x.to_vec());
+        }
+        let mut x = vec![0.0; n];
+        if transpose {
+            // G^T = U^T L^T P: U^T z = rhs, L^T v = z, x = P^T v.
+            let mut z = rhs.to_vec();
+            for i in 0..n {
+                let s: f64 = (0..i).map(|k| a[k * n + i] * z[k]).sum();
+                z[i] = (z[i] - s) / a[i * n + i];
+            }
+            for i in (0..n).rev() {
+                let s: f64 = (i + 1..n).map(|k| a[k * n + i] * z[k]).sum();
+                z[i] -= s;
+            }
+            for (i, &p) in self.perm.iter().enumerate() {
+                x[p] = z[i];
+            }
+        } else {
+            // L U x = P rhs.
+            for i in 0..n {
+                let s: f64 = (0..i).map(|k| a[i * n + k] * x[k]).sum();
+                x[i] = rhs[self.perm[i]] - s;
+            }
+            for i in (0..n).rev() {
+                let s: f64 = (i + 1..n).map(|k| a[i * n + k] * x[k]).sum();
+                x[i] = (x[i] - s) / a[i * n + i];
+            }
+        }
+        x.iter().all(|v| v.is_finite()).then_some(x)
+    }
+}
+
+/// The weight of the ties' tensions in the objective of the active set on a tied chain
+/// (`lambda - TIE_WEIGHT sum T'`, tensions over the force scale): small enough that it only
+/// picks, among the equilibria at the largest multiplier, the one whose ties carry least
+/// (the optimum is checked to be the largest multiplier's at the end).
+const TIE_WEIGHT: f64 = 1e-9;
+
 /// The dual simplex ratio test: of the basis rows with `w_k > 0`, the one whose multiplier
 /// `y_k` reaches 0 first as the entering row's multiplier `t` grows (`y_k - t w_k`), and `t`.
-fn ratio_test(y: &[f64; 4], w: &[f64; 4]) -> Option<(usize, f64)> {
+fn ratio_test(y: &[f64], w: &[f64]) -> Option<(usize, f64)> {
     let mut leave: Option<(usize, f64)> = None;
-    for k in 0..4 {
+    for k in 0..y.len().min(w.len()) {
         if w[k] > 1e-14 {
             let t = y[k] / w[k];
             if leave.is_none_or(|(_, best)| t < best) {
@@ -86,6 +213,8 @@ fn ratio_test(y: &[f64; 4], w: &[f64; 4]) -> Option<(usize, f64)> {
 
 /// The chain program as Clarabel takes it.
 struct ConicForm {
+    /// The number of unknowns (four redundants and one tension per tie).
+    dim: usize,
     a: CscMatrix<f64>,
     b: Vec<f64>,
     cones: Vec<SupportedConeT<f64>>,
@@ -96,7 +225,7 @@ impl ConicForm {
     /// Clarabel's solution of the program under `settings`.
     fn solve(&self, settings: &StaticSettings) -> Result<super::RawSolution, AnalysisError> {
         solve_conic(
-            &CscMatrix::zeros((4, 4)),
+            &CscMatrix::zeros((self.dim, self.dim)),
             &self.q,
             &self.a,
             &self.b,
@@ -143,16 +272,24 @@ struct ChainProgram {
     /// the full program), and the cones are the full program's, `2 c kappa >= (c1 + c2)^2`
     /// with `kappa = fc d L / fs`. Empty for rigid joints (a linear program).
     kappa: Vec<(f64, f64)>,
+    /// The number of tie rods, each an unknown after the four redundants (its tension over
+    /// the force scale, `x[4 + t]`).
+    ties: usize,
+    /// Per row, the coefficients of the ties' tensions (`ties` per row, row after row; empty
+    /// without ties).
+    tie_coef: Vec<f64>,
+    /// Per joint and tie (`ties` per joint), the force and the moment about the reference
+    /// point a unit tension adds to the joint's force: the tie's pull on the blocks before
+    /// the joint.
+    tie_sums: Vec<[f64; 3]>,
+    /// Per joint, the bonded strips' capacities at its ends p1 and p2 (N; empty without
+    /// strips).
+    strip_ends: Vec<[f64; 2]>,
 }
 
 impl ChainProgram {
-    fn new(
-        assembly: &Assembly,
-        loads: &LoadCase,
-        strength: Strength,
-        sign: f64,
-        cap: Option<f64>,
-    ) -> ChainProgram {
+    fn new(model: &Model, sign: f64, cap: Option<f64>) -> ChainProgram {
+        let (assembly, loads, strength) = (&model.assembly, &model.loads, model.strength);
         let nj = assembly.joints.len();
         let ls = assembly.size();
         let fs = loads.force_scale();
@@ -174,27 +311,73 @@ impl ChainProgram {
                 }
             }
         }
+        // A tie's pull on the blocks before a joint (per unit tension): `+e` at its `from`
+        // anchor, `-e` at its `to` anchor, each once the joint lies past the anchored block
+        // (a ground anchor pulls on no block).
+        let nt = model.ties.len();
+        let mut tie_sums = vec![[0.0; 3]; nj * nt];
+        for (t, tie) in model.ties.iter().enumerate() {
+            let e = tie.direction();
+            for (anchor, s) in [(tie.from, 1.0), (tie.to, -1.0)] {
+                let Some(b) = anchor.block else { continue };
+                let m = s * cross(anchor.point - reference, e);
+                for k in b + 1..nj {
+                    let c = &mut tie_sums[k * nt + t];
+                    c[0] += s * e.x;
+                    c[1] += s * e.y;
+                    c[2] += m;
+                }
+            }
+        }
+        // A strip's tension at a joint end, `0 <= S <= F`, adds to that end's contact force
+        // and to the contact's normal force (Coulomb's rows) and to nothing else (it pulls the
+        // joint's two sides together, so the force the joint transmits is unchanged): without
+        // crushing, `S = F` satisfies every row that any `S` does, so a strip is its
+        // capacity added to those rows' constants ([`declines`] keeps strips with crushing,
+        // whose cones bound the contact force from above, in the full program).
+        let mut strip_ends = Vec::new();
+        if !model.strips.is_empty() {
+            strip_ends = vec![[0.0; 2]; nj];
+            for st in &model.strips {
+                let end = match st.end {
+                    crate::assembly::JointEnd::P1 => 0,
+                    crate::assembly::JointEnd::P2 => 1,
+                };
+                strip_ends[st.joint][end] += st.capacity;
+            }
+        }
         // Rows `g(x) = coef . x + c >= 0` (Clarabel's sparse form is built from them only
-        // when the interior point runs: the active-set method reads them directly).
+        // when the interior point runs: the active-set method reads them directly), with the
+        // ties' coefficients in `tie_coef`.
         let mut dense = Vec::with_capacity(2 * nj);
+        let mut tie_coef = Vec::with_capacity(2 * nj * nt);
         let push_row = |coef: [f64; 4], c: f64, dense: &mut Vec<([f64; 4], f64)>| {
             dense.push((coef, c));
         };
-        // Dimensionless: x = [lambda, H / fs, V / fs, M0 / (fs ls)].
-        let moment_row = |k: usize, q: Vec2, sgn: f64| {
+        // Dimensionless: x = [lambda, H / fs, V / fs, M0 / (fs ls), T_t / fs...].
+        let moment_row = |k: usize, q: Vec2, sgn: f64, tie_coef: &mut Vec<f64>| {
             let d = (q - reference) / ls;
             let s = &sums[k];
             // M_q / (fs ls) = M0' - d.x V' + d.y H' + (base_m - d.x base_y + d.y base_x)/(fs ls)
-            //                 + lambda (per_m - d.x per_y + d.y per_x)/(fs ls).
+            //                 + lambda (per_m - d.x per_y + d.y per_x)/(fs ls)
+            //                 + sum_t T_t' (m_t / ls - d.x fy_t + d.y fx_t).
             let base = (s.base[2] / ls - d.x * s.base[1] + d.y * s.base[0]) / fs;
             let per = (s.per[2] / ls - d.x * s.per[1] + d.y * s.per[0]) / fs;
+            for c in &tie_sums[k * nt..(k + 1) * nt] {
+                tie_coef.push(sgn * (c[2] / ls - d.x * c[1] + d.y * c[0]));
+            }
             ([sgn * per, sgn * d.y, -sgn * d.x, sgn], sgn * base)
         };
         for (k, jt) in assembly.joints.iter().enumerate() {
-            let (c2, k2) = moment_row(k, jt.p2, 1.0);
-            push_row(c2, k2, &mut dense);
-            let (c1, k1) = moment_row(k, jt.p1, -1.0);
-            push_row(c1, k1, &mut dense);
+            // Row 2k is `c1 L / (fs ls)` (the contact force at p1), row 2k + 1 is c2's.
+            let shift = |c: f64, end: usize| match strip_ends.get(k) {
+                Some(f) => c + f[end] * jt.length() / (fs * ls),
+                None => c,
+            };
+            let (c2, k2) = moment_row(k, jt.p2, 1.0, &mut tie_coef);
+            push_row(c2, shift(k2, 0), &mut dense);
+            let (c1, k1) = moment_row(k, jt.p1, -1.0, &mut tie_coef);
+            push_row(c1, shift(k1, 1), &mut dense);
         }
         let mut friction_joints = Vec::new();
         for (k, jt) in assembly.joints.iter().enumerate() {
@@ -203,17 +386,32 @@ impl ChainProgram {
             }
             let (n, u, mu) = (jt.normal(), jt.tangent(), jt.friction);
             let s = &sums[k];
+            let shift = |c: f64| match strip_ends.get(k) {
+                Some(f) => c + mu * (f[0] + f[1]) / fs,
+                None => c,
+            };
             for sv in [1.0, -1.0] {
                 // mu N - sv V with N = F.n, V = F.u: the direction d = mu n - sv u.
                 let d = mu * n - sv * u;
                 let base = (d.x * s.base[0] + d.y * s.base[1]) / fs;
                 let per = (d.x * s.per[0] + d.y * s.per[1]) / fs;
-                push_row([per, d.x, d.y, 0.0], base, &mut dense);
+                for c in &tie_sums[k * nt..(k + 1) * nt] {
+                    tie_coef.push(d.x * c[0] + d.y * c[1]);
+                }
+                push_row([per, d.x, d.y, 0.0], shift(base), &mut dense);
             }
             friction_joints.push(k);
         }
+        // Each tie's bounds: `C / fs - T' >= 0`, then `T' - P / fs >= 0`.
+        for (t, tie) in model.ties.iter().enumerate() {
+            for (sign, c) in [(-1.0, tie.capacity / fs), (1.0, -tie.prestress / fs)] {
+                tie_coef.extend((0..nt).map(|i| if i == t { sign } else { 0.0 }));
+                push_row([0.0; 4], c, &mut dense);
+            }
+        }
         if let Some(cap) = cap {
             // lambda <= cap.
+            tie_coef.extend(std::iter::repeat_n(0.0, nt));
             push_row([-1.0, 0.0, 0.0, 0.0], cap, &mut dense);
         }
         let m = dense.len();
@@ -236,6 +434,10 @@ impl ChainProgram {
             rows: m,
             dense,
             kappa,
+            ties: nt,
+            tie_coef,
+            tie_sums,
+            strip_ends,
         }
     }
 
@@ -277,7 +479,8 @@ impl ChainProgram {
             }
         }
         let m = rows.len();
-        let mut colptr = Vec::with_capacity(5);
+        let nt = self.ties;
+        let mut colptr = Vec::with_capacity(5 + nt);
         let mut rowval = Vec::with_capacity(4 * m);
         let mut nzval = Vec::with_capacity(4 * m);
         colptr.push(0);
@@ -290,25 +493,53 @@ impl ChainProgram {
             }
             colptr.push(rowval.len());
         }
+        // The ties' columns: linear rows only (ties with crushing go to the full program).
+        for t in 0..nt {
+            for (r, &i) in linear.iter().enumerate() {
+                let v = self.tie_coef[i * nt + t];
+                if v != 0.0 {
+                    rowval.push(r);
+                    nzval.push(-v);
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        let mut q = vec![0.0; 4 + nt];
+        q[0] = -1.0;
         let mut cones = Vec::new();
         if lin > 0 {
             cones.push(SupportedConeT::NonnegativeConeT(lin));
         }
         cones.extend((0..2 * crush.len()).map(|_| SupportedConeT::SecondOrderConeT(3)));
         ConicForm {
-            a: CscMatrix::new(m, 4, colptr, rowval, nzval),
+            dim: 4 + nt,
+            a: CscMatrix::new(m, 4 + nt, colptr, rowval, nzval),
             b: rows.iter().map(|&(_, c)| c).collect(),
             cones,
-            q: vec![-1.0, 0.0, 0.0, 0.0],
+            q,
         }
     }
 
     /// Value of row `i` at `x`, and the sum of the magnitudes of its terms (its scale).
     fn row_value(&self, i: usize, x: &[f64]) -> (f64, f64) {
+        self.row_value_split(i, &[x[0], x[1], x[2], x[3]], &x[4..])
+    }
+
+    /// [`Self::row_value`] with `x` split into the redundants `x4` and the tensions `xt`
+    /// (split once by the active set's scan of every row).
+    #[inline(always)]
+    fn row_value_split(&self, i: usize, x4: &[f64; 4], xt: &[f64]) -> (f64, f64) {
         let (coef, c) = &self.dense[i];
-        let g: f64 = coef.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() + c;
-        let size: f64 = coef.iter().zip(x).map(|(a, b)| (a * b).abs()).sum::<f64>() + c.abs();
-        (g, size)
+        let mut g: f64 = coef.iter().zip(x4).map(|(a, b)| a * b).sum::<f64>();
+        let mut size: f64 = coef.iter().zip(x4).map(|(a, b)| (a * b).abs()).sum::<f64>();
+        let nt = self.ties;
+        if nt > 0 {
+            for (a, b) in self.tie_coef[i * nt..(i + 1) * nt].iter().zip(xt) {
+                g += a * b;
+                size += (a * b).abs();
+            }
+        }
+        (g + c, size + c.abs())
     }
 
     /// The exact vertex of the optimum near the interior-point solution `x`. Rows come in
@@ -409,8 +640,8 @@ impl ChainProgram {
         })
     }
 
-    /// The optimum by a dual active-set (dual simplex) method on the four unknowns: a basis of
-    /// four tight rows whose multipliers are non-negative (so no mechanism of the basis can
+    /// The optimum by a dual active-set (dual simplex) method on the four unknowns (and one
+    /// per tie, whose rows the basis then counts too): a basis of four tight rows whose multipliers are non-negative (so no mechanism of the basis can
     /// raise lambda) is kept while the most violated row enters and the row the ratio test
     /// picks leaves. It starts from an artificial box (`lambda <= LAMBDA_CAP`, the redundants
     /// bounded far beyond any equilibrium), so the first basis is dual feasible; every
@@ -426,52 +657,119 @@ impl ChainProgram {
     /// `objective * lambda` from above (`LAMBDA_CAP` for an analysis; 0 for the stand test,
     /// which then asks whether lambda = 0 is reachable from below).
     fn active_set(&self, objective: f64, cap: f64) -> Outcome {
+        // The ties' tensions are not unique at the optimum when a tie neither yields nor
+        // governs: the least are sought (weighted), and the largest multiplier alone when the
+        // weighted optimum is not its.
+        if objective > 0.0 && self.ties > 0 {
+            if let found @ (Outcome::Optimal(_) | Outcome::Infeasible { .. }) =
+                self.weighted_active_set(objective, cap, TIE_WEIGHT)
+            {
+                return found;
+            }
+        }
+        self.weighted_active_set(objective, cap, 0.0)
+    }
+
+    /// [`Self::active_set`] maximising `objective lambda - weight sum T'` (the ties'
+    /// tensions over the force scale), in `4 + ties` unknowns; with a weight, the optimum is
+    /// returned only when it is also the largest `objective lambda` (its basis's multipliers
+    /// for that objective alone are non-negative), [`Outcome::Failed`] otherwise.
+    fn weighted_active_set(&self, objective: f64, cap: f64, weight: f64) -> Outcome {
         const BOX: f64 = 1e6;
         const MAX_ITER: usize = 500;
         let m = self.dense.len();
+        let nt = self.ties;
+        let n = 4 + nt;
         // Rows: the program's, then the box: objective * lambda <= cap, +-H, +-V, +-M0 <= BOX.
-        let row = |i: usize| -> ([f64; 4], f64) {
+        // Row `i`'s coefficients into `out`; returns its constant.
+        let row = |i: usize, out: &mut [f64]| -> f64 {
+            out.fill(0.0);
             if i < m {
-                return self.dense[i];
+                let (a, c) = self.dense[i];
+                out[..4].copy_from_slice(&a);
+                out[4..].copy_from_slice(&self.tie_coef[i * nt..(i + 1) * nt]);
+                return c;
             }
             let k = i - m;
-            let mut a = [0.0; 4];
             if k == 0 {
-                a[0] = -objective;
-                return (a, cap);
+                out[0] = -objective;
+                return cap;
             }
             let (col, s) = (k.div_ceil(2), if k % 2 == 1 { -1.0 } else { 1.0 });
-            a[col] = s;
-            (a, BOX)
+            out[col] = s;
+            BOX
         };
-        let solve = |basis: &[usize; 4], transpose: bool, rhs: [f64; 4]| {
-            solve_basis(basis.map(|i| row(i).0), transpose, rhs)
+        // The basis rows' coefficients into `g` (factored), and minus their constants.
+        let mut g = Basis::new(n);
+        let mut rhs = vec![0.0; n];
+        let mut matrix = |basis: &[usize], g: &mut Basis| {
+            for (r, &i) in basis.iter().enumerate() {
+                rhs[r] = -row(i, &mut g.rows_mut()[r * n..(r + 1) * n]);
+            }
+            g.factor();
+            rhs.clone()
         };
-        // The cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0).
-        let mut basis = [m, m + 1, m + 3, m + 5];
-        let mut y = [1.0, 0.0, 0.0, 0.0];
+        // The cap and the upper bounds of H, V, M0: multipliers (1, 0, 0, 0); each tie at its
+        // prestress (`T' - P' >= 0`), multiplier `weight`: the objective is
+        // `-sum y_i a_i` over them.
+        let first_tie = 2 * self.sums.len() + 2 * self.friction_joints.len();
+        let mut basis = vec![m, m + 1, m + 3, m + 5];
+        basis.extend((0..nt).map(|t| first_tie + 2 * t + 1));
+        let mut in_basis = vec![false; m];
+        for &i in &basis {
+            if i < m {
+                in_basis[i] = true;
+            }
+        }
+        let mut y = vec![0.0; n];
+        y[0] = 1.0;
+        y[4..].fill(weight);
+        let mut a_r = vec![0.0; n];
         for pivots in 0..MAX_ITER {
-            let rhs = basis.map(|i| -row(i).1);
-            let Some(x) = solve(&basis, false, rhs) else {
+            let rhs = matrix(&basis, &mut g);
+            let Some(x) = g.solve(false, &rhs) else {
                 return Outcome::Failed;
             };
             // The most violated row, relative to the size of its terms.
             let mut worst: Option<(usize, f64)> = None;
-            for i in 0..m {
-                if basis.contains(&i) {
-                    continue;
-                }
-                let (a, c) = self.dense[i];
-                let g: f64 = a.iter().zip(&x).map(|(p, q)| p * q).sum::<f64>() + c;
-                let size: f64 = a.iter().zip(&x).map(|(p, q)| (p * q).abs()).sum::<f64>() + c.abs();
+            let (x4, xt) = ([x[0], x[1], x[2], x[3]], &x[4..]);
+            let mut consider = |i: usize, g: f64, size: f64| {
                 let v = g / size.max(1e-300);
                 if v < -1e-13 && worst.is_none_or(|(_, w)| v < w) {
                     worst = Some((i, v));
                 }
+            };
+            if nt == 0 {
+                // The redundants alone: the hot loop of every untied chain.
+                for (i, (a, c)) in self.dense.iter().enumerate() {
+                    if in_basis[i] {
+                        continue;
+                    }
+                    let g: f64 = a.iter().zip(&x4).map(|(p, q)| p * q).sum::<f64>() + c;
+                    let size: f64 =
+                        a.iter().zip(&x4).map(|(p, q)| (p * q).abs()).sum::<f64>() + c.abs();
+                    consider(i, g, size);
+                }
+            } else {
+                for (i, _) in in_basis.iter().enumerate().filter(|(_, &b)| !b) {
+                    let (g, size) = self.row_value_split(i, &x4, xt);
+                    consider(i, g, size);
+                }
             }
             let Some((r, _)) = worst else {
-                // Primal feasible with non-negative multipliers: optimal. The box must not
-                // bind (but the cap may: then lambda is capped, i.e. no collapse).
+                // Primal feasible with non-negative multipliers: optimal. With a weight on
+                // the tensions, the multipliers for `objective lambda` alone on this basis
+                // must be non-negative too (then it is that objective's optimum as well).
+                if weight > 0.0 {
+                    let mut pure = vec![0.0; n];
+                    pure[0] = -objective;
+                    match g.solve(true, &pure) {
+                        Some(p) if p.iter().all(|&v| v >= -1e-12) => y = p,
+                        _ => return Outcome::Failed,
+                    }
+                }
+                // The box must not bind (but the cap may: then lambda is capped, i.e. no
+                // collapse).
                 let binding_box = basis.iter().zip(&y).any(|(&i, &yi)| i > m && yi > 1e-12);
                 if binding_box {
                     return Outcome::Failed;
@@ -483,13 +781,14 @@ impl ChainProgram {
                     .map(|(&i, &yi)| (i, f64::max(yi, 0.0)))
                     .collect();
                 return Outcome::Optimal(ActiveSet {
-                    x: x.to_vec(),
+                    x,
                     duals,
                     pivots: pivots as u32,
                 });
             };
             // Ratio test: a_r = sum w_i a_i over the basis; y'_i = y_i - t w_i, y'_r = t.
-            let Some(w) = solve(&basis, true, row(r).0) else {
+            row(r, &mut a_r);
+            let Some(w) = g.solve(true, &a_r) else {
                 return Outcome::Failed;
             };
             let leave = ratio_test(&y, &w);
@@ -507,10 +806,14 @@ impl ChainProgram {
                     }
                 };
             };
-            for k in 0..4 {
+            for k in 0..n {
                 y[k] -= t * w[k];
             }
             y[l] = t;
+            if basis[l] < m {
+                in_basis[basis[l]] = false;
+            }
+            in_basis[r] = true;
             basis[l] = r;
         }
         Outcome::Failed
@@ -521,7 +824,7 @@ impl ChainProgram {
         let cone_rows = 6 * self.kappa.len();
         let inequality_rows = self.rows - self.no_tension_rows_implied();
         ModelSize {
-            variables: 4,
+            variables: 4 + self.ties,
             constraints: inequality_rows + cone_rows,
             equality_rows: 0,
             inequality_rows,
@@ -570,36 +873,82 @@ impl ChainProgram {
         y
     }
 
-    /// Joint forces of the solution `x` (SI units).
-    fn forces(&self, assembly: &Assembly, x: &[f64]) -> Vec<JointForce> {
-        let (fs, ls) = (self.force_scale, self.length_scale);
+    /// Joint forces of the solution `x` (SI units): the contact forces, as the full program
+    /// reports them, and the ties' and the strips' tensions (N, in their orders). A strip
+    /// carries the least tension its joint's equilibrium asks for (what its end would
+    /// otherwise carry in tension, and what Coulomb's law needs besides), below its capacity
+    /// by the program's rows.
+    fn forces(&self, model: &Model, x: &[f64]) -> (Vec<JointForce>, Vec<f64>, Vec<f64>) {
+        let assembly = &model.assembly;
+        let (fs, ls, nt) = (self.force_scale, self.length_scale, self.ties);
         let (lambda, h, v, m0) = (x[0], x[1] * fs, x[2] * fs, x[3] * fs * ls);
-        assembly
+        let ties: Vec<f64> = x[4..4 + nt].iter().map(|t| t * fs).collect();
+        // Per joint, the tension at each end (p1, p2) its strips carry.
+        let mut strip_ends = vec![[0.0; 2]; self.strip_ends.len()];
+        let forces = assembly
             .joints
             .iter()
             .enumerate()
             .map(|(k, jt)| {
                 let s = &self.sums[k];
-                let f = Vec2::new(
+                let mut f = Vec2::new(
                     h + s.base[0] + lambda * s.per[0],
                     v + s.base[1] + lambda * s.per[1],
                 );
-                let mk = m0 + s.base[2] + lambda * s.per[2];
+                let mut mk = m0 + s.base[2] + lambda * s.per[2];
+                for (c, t) in self.tie_sums[k * nt..(k + 1) * nt].iter().zip(&ties) {
+                    f.x += t * c[0];
+                    f.y += t * c[1];
+                    mk += t * c[2];
+                }
                 // Moment about the midpoint is -e N; the convention's M is e N.
                 let m_mid = mk - cross(jt.midpoint() - self.reference, f);
                 let (n, m, len) = (f.dot(&jt.normal()), -m_mid, jt.length());
+                let (mut c1, mut c2) = (0.5 * n - m / len, 0.5 * n + m / len);
+                let shear = f.dot(&jt.tangent());
+                if let Some(cap) = self.strip_ends.get(k) {
+                    // The strips' least tensions: each end's tension, then what friction
+                    // needs (`mu (c1 + c2) >= |V|`) from the end with capacity to spare.
+                    let mut t = [(-c1).max(0.0).min(cap[0]), (-c2).max(0.0).min(cap[1])];
+                    let mu = jt.friction;
+                    let mut short = shear.abs() / mu - (c1 + c2 + t[0] + t[1]);
+                    for (te, ce) in t.iter_mut().zip(cap) {
+                        if short > 0.0 && mu.is_finite() {
+                            let more = short.min(ce - *te).max(0.0);
+                            *te += more;
+                            short -= more;
+                        }
+                    }
+                    c1 += t[0];
+                    c2 += t[1];
+                    strip_ends[k] = t;
+                }
                 // As the full program reports them: the end forces c1, c2 clamped to no
                 // tension, so a joint that opens shows no round-off tension and no resultant
                 // outside it.
-                let c1 = (0.5 * n - m / len).max(0.0);
-                let c2 = (0.5 * n + m / len).max(0.0);
+                let (c1, c2) = (c1.max(0.0), c2.max(0.0));
                 JointForce {
                     n: c1 + c2,
-                    v: f.dot(&jt.tangent()),
+                    v: shear,
                     m: 0.5 * (c2 - c1) * len,
                 }
             })
-            .collect()
+            .collect();
+        // Each strip's share of its end's tension, by capacity.
+        let strips = model
+            .strips
+            .iter()
+            .map(|st| {
+                let end = usize::from(st.end == crate::assembly::JointEnd::P2);
+                let (t, cap) = (strip_ends[st.joint][end], self.strip_ends[st.joint][end]);
+                if cap > 0.0 {
+                    t * st.capacity / cap
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        (forces, ties, strips)
     }
 
     /// Block velocities `[vx, vy, omega]` from the duals `z` (see the module docs), scaled so
@@ -683,7 +1032,7 @@ pub(super) fn least_lambda(model: &Model, settings: &StaticSettings) -> Option<f
         return None;
     }
     let sign = settings.direction.sign();
-    let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, sign, None);
+    let program = ChainProgram::new(model, sign, None);
     if crushing {
         return program.least_lambda_crushing();
     }
@@ -699,7 +1048,7 @@ pub(super) fn stands_at_rest(model: &Model) -> Option<bool> {
     if declines(model).is_some() || model.strength.is_finite() {
         return None;
     }
-    let program = ChainProgram::new(&model.assembly, &model.loads, model.strength, 1.0, None);
+    let program = ChainProgram::new(model, 1.0, None);
     match program.active_set(1.0, 0.0) {
         // The cap row makes lambda exactly 0 at the vertex when it binds; otherwise lambda is
         // the largest multiplier, below 0.
@@ -768,12 +1117,12 @@ impl ChainProgram {
         let (assembly, loads) = (&model.assembly, &model.loads);
         let sign = settings.direction.sign();
         let lambda = x[0];
-        let forces = self.forces(assembly, x);
-        let residual = equilibrium_residual(assembly, loads, &forces, lambda, sign);
+        let (forces, ties, strips) = self.forces(model, x);
+        let residual = model.equilibrium_residual(&forces, &ties, &strips, lambda, sign);
         if let Some(status) = solver {
             check_almost_solved(status, residual, self.force_scale, result.iterations)?;
         }
-        Ok(result.read_solution(
+        let mut result = result.read_solution(
             assembly,
             model.strength,
             settings,
@@ -782,7 +1131,9 @@ impl ChainProgram {
             residual,
             capped,
             || self.mechanism(assembly, loads, sign, z),
-        ))
+        );
+        result.read_interactions(model, &ties, &strips, &[]);
+        Ok(result)
     }
 }
 
@@ -792,11 +1143,13 @@ impl ChainProgram {
 pub enum Declined {
     /// The assembly is not a chain of blocks between two supports.
     NotAChain,
-    /// Tie rods join blocks that are not neighbours in the chain: the three redundants of a
-    /// chain no longer describe every equilibrium.
+    /// Tie rods with crushing: the chain program takes a tie's tension as one more unknown
+    /// of its linear program, but its working set on the crushing laws has the four
+    /// redundants alone.
     Ties,
-    /// Bonded strips carry tension across joints, which the chain program's no-tension rows
-    /// do not allow.
+    /// Bonded strips with crushing: without it a strip may be taken at its capacity (see
+    /// [`ChainProgram::new`]), but a crushing cone bounds the contact force the strip adds
+    /// to.
     Strips,
     /// The fill's passive reactions are forces from the ground on single blocks, unknowns
     /// the chain's three redundants do not describe.
@@ -809,8 +1162,12 @@ impl Declined {
             Declined::NotAChain => {
                 "the reduced static program needs a chain of blocks between two supports"
             }
-            Declined::Ties => "the reduced static program does not model tie rods",
-            Declined::Strips => "the reduced static program does not model bonded strips",
+            Declined::Ties => {
+                "the reduced static program does not model tie rods with a finite compressive strength"
+            }
+            Declined::Strips => {
+                "the reduced static program does not model bonded strips with a finite compressive strength"
+            }
             Declined::Passive => {
                 "the reduced static program does not model the fill's passive resistance"
             }
@@ -822,9 +1179,9 @@ impl Declined {
 pub fn declines(model: &Model) -> Option<Declined> {
     if !model.assembly.is_chain() {
         Some(Declined::NotAChain)
-    } else if !model.ties.is_empty() {
+    } else if model.strength.is_finite() && !model.ties.is_empty() {
         Some(Declined::Ties)
-    } else if !model.strips.is_empty() {
+    } else if model.strength.is_finite() && !model.strips.is_empty() {
         Some(Declined::Strips)
     } else if !model.passive.is_empty() {
         Some(Declined::Passive)
@@ -834,22 +1191,23 @@ pub fn declines(model: &Model) -> Option<Declined> {
 }
 
 /// Static analysis of a chain (joint k joins block k - 1, or the ground, to block k, or the
-/// ground) by its reduced program in four unknowns: the same answer as [`super::analyse`]
-/// (the same statuses, multiplier, joint forces, hinges and mechanism), at a fraction of the
-/// cost on long chains. Errors when the model is not such a chain.
+/// ground) by its reduced program in four unknowns (and one per tie rod): the same answer as
+/// [`super::analyse`] (the same statuses, multiplier, joint forces, hinges and mechanism), at
+/// a fraction of the cost on long chains. Errors when the model is not such a chain, or has
+/// ties or strips with crushing ([`declines`]).
 pub fn analyse_chain(
     model: &Model,
     settings: &StaticSettings,
 ) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
-    let (assembly, loads) = (&model.assembly, &model.loads);
+    let assembly = &model.assembly;
     model.validate()?;
     if let Some(why) = declines(model) {
         return Err(AnalysisError::Other(why.words().into()));
     }
     let sign = settings.direction.sign();
     let conic_program = model.strength.is_finite();
-    let mut program = ChainProgram::new(assembly, loads, model.strength, sign, None);
+    let mut program = ChainProgram::new(model, sign, None);
     // The active set and the vertex step are exact for the linear program only; with crushing
     // cones the interior point's solution is the answer.
     if settings.active_set && !conic_program {
@@ -882,7 +1240,7 @@ pub fn analyse_chain(
         sol.status,
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
-        program = ChainProgram::new(assembly, loads, model.strength, sign, Some(LAMBDA_CAP));
+        program = ChainProgram::new(model, sign, Some(LAMBDA_CAP));
         sol = program.conic().solve(settings)?;
         capped = true;
     }
@@ -893,7 +1251,9 @@ pub fn analyse_chain(
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             if conic_program {
                 sol.z = program.fold_cone_duals(&sol.z);
-            } else if let Some(v) = program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas))
+            } else if let Some(v) = (program.ties == 0)
+                .then(|| program.vertex(&sol.x, settings.tol_gap.max(settings.tol_feas)))
+                .flatten()
             {
                 sol.x = v;
                 result.solver_status.push_str("; exact vertex");
@@ -917,4 +1277,55 @@ pub fn analyse_chain(
     result = super::stands_at_zero(model, settings, result)?;
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(result)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The LU of a larger basis solves `G x = b` and `G^T w = c` to round-off (residuals of
+    /// random well-scaled matrices, pivoting needed: a zero leading entry).
+    #[test]
+    fn basis_solves_both_systems() {
+        let mut state = 7u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for n in [5, 6, 8] {
+            for _ in 0..20 {
+                let mut basis = Basis::new(n);
+                let g: Vec<f64> = (0..n * n).map(|_| next()).collect();
+                let mut g = g;
+                g[0] = 0.0;
+                basis.rows_mut().copy_from_slice(&g);
+                basis.factor();
+                let b: Vec<f64> = (0..n).map(|_| next()).collect();
+                for transpose in [false, true] {
+                    let x = basis.solve(transpose, &b).expect("regular");
+                    for i in 0..n {
+                        let gx: f64 = (0..n)
+                            .map(|k| if transpose { g[k * n + i] } else { g[i * n + k] } * x[k])
+                            .sum();
+                        assert!(
+                            (gx - b[i]).abs() <= 1e-10,
+                            "n {n}, row {i}: {gx} vs {}",
+                            b[i]
+                        );
+                    }
+                }
+            }
+        }
+        // A singular basis (two equal rows) is refused.
+        let mut basis = Basis::new(5);
+        let mut g: Vec<f64> = (0..25).map(|_| next()).collect();
+        for c in 0..5 {
+            g[5 + c] = g[c];
+        }
+        basis.rows_mut().copy_from_slice(&g);
+        basis.factor();
+        assert!(basis.solve(false, &[1.0; 5]).is_none());
+    }
 }

@@ -180,18 +180,7 @@ pub fn analyse_full(
                 lambda_capped,
                 || read_mechanism(assembly, &problem, &sol.z),
             );
-            if result.status == Status::Collapse {
-                result.set_tensions(model, &tension, &strip_tension, &passive);
-                // A joint whose contact resultant sits at one end is no hinge while a strip
-                // on its other end holds below its capacity: it cannot open there.
-                result.hinges.retain(|h| {
-                    !model
-                        .strips
-                        .iter()
-                        .zip(&result.strips)
-                        .any(|(s, f)| s.joint == h.joint && s.end != h.end && !f.yielded)
-                });
-            }
+            result.read_interactions(model, &tension, &strip_tension, &passive);
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;
@@ -230,34 +219,61 @@ pub(crate) fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
     })
 }
 
-/// Whether `model` is its own mirror image under self-weight alone, with no ties, strips or
-/// passive fill: its
-/// multipliers toward the right and the left are then the same.
+/// Whether `model` is its own mirror image under self-weight alone, its ties and strips
+/// included: its multipliers toward the right and the left are then the same.
 pub fn symmetric_self_weight(model: &Model) -> bool {
     model.loads.is_self_weight_only()
-        && model.ties.is_empty()
-        && model.strips.is_empty()
         && model.passive.is_empty()
         && mirror_symmetric(&model.assembly)
+        && interactions_symmetric(model)
+}
+
+/// Whether the ties and the strips of `model` (whose assembly is its own mirror image) are
+/// their own mirror image: each one's image (as [`Model::mirrored`] makes it) is another of
+/// them, one for one, with the same capacity and prestress.
+fn interactions_symmetric(model: &Model) -> bool {
+    use crate::geometry::mirror;
+    use crate::interaction::Anchor;
+    let (nb, nj) = (model.assembly.blocks.len(), model.assembly.joints.len());
+    let tol = 1e-9 * model.assembly.size();
+    let image = |a: Anchor, b: Anchor| {
+        a.block.map(|i| nb - 1 - i) == b.block && (mirror(a.point) - b.point).norm() <= tol
+    };
+    let close = |a: f64, b: f64| a == b || (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+    // Greedy one-for-one matching: "is the image of" pairs equal items, so it cannot miss.
+    let matched = |n: usize, pairs: &dyn Fn(usize, usize) -> bool| {
+        let mut used = vec![false; n];
+        (0..n).all(|i| {
+            let j = (0..n).find(|&j| !used[j] && pairs(i, j));
+            j.map(|j| used[j] = true).is_some()
+        })
+    };
+    let ties = &model.ties;
+    let strips = &model.strips;
+    matched(ties.len(), &|i, j| {
+        let (t, u) = (&ties[i], &ties[j]);
+        close(t.capacity, u.capacity)
+            && close(t.prestress, u.prestress)
+            && ((image(t.from, u.from) && image(t.to, u.to))
+                || (image(t.from, u.to) && image(t.to, u.from)))
+    }) && matched(strips.len(), &|i, j| {
+        let (s, u) = (&strips[i], &strips[j]);
+        u.joint == nj - 1 - s.joint && u.end == s.end && close(s.capacity, u.capacity)
+    })
 }
 
 /// Under loads or a structure that are not symmetric the multipliers equilibrium allows form
 /// an interval that may lie entirely above 0; then the structure cannot stand without the
 /// earthquake. The least multiplier (chains) or the phase-one program at lambda = 0 tells.
-/// A mirror-symmetric structure under self-weight alone needs no test: the mirror image of
-/// an equilibrium at lambda is one at -lambda, so the interval straddles 0.
+/// A mirror-symmetric structure under self-weight alone (its ties and strips included) needs
+/// no test: the mirror image of an equilibrium at lambda is one at -lambda, so the interval
+/// straddles 0.
 fn stands_at_zero(
     model: &Model,
     settings: &StaticSettings,
     result: StaticResult,
 ) -> Result<StaticResult, AnalysisError> {
-    if result.status == Status::CannotStand
-        || (model.loads.is_self_weight_only()
-            && model.ties.is_empty()
-            && model.strips.is_empty()
-            && model.passive.is_empty()
-            && mirror_symmetric(&model.assembly))
-    {
+    if result.status == Status::CannotStand || symmetric_self_weight(model) {
         return Ok(result);
     }
     // On a chain the least multiplier tells at the cost of one more active-set solve; the
@@ -288,6 +304,31 @@ fn stands_at_zero(
 }
 
 impl StaticResult {
+    /// At collapse, the ties' and the strips' forces from their tensions and the passive
+    /// reactions (N, in their order), and no hinge where a strip holds the joint's other end.
+    fn read_interactions(
+        &mut self,
+        model: &Model,
+        ties: &[f64],
+        strips: &[f64],
+        passive: &[f64],
+    ) {
+        if self.status != Status::Collapse {
+            return;
+        }
+        self.set_tensions(model, ties, strips, passive);
+        // A joint whose contact resultant sits at one end is no hinge while a strip on its
+        // other end holds below its capacity: it cannot open there.
+        let strip_forces = &self.strips;
+        self.hinges.retain(|h| {
+            !model
+                .strips
+                .iter()
+                .zip(strip_forces)
+                .any(|(s, f)| s.joint == h.joint && s.end != h.end && !f.yielded)
+        });
+    }
+
     /// The ties' and the strips' forces from their tensions, and the passive reactions (N, in
     /// their order).
     fn set_tensions(&mut self, model: &Model, ties: &[f64], strips: &[f64], passive: &[f64]) {

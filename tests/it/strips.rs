@@ -180,3 +180,69 @@ fn bad_strips_are_refused_naming_the_key() {
         assert!(err.contains(key) && err.contains(words), "{key}: {err}");
     }
 }
+
+/// The chain program (`statics::analyse` on a chain: without crushing a strip is its
+/// capacity added to the constants of its end's no-tension row and of Coulomb's rows) against
+/// the full program (a tension unknown per strip and joint): the same status and multiplier
+/// to 1e-9 on both faces, several joint ranges and capacities, friction none and finite, both
+/// directions; each chain solution an equilibrium (its residual, strips included, below 1e-9
+/// of the weight) with every strip's tension in `[0, F]`. With crushing the chain program
+/// declines strips (its working set has no strip), and the full program answers.
+#[test]
+fn chain_program_with_strips_equals_the_full_program() {
+    let mut compared = 0;
+    let mut yielded = 0;
+    for face in ["intrados", "extrados"] {
+        for (from, to) in [(0, 32), (4, 14), (16, 28)] {
+            for f in [0.0, 150.0, 600.0, 3000.0] {
+                for friction in ["inf", "0.6"] {
+                    let text = portal(face, from, to, f)
+                        .replace("friction = inf", &format!("friction = {friction}"));
+                    let s = Scene::from_toml_str(&text, "strips-test.toml")
+                        .unwrap_or_else(|e| panic!("{e}"));
+                    let model = voussoir::scene::build(&s).expect("builds");
+                    assert!(statics::declines(&model).is_none(), "a chain with strips");
+                    for d in [Direction::Right, Direction::Left] {
+                        let (chain, full) = common::chain_and_full(&model, d);
+                        let what =
+                            format!("{face} {from}..{to}, F {f}, friction {friction}, {d:?}");
+                        assert_eq!(chain.status, full.status, "{what}");
+                        assert_eq!(chain.status, Status::Collapse, "{what}");
+                        assert!(chain.exact_vertex, "{what}: {}", chain.solver_status);
+                        let (lc, lf) =
+                            (chain.lambda.expect("lambda"), full.lambda.expect("lambda"));
+                        assert!(
+                            (lc - lf).abs() <= 1e-9 * lf,
+                            "{what}: chain {lc}, full {lf}"
+                        );
+                        assert!(
+                            chain.equilibrium_residual <= 1e-9 * model.assembly.total_weight(),
+                            "{what}: residual {}",
+                            chain.equilibrium_residual
+                        );
+                        for (st, force) in model.strips.iter().zip(&chain.strips) {
+                            let tol = 1e-9 * st.capacity.max(1.0);
+                            assert!(
+                                force.force >= -tol && force.force <= st.capacity + tol,
+                                "{what}: {force:?}"
+                            );
+                            yielded += usize::from(force.yielded);
+                        }
+                        compared += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(compared, 96);
+    assert!(yielded > 0, "some strip debonds at collapse");
+    let crushing = portal("intrados", 0, 32, 600.0).replace(
+        "friction = inf",
+        "friction = inf\ncompressive_strength = 5e6",
+    );
+    let s = Scene::from_toml_str(&crushing, "strips-test.toml").unwrap_or_else(|e| panic!("{e}"));
+    let model = voussoir::scene::build(&s).expect("builds");
+    assert_eq!(statics::declines(&model), Some(statics::Declined::Strips));
+    let r = statics::analyse(&model, &StaticSettings::default()).expect("full program");
+    assert_eq!(r.status, Status::Collapse);
+}

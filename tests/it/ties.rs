@@ -500,3 +500,121 @@ fn tied_block_capacity_curve_follows_virtual_work() {
         assert!(cap.curve.last().is_some_and(|p| p.alpha.abs() < 1e-6));
     }
 }
+
+/// The bundled portal (friction `friction`) with the ties `ties`: `(from, to, capacity,
+/// prestress)`, points as `[x, y]` text.
+fn portal_with_ties(ties: &[(&str, &str, f64, f64)], friction: &str) -> String {
+    let portal = std::fs::read_to_string(common::data("portal.toml")).expect("bundled portal");
+    let mut text = portal.replace("friction = inf", &format!("friction = {friction}"));
+    for (from, to, capacity, prestress) in ties {
+        text.push_str(&format!(
+            "\n[[ties]]\nfrom = {from}\nto = {to}\ncapacity = {capacity}\nprestress = {prestress}\n"
+        ));
+    }
+    text
+}
+
+/// The chain program with one unknown per tie (`statics::analyse` on a chain, its active
+/// set: the ties' tensions beside the chain's three redundants) against the full program
+/// (three unknowns per joint, the ties' tensions besides): the same status and multiplier to
+/// 1e-9 on a grid of ties (between the piers, from a pier to the arch, to the ground, four at
+/// once), capacities (yielding and not, 0), prestress, friction (none and finite) and both
+/// directions. Each chain solution is an equilibrium (its residual, ties included, below 1e-9
+/// of the weight) with every tension in `[P, C]`, and a single tie's tension is the least at
+/// collapse: at most the full program's (whose interior point stops inside the set of optimal
+/// tensions), and yielded exactly when the full program's is.
+#[test]
+fn chain_program_with_ties_equals_the_full_program() {
+    let piers = |y: f64| (format!("[-1.0, {y}]"), format!("[1.0, {y}]"));
+    let (p1, p2) = piers(-0.05);
+    let (p3, _) = piers(-0.3);
+    let (p4, p5) = piers(-0.55);
+    let arch = "[0.5, 0.866]".to_string();
+    let ground_left = "[-2.0, -1.2]".to_string();
+    let ground_right = "[2.0, -1.2]".to_string();
+    let mut cases: Vec<Vec<(String, String, f64, f64)>> = Vec::new();
+    for c in [0.0, 300.0, 1500.0, 2200.0, 20000.0] {
+        for p in [0.0, 0.5 * c] {
+            cases.push(vec![(p1.clone(), p2.clone(), c, p)]);
+            cases.push(vec![(p3.clone(), arch.clone(), c, p)]);
+        }
+    }
+    for c in [500.0, 3000.0, 12000.0] {
+        cases.push(vec![(p4.clone(), ground_left.clone(), c, 0.0)]);
+        cases.push(vec![(ground_right.clone(), p5.clone(), c, 0.2 * c)]);
+    }
+    cases.push(vec![
+        (p1.clone(), p2.clone(), 800.0, 0.0),
+        (p3.clone(), arch.clone(), 600.0, 100.0),
+        (p4.clone(), ground_left.clone(), 1500.0, 0.0),
+        (ground_right.clone(), p5.clone(), 900.0, 300.0),
+    ]);
+    // A prestress that pulls the piers over at rest: no equilibrium at lambda = 0.
+    cases.push(vec![(p1.clone(), p2.clone(), 60000.0, 50000.0)]);
+    let mut yielded = [0, 0];
+    let mut cannot_stand = 0;
+    for ties in &cases {
+        let spec: Vec<(&str, &str, f64, f64)> = ties
+            .iter()
+            .map(|(a, b, c, p)| (a.as_str(), b.as_str(), *c, *p))
+            .collect();
+        for friction in ["inf", "0.6"] {
+            let text = portal_with_ties(&spec, friction);
+            let model = voussoir::scene::build(&scene(&text)).expect("builds");
+            assert!(statics::declines(&model).is_none(), "a chain with ties");
+            let w = model.assembly.total_weight();
+            for d in [Direction::Right, Direction::Left] {
+                let (chain, full) = common::chain_and_full(&model, d);
+                let what = format!("{ties:?}, friction {friction}, {d:?}");
+                assert_eq!(chain.status, full.status, "{what}");
+                if chain.status != Status::Collapse {
+                    cannot_stand += 1;
+                    continue;
+                }
+                assert!(
+                    chain.exact_vertex && chain.solver_status.starts_with("active set"),
+                    "{what}: solved by {}",
+                    chain.solver_status
+                );
+                let (lc, lf) = (chain.lambda.expect("lambda"), full.lambda.expect("lambda"));
+                assert!(
+                    (lc - lf).abs() <= 1e-9 * lf,
+                    "{what}: chain {lc}, full {lf}"
+                );
+                assert!(
+                    chain.equilibrium_residual <= 1e-9 * w,
+                    "{what}: residual {}",
+                    chain.equilibrium_residual
+                );
+                for ((t, c), f) in model.ties.iter().zip(&chain.ties).zip(&full.ties) {
+                    let tol = 1e-9 * t.capacity.max(1.0);
+                    assert!(
+                        c.force >= t.prestress - tol && c.force <= t.capacity + tol,
+                        "{what}: {c:?}"
+                    );
+                    if model.ties.len() == 1 {
+                        assert!(
+                            c.force <= f.force + 1e-6 * t.capacity,
+                            "{what}: {c:?} {f:?}"
+                        );
+                        assert_eq!(c.yielded, f.yielded, "{what}: {c:?} {f:?}");
+                        yielded[usize::from(c.yielded)] += 1;
+                    }
+                }
+            }
+        }
+    }
+    // The grid holds both kinds of tie and a structure that cannot stand.
+    assert!(yielded[0] >= 10 && yielded[1] >= 10, "{yielded:?}");
+    assert!(cannot_stand >= 2, "{cannot_stand}");
+    // With crushing the chain program declines ties (its working set on the crushing laws
+    // has the redundants alone), and the full program answers.
+    let crushing = tied_portal(1500.0, -0.05).replace(
+        "friction = inf",
+        "friction = inf\ncompressive_strength = 5e6",
+    );
+    let model = voussoir::scene::build(&scene(&crushing)).expect("builds");
+    assert_eq!(statics::declines(&model), Some(statics::Declined::Ties));
+    let r = statics::analyse(&model, &StaticSettings::default()).expect("full program");
+    assert_eq!(r.status, Status::Collapse);
+}

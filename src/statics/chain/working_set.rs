@@ -481,7 +481,7 @@ mod tests {
         ] {
             let m = model(n, fc, mu);
             for sign in [1.0, -1.0] {
-                let program = ChainProgram::new(&m.assembly, &m.loads, m.strength, sign, None);
+                let program = ChainProgram::new(&m, sign, None);
                 let Outcome::Optimal(rigid) = program.active_set(1.0, crate::outcome::LAMBDA_CAP)
                 else {
                     panic!("rigid optimum");

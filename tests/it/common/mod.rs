@@ -335,3 +335,19 @@ pub fn rect_block(b: f64, h: f64, mu: f64) -> Assembly {
         }],
     }
 }
+
+/// The static result of `model` toward `d` by the default dispatch (the chain program on a
+/// chain) and by the full program, for comparing the two.
+pub fn chain_and_full(
+    model: &Model,
+    d: voussoir::statics::Direction,
+) -> (
+    voussoir::statics::StaticResult,
+    voussoir::statics::StaticResult,
+) {
+    use voussoir::statics::{self, Program, StaticSettings};
+    let settings = StaticSettings::default().direction(d);
+    let chain = statics::analyse(model, &settings).expect("chain program");
+    let full = statics::analyse(model, &settings.program(Program::Full)).expect("full program");
+    (chain, full)
+}

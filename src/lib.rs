@@ -13,6 +13,7 @@ pub mod convergence;
 pub mod dem;
 pub mod dem_settings;
 pub mod dossier;
+pub mod fragility;
 pub mod drawing;
 pub mod error;
 pub mod geometry;
@@ -24,6 +25,7 @@ pub mod outcome;
 pub mod overrides;
 pub mod report;
 pub mod retrofit;
+pub mod sampling;
 pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;

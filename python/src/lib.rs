@@ -614,6 +614,35 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
     to_json(&report::retrofit::RetrofitReport::new(&lib_scene, &r))
 }
 
+/// `fragility --json` of a scene and its chart (`--svg`), as JSON and SVG text: `samples`
+/// Latin hypercube samples of its `[uncertain]` inputs from `seed`, each sample's capacity
+/// by the NTC nonlinear kinematic check at its `[site]`, the lognormal fit (docs/fragility.md).
+#[pyfunction]
+#[pyo3(signature = (scene, samples = 100, seed = 1))]
+fn fragility_json_svg(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    seed: u64,
+) -> PyResult<(String, String)> {
+    let lib_scene = scene.inner.clone();
+    let (lib_scene, f) = interruptible(py, Arc::default(), move || {
+        let settings = voussoir::fragility::Settings {
+            samples,
+            seed,
+            ..voussoir::fragility::Settings::default()
+        };
+        let f = voussoir::fragility::capacity_route(&lib_scene, &settings);
+        (lib_scene, f)
+    })?;
+    let f = f.map_err(|e| analysis_error(py, &e))?;
+    let svg = report::figures::fragility(&lib_scene, &f)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?
+        .svg;
+    let json = to_json(&report::fragility::FragilityReport::new(&lib_scene, &f))?;
+    Ok((json, svg))
+}
+
 /// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).
 /// The report's input text (quoted in full, hashed) is the scene as `Scene.to_toml()` writes
 /// it, which reproduces it; `dem` adds the DEM's bracket as `--dem`.
@@ -1098,6 +1127,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
     m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_json_svg, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;

@@ -615,32 +615,56 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
 }
 
 /// `fragility --json` of a scene and its chart (`--svg`), as JSON and SVG text: `samples`
-/// Latin hypercube samples of its `[uncertain]` inputs from `seed`, each sample's capacity
-/// by the NTC nonlinear kinematic check at its `[site]`, the lognormal fit (docs/fragility.md).
+/// Latin hypercube samples of its `[uncertain]` inputs from `seed`; without `records`, each
+/// sample's capacity by the NTC nonlinear kinematic check at its `[site]` (the capacity
+/// route), with `records` (a directory of .AT2 files) and `stripes` (PGAs in g) the DEM
+/// under each record scaled to each stripe (the dynamic route); the lognormal fit
+/// (docs/fragility.md).
 #[pyfunction]
-#[pyo3(signature = (scene, samples = 100, seed = 1))]
+#[pyo3(signature = (scene, samples = 100, seed = 1, records = None, stripes = None))]
 fn fragility_json_svg(
     py: Python<'_>,
     scene: &Scene,
     samples: usize,
     seed: u64,
+    records: Option<std::path::PathBuf>,
+    stripes: Option<Vec<f64>>,
 ) -> PyResult<(String, String)> {
     let lib_scene = scene.inner.clone();
-    let (lib_scene, f) = interruptible(py, Arc::default(), move || {
-        let settings = voussoir::fragility::Settings {
-            samples,
-            seed,
-            ..voussoir::fragility::Settings::default()
+    let settings = voussoir::fragility::Settings {
+        samples,
+        seed,
+        ..voussoir::fragility::Settings::default()
+    };
+    let out = interruptible(py, Arc::default(), move || {
+        let out = match (records, stripes) {
+            (None, None) => voussoir::fragility::capacity_route(&lib_scene, &settings).and_then(|f| {
+                let svg = report::figures::fragility(&lib_scene, &f)
+                    .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                    .svg;
+                Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
+            }),
+            (Some(dir), Some(stripes)) => voussoir::fragility::read_records(&dir).and_then(|records| {
+                let f = voussoir::fragility::dynamic_route(
+                    &lib_scene,
+                    &settings,
+                    &records,
+                    &stripes,
+                    &voussoir::dem::dynamic::DynamicSettings::default(),
+                )?;
+                let svg = report::figures::dynamic_fragility(&lib_scene, &f)
+                    .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                    .svg;
+                Ok((report::fragility::FragilityReport::dynamic(&lib_scene, &f), svg))
+            }),
+            _ => Err(LibAnalysisError::Other(
+                "records and stripes go together: the dynamic route needs both".into(),
+            )),
         };
-        let f = voussoir::fragility::capacity_route(&lib_scene, &settings);
-        (lib_scene, f)
+        (lib_scene, out)
     })?;
-    let f = f.map_err(|e| analysis_error(py, &e))?;
-    let svg = report::figures::fragility(&lib_scene, &f)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?
-        .svg;
-    let json = to_json(&report::fragility::FragilityReport::new(&lib_scene, &f))?;
-    Ok((json, svg))
+    let (report, svg) = out.1.map_err(|e| analysis_error(py, &e))?;
+    Ok((to_json(&report)?, svg))
 }
 
 /// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).

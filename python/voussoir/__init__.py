@@ -421,6 +421,8 @@ def fragility(
     site: Optional[Mapping[str, Any]] = None,
     *,
     seed: int = 1,
+    records: Optional[Union[str, os.PathLike[str]]] = None,
+    stripes: Optional[Sequence[float]] = None,
 ) -> FragilityResult:
     """The fragility curve of ``scene`` by the capacity route, as ``voussoir fragility
     --json`` (docs/fragility.md): ``samples`` Latin hypercube samples of its ``[uncertain]``
@@ -428,11 +430,21 @@ def fragility(
     the largest ``ag`` its NTC 2018 nonlinear kinematic check passes (the worse direction,
     the site's other parameters held), and a lognormal fitted by maximum likelihood with
     confidence bounds. ``site``: keys of the ``[site]`` table to set, as in :func:`assess`.
-    Raises :class:`AnalysisError` for a sample outside a key's range (samples are refused,
-    not truncated) or a scene without a site."""
+    ``records`` (a directory of ``.AT2`` records) and ``stripes`` (peak ground accelerations
+    in g) run the dynamic route instead, as ``--records DIR --stripes ...``: each sample in
+    the DEM under each record scaled to each stripe, the lognormal fitted to the counts of
+    collapse. Raises :class:`AnalysisError` for a sample outside a key's range (samples are
+    refused, not truncated), a capacity route without a site, or only one of ``records``
+    and ``stripes``."""
     if site:
         scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
-    text, svg = _voussoir.fragility_json_svg(scene, samples, seed)
+    text, svg = _voussoir.fragility_json_svg(
+        scene,
+        samples,
+        seed,
+        None if records is None else str(records),
+        None if stripes is None else [float(x) for x in stripes],
+    )
     return FragilityResult(json.loads(text), svg)
 
 

@@ -3,6 +3,7 @@
 
 use super::{draw, write_atomically, Format, SceneArgs};
 use voussoir::analysis;
+use voussoir::dem::record;
 use voussoir::error::Error;
 use voussoir::fragility::{self, Settings};
 use voussoir::report;
@@ -18,6 +19,14 @@ pub struct Args {
     /// Seed of the samples (the same seed gives the same samples on every platform)
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
+    /// The dynamic route: a directory of ground-motion records (.AT2, PEER NGA), each run in
+    /// the DEM scaled to every --stripes PGA (multiple-stripe analysis); needs --stripes
+    #[arg(long, value_name = "DIR", requires = "stripes")]
+    records: Option<std::path::PathBuf>,
+    /// The stripes of the dynamic route: peak ground accelerations in g, e.g.
+    /// 0.05,0.1,0.2,0.3; needs --records
+    #[arg(long, value_name = "PGA,...", value_delimiter = ',', requires = "records")]
+    stripes: Vec<f64>,
     /// Set a key of the scene's [site] table, e.g. --site ag=0.25 --site soil=B (repeatable);
     /// the capacity route searches ag with the others held
     #[arg(long = "site", value_name = "KEY=VALUE")]
@@ -56,6 +65,28 @@ pub fn run(args: Args) -> Result<String, Error> {
         },
         ..Settings::default()
     };
+    if let Some(dir) = &args.records {
+        let records = read_records(dir)?;
+        let f = fragility::dynamic_route(
+            &scene,
+            &settings,
+            &records,
+            &args.stripes,
+            &voussoir::dem::dynamic::DynamicSettings::default(),
+        )?;
+        if let Some(path) = &args.csv {
+            let table = report::fragility::dynamic_table(&f);
+            write_atomically(path, |b| {
+                report::csv::write_table(b, &table).map_err(|e| e.to_string())
+            })?;
+        }
+        let figure = draw(args.svg.as_deref(), || {
+            report::figures::dynamic_fragility(&scene, &f)
+        })?;
+        let mut doc = report::fragility::dynamic_document(&scene, &f);
+        doc.figures.extend(figure);
+        return Ok(super::print(&doc, args.json));
+    }
     let f = fragility::capacity_route(&scene, &settings)?;
     if let Some(path) = &args.csv {
         let table = report::fragility::sample_table(&f);
@@ -67,4 +98,34 @@ pub fn run(args: Args) -> Result<String, Error> {
     let mut doc = report::fragility::document(&scene, &f);
     doc.figures.extend(figure);
     Ok(super::print(&doc, args.json))
+}
+
+/// The `.AT2` records of `dir` (any case), in the order of their names.
+fn read_records(dir: &std::path::Path) -> Result<Vec<record::GroundMotion>, Error> {
+    let bad = |message: String| {
+        Error::Analysis(voussoir::error::AnalysisError::Other(format!(
+            "--records {}: {message}",
+            dir.display()
+        )))
+    };
+    let entries = std::fs::read_dir(dir).map_err(|e| bad(e.to_string()))?;
+    let mut paths: Vec<std::path::PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .and_then(|x| x.to_str())
+                .is_some_and(|x| x.eq_ignore_ascii_case("at2"))
+        })
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(bad("no .AT2 record in the directory".into()));
+    }
+    paths
+        .iter()
+        .map(|p| {
+            record::read(p, record::AccelUnit::G, None)
+                .map_err(|e| Error::Analysis(voussoir::error::AnalysisError::Record(e)))
+        })
+        .collect()
 }

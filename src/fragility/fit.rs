@@ -243,9 +243,16 @@ pub fn fit(obs: &[Observation], confidence: f64) -> Result<LognormalFit, FitErro
         let mu = exact.iter().sum::<f64>() / n;
         let var = exact.iter().map(|y| (y - mu).powi(2)).sum::<f64>() / n;
         let beta = var.sqrt();
-        // Round-off of equal capacities is no dispersion: a step.
+        // Round-off of equal capacities is no dispersion: a step, at the largest of them (so
+        // that no sample fails at its own capacity).
         if beta <= 1e-12 * mu.abs().max(1.0) {
-            let median = mu.exp();
+            let median = obs
+                .iter()
+                .filter_map(|o| match o {
+                    Observation::Exact(x) => Some(*x),
+                    _ => None,
+                })
+                .fold(f64::NEG_INFINITY, f64::max);
             return Ok(LognormalFit {
                 median,
                 beta: 0.0,

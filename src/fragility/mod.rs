@@ -18,10 +18,12 @@
 //! `F0` and `Tc*` of its return period), while `S` and `TD` follow `ag` by their formulas.
 //! The fragility is the distribution of the capacities, `P(fail | ag = a) = P(C < a)`,
 //! fitted by a lognormal ([`fit`]); a sample that passes even at 2 g is a capacity above
-//! 2 g (censored in the fit), one that fails down to 0.005 g a capacity below it. A sample
-//! that cannot be assessed (the structure cannot stand, joints slide at collapse, no
-//! rotational mechanism) has no capacity in this model: it is listed with its reason and
-//! left out of the fit, and the result says how many.
+//! 2 g (censored in the fit), one that fails down to 0.005 g, or that cannot stand under its
+//! permanent loads at all, a capacity below 0.005 g. A sample that cannot be assessed
+//! (joints slide at collapse, no rotational mechanism) has no capacity in this model: it is
+//! listed with its reason and left out of the fit, and the result says how many.
+
+pub mod dynamic;
 
 pub mod fit;
 
@@ -35,6 +37,7 @@ use crate::scene::Scene;
 use rayon::prelude::*;
 use toml::Value;
 
+pub use dynamic::{dynamic_route, DynamicFragility, DynamicSample, Stripe};
 pub use fit::{FitError, LognormalFit, Observation};
 
 /// Settings of a fragility analysis.
@@ -290,7 +293,19 @@ fn capacity_of(scene: &Scene, settings: &Settings) -> Result<Capacity, AnalysisE
     let a = match analysis::assess_directions(scene, &settings.options, &settings.assess, None) {
         Ok(a) => a,
         Err(AnalysisError::Scene(e)) => return Err(AnalysisError::Scene(e)),
-        Err(e) => return Ok(Capacity::NotAssessed(e.to_string())),
+        Err(e) => {
+            // A structure that cannot stand under its permanent loads fails at every ag: its
+            // capacity is below any (left out, it would move the curve to the right). Asked
+            // only of the samples that failed, so the others pay nothing for it.
+            let stands = analysis::analyse(scene, &settings.options)
+                .map(|a| a.lower.status != crate::outcome::Status::CannotStand)
+                .unwrap_or(true);
+            return Ok(if stands {
+                Capacity::NotAssessed(e.to_string())
+            } else {
+                Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64)
+            });
+        }
     };
     let mut worst: Option<Capacity> = None;
     for d in &a.directions {

@@ -4,7 +4,7 @@
 use super::assessment::SiteReport;
 use super::document::{Column, Data, Document, Row, Table, Value};
 use crate::drawing::chart::{Chart, Series};
-use crate::fragility::{Capacity, CapacityFragility, LognormalFit};
+use crate::fragility::{Capacity, CapacityFragility, DynamicFragility, LognormalFit};
 use crate::outcome::Direction;
 use crate::scene::Scene;
 use serde::Serialize;
@@ -13,18 +13,26 @@ use serde::Serialize;
 #[derive(Debug, Serialize)]
 pub struct FragilityReport {
     pub scene: String,
-    /// `"capacity"`: each sample's capacity by the NTC nonlinear kinematic check.
+    /// `"capacity"`: each sample's capacity by the NTC nonlinear kinematic check;
+    /// `"dynamic"`: the DEM under records scaled to stripes of PGA (multiple-stripe analysis).
     pub route: &'static str,
-    /// The intensity measure: `"ag"` (peak ground acceleration on rock, in g).
+    /// The intensity measure: `"ag"` (capacity route: peak ground acceleration on rock, in
+    /// g) or `"pga"` (dynamic route: the records' peak ground acceleration, in g).
     pub intensity: &'static str,
-    /// The check whose largest passing `ag` is a sample's capacity (`"nonlinear"`).
-    pub check: &'static str,
+    /// The check whose largest passing `ag` is a sample's capacity (`"nonlinear"`); null on
+    /// the dynamic route.
+    pub check: Option<&'static str>,
     pub sample_count: usize,
     pub seed: u64,
     /// The uncertain inputs: `key`, `dist` and its parameters as the scene gives them.
     pub inputs: Vec<InputReport>,
-    /// The site, its `ag` the scene's (the capacities search `ag` with the rest held).
-    pub site: SiteReport,
+    /// The site, its `ag` the scene's (the capacities search `ag` with the rest held); null
+    /// on the dynamic route.
+    pub site: Option<SiteReport>,
+    /// The dynamic route's records (their files) and stripes (`pga` in g, `runs`,
+    /// `collapses` over every sample and record); null on the capacity route.
+    pub records: Option<Vec<String>>,
+    pub stripes: Option<Vec<StripeReport>>,
     /// The fitted lognormal: median (g), dispersion beta, their bounds at `confidence`;
     /// `null` when no fit exists (`fit_error` says why).
     pub median: Option<f64>,
@@ -41,6 +49,14 @@ pub struct FragilityReport {
     pub not_assessed: usize,
     /// One row per sample.
     pub samples: Vec<SampleReport>,
+}
+
+/// One stripe of the dynamic route.
+#[derive(Debug, Serialize)]
+pub struct StripeReport {
+    pub pga: f64,
+    pub runs: u64,
+    pub collapses: u64,
 }
 
 /// One uncertain input.
@@ -66,6 +82,9 @@ pub struct SampleReport {
     pub direction: Option<&'static str>,
     /// Why the sample was not assessed; null otherwise.
     pub reason: Option<String>,
+    /// Dynamic route: at each stripe, the records under which the sample collapsed (a count
+    /// out of `records`); null on the capacity route.
+    pub collapses: Option<Vec<u64>>,
 }
 
 fn outcome_words(c: &Capacity) -> &'static str {
@@ -92,19 +111,13 @@ impl FragilityReport {
             scene: scene.origin.clone(),
             route: "capacity",
             intensity: "ag",
-            check: "nonlinear",
+            check: Some("nonlinear"),
             sample_count: f.samples.len(),
             seed: f.seed,
-            inputs: f
-                .inputs
-                .iter()
-                .map(|i| InputReport {
-                    key: i.key.clone(),
-                    dist: i.dist.name(),
-                    parameters: parameters(&i.dist),
-                })
-                .collect(),
-            site: SiteReport::new(&f.site),
+            inputs: inputs(&f.inputs),
+            site: Some(SiteReport::new(&f.site)),
+            records: None,
+            stripes: None,
             median: fit.map(|x| x.median),
             beta: fit.map(|x| x.beta),
             median_bounds: fit.map(|x| x.median_bounds),
@@ -132,10 +145,77 @@ impl FragilityReport {
                         Capacity::NotAssessed(why) => Some(why.clone()),
                         _ => None,
                     },
+                    collapses: None,
                 })
                 .collect(),
         }
     }
+
+    /// The dynamic route's object.
+    pub fn dynamic(scene: &Scene, f: &DynamicFragility) -> Self {
+        let fit = f.fit.as_ref().ok();
+        FragilityReport {
+            scene: scene.origin.clone(),
+            route: "dynamic",
+            intensity: "pga",
+            check: None,
+            sample_count: f.samples.len(),
+            seed: f.seed,
+            inputs: inputs(&f.inputs),
+            site: None,
+            records: Some(f.records.clone()),
+            stripes: Some(
+                f.stripes
+                    .iter()
+                    .map(|s| StripeReport {
+                        pga: s.pga,
+                        runs: s.runs,
+                        collapses: s.collapses,
+                    })
+                    .collect(),
+            ),
+            median: fit.map(|x| x.median),
+            beta: fit.map(|x| x.beta),
+            median_bounds: fit.map(|x| x.median_bounds),
+            beta_bounds: fit.map(|x| x.beta_bounds),
+            confidence: fit.map(|x| x.confidence),
+            fit_error: f.fit.as_ref().err().map(|e| e.to_string()),
+            assessed: f.samples.len(),
+            above_search: 0,
+            below_search: 0,
+            not_assessed: 0,
+            samples: f
+                .samples
+                .iter()
+                .enumerate()
+                .map(|(index, s)| SampleReport {
+                    index,
+                    values: s.values.clone(),
+                    outcome: "ran",
+                    ag_capacity: None,
+                    direction: None,
+                    reason: None,
+                    collapses: Some(
+                        s.collapsed
+                            .iter()
+                            .map(|c| c.iter().filter(|&&x| x).count() as u64)
+                            .collect(),
+                    ),
+                })
+                .collect(),
+        }
+    }
+}
+
+fn inputs(inputs: &[crate::scene::uncertain::UncertainInput]) -> Vec<InputReport> {
+    inputs
+        .iter()
+        .map(|i| InputReport {
+            key: i.key.clone(),
+            dist: i.dist.name(),
+            parameters: parameters(&i.dist),
+        })
+        .collect()
 }
 
 fn parameters(d: &crate::sampling::Distribution) -> std::collections::BTreeMap<&'static str, f64> {
@@ -323,6 +403,139 @@ pub fn chart(scene: &Scene, f: &CapacityFragility) -> Chart {
         title: format!("Fragility (capacity route, {} samples): {}", f.samples.len(), scene.origin),
         x_label: "peak ground acceleration on rock ag (g)".into(),
         y_label: "probability of failing the nonlinear check".into(),
+        legend_title: None,
+        series,
+    }
+}
+
+/// The per-sample table of the dynamic route: the sample, each input's value, and at each
+/// stripe the records under which it collapsed.
+pub fn dynamic_table(f: &DynamicFragility) -> Table {
+    let mut columns = vec![Column::right("sample", 6)];
+    columns.extend(f.inputs.iter().map(|i| Column::right(i.key.clone(), 20)));
+    columns.extend(
+        f.stripes
+            .iter()
+            .map(|s| Column::right(format!("collapses_at_{}g", s.pga), 18)),
+    );
+    let rows = f
+        .samples
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let mut row = vec![Value::Count(i as u64)];
+            row.extend(s.values.iter().map(|&v| Value::Text(format!("{v}"))));
+            row.extend(
+                s.collapsed
+                    .iter()
+                    .map(|c| Value::Count(c.iter().filter(|&&x| x).count() as u64)),
+            );
+            row
+        })
+        .collect();
+    Table { columns, rows }
+}
+
+/// The document of a dynamic-route fragility.
+pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
+    let report = FragilityReport::dynamic(scene, f);
+    let mut doc = Document::new(&scene.origin);
+    doc.lead.push(format!(
+        "Fragility by the dynamic route (multiple-stripe analysis): {} Latin hypercube samples (seed {}), each run in the DEM under {} record(s) scaled to {} stripe(s) of PGA",
+        f.samples.len(),
+        f.seed,
+        f.records.len(),
+        f.stripes.len()
+    ));
+    let sec = doc.section("Uncertain inputs");
+    if f.inputs.is_empty() {
+        sec.warning("the scene has no [uncertain] table: every sample is the scene itself (the spread comes from the records alone)");
+    }
+    for i in &f.inputs {
+        sec.item(format!("{}: {} ({})", i.key, i.dist.name(), i.dist.parameters()));
+    }
+    let sec = doc.section("Stripes");
+    sec.table(Table {
+        columns: vec![
+            Column::right("PGA (g)", 8),
+            Column::right("runs", 6),
+            Column::right("collapses", 9),
+            Column::right("share", 6),
+        ],
+        rows: f
+            .stripes
+            .iter()
+            .map(|s| {
+                vec![
+                    Value::number(s.pga, 3),
+                    Value::Count(s.runs),
+                    Value::Count(s.collapses),
+                    Value::number(s.collapses as f64 / s.runs as f64, 3),
+                ]
+            })
+            .collect(),
+    });
+    for r in &f.records {
+        sec.item(format!("record: {r}"));
+    }
+    let sec = doc.section("Fragility");
+    match &f.fit {
+        Ok(fit) => {
+            sec.line(fit_words(fit).replace(" g ", " g PGA "));
+        }
+        Err(e) => {
+            sec.warning(format!("no lognormal fit: {e}"));
+        }
+    }
+    let samples = doc.section("Samples");
+    if f.samples.len() <= TABLE_ROWS {
+        samples.table(dynamic_table(f));
+    } else {
+        samples.line(format!(
+            "{} samples: the per-sample table is in --csv FILE (and --json)",
+            f.samples.len()
+        ));
+    }
+    doc.data = Some(Data::Fragility(Box::new(report)));
+    doc
+}
+
+/// The dynamic route's chart: the fitted lognormal over each stripe's share of collapses.
+pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
+    let top = f.stripes.iter().map(|s| s.pga).fold(0.0_f64, f64::max).max(1e-3) * 1.15;
+    let mut series = Vec::new();
+    if let Ok(fit) = &f.fit {
+        let n = 200;
+        let points = (0..=n)
+            .map(|i| {
+                let a = top * i as f64 / n as f64;
+                (a, fit.probability(a))
+            })
+            .collect();
+        series.push(Series::line(
+            format!("lognormal fit: median {:.3} g, beta {:.3}", fit.median, fit.beta),
+            points,
+            [(fit.median, 0.5)],
+        ));
+    }
+    series.push(Series {
+        name: "stripes (share of runs that collapse)".into(),
+        points: f
+            .stripes
+            .iter()
+            .map(|s| (s.pga, s.collapses as f64 / s.runs as f64))
+            .collect(),
+        markers: crate::drawing::chart::Markers::Every,
+    });
+    Chart {
+        title: format!(
+            "Fragility (dynamic route, {} samples x {} records): {}",
+            f.samples.len(),
+            f.records.len(),
+            scene.origin
+        ),
+        x_label: "peak ground acceleration PGA (g)".into(),
+        y_label: "probability of collapse (DEM)".into(),
         legend_title: None,
         series,
     }

@@ -312,6 +312,14 @@ pub fn fragility(
     of_chart("chart", &super::fragility::chart(scene, f))
 }
 
+/// `fragility --records`'s chart: the fitted curve over the stripes' shares of collapse.
+pub fn dynamic_fragility(
+    scene: &Scene,
+    f: &crate::fragility::DynamicFragility,
+) -> Result<Figure, SvgError> {
+    of_chart("chart", &super::fragility::dynamic_chart(scene, f))
+}
+
 /// `sweep`'s chart: lambda against `x`, one line per value of the other keys.
 pub fn sweep(
     scene: &Scene,

@@ -197,7 +197,18 @@ mod tests {
 
     #[test]
     fn the_quantile_inverts_the_cdf_to_round_off() {
-        for &p in &[1e-12, 1e-6, 0.01, 0.02425, 0.1, 0.3, 0.5, 0.7, 0.975, 1.0 - 1e-9] {
+        for &p in &[
+            1e-12,
+            1e-6,
+            0.01,
+            0.02425,
+            0.1,
+            0.3,
+            0.5,
+            0.7,
+            0.975,
+            1.0 - 1e-9,
+        ] {
             let x = normal_quantile(p);
             assert!(
                 (normal_cdf(x) - p).abs() <= 1e-15_f64.max(1e-13 * p),
@@ -242,6 +253,10 @@ mod tests {
             beta: 0.1,
         };
         assert!((l.quantile(0.5) - 18000.0).abs() < 1e-9);
-        assert!(Distribution::Normal { mean: 1.0, cov: 0.0 }.certain());
+        assert!(Distribution::Normal {
+            mean: 1.0,
+            cov: 0.0
+        }
+        .certain());
     }
 }

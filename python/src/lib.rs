@@ -638,25 +638,32 @@ fn fragility_json_svg(
     };
     let out = interruptible(py, Arc::default(), move || {
         let out = match (records, stripes) {
-            (None, None) => voussoir::fragility::capacity_route(&lib_scene, &settings).and_then(|f| {
-                let svg = report::figures::fragility(&lib_scene, &f)
-                    .map_err(|e| LibAnalysisError::Other(e.to_string()))?
-                    .svg;
-                Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
-            }),
-            (Some(dir), Some(stripes)) => voussoir::fragility::read_records(&dir).and_then(|records| {
-                let f = voussoir::fragility::dynamic_route(
-                    &lib_scene,
-                    &settings,
-                    &records,
-                    &stripes,
-                    &voussoir::dem::dynamic::DynamicSettings::default(),
-                )?;
-                let svg = report::figures::dynamic_fragility(&lib_scene, &f)
-                    .map_err(|e| LibAnalysisError::Other(e.to_string()))?
-                    .svg;
-                Ok((report::fragility::FragilityReport::dynamic(&lib_scene, &f), svg))
-            }),
+            (None, None) => {
+                voussoir::fragility::capacity_route(&lib_scene, &settings).and_then(|f| {
+                    let svg = report::figures::fragility(&lib_scene, &f)
+                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                        .svg;
+                    Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
+                })
+            }
+            (Some(dir), Some(stripes)) => {
+                voussoir::fragility::read_records(&dir).and_then(|records| {
+                    let f = voussoir::fragility::dynamic_route(
+                        &lib_scene,
+                        &settings,
+                        &records,
+                        &stripes,
+                        &voussoir::dem::dynamic::DynamicSettings::default(),
+                    )?;
+                    let svg = report::figures::dynamic_fragility(&lib_scene, &f)
+                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                        .svg;
+                    Ok((
+                        report::fragility::FragilityReport::dynamic(&lib_scene, &f),
+                        svg,
+                    ))
+                })
+            }
             _ => Err(LibAnalysisError::Other(
                 "records and stripes go together: the dynamic route needs both".into(),
             )),

@@ -3,7 +3,6 @@
 
 use super::{draw, write_atomically, Format, SceneArgs};
 use voussoir::analysis;
-use voussoir::dem::record;
 use voussoir::error::Error;
 use voussoir::fragility::{self, Settings};
 use voussoir::report;
@@ -25,7 +24,12 @@ pub struct Args {
     records: Option<std::path::PathBuf>,
     /// The stripes of the dynamic route: peak ground accelerations in g, e.g.
     /// 0.05,0.1,0.2,0.3; needs --records
-    #[arg(long, value_name = "PGA,...", value_delimiter = ',', requires = "records")]
+    #[arg(
+        long,
+        value_name = "PGA,...",
+        value_delimiter = ',',
+        requires = "records"
+    )]
     stripes: Vec<f64>,
     /// Set a key of the scene's [site] table, e.g. --site ag=0.25 --site soil=B (repeatable);
     /// the capacity route searches ag with the others held
@@ -66,7 +70,7 @@ pub fn run(args: Args) -> Result<String, Error> {
         ..Settings::default()
     };
     if let Some(dir) = &args.records {
-        let records = read_records(dir)?;
+        let records = fragility::read_records(dir)?;
         let f = fragility::dynamic_route(
             &scene,
             &settings,
@@ -94,38 +98,10 @@ pub fn run(args: Args) -> Result<String, Error> {
             report::csv::write_table(b, &table).map_err(|e| e.to_string())
         })?;
     }
-    let figure = draw(args.svg.as_deref(), || report::figures::fragility(&scene, &f))?;
+    let figure = draw(args.svg.as_deref(), || {
+        report::figures::fragility(&scene, &f)
+    })?;
     let mut doc = report::fragility::document(&scene, &f);
     doc.figures.extend(figure);
     Ok(super::print(&doc, args.json))
-}
-
-/// The `.AT2` records of `dir` (any case), in the order of their names.
-fn read_records(dir: &std::path::Path) -> Result<Vec<record::GroundMotion>, Error> {
-    let bad = |message: String| {
-        Error::Analysis(voussoir::error::AnalysisError::Other(format!(
-            "--records {}: {message}",
-            dir.display()
-        )))
-    };
-    let entries = std::fs::read_dir(dir).map_err(|e| bad(e.to_string()))?;
-    let mut paths: Vec<std::path::PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.extension()
-                .and_then(|x| x.to_str())
-                .is_some_and(|x| x.eq_ignore_ascii_case("at2"))
-        })
-        .collect();
-    paths.sort();
-    if paths.is_empty() {
-        return Err(bad("no .AT2 record in the directory".into()));
-    }
-    paths
-        .iter()
-        .map(|p| {
-            record::read(p, record::AccelUnit::G, None)
-                .map_err(|e| Error::Analysis(voussoir::error::AnalysisError::Record(e)))
-        })
-        .collect()
 }

@@ -48,7 +48,33 @@ pub struct DynamicFragility {
     pub fit: Result<LognormalFit, FitError>,
 }
 
-/// The most stripes, and records, a dynamic route takes.
+/// The `.AT2` records of `dir` (any case of the extension), in the order of their names.
+pub fn read_records(dir: &std::path::Path) -> Result<Vec<GroundMotion>, AnalysisError> {
+    let bad =
+        |message: String| AnalysisError::Other(format!("--records {}: {message}", dir.display()));
+    let entries = std::fs::read_dir(dir).map_err(|e| bad(e.to_string()))?;
+    let mut paths: Vec<std::path::PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .and_then(|x| x.to_str())
+                .is_some_and(|x| x.eq_ignore_ascii_case("at2"))
+        })
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(bad("no .AT2 record in the directory".into()));
+    }
+    paths
+        .iter()
+        .map(|p| {
+            crate::dem::record::read(p, crate::dem::record::AccelUnit::G, None)
+                .map_err(AnalysisError::Record)
+        })
+        .collect()
+}
+
+/// The most stripes a dynamic route takes.
 pub const MAX_STRIPES: usize = 100;
 
 /// The dynamic-route fragility of `scene` under `records` scaled to each PGA of `stripes`
@@ -70,7 +96,9 @@ pub fn dynamic_route(
     }
     if stripes.is_empty()
         || stripes.len() > MAX_STRIPES
-        || stripes.iter().any(|&s| !(s.is_finite() && s > 0.0 && s <= 10.0))
+        || stripes
+            .iter()
+            .any(|&s| !(s.is_finite() && s > 0.0 && s <= 10.0))
     {
         return Err(AnalysisError::Settings {
             setting: "--stripes".into(),
@@ -78,7 +106,7 @@ pub fn dynamic_route(
             allowed: format!("1 to {MAX_STRIPES} peak ground accelerations, each > 0 and <= 10 g"),
         });
     }
-    if let Some(r) = records.iter().find(|r| !(r.pga() > 0.0)) {
+    if let Some(r) = records.iter().find(|r| r.pga().is_nan() || r.pga() <= 0.0) {
         return Err(AnalysisError::Other(format!(
             "{}: the record never moves (its PGA is 0), so it cannot be scaled to a stripe",
             r.source

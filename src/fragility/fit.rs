@@ -377,9 +377,14 @@ fn unbounded(obs: &[Observation]) -> Result<(), FitError> {
             "every run collapsed: the median lies below every intensity tried".into(),
         ));
     }
-    if lowest_collapse >= highest_survival {
+    if lowest_collapse > highest_survival {
         return Err(FitError::Unbounded(format!(
             "every run survived up to {highest_survival} and collapsed from {lowest_collapse}: the dispersion runs to 0 (add stripes between them)"
+        )));
+    }
+    if lowest_collapse == highest_survival {
+        return Err(FitError::Unbounded(format!(
+            "only the stripe at {lowest_collapse} has both collapses and survivals (every one below survives, every one above collapses): the likelihood's maximum is a step there, the dispersion runs to 0 (add stripes around it)"
         )));
     }
     Ok(())

@@ -37,7 +37,7 @@ use crate::scene::Scene;
 use rayon::prelude::*;
 use toml::Value;
 
-pub use dynamic::{dynamic_route, DynamicFragility, DynamicSample, Stripe};
+pub use dynamic::{dynamic_route, read_records, DynamicFragility, DynamicSample, Stripe};
 pub use fit::{FitError, LognormalFit, Observation};
 
 /// Settings of a fragility analysis.
@@ -317,7 +317,9 @@ fn capacity_of(scene: &Scene, settings: &Settings) -> Result<Capacity, AnalysisE
             },
             // `ag_max` is None both when the check passes at the largest ag searched and
             // when it fails at every grid point: tell them apart.
-            None if v.nonlinear.capacity >= nonlinear_demand(&d.site.with_ag(AG_SEARCH_MAX), v.ts) => {
+            None if v.nonlinear.capacity
+                >= nonlinear_demand(&d.site.with_ag(AG_SEARCH_MAX), v.ts) =>
+            {
                 Capacity::Above
             }
             None => Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64),

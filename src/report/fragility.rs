@@ -309,7 +309,14 @@ pub fn document(scene: &Scene, f: &CapacityFragility) -> Document {
         Ok(fit) => {
             sec.line(fit_words(fit));
             sec.rows(vec![
-                Row::new("median", Value::Number { value: fit.median, digits: 4, unit: "g" }),
+                Row::new(
+                    "median",
+                    Value::Number {
+                        value: fit.median,
+                        digits: 4,
+                        unit: "g",
+                    },
+                ),
                 Row::new("beta", Value::number(fit.beta, 4)),
                 Row::new("samples assessed", Value::Count(report.assessed as u64)),
             ]);
@@ -400,7 +407,11 @@ pub fn chart(scene: &Scene, f: &CapacityFragility) -> Chart {
         markers: crate::drawing::chart::Markers::Every,
     });
     Chart {
-        title: format!("Fragility (capacity route, {} samples): {}", f.samples.len(), scene.origin),
+        title: format!(
+            "Fragility (capacity route, {} samples): {}",
+            f.samples.len(),
+            scene.origin
+        ),
         x_label: "peak ground acceleration on rock ag (g)".into(),
         y_label: "probability of failing the nonlinear check".into(),
         legend_title: None,
@@ -441,7 +452,7 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
     let report = FragilityReport::dynamic(scene, f);
     let mut doc = Document::new(&scene.origin);
     doc.lead.push(format!(
-        "Fragility by the dynamic route (multiple-stripe analysis): {} Latin hypercube samples (seed {}), each run in the DEM under {} record(s) scaled to {} stripe(s) of PGA",
+        "Fragility by the dynamic route (multiple-stripe analysis): {} Latin hypercube samples (seed {}), each run in the DEM under each of {} record(s) scaled to each of {} stripe(s) of PGA",
         f.samples.len(),
         f.seed,
         f.records.len(),
@@ -452,7 +463,12 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
         sec.warning("the scene has no [uncertain] table: every sample is the scene itself (the spread comes from the records alone)");
     }
     for i in &f.inputs {
-        sec.item(format!("{}: {} ({})", i.key, i.dist.name(), i.dist.parameters()));
+        sec.item(format!(
+            "{}: {} ({})",
+            i.key,
+            i.dist.name(),
+            i.dist.parameters()
+        ));
     }
     let sec = doc.section("Stripes");
     sec.table(Table {
@@ -502,7 +518,13 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
 
 /// The dynamic route's chart: the fitted lognormal over each stripe's share of collapses.
 pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
-    let top = f.stripes.iter().map(|s| s.pga).fold(0.0_f64, f64::max).max(1e-3) * 1.15;
+    let top = f
+        .stripes
+        .iter()
+        .map(|s| s.pga)
+        .fold(0.0_f64, f64::max)
+        .max(1e-3)
+        * 1.15;
     let mut series = Vec::new();
     if let Ok(fit) = &f.fit {
         let n = 200;
@@ -513,7 +535,10 @@ pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
             })
             .collect();
         series.push(Series::line(
-            format!("lognormal fit: median {:.3} g, beta {:.3}", fit.median, fit.beta),
+            format!(
+                "lognormal fit: median {:.3} g, beta {:.3}",
+                fit.median, fit.beta
+            ),
             points,
             [(fit.median, 0.5)],
         ));
@@ -529,7 +554,7 @@ pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
     });
     Chart {
         title: format!(
-            "Fragility (dynamic route, {} samples x {} records): {}",
+            "Fragility (dynamic route, {} samples x {} record(s)): {}",
             f.samples.len(),
             f.records.len(),
             scene.origin

@@ -107,13 +107,22 @@ fn the_likelihood_fit_equals_a_direct_maximisation_and_recovers_the_lognormal() 
     let (mut median_in, mut beta_in) = (0, 0);
     let sets = 400;
     for seed in 0..sets {
-        let f = fit::fit(&observations(&synthetic(median, beta, 100, 1000 + seed)), 0.95)
-            .expect("fit");
+        let f = fit::fit(
+            &observations(&synthetic(median, beta, 100, 1000 + seed)),
+            0.95,
+        )
+        .expect("fit");
         median_in += usize::from(f.median_bounds[0] <= median && median <= f.median_bounds[1]);
         beta_in += usize::from(f.beta_bounds[0] <= beta && beta <= f.beta_bounds[1]);
     }
-    assert!((361..=394).contains(&median_in), "median covered {median_in} / {sets}");
-    assert!((361..=394).contains(&beta_in), "beta covered {beta_in} / {sets}");
+    assert!(
+        (361..=394).contains(&median_in),
+        "median covered {median_in} / {sets}"
+    );
+    assert!(
+        (361..=394).contains(&beta_in),
+        "beta covered {beta_in} / {sets}"
+    );
     let wide = fit::fit(&observations(&synthetic(median, beta, 40, 1)), 0.95).expect("fit");
     let narrow = fit::fit(&observations(&synthetic(median, beta, 400, 3)), 0.95).expect("fit");
     assert!(
@@ -213,8 +222,9 @@ fn the_same_seed_gives_the_same_samples_and_curve() {
         .map(|(i, &x)| (i.key.as_str(), toml::Value::Float(x)))
         .collect();
     let one = scene.with_values(&pairs).expect("sample scene");
-    let assessed = analysis::assess_directions(&one, &Options::default(), &AssessOptions::default(), None)
-        .expect("assess");
+    let assessed =
+        analysis::assess_directions(&one, &Options::default(), &AssessOptions::default(), None)
+            .expect("assess");
     let least = assessed
         .directions
         .iter()
@@ -226,15 +236,23 @@ fn the_same_seed_gives_the_same_samples_and_curve() {
 #[test]
 fn certain_inputs_give_a_step_at_the_largest_passing_ag() {
     let portal = std::fs::read_to_string(data("fragility_portal.toml")).expect("read");
-    let certain = portal.split("[uncertain]").next().expect("head").to_string();
+    let certain = portal
+        .split("[uncertain]")
+        .next()
+        .expect("head")
+        .to_string();
     // Without [uncertain], and with distributions of no spread.
     let degenerate = format!(
         "{certain}[uncertain]\n\"arch.thickness\" = {{ dist = \"normal\", mean = 0.2, cov = 0.0 }}\n\"piers.width\" = {{ dist = \"uniform\", low = 0.4, high = 0.4 }}\n"
     );
     let reference = Scene::from_toml_str(&certain, "certain").expect("scene");
-    let assessed =
-        analysis::assess_directions(&reference, &Options::default(), &AssessOptions::default(), None)
-            .expect("assess");
+    let assessed = analysis::assess_directions(
+        &reference,
+        &Options::default(),
+        &AssessOptions::default(),
+        None,
+    )
+    .expect("assess");
     let ag_max = assessed
         .directions
         .iter()
@@ -244,10 +262,7 @@ fn certain_inputs_give_a_step_at_the_largest_passing_ag() {
     for text in [certain.clone(), degenerate] {
         let scene = Scene::from_toml_str(&text, "certain").expect("scene");
         let f = fragility::capacity_route(&scene, &settings(12, 4)).expect("fragility");
-        assert!(f
-            .samples
-            .iter()
-            .all(|s| s.capacity.ag() == Some(ag_max)));
+        assert!(f.samples.iter().all(|s| s.capacity.ag() == Some(ag_max)));
         let fit = f.fit.clone().expect("fit");
         assert_eq!(fit.beta, 0.0);
         assert_eq!(fit.median, ag_max);
@@ -285,18 +300,32 @@ fn a_sample_outside_the_keys_range_is_refused_with_its_key_and_value() {
     let e = fragility::capacity_route(&scene, &settings(5, 1))
         .expect_err("refused")
         .to_string();
-    assert!(e.contains("\"arch.thicknes\"") && e.contains("thickness"), "{e}");
+    assert!(
+        e.contains("\"arch.thicknes\"") && e.contains("thickness"),
+        "{e}"
+    );
     // Bad distributions are errors of the scene, naming the entry.
     for (entry, words) in [
         ("{ dist = \"gamma\", mean = 1.0 }", "dist"),
         ("{ dist = \"normal\", mean = 0.2 }", "cov"),
         ("{ dist = \"uniform\", low = 0.3, high = 0.2 }", "high"),
-        ("{ dist = \"lognormal\", median = -1.0, beta = 0.1 }", "median"),
-        ("{ dist = \"normal\", mean = 0.2, cov = 0.1, sd = 3.0 }", "sd"),
+        (
+            "{ dist = \"lognormal\", median = -1.0, beta = 0.1 }",
+            "median",
+        ),
+        (
+            "{ dist = \"normal\", mean = 0.2, cov = 0.1, sd = 3.0 }",
+            "sd",
+        ),
     ] {
         let text = format!("{head}[uncertain]\n\"arch.thickness\" = {entry}\n");
-        let e = Scene::from_toml_str(&text, "bad").expect_err("bad").to_string();
-        assert!(e.contains("uncertain.\"arch.thickness\"") && e.contains(words), "{e}");
+        let e = Scene::from_toml_str(&text, "bad")
+            .expect_err("bad")
+            .to_string();
+        assert!(
+            e.contains("uncertain.\"arch.thickness\"") && e.contains(words),
+            "{e}"
+        );
     }
 }
 
@@ -316,7 +345,10 @@ fn samples_that_cannot_stand_fail_at_every_ag_and_sliding_ones_are_left_out() {
         let one = scene
             .with_values(&[("material.friction", toml::Value::Float(s.values[0]))])
             .expect("sample scene");
-        let stands = analysis::analyse(&one, &Options::default()).expect("analyse").lower.status
+        let stands = analysis::analyse(&one, &Options::default())
+            .expect("analyse")
+            .lower
+            .status
             != voussoir::outcome::Status::CannotStand;
         match &s.capacity {
             Capacity::Below(_) => {
@@ -324,7 +356,10 @@ fn samples_that_cannot_stand_fail_at_every_ag_and_sliding_ones_are_left_out() {
                 kinds[0] += 1;
             }
             Capacity::NotAssessed(why) => {
-                assert!(stands && (why.contains("slid") || why.contains("non-associative")), "{why}");
+                assert!(
+                    stands && (why.contains("slid") || why.contains("non-associative")),
+                    "{why}"
+                );
                 kinds[1] += 1;
             }
             Capacity::At { .. } | Capacity::Above => {
@@ -351,7 +386,11 @@ fn the_command_writes_its_table_chart_and_json() {
         .arg(&svg)
         .output()
         .expect("run");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
     assert_eq!(json["route"], "capacity");
     assert_eq!(json["sample_count"], 20);
@@ -387,8 +426,14 @@ fn the_dynamic_route_counts_the_dem_runs_of_each_sample() {
     .expect("record");
     let stripes = [0.1, 0.6];
     let dynamic = voussoir::dem::dynamic::DynamicSettings::default();
-    let f = fragility::dynamic_route(&scene, &settings(2, 7), &[record.clone()], &stripes, &dynamic)
-        .expect("dynamic route");
+    let f = fragility::dynamic_route(
+        &scene,
+        &settings(2, 7),
+        std::slice::from_ref(&record),
+        &stripes,
+        &dynamic,
+    )
+    .expect("dynamic route");
     assert_eq!(f.samples.len(), 2);
     for (j, stripe) in f.stripes.iter().enumerate() {
         assert_eq!(stripe.runs, 2);
@@ -409,7 +454,10 @@ fn the_dynamic_route_counts_the_dem_runs_of_each_sample() {
         let ground: voussoir::dem::record::GroundInput =
             voussoir::dem::record::Excitation::Record(record.scaled(pga * g / record.pga())).into();
         let run = analysis::dem_dynamic(&one, &ground, &dynamic).expect("dem");
-        assert_eq!(s.collapsed[j][0], run.result.collapsed || run.result.cannot_stand);
+        assert_eq!(
+            s.collapsed[j][0],
+            run.result.collapsed || run.result.cannot_stand
+        );
     }
     // The same seed, the same runs.
     let again = fragility::dynamic_route(&scene, &settings(2, 7), &[record], &stripes, &dynamic)

@@ -6,6 +6,7 @@ use super::document::{Column, Data, Document, Row, Table, Value};
 use crate::drawing::chart::{Chart, Series};
 use crate::fragility::{Capacity, CapacityFragility, DynamicFragility, LognormalFit};
 use crate::outcome::Direction;
+use crate::scene::uncertain::UncertainInput;
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -230,8 +231,7 @@ fn parameters(d: &crate::sampling::Distribution) -> std::collections::BTreeMap<&
 /// The per-sample table (the CSV of `--csv`): the sample, each input's value, the outcome,
 /// the capacity and its direction.
 pub fn sample_table(f: &CapacityFragility) -> Table {
-    let mut columns = vec![Column::right("sample", 6)];
-    columns.extend(f.inputs.iter().map(|i| Column::right(i.key.clone(), 20)));
+    let mut columns = input_columns(&f.inputs);
     columns.push(Column::left("outcome", 20).gap(2));
     columns.push(Column::right("ag_capacity_g", 20));
     columns.push(Column::left("direction", 9).gap(2));
@@ -240,9 +240,7 @@ pub fn sample_table(f: &CapacityFragility) -> Table {
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let mut row = vec![Value::Count(i as u64)];
-            // Full precision: the table is the data of the CSV.
-            row.extend(s.values.iter().map(|&v| Value::Text(format!("{v}"))));
+            let mut row = input_cells(i, &s.values);
             row.push(Value::text(outcome_words(&s.capacity)));
             row.push(Value::Text(
                 s.capacity.ag().map_or(String::new(), |a| format!("{a}")),
@@ -292,18 +290,11 @@ pub fn document(scene: &Scene, f: &CapacityFragility) -> Document {
         f.site.f0,
         f.site.tc_star
     ));
-    let sec = doc.section("Uncertain inputs");
-    if f.inputs.is_empty() {
-        sec.warning("the scene has no [uncertain] table: every sample is the scene itself, so the fragility is a step at its largest passing ag");
-    }
-    for i in &f.inputs {
-        sec.item(format!(
-            "{}: {} ({})",
-            i.key,
-            i.dist.name(),
-            i.dist.parameters()
-        ));
-    }
+    inputs_section(
+        &mut doc,
+        &f.inputs,
+        "every sample is the scene itself, so the fragility is a step at its largest passing ag",
+    );
     let sec = doc.section("Fragility");
     match &f.fit {
         Ok(fit) => {
@@ -351,16 +342,7 @@ pub fn document(scene: &Scene, f: &CapacityFragility) -> Document {
                 .unwrap_or_default()
         ));
     }
-    // A long table is for the CSV (or the JSON), not the terminal.
-    let samples = doc.section("Samples");
-    if f.samples.len() <= TABLE_ROWS {
-        samples.table(sample_table(f));
-    } else {
-        samples.line(format!(
-            "{} samples: the per-sample table is in --csv FILE (and --json)",
-            f.samples.len()
-        ));
-    }
+    samples_section(&mut doc, f.samples.len(), || sample_table(f));
     doc.data = Some(Data::Fragility(Box::new(report)));
     doc
 }
@@ -378,29 +360,7 @@ pub fn chart(scene: &Scene, f: &CapacityFragility) -> Chart {
         .max(1e-3)
         * 1.15;
     let mut series = Vec::new();
-    if let Ok(fit) = &f.fit {
-        let n = 200;
-        let mut points: Vec<(f64, f64)> = (0..=n)
-            .map(|i| {
-                let a = top * i as f64 / n as f64;
-                (a, fit.probability(a))
-            })
-            .collect();
-        if fit.beta == 0.0 {
-            // The step drawn as a vertical rise at the median.
-            points.push((fit.median, 0.0));
-            points.push((fit.median, 1.0));
-            points.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        }
-        series.push(Series::line(
-            format!(
-                "lognormal fit: median {:.3} g, beta {:.3}",
-                fit.median, fit.beta
-            ),
-            points,
-            [(fit.median, 0.5)],
-        ));
-    }
+    series.extend(f.fit.as_ref().ok().map(|fit| fit_series(fit, top)));
     series.push(Series {
         name: "samples (share failing at or below)".into(),
         points: empirical.clone(),
@@ -422,8 +382,7 @@ pub fn chart(scene: &Scene, f: &CapacityFragility) -> Chart {
 /// The per-sample table of the dynamic route: the sample, each input's value, and at each
 /// stripe the records under which it collapsed.
 pub fn dynamic_table(f: &DynamicFragility) -> Table {
-    let mut columns = vec![Column::right("sample", 6)];
-    columns.extend(f.inputs.iter().map(|i| Column::right(i.key.clone(), 20)));
+    let mut columns = input_columns(&f.inputs);
     columns.extend(
         f.stripes
             .iter()
@@ -434,8 +393,7 @@ pub fn dynamic_table(f: &DynamicFragility) -> Table {
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let mut row = vec![Value::Count(i as u64)];
-            row.extend(s.values.iter().map(|&v| Value::Text(format!("{v}"))));
+            let mut row = input_cells(i, &s.values);
             row.extend(
                 s.collapsed
                     .iter()
@@ -458,18 +416,11 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
         f.records.len(),
         f.stripes.len()
     ));
-    let sec = doc.section("Uncertain inputs");
-    if f.inputs.is_empty() {
-        sec.warning("the scene has no [uncertain] table: every sample is the scene itself (the spread comes from the records alone)");
-    }
-    for i in &f.inputs {
-        sec.item(format!(
-            "{}: {} ({})",
-            i.key,
-            i.dist.name(),
-            i.dist.parameters()
-        ));
-    }
+    inputs_section(
+        &mut doc,
+        &f.inputs,
+        "every sample is the scene itself (the spread comes from the records alone)",
+    );
     let sec = doc.section("Stripes");
     sec.table(Table {
         columns: vec![
@@ -503,15 +454,7 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
             sec.warning(format!("no lognormal fit: {e}"));
         }
     }
-    let samples = doc.section("Samples");
-    if f.samples.len() <= TABLE_ROWS {
-        samples.table(dynamic_table(f));
-    } else {
-        samples.line(format!(
-            "{} samples: the per-sample table is in --csv FILE (and --json)",
-            f.samples.len()
-        ));
-    }
+    samples_section(&mut doc, f.samples.len(), || dynamic_table(f));
     doc.data = Some(Data::Fragility(Box::new(report)));
     doc
 }
@@ -526,23 +469,7 @@ pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
         .max(1e-3)
         * 1.15;
     let mut series = Vec::new();
-    if let Ok(fit) = &f.fit {
-        let n = 200;
-        let points = (0..=n)
-            .map(|i| {
-                let a = top * i as f64 / n as f64;
-                (a, fit.probability(a))
-            })
-            .collect();
-        series.push(Series::line(
-            format!(
-                "lognormal fit: median {:.3} g, beta {:.3}",
-                fit.median, fit.beta
-            ),
-            points,
-            [(fit.median, 0.5)],
-        ));
-    }
+    series.extend(f.fit.as_ref().ok().map(|fit| fit_series(fit, top)));
     series.push(Series {
         name: "stripes (share of runs that collapse)".into(),
         points: f
@@ -564,4 +491,73 @@ pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
         legend_title: None,
         series,
     }
+}
+
+/// The uncertain inputs as a section (`empty`: what a scene without them gives).
+fn inputs_section(doc: &mut Document, inputs: &[UncertainInput], empty: &str) {
+    let sec = doc.section("Uncertain inputs");
+    if inputs.is_empty() {
+        sec.warning(format!("the scene has no [uncertain] table: {empty}"));
+    }
+    for i in inputs {
+        sec.item(format!(
+            "{}: {} ({})",
+            i.key,
+            i.dist.name(),
+            i.dist.parameters()
+        ));
+    }
+}
+
+/// The per-sample table, or where to find it: a long table is for the CSV (or the JSON),
+/// not the terminal.
+fn samples_section(doc: &mut Document, samples: usize, table: impl FnOnce() -> Table) {
+    let sec = doc.section("Samples");
+    if samples <= TABLE_ROWS {
+        sec.table(table());
+    } else {
+        sec.line(format!(
+            "{samples} samples: the per-sample table is in --csv FILE (and --json)"
+        ));
+    }
+}
+
+/// The first columns of a per-sample table: the sample and each input.
+fn input_columns(inputs: &[UncertainInput]) -> Vec<Column> {
+    let mut columns = vec![Column::right("sample", 6)];
+    columns.extend(inputs.iter().map(|i| Column::right(i.key.clone(), 20)));
+    columns
+}
+
+/// The first cells of sample `i`'s row, its values at full precision (the table is the data
+/// of the CSV).
+fn input_cells(i: usize, values: &[f64]) -> Vec<Value> {
+    let mut row = vec![Value::Count(i as u64)];
+    row.extend(values.iter().map(|&v| Value::Text(format!("{v}"))));
+    row
+}
+
+/// The fitted lognormal CDF from 0 to `top`, its median marked; a step drawn as a vertical
+/// rise at the median.
+fn fit_series(fit: &LognormalFit, top: f64) -> Series {
+    let n = 200;
+    let mut points: Vec<(f64, f64)> = (0..=n)
+        .map(|i| {
+            let a = top * i as f64 / n as f64;
+            (a, fit.probability(a))
+        })
+        .collect();
+    if fit.beta == 0.0 {
+        points.push((fit.median, 0.0));
+        points.push((fit.median, 1.0));
+        points.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    }
+    Series::line(
+        format!(
+            "lognormal fit: median {:.3} g, beta {:.3}",
+            fit.median, fit.beta
+        ),
+        points,
+        [(fit.median, 0.5)],
+    )
 }

@@ -15,6 +15,7 @@ pub mod dem_settings;
 pub mod dossier;
 pub mod drawing;
 pub mod error;
+pub mod fragility;
 pub mod geometry;
 pub mod hazard;
 pub mod interaction;
@@ -26,6 +27,7 @@ pub mod records;
 pub mod report;
 pub mod retrofit;
 pub mod roll;
+pub mod sampling;
 pub mod scene;
 #[cfg(feature = "serve")]
 pub mod serve;

@@ -42,6 +42,10 @@ enum Command {
     /// Retrofit design: the smallest capacities of the ties marked capacity = "design" that
     /// give a target multiplier, the steel bars that carry them, and the structure re-analysed
     Retrofit(cli::retrofit::Args),
+    /// Fragility curve of a scene with uncertain inputs ([uncertain]): Latin hypercube
+    /// samples, each sample's capacity by the NTC nonlinear kinematic check at the site, and
+    /// a lognormal fitted by maximum likelihood with confidence bounds
+    Fragility(cli::fragility::Args),
     /// The arch explorer in the browser: a local page with sliders, the thrust line and the
     /// mechanism redrawn live, on a JSON API (127.0.0.1 only)
     #[cfg(feature = "serve")]
@@ -68,6 +72,7 @@ fn main() -> ExitCode {
         Command::Convergence(a) => cli::convergence::run(a),
         Command::Assess(a) => cli::assess::run(a),
         Command::Retrofit(a) => cli::retrofit::run(a),
+        Command::Fragility(a) => cli::fragility::run(a),
         Command::Report(a) => cli::hand_in::run(a),
         Command::Validate(a) => cli::validate::run(a),
         Command::Records(a) => cli::records::run(a),

@@ -672,6 +672,66 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
     to_json(&report::retrofit::RetrofitReport::new(&lib_scene, &r))
 }
 
+/// `fragility --json` of a scene and its chart (`--svg`), as JSON and SVG text: `samples`
+/// Latin hypercube samples of its `[uncertain]` inputs from `seed`; without `records`, each
+/// sample's capacity by the NTC nonlinear kinematic check at its `[site]` (the capacity
+/// route), with `records` (a directory of .AT2 files) and `stripes` (PGAs in g) the DEM
+/// under each record scaled to each stripe (the dynamic route); the lognormal fit
+/// (docs/fragility.md).
+#[pyfunction]
+#[pyo3(signature = (scene, samples = 100, seed = 1, records = None, stripes = None))]
+fn fragility_json_svg(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    seed: u64,
+    records: Option<std::path::PathBuf>,
+    stripes: Option<Vec<f64>>,
+) -> PyResult<(String, String)> {
+    let lib_scene = scene.inner.clone();
+    let settings = voussoir::fragility::Settings {
+        samples,
+        seed,
+        ..voussoir::fragility::Settings::default()
+    };
+    let out = interruptible(py, Arc::default(), move || {
+        let out = match (records, stripes) {
+            (None, None) => {
+                voussoir::fragility::capacity_route(&lib_scene, &settings).and_then(|f| {
+                    let svg = report::figures::fragility(&lib_scene, &f)
+                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                        .svg;
+                    Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
+                })
+            }
+            (Some(dir), Some(stripes)) => {
+                voussoir::fragility::read_records(&dir).and_then(|records| {
+                    let f = voussoir::fragility::dynamic_route(
+                        &lib_scene,
+                        &settings,
+                        &records,
+                        &stripes,
+                        &voussoir::dem::dynamic::DynamicSettings::default(),
+                    )?;
+                    let svg = report::figures::dynamic_fragility(&lib_scene, &f)
+                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                        .svg;
+                    Ok((
+                        report::fragility::FragilityReport::dynamic(&lib_scene, &f),
+                        svg,
+                    ))
+                })
+            }
+            _ => Err(LibAnalysisError::Other(
+                "records and stripes go together: the dynamic route needs both".into(),
+            )),
+        };
+        (lib_scene, out)
+    })?;
+    let (report, svg) = out.1.map_err(|e| analysis_error(py, &e))?;
+    Ok((to_json(&report)?, svg))
+}
+
 /// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).
 /// The report's input text (quoted in full, hashed) is the scene as `Scene.to_toml()` writes
 /// it, which reproduces it; `dem` adds the DEM's bracket as `--dem`.
@@ -1171,6 +1231,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
     m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_json_svg, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;

@@ -49,6 +49,7 @@ __all__ = [
     "IdaResult",
     "PulseCurveResult",
     "HandInReport",
+    "FragilityResult",
     "analyze",
     "roll",
     "RollResult",
@@ -57,6 +58,7 @@ __all__ = [
     "dem",
     "assess",
     "report",
+    "fragility",
     "dem_dynamic",
     "dem_ida",
     "dem_pulse_curve",
@@ -430,6 +432,61 @@ def assess(
             scene, which, direction, points, control_block, incremental
         ),
     )
+
+
+class FragilityResult(Report):
+    """The result of :func:`fragility`: the fields of ``voussoir fragility --json``
+    (``median`` and ``beta`` of the lognormal fit with ``median_bounds``, ``beta_bounds`` at
+    ``confidence``, ``samples``: one row per sample with its ``values``, ``outcome`` and
+    ``ag_capacity``, ...), ``capacities``, the samples' capacities (g) as an array (NaN where
+    a sample has none), and ``svg``, the chart of ``--svg`` (the fitted curve over the
+    samples), which Jupyter shows inline."""
+
+    __slots__ = ("svg",)
+
+    def __init__(self, data: Dict[str, Any], svg: str):
+        super().__init__(data)
+        object.__setattr__(self, "svg", svg)
+
+    @property
+    def capacities(self) -> np.ndarray:
+        return np.array([_float(s["ag_capacity"]) for s in self._data["samples"]], dtype=float)
+
+    def _repr_svg_(self) -> Optional[str]:
+        return object.__getattribute__(self, "svg") if _has_slot(self, "svg") else None
+
+
+def fragility(
+    scene: Scene,
+    samples: int = 100,
+    site: Optional[Mapping[str, Any]] = None,
+    *,
+    seed: int = 1,
+    records: Optional[Union[str, os.PathLike[str]]] = None,
+    stripes: Optional[Sequence[float]] = None,
+) -> FragilityResult:
+    """The fragility curve of ``scene`` by the capacity route, as ``voussoir fragility
+    --json`` (docs/fragility.md): ``samples`` Latin hypercube samples of its ``[uncertain]``
+    inputs from ``seed`` (the same seed, the same samples and curve), each sample's capacity
+    the largest ``ag`` its NTC 2018 nonlinear kinematic check passes (the worse direction,
+    the site's other parameters held), and a lognormal fitted by maximum likelihood with
+    confidence bounds. ``site``: keys of the ``[site]`` table to set, as in :func:`assess`.
+    ``records`` (a directory of ``.AT2`` records) and ``stripes`` (peak ground accelerations
+    in g) run the dynamic route instead, as ``--records DIR --stripes ...``: each sample in
+    the DEM under each record scaled to each stripe, the lognormal fitted to the counts of
+    collapse. Raises :class:`AnalysisError` for a sample outside a key's range (samples are
+    refused, not truncated), a capacity route without a site, or only one of ``records``
+    and ``stripes``."""
+    if site:
+        scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
+    text, svg = _voussoir.fragility_json_svg(
+        scene,
+        samples,
+        seed,
+        None if records is None else str(records),
+        None if stripes is None else [float(x) for x in stripes],
+    )
+    return FragilityResult(json.loads(text), svg)
 
 
 class HandInReport(Report):

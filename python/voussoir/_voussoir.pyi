@@ -86,6 +86,15 @@ def min_thickness_json(
 def retrofit_json(scene: Scene, target_lambda: float) -> str:
     """``voussoir retrofit --json`` of a scene, as JSON text."""
 
+def fragility_json_svg(
+    scene: Scene,
+    samples: int = 100,
+    seed: int = 1,
+    records: Optional[Union[str, PathLike[str]]] = None,
+    stripes: Optional[List[float]] = None,
+) -> Tuple[str, str]:
+    """``voussoir fragility --json`` of a scene and its chart (``--svg``), as text."""
+
 def report_html_json(scene: Scene, dem: bool = False) -> Tuple[str, str]:
     """``voussoir report`` of a scene: the report's HTML and its JSON text."""
 

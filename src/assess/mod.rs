@@ -980,6 +980,9 @@ pub const DS_SHARE: f64 = 0.4;
 pub const GAMMA: f64 = 1.5;
 /// Largest `ag` (in g) the search for the largest passing `ag` goes to.
 pub const AG_SEARCH_MAX: f64 = 2.0;
+/// Steps of the grid of the search for the largest passing `ag` (0.005 g each; its least
+/// point is `AG_SEARCH_MAX / AG_GRID_STEPS`).
+pub const AG_GRID_STEPS: usize = 400;
 
 /// One check: demand, capacity and the largest `ag` that passes.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -1112,7 +1115,7 @@ pub fn nonlinear_demand(site: &Site, ts: f64) -> f64 {
 /// everywhere (`SS` falls as `ag` grows), hence the grid before the bisection. None when the
 /// check passes at [`AG_SEARCH_MAX`].
 pub fn largest_passing_ag(site: &Site, passes: impl Fn(&Site) -> bool) -> Option<f64> {
-    const STEPS: usize = 400;
+    const STEPS: usize = AG_GRID_STEPS;
     if passes(&site.with_ag(AG_SEARCH_MAX)) {
         return None;
     }

@@ -9,6 +9,7 @@ pub mod analyze;
 pub mod assess;
 pub mod convergence;
 pub mod dem;
+pub mod fragility;
 pub mod hand_in;
 pub mod min_thickness;
 pub mod outputs;

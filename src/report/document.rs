@@ -330,4 +330,5 @@ pub enum Data {
     PulseCurve(Box<super::PulseCurveReport>),
     Convergence(Box<crate::convergence::Convergence>),
     Retrofit(Box<super::retrofit::RetrofitReport>),
+    Fragility(Box<super::fragility::FragilityReport>),
 }

@@ -14,6 +14,7 @@ pub mod document;
 pub mod documents;
 pub mod dossier;
 pub mod figures;
+pub mod fragility;
 pub mod html;
 pub mod json;
 pub mod markdown;

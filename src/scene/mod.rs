@@ -13,6 +13,7 @@ pub mod reinforcements;
 pub mod spandrel;
 pub mod spread;
 pub mod ties;
+pub mod uncertain;
 pub mod units;
 mod user_blocks;
 pub mod vehicles;
@@ -230,6 +231,9 @@ pub struct Scene {
     /// `[report]`, when given: who and what the hand-in report (`voussoir report`) is
     /// about. No analysis reads it.
     pub report: Option<ReportInfo>,
+    /// `[uncertain]`: the uncertain inputs `voussoir fragility` samples (empty when none);
+    /// every other command analyses the scene's own values.
+    pub uncertain: Vec<uncertain::UncertainInput>,
     /// Where the scene came from (file path or "<string>"), for messages.
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
@@ -597,6 +601,7 @@ const SECTIONS: &[&str] = &[
     "spandrel",
     "report",
     "vehicles",
+    "uncertain",
 ];
 
 /// The keys of `[arch]` every shape takes.
@@ -1107,6 +1112,10 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         report: section(&table, "report", origin)?
             .map(|t| parse_report(Section::new("report", t, origin)))
             .transpose()?,
+        uncertain: section(&table, "uncertain", origin)?
+            .map(|t| uncertain::parse(t, origin))
+            .transpose()?
+            .unwrap_or_default(),
         origin: origin.to_string(),
         table,
         base_dir: base_dir.map(Path::to_path_buf),

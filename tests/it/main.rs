@@ -22,6 +22,7 @@ mod dem_record;
 mod dem_rest;
 mod extremes;
 mod fixed_blocks;
+mod fragility;
 mod friction;
 mod general_kinematic;
 mod hazard;

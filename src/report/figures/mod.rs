@@ -365,6 +365,22 @@ pub fn pulse_curve(
     of_chart("chart", &chart)
 }
 
+/// `fragility`'s chart: the fitted curve over the samples' empirical fragility.
+pub fn fragility(
+    scene: &Scene,
+    f: &crate::fragility::CapacityFragility,
+) -> Result<Figure, SvgError> {
+    of_chart("chart", &super::fragility::chart(scene, f))
+}
+
+/// `fragility --records`'s chart: the fitted curve over the stripes' shares of collapse.
+pub fn dynamic_fragility(
+    scene: &Scene,
+    f: &crate::fragility::DynamicFragility,
+) -> Result<Figure, SvgError> {
+    of_chart("chart", &super::fragility::dynamic_chart(scene, f))
+}
+
 /// `sweep`'s chart: lambda against `x`, one line per value of the other keys.
 pub fn sweep(
     scene: &Scene,

@@ -1,0 +1,186 @@
+//! The dynamic route: a multiple-stripe analysis of the samples (Baker 2015). Each sample
+//! (the scene with its uncertain values, [`super::sample_scenes`]) runs in the DEM
+//! (`analysis::dem_dynamic`, docs/dem.md: rigid blocks, Coulomb contacts, the scene's `[dem]`
+//! knobs) under each record, scaled so that its peak ground acceleration is each stripe's
+//! PGA, and each run collapses or not (the DEM's criterion, `DynamicSettings`); a structure
+//! that cannot stand under its permanent loads counts as collapsed at every stripe. At each
+//! stripe the collapses of all samples and records are counted, and the lognormal is fitted
+//! to the counts by maximum likelihood ([`super::fit`], `Observation::Counts`). So the
+//! curve mixes the record-to-record variability with that of the inputs, as a multiple-stripe
+//! analysis of a population of structures does.
+
+use super::fit::{self, FitError, LognormalFit, Observation};
+use super::{check, sample_scenes, sample_values, Settings};
+use crate::analysis;
+use crate::dem::dynamic::DynamicSettings;
+use crate::dem::record::{GroundInput, GroundMotion, STANDARD_GRAVITY};
+use crate::error::AnalysisError;
+use crate::scene::uncertain::UncertainInput;
+use crate::scene::Scene;
+use rayon::prelude::*;
+
+/// One sample's runs: at each stripe, the records under which it collapsed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicSample {
+    pub values: Vec<f64>,
+    /// `collapsed[j][r]`: whether it collapsed at stripe `j` under record `r`.
+    pub collapsed: Vec<Vec<bool>>,
+}
+
+/// One stripe's count over every sample and record.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stripe {
+    /// Peak ground acceleration (g).
+    pub pga: f64,
+    pub runs: u64,
+    pub collapses: u64,
+}
+
+/// The dynamic-route fragility of a scene.
+#[derive(Debug, Clone)]
+pub struct DynamicFragility {
+    pub inputs: Vec<UncertainInput>,
+    pub seed: u64,
+    /// Where each record came from.
+    pub records: Vec<String>,
+    pub stripes: Vec<Stripe>,
+    pub samples: Vec<DynamicSample>,
+    pub fit: Result<LognormalFit, FitError>,
+}
+
+/// The `.AT2` records of `dir` (any case of the extension), in the order of their names.
+pub fn read_records(dir: &std::path::Path) -> Result<Vec<GroundMotion>, AnalysisError> {
+    let bad =
+        |message: String| AnalysisError::Other(format!("--records {}: {message}", dir.display()));
+    let entries = std::fs::read_dir(dir).map_err(|e| bad(e.to_string()))?;
+    let mut paths: Vec<std::path::PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .and_then(|x| x.to_str())
+                .is_some_and(|x| x.eq_ignore_ascii_case("at2"))
+        })
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(bad("no .AT2 record in the directory".into()));
+    }
+    paths
+        .iter()
+        .map(|p| {
+            crate::dem::record::read(p, crate::dem::record::AccelUnit::G, None)
+                .map_err(AnalysisError::Record)
+        })
+        .collect()
+}
+
+/// The most stripes a dynamic route takes.
+pub const MAX_STRIPES: usize = 100;
+
+/// The dynamic-route fragility of `scene` under `records` scaled to each PGA of `stripes`
+/// (in g), with the DEM's `dynamic` settings (module docs).
+pub fn dynamic_route(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+) -> Result<DynamicFragility, AnalysisError> {
+    check(scene, settings)?;
+    if records.is_empty() {
+        return Err(AnalysisError::Settings {
+            setting: "--records".into(),
+            value: "no record".into(),
+            allowed: "a directory with at least one .AT2 record".into(),
+        });
+    }
+    if stripes.is_empty()
+        || stripes.len() > MAX_STRIPES
+        || stripes
+            .iter()
+            .any(|&s| !(s.is_finite() && s > 0.0 && s <= 10.0))
+    {
+        return Err(AnalysisError::Settings {
+            setting: "--stripes".into(),
+            value: format!("{stripes:?}"),
+            allowed: format!("1 to {MAX_STRIPES} peak ground accelerations, each > 0 and <= 10 g"),
+        });
+    }
+    if let Some(r) = records.iter().find(|r| r.pga().is_nan() || r.pga() <= 0.0) {
+        return Err(AnalysisError::Other(format!(
+            "{}: the record never moves (its PGA is 0), so it cannot be scaled to a stripe",
+            r.source
+        )));
+    }
+    let values = sample_values(&scene.uncertain, settings.samples, settings.seed);
+    let scenes = sample_scenes(scene, &values)?;
+    let (ns, nj, nr) = (scenes.len(), stripes.len(), records.len());
+    let dynamic = DynamicSettings {
+        history_every: None,
+        frames_every: None,
+        ..dynamic.clone()
+    };
+    let runs: Vec<Result<bool, AnalysisError>> = (0..ns * nj * nr)
+        .into_par_iter()
+        .map(|k| {
+            let (i, j, r) = (k / (nj * nr), (k / nr) % nj, k % nr);
+            let record = &records[r];
+            let scale = stripes[j] * STANDARD_GRAVITY / record.pga();
+            let ground: GroundInput =
+                crate::dem::record::Excitation::Record(record.scaled(scale)).into();
+            let run = analysis::dem_dynamic(&scenes[i], &ground, &dynamic)?;
+            Ok(run.result.collapsed || run.result.cannot_stand)
+        })
+        .collect();
+    let mut flags = Vec::with_capacity(runs.len());
+    for (k, run) in runs.into_iter().enumerate() {
+        match run {
+            Ok(c) => flags.push(c),
+            Err(e) => {
+                let (i, j, r) = (k / (nj * nr), (k / nr) % nj, k % nr);
+                return Err(AnalysisError::Other(format!(
+                    "sample {i} under {} at PGA {} g: {e}",
+                    records[r].source, stripes[j]
+                )));
+            }
+        }
+    }
+    let samples: Vec<DynamicSample> = values
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| DynamicSample {
+            values: v,
+            collapsed: (0..nj)
+                .map(|j| (0..nr).map(|r| flags[(i * nj + j) * nr + r]).collect())
+                .collect(),
+        })
+        .collect();
+    let stripes: Vec<Stripe> = stripes
+        .iter()
+        .enumerate()
+        .map(|(j, &pga)| Stripe {
+            pga,
+            runs: (ns * nr) as u64,
+            collapses: samples
+                .iter()
+                .map(|s| s.collapsed[j].iter().filter(|&&c| c).count() as u64)
+                .sum(),
+        })
+        .collect();
+    let observations: Vec<Observation> = stripes
+        .iter()
+        .map(|s| Observation::Counts {
+            at: s.pga,
+            runs: s.runs,
+            collapses: s.collapses,
+        })
+        .collect();
+    Ok(DynamicFragility {
+        inputs: scene.uncertain.clone(),
+        seed: settings.seed,
+        records: records.iter().map(|r| r.source.clone()).collect(),
+        stripes,
+        samples,
+        fit: fit::fit(&observations, settings.confidence),
+    })
+}

@@ -1,0 +1,262 @@
+//! Uncertain inputs: their distributions, the standard normal distribution, a seeded random
+//! stream and Latin hypercube samples (`voussoir fragility`, docs/fragility.md).
+//!
+//! - **Distributions** of the scene's `[uncertain]` table ([`Distribution`]):
+//!   `normal` (`mean`, `cov`: standard deviation `sigma = cov |mean|`),
+//!   `uniform` (`low`, `high`), `lognormal` (`median`, `beta`: `ln X` is normal with mean
+//!   `ln median` and standard deviation `beta`). Each is sampled through its quantile
+//!   function `x = F^-1(u)`: `mean + sigma Phi^-1(u)`, `low + (high - low) u`,
+//!   `median exp(beta Phi^-1(u))`.
+//! - **The standard normal** CDF `Phi(x) = erfc(-x / sqrt 2) / 2` (libm's erfc, accurate to
+//!   the last bits in both tails) and its quantile by Acklam's rational approximation
+//!   (relative error 1.15e-9) polished by one Halley step on `Phi` (P. J. Acklam, "An
+//!   algorithm for computing the inverse normal cumulative distribution function", 2003; the
+//!   refinement is his), which brings it to round-off.
+//! - **Latin hypercube sampling** (McKay, Beckman and Conover, "A comparison of three methods
+//!   for selecting values of input variables in the analysis of output from a computer
+//!   code", Technometrics 21(2), 1979): for `n` samples each variable's `(0, 1)` is cut into
+//!   `n` equal strata; a random permutation `pi` assigns sample `i` the stratum `pi(i)`, and
+//!   `u_i = (pi(i) + v_i) / n` with `v_i` uniform in the stratum. So every stratum of every
+//!   variable is hit exactly once, and the variables are paired at random (independent
+//!   inputs: no correlation is imposed).
+//! - **The stream**: ChaCha8 (`rand_chacha`) seeded by `seed_from_u64(seed)`; its output
+//!   for a seed is specified by the algorithm, so a seed gives the same samples on every
+//!   platform. The order of draws is fixed: variable by variable, first the Fisher-Yates
+//!   shuffle of its permutation (`n - 1` draws), then its `n` offsets.
+
+use rand_chacha::rand_core::{RngCore, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// A distribution of an uncertain input.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Distribution {
+    /// Normal of mean `mean` and standard deviation `cov |mean|`.
+    Normal { mean: f64, cov: f64 },
+    /// Uniform on `[low, high]`.
+    Uniform { low: f64, high: f64 },
+    /// Lognormal of median `median` and logarithmic standard deviation `beta`.
+    Lognormal { median: f64, beta: f64 },
+}
+
+impl Distribution {
+    /// Its name as the scene writes it (`dist = "normal"`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Distribution::Normal { .. } => "normal",
+            Distribution::Uniform { .. } => "uniform",
+            Distribution::Lognormal { .. } => "lognormal",
+        }
+    }
+
+    /// The value at probability `u` in (0, 1): the quantile function `F^-1(u)`.
+    pub fn quantile(&self, u: f64) -> f64 {
+        match *self {
+            Distribution::Normal { mean, cov } => mean + cov * mean.abs() * normal_quantile(u),
+            Distribution::Uniform { low, high } => low + (high - low) * u,
+            Distribution::Lognormal { median, beta } => median * (beta * normal_quantile(u)).exp(),
+        }
+    }
+
+    /// Whether it has no spread (every sample the same value).
+    pub fn certain(&self) -> bool {
+        match *self {
+            Distribution::Normal { mean, cov } => cov * mean == 0.0,
+            Distribution::Uniform { low, high } => low == high,
+            Distribution::Lognormal { beta, .. } => beta == 0.0,
+        }
+    }
+
+    /// Its parameters in words, as the scene gives them: `mean = 0.3, cov = 0.1`.
+    pub fn parameters(&self) -> String {
+        match *self {
+            Distribution::Normal { mean, cov } => format!("mean = {mean}, cov = {cov}"),
+            Distribution::Uniform { low, high } => format!("low = {low}, high = {high}"),
+            Distribution::Lognormal { median, beta } => {
+                format!("median = {median}, beta = {beta}")
+            }
+        }
+    }
+}
+
+/// The standard normal density `phi(x)`.
+pub fn normal_pdf(x: f64) -> f64 {
+    (-0.5 * x * x).exp() / (2.0 * std::f64::consts::PI).sqrt()
+}
+
+/// The standard normal CDF `Phi(x)`.
+pub fn normal_cdf(x: f64) -> f64 {
+    0.5 * libm::erfc(-x / std::f64::consts::SQRT_2)
+}
+
+/// The standard normal quantile `Phi^-1(p)`, p in (0, 1) (infinite at 0 and 1, NaN outside).
+pub fn normal_quantile(p: f64) -> f64 {
+    if !(0.0..=1.0).contains(&p) {
+        return f64::NAN;
+    }
+    if p == 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    if p == 1.0 {
+        return f64::INFINITY;
+    }
+    const A: [f64; 6] = [
+        -3.969683028665376e+01,
+        2.209460984245205e+02,
+        -2.759285104469687e+02,
+        1.383_577_518_672_69e2,
+        -3.066479806614716e+01,
+        2.506628277459239e+00,
+    ];
+    const B: [f64; 5] = [
+        -5.447609879822406e+01,
+        1.615858368580409e+02,
+        -1.556989798598866e+02,
+        6.680131188771972e+01,
+        -1.328068155288572e+01,
+    ];
+    const C: [f64; 6] = [
+        -7.784894002430293e-03,
+        -3.223964580411365e-01,
+        -2.400758277161838e+00,
+        -2.549732539343734e+00,
+        4.374664141464968e+00,
+        2.938163982698783e+00,
+    ];
+    const D: [f64; 4] = [
+        7.784695709041462e-03,
+        3.224671290700398e-01,
+        2.445134137142996e+00,
+        3.754408661907416e+00,
+    ];
+    const LOW: f64 = 0.02425;
+    let tail = |q: f64| {
+        (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
+            / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
+    };
+    let x = if p < LOW {
+        tail((-2.0 * p.ln()).sqrt())
+    } else if p > 1.0 - LOW {
+        -tail((-2.0 * (1.0 - p).ln()).sqrt())
+    } else {
+        let q = p - 0.5;
+        let r = q * q;
+        (((((A[0] * r + A[1]) * r + A[2]) * r + A[3]) * r + A[4]) * r + A[5]) * q
+            / (((((B[0] * r + B[1]) * r + B[2]) * r + B[3]) * r + B[4]) * r + 1.0)
+    };
+    // One Halley step on Phi(x) - p (Acklam's refinement).
+    let e = normal_cdf(x) - p;
+    let u = e * (2.0 * std::f64::consts::PI).sqrt() * (0.5 * x * x).exp();
+    x - u / (1.0 + 0.5 * x * u)
+}
+
+/// A seeded stream of uniform numbers (ChaCha8: the same numbers for a seed on every
+/// platform).
+pub struct Stream(ChaCha8Rng);
+
+impl Stream {
+    pub fn new(seed: u64) -> Stream {
+        Stream(ChaCha8Rng::seed_from_u64(seed))
+    }
+
+    /// A uniform number in the open interval (0, 1): the top 53 bits of the next word, centred
+    /// in their cell (so never 0 or 1, whose quantiles are infinite).
+    pub fn uniform(&mut self) -> f64 {
+        ((self.0.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// A uniform index in `0..=k`.
+    fn index(&mut self, k: usize) -> usize {
+        ((self.uniform() * (k + 1) as f64) as usize).min(k)
+    }
+}
+
+/// `n` Latin hypercube samples of `variables` independent uniform variables on (0, 1), from
+/// `seed`: `u[i][v]` is variable `v` of sample `i`, and for each `v` the strata
+/// `floor(n u[i][v])` over `i` are `0..n` each exactly once (module docs).
+pub fn latin_hypercube(variables: usize, n: usize, seed: u64) -> Vec<Vec<f64>> {
+    let mut stream = Stream::new(seed);
+    let mut u = vec![vec![0.0; variables]; n];
+    for v in 0..variables {
+        let mut strata: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            let j = stream.index(i);
+            strata.swap(i, j);
+        }
+        for (i, row) in u.iter_mut().enumerate() {
+            // The offset inside the stratum; the product stays below 1 (`uniform` < 1).
+            let x = (strata[i] as f64 + stream.uniform()) / n as f64;
+            row[v] = x.min(1.0 - f64::EPSILON / 2.0);
+        }
+    }
+    u
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_quantile_inverts_the_cdf_to_round_off() {
+        for &p in &[
+            1e-12,
+            1e-6,
+            0.01,
+            0.02425,
+            0.1,
+            0.3,
+            0.5,
+            0.7,
+            0.975,
+            1.0 - 1e-9,
+        ] {
+            let x = normal_quantile(p);
+            assert!(
+                (normal_cdf(x) - p).abs() <= 1e-15_f64.max(1e-13 * p),
+                "{p}: {x}"
+            );
+        }
+        // Known values: Phi^-1(0.975) = 1.959963984540054.
+        assert!((normal_quantile(0.975) - 1.959963984540054).abs() < 1e-13);
+        assert_eq!(normal_quantile(0.5), 0.0);
+    }
+
+    #[test]
+    fn each_stratum_is_hit_once_and_a_seed_repeats() {
+        let n = 37;
+        let u = latin_hypercube(3, n, 11);
+        for v in 0..3 {
+            let mut hit = vec![0; n];
+            for row in &u {
+                assert!(row[v] > 0.0 && row[v] < 1.0);
+                hit[(row[v] * n as f64) as usize] += 1;
+            }
+            assert!(hit.iter().all(|&h| h == 1), "variable {v}: {hit:?}");
+        }
+        assert_eq!(u, latin_hypercube(3, n, 11));
+        assert_ne!(u, latin_hypercube(3, n, 12));
+    }
+
+    #[test]
+    fn quantiles_of_the_three_distributions() {
+        let n = Distribution::Normal {
+            mean: 0.3,
+            cov: 0.1,
+        };
+        assert!((n.quantile(0.975) - (0.3 + 0.03 * 1.959963984540054)).abs() < 1e-14);
+        let u = Distribution::Uniform {
+            low: 0.5,
+            high: 0.8,
+        };
+        assert!((u.quantile(0.25) - 0.575).abs() < 1e-15);
+        let l = Distribution::Lognormal {
+            median: 18000.0,
+            beta: 0.1,
+        };
+        assert!((l.quantile(0.5) - 18000.0).abs() < 1e-9);
+        assert!(Distribution::Normal {
+            mean: 1.0,
+            cov: 0.0
+        }
+        .certain());
+    }
+}

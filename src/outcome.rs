@@ -26,7 +26,7 @@ impl Status {
 }
 
 /// Direction of the horizontal acceleration.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Direction {
     /// Toward +x (left to right), the spec's positive lambda.

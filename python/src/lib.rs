@@ -677,9 +677,10 @@ fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<
 /// sample's capacity by the NTC nonlinear kinematic check at its `[site]` (the capacity
 /// route), with `records` (a directory of .AT2 files) and `stripes` (PGAs in g) the DEM
 /// under each record scaled to each stripe (the dynamic route); the lognormal fit
-/// (docs/fragility.md).
+/// (docs/fragility.md). `chunks`: the samples already computed, in order, as the JSON texts
+/// of [`fragility_samples_json`] (a cluster's chunks); the fit is then made from them.
 #[pyfunction]
-#[pyo3(signature = (scene, samples = 100, seed = 1, records = None, stripes = None))]
+#[pyo3(signature = (scene, samples = 100, seed = 1, records = None, stripes = None, chunks = None))]
 fn fragility_json_svg(
     py: Python<'_>,
     scene: &Scene,
@@ -687,41 +688,47 @@ fn fragility_json_svg(
     seed: u64,
     records: Option<std::path::PathBuf>,
     stripes: Option<Vec<f64>>,
+    chunks: Option<Vec<String>>,
 ) -> PyResult<(String, String)> {
+    use voussoir::fragility as fr;
     let lib_scene = scene.inner.clone();
-    let settings = voussoir::fragility::Settings {
-        samples,
-        seed,
-        ..voussoir::fragility::Settings::default()
-    };
+    let settings = fragility_settings(samples, seed);
     let out = interruptible(py, Arc::default(), move || {
         let out = match (records, stripes) {
             (None, None) => {
-                voussoir::fragility::capacity_route(&lib_scene, &settings).and_then(|f| {
-                    let svg = report::figures::fragility(&lib_scene, &f)
-                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
-                        .svg;
-                    Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
-                })
+                let all = match &chunks {
+                    Some(c) => joined(c),
+                    None => fr::capacity_samples(&lib_scene, &settings, 0..settings.samples),
+                };
+                all.and_then(|all| fr::capacity_fragility(&lib_scene, &settings, all))
+                    .and_then(|f| {
+                        let svg = report::figures::fragility(&lib_scene, &f)
+                            .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                            .svg;
+                        Ok((report::fragility::FragilityReport::new(&lib_scene, &f), svg))
+                    })
             }
-            (Some(dir), Some(stripes)) => {
-                voussoir::fragility::read_records(&dir).and_then(|records| {
-                    let f = voussoir::fragility::dynamic_route(
+            (Some(dir), Some(stripes)) => fr::read_records(&dir).and_then(|records| {
+                let all = match &chunks {
+                    Some(c) => joined(c),
+                    None => fr::dynamic_samples(
                         &lib_scene,
                         &settings,
                         &records,
                         &stripes,
                         &voussoir::dem::dynamic::DynamicSettings::default(),
-                    )?;
-                    let svg = report::figures::dynamic_fragility(&lib_scene, &f)
-                        .map_err(|e| LibAnalysisError::Other(e.to_string()))?
-                        .svg;
-                    Ok((
-                        report::fragility::FragilityReport::dynamic(&lib_scene, &f),
-                        svg,
-                    ))
-                })
-            }
+                        0..settings.samples,
+                    ),
+                };
+                let f = fr::dynamic_fragility(&lib_scene, &settings, &records, &stripes, all?)?;
+                let svg = report::figures::dynamic_fragility(&lib_scene, &f)
+                    .map_err(|e| LibAnalysisError::Other(e.to_string()))?
+                    .svg;
+                Ok((
+                    report::fragility::FragilityReport::dynamic(&lib_scene, &f),
+                    svg,
+                ))
+            }),
             _ => Err(LibAnalysisError::Other(
                 "records and stripes go together: the dynamic route needs both".into(),
             )),
@@ -730,6 +737,73 @@ fn fragility_json_svg(
     })?;
     let (report, svg) = out.1.map_err(|e| analysis_error(py, &e))?;
     Ok((to_json(&report)?, svg))
+}
+
+/// A fragility's settings from Python's arguments (the rest at their defaults).
+fn fragility_settings(samples: usize, seed: u64) -> voussoir::fragility::Settings {
+    voussoir::fragility::Settings {
+        samples,
+        seed,
+        ..voussoir::fragility::Settings::default()
+    }
+}
+
+/// The samples of chunks (JSON texts of [`fragility_samples_json`]) joined in order.
+fn joined<T: serde::de::DeserializeOwned>(chunks: &[String]) -> Result<Vec<T>, LibAnalysisError> {
+    let mut all = Vec::new();
+    for c in chunks {
+        let part: Vec<T> = serde_json::from_str(c).map_err(|e| {
+            LibAnalysisError::Other(format!("a chunk of fragility samples is not one: {e}"))
+        })?;
+        all.extend(part);
+    }
+    Ok(all)
+}
+
+/// Samples `lo..hi` of a fragility (the same samples, values and outcomes as those of
+/// [`fragility_json_svg`] with the same `samples`, `seed`, `records` and `stripes`), as JSON
+/// text: the chunk a cluster's worker computes for Python's `fragility(..., client=)`.
+#[pyfunction]
+#[pyo3(signature = (scene, samples, seed, records, stripes, lo, hi))]
+#[allow(clippy::too_many_arguments)]
+fn fragility_samples_json(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    seed: u64,
+    records: Option<std::path::PathBuf>,
+    stripes: Option<Vec<f64>>,
+    lo: usize,
+    hi: usize,
+) -> PyResult<String> {
+    use voussoir::fragility as fr;
+    let lib_scene = scene.inner.clone();
+    let settings = fragility_settings(samples, seed);
+    let out = interruptible(py, Arc::default(), move || {
+        let out = match (records, stripes) {
+            (None, None) => fr::capacity_samples(&lib_scene, &settings, lo..hi).and_then(|s| {
+                serde_json::to_string(&s).map_err(|e| LibAnalysisError::Other(e.to_string()))
+            }),
+            (Some(dir), Some(stripes)) => fr::read_records(&dir).and_then(|records| {
+                fr::dynamic_samples(
+                    &lib_scene,
+                    &settings,
+                    &records,
+                    &stripes,
+                    &voussoir::dem::dynamic::DynamicSettings::default(),
+                    lo..hi,
+                )
+                .and_then(|s| {
+                    serde_json::to_string(&s).map_err(|e| LibAnalysisError::Other(e.to_string()))
+                })
+            }),
+            _ => Err(LibAnalysisError::Other(
+                "records and stripes go together: the dynamic route needs both".into(),
+            )),
+        };
+        (lib_scene, out)
+    })?;
+    out.1.map_err(|e| analysis_error(py, &e))
 }
 
 /// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).
@@ -1232,6 +1306,7 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(min_thickness_json, m)?)?;
     m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
     m.add_function(wrap_pyfunction!(fragility_json_svg, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_samples_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;

@@ -92,3 +92,18 @@ def test_the_text_progress_bar_counts_to_the_total(capsys):
     bar.close()
     err = capsys.readouterr().err
     assert "sweep: 4/10 (40 %)" in err and "sweep: 10/10 (100 %)" in err
+
+
+def test_fragility_with_a_client_gives_the_local_samples_and_curve():
+    # `fragility(..., client=)`: the samples in chunks on the cluster (after a local pilot),
+    # the fit made from all of them here: the local document, sample for sample.
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "fragility_portal.toml"))
+    local = voussoir.fragility(scene, samples=18, seed=5)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        chunked = voussoir.fragility(scene, samples=18, seed=5, client=client, chunk=4, progress=False)
+        sized = voussoir.fragility(scene, samples=18, seed=5, client=client, progress=False)
+    assert chunked.to_dict() == local.to_dict()
+    assert sized.to_dict() == local.to_dict()
+    assert chunked.svg == local.svg

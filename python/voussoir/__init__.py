@@ -464,6 +464,9 @@ def fragility(
     seed: int = 1,
     records: Optional[Union[str, os.PathLike[str]]] = None,
     stripes: Optional[Sequence[float]] = None,
+    client: Any = None,
+    progress: bool = True,
+    chunk: Optional[int] = None,
 ) -> FragilityResult:
     """The fragility curve of ``scene`` by the capacity route, as ``voussoir fragility
     --json`` (docs/fragility.md): ``samples`` Latin hypercube samples of its ``[uncertain]``
@@ -476,16 +479,27 @@ def fragility(
     the DEM under each record scaled to each stripe, the lognormal fitted to the counts of
     collapse. Raises :class:`AnalysisError` for a sample outside a key's range (samples are
     refused, not truncated), a capacity route without a site, or only one of ``records``
-    and ``stripes``."""
+    and ``stripes``.
+
+    With ``client`` (a ``dask.distributed.Client``) the samples run on its cluster in chunks,
+    as :func:`sweep`'s cases do (the first ones locally to measure a sample's cost, the rest
+    in chunks sized so the per-task overhead stays under 10 %, or of ``chunk`` samples; a
+    progress bar unless ``progress=False``), and the fit is made here from all of them: the
+    same samples, curve and fit as the local run. ``records`` must then be a directory the
+    workers can read at the same path."""
     if site:
         scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
-    text, svg = _voussoir.fragility_json_svg(
-        scene,
-        samples,
-        seed,
-        None if records is None else str(records),
-        None if stripes is None else [float(x) for x in stripes],
-    )
+    records_dir = None if records is None else str(records)
+    pgas = None if stripes is None else [float(x) for x in stripes]
+    chunks = None
+    if client is not None:
+        from . import _dask
+
+        done, _ = _dask.fragility(
+            client, scene, samples, seed, records_dir, pgas, progress=progress, chunk=chunk
+        )
+        chunks = [json.dumps(done)]
+    text, svg = _voussoir.fragility_json_svg(scene, samples, seed, records_dir, pgas, chunks)
     return FragilityResult(json.loads(text), svg)
 
 

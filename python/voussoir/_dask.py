@@ -262,3 +262,43 @@ def sweep(
         desc="sweep",
         **map_options,
     )
+
+
+def fragility_range(
+    lo: int,
+    hi: int,
+    *,
+    scene: Any,
+    samples: int,
+    seed: int,
+    records: Optional[str],
+    stripes: Optional[List[float]],
+) -> List[Any]:
+    """Samples ``lo`` to ``hi - 1`` of a fragility, each with its outcome (runs on a
+    worker; the records directory must be readable there)."""
+    import json
+
+    from . import _voussoir
+
+    text = _voussoir.fragility_samples_json(scene, samples, seed, records, stripes, lo, hi)
+    return json.loads(text)
+
+
+def fragility(
+    client: Any,
+    scene: Any,
+    samples: int,
+    seed: int,
+    records: Optional[str],
+    stripes: Optional[List[float]],
+    **map_options: Any,
+) -> Tuple[List[Any], Plan]:
+    """The samples of a fragility on ``client``, in sample order: those of the local run."""
+    return map_chunked(
+        client,
+        samples,
+        fragility_range,
+        {"scene": scene, "samples": samples, "seed": seed, "records": records, "stripes": stripes},
+        desc="fragility",
+        **map_options,
+    )

@@ -92,8 +92,21 @@ def fragility_json_svg(
     seed: int = 1,
     records: Optional[Union[str, PathLike[str]]] = None,
     stripes: Optional[List[float]] = None,
+    chunks: Optional[List[str]] = None,
 ) -> Tuple[str, str]:
-    """``voussoir fragility --json`` of a scene and its chart (``--svg``), as text."""
+    """``voussoir fragility --json`` of a scene and its chart (``--svg``), as text; with
+    ``chunks``, from the samples of :func:`fragility_samples_json` joined in order."""
+
+def fragility_samples_json(
+    scene: Scene,
+    samples: int,
+    seed: int,
+    records: Optional[str],
+    stripes: Optional[List[float]],
+    lo: int,
+    hi: int,
+) -> str:
+    """Samples ``lo..hi`` of a fragility with their outcomes, as JSON text (a cluster's chunk)."""
 
 def report_html_json(scene: Scene, dem: bool = False) -> Tuple[str, str]:
     """``voussoir report`` of a scene: the report's HTML and its JSON text."""

@@ -10,7 +10,7 @@
 //! analysis of a population of structures does.
 
 use super::fit::{self, FitError, LognormalFit, Observation};
-use super::{check, sample_scenes, sample_values, Settings};
+use super::{check, check_range, sample_scenes_from, sample_values, Settings};
 use crate::analysis;
 use crate::dem::dynamic::DynamicSettings;
 use crate::dem::record::{GroundInput, GroundMotion, STANDARD_GRAVITY};
@@ -19,8 +19,10 @@ use crate::scene::uncertain::UncertainInput;
 use crate::scene::Scene;
 use rayon::prelude::*;
 
-/// One sample's runs: at each stripe, the records under which it collapsed.
-#[derive(Debug, Clone, PartialEq)]
+/// One sample's runs: at each stripe, the records under which it collapsed. Serialisable,
+/// so that a chunk computed elsewhere ([`dynamic_samples`]) comes back to
+/// [`dynamic_fragility`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DynamicSample {
     pub values: Vec<f64>,
     /// `collapsed[j][r]`: whether it collapsed at stripe `j` under record `r`.
@@ -77,15 +79,13 @@ pub fn read_records(dir: &std::path::Path) -> Result<Vec<GroundMotion>, Analysis
 /// The most stripes a dynamic route takes.
 pub const MAX_STRIPES: usize = 100;
 
-/// The dynamic-route fragility of `scene` under `records` scaled to each PGA of `stripes`
-/// (in g), with the DEM's `dynamic` settings (module docs).
-pub fn dynamic_route(
+/// The settings, records and stripes of a dynamic route, checked.
+fn check_dynamic(
     scene: &Scene,
     settings: &Settings,
     records: &[GroundMotion],
     stripes: &[f64],
-    dynamic: &DynamicSettings,
-) -> Result<DynamicFragility, AnalysisError> {
+) -> Result<(), AnalysisError> {
     check(scene, settings)?;
     if records.is_empty() {
         return Err(AnalysisError::Settings {
@@ -112,8 +112,45 @@ pub fn dynamic_route(
             r.source
         )));
     }
-    let values = sample_values(&scene.uncertain, settings.samples, settings.seed);
-    let scenes = sample_scenes(scene, &values)?;
+    Ok(())
+}
+
+/// The dynamic-route fragility of `scene` under `records` scaled to each PGA of `stripes`
+/// (in g), with the DEM's `dynamic` settings (module docs).
+pub fn dynamic_route(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+) -> Result<DynamicFragility, AnalysisError> {
+    let samples = dynamic_samples(
+        scene,
+        settings,
+        records,
+        stripes,
+        dynamic,
+        0..settings.samples,
+    )?;
+    dynamic_fragility(scene, settings, records, stripes, samples)
+}
+
+/// The samples `range` (a chunk of `0..settings.samples`) of the dynamic route, each with
+/// its runs: the same as those samples of [`dynamic_route`], so the chunks of a cluster,
+/// concatenated in order, give [`dynamic_fragility`] the local answer.
+pub fn dynamic_samples(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<DynamicSample>, AnalysisError> {
+    check_dynamic(scene, settings, records, stripes)?;
+    check_range(&range, settings.samples)?;
+    let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
+    let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
+    let scenes = sample_scenes_from(scene, &values, range.start)?;
     let (ns, nj, nr) = (scenes.len(), stripes.len(), records.len());
     let dynamic = DynamicSettings {
         history_every: None,
@@ -139,8 +176,10 @@ pub fn dynamic_route(
             Err(e) => {
                 let (i, j, r) = (k / (nj * nr), (k / nr) % nj, k % nr);
                 return Err(AnalysisError::Other(format!(
-                    "sample {i} under {} at PGA {} g: {e}",
-                    records[r].source, stripes[j]
+                    "sample {} under {} at PGA {} g: {e}",
+                    range.start + i,
+                    records[r].source,
+                    stripes[j]
                 )));
             }
         }
@@ -155,6 +194,31 @@ pub fn dynamic_route(
                 .collect(),
         })
         .collect();
+    Ok(samples)
+}
+
+/// The dynamic-route fragility from all `settings.samples` samples of [`dynamic_samples`],
+/// in order: the counts at each stripe and the lognormal fitted to them.
+pub fn dynamic_fragility(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    samples: Vec<DynamicSample>,
+) -> Result<DynamicFragility, AnalysisError> {
+    check_dynamic(scene, settings, records, stripes)?;
+    let (nj, nr) = (stripes.len(), records.len());
+    if samples.len() != settings.samples
+        || samples
+            .iter()
+            .any(|s| s.collapsed.len() != nj || s.collapsed.iter().any(|c| c.len() != nr))
+    {
+        return Err(AnalysisError::Other(format!(
+            "{}: the samples given do not match a fragility of {} samples, {nj} stripes and {nr} records",
+            scene.origin, settings.samples
+        )));
+    }
+    let ns = samples.len();
     let stripes: Vec<Stripe> = stripes
         .iter()
         .enumerate()

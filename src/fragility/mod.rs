@@ -37,7 +37,10 @@ use crate::scene::Scene;
 use rayon::prelude::*;
 use toml::Value;
 
-pub use dynamic::{dynamic_route, read_records, DynamicFragility, DynamicSample, Stripe};
+pub use dynamic::{
+    dynamic_fragility, dynamic_route, dynamic_samples, read_records, DynamicFragility,
+    DynamicSample, Stripe,
+};
 pub use fit::{FitError, LognormalFit, Observation};
 
 /// Settings of a fragility analysis.
@@ -70,7 +73,7 @@ impl Default for Settings {
 pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// What one sample's assessment gave.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Capacity {
     /// It fails above this `ag` (g), in this direction.
     At { ag: f64, direction: Direction },
@@ -103,7 +106,9 @@ impl Capacity {
 }
 
 /// One sample: its input values (in the order of the scene's `[uncertain]`) and capacity.
-#[derive(Debug, Clone, PartialEq)]
+/// Serialisable, so that a chunk of samples computed elsewhere ([`capacity_samples`], Python's
+/// `fragility(..., client=)`) comes back to [`capacity_fragility`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sample {
     pub values: Vec<f64>,
     pub capacity: Capacity,
@@ -170,6 +175,15 @@ pub fn sample_values(inputs: &[UncertainInput], n: usize, seed: u64) -> Vec<Vec<
 /// error naming it, its values and the scene's reason (samples are refused, never truncated:
 /// module docs).
 pub fn sample_scenes(scene: &Scene, values: &[Vec<f64>]) -> Result<Vec<Scene>, AnalysisError> {
+    sample_scenes_from(scene, values, 0)
+}
+
+/// [`sample_scenes`] of the samples numbered from `first` on (a chunk of them).
+fn sample_scenes_from(
+    scene: &Scene,
+    values: &[Vec<f64>],
+    first: usize,
+) -> Result<Vec<Scene>, AnalysisError> {
     let inputs = &scene.uncertain;
     // Each key first, at its distribution's centre: a key the scene does not have is the
     // table's error, not a sample's.
@@ -189,7 +203,9 @@ pub fn sample_scenes(scene: &Scene, values: &[Vec<f64>]) -> Result<Vec<Scene>, A
     values
         .par_iter()
         .enumerate()
-        .map(|(i, v)| sample_scene(scene, v).map_err(|e| refused(scene, i, v, &e.to_string())))
+        .map(|(i, v)| {
+            sample_scene(scene, v).map_err(|e| refused(scene, first + i, v, &e.to_string()))
+        })
         .collect()
 }
 
@@ -245,15 +261,35 @@ pub fn capacity_route(
     scene: &Scene,
     settings: &Settings,
 ) -> Result<CapacityFragility, AnalysisError> {
-    check(scene, settings)?;
-    let site = scene.site.clone().ok_or_else(|| {
+    let samples = capacity_samples(scene, settings, 0..settings.samples)?;
+    capacity_fragility(scene, settings, samples)
+}
+
+/// The site the capacity route searches, or the error that says it is missing.
+fn site_of(scene: &Scene) -> Result<crate::spectrum::Site, AnalysisError> {
+    scene.site.clone().ok_or_else(|| {
         AnalysisError::Other(format!(
             "{}: no [site] table: the capacity route searches the site's ag with its other parameters held; give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3 (docs/fragility.md)",
             scene.origin
         ))
-    })?;
-    let values = sample_values(&scene.uncertain, settings.samples, settings.seed);
-    let scenes = sample_scenes(scene, &values)?;
+    })
+}
+
+/// The samples `range` (a chunk of `0..settings.samples`) of the capacity route, each with
+/// its capacity: the same values and capacities as those samples of [`capacity_route`], so
+/// the chunks of a cluster, concatenated in order, give [`capacity_fragility`] the local
+/// answer.
+pub fn capacity_samples(
+    scene: &Scene,
+    settings: &Settings,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<Sample>, AnalysisError> {
+    check(scene, settings)?;
+    site_of(scene)?;
+    check_range(&range, settings.samples)?;
+    let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
+    let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
+    let scenes = sample_scenes_from(scene, &values, range.start)?;
     let capacities: Vec<Result<Capacity, AnalysisError>> = scenes
         .par_iter()
         .map(|s| capacity_of(s, settings))
@@ -264,13 +300,35 @@ pub fn capacity_route(
         // shape cannot take) is outside the keys' range like one the reader refuses.
         let capacity = match c {
             Ok(c) => c,
-            Err(AnalysisError::Scene(e)) => return Err(refused(scene, i, &v, &e.to_string())),
+            Err(AnalysisError::Scene(e)) => {
+                return Err(refused(scene, range.start + i, &v, &e.to_string()))
+            }
             Err(e) => return Err(e),
         };
         samples.push(Sample {
             values: v,
             capacity,
         });
+    }
+    Ok(samples)
+}
+
+/// The capacity-route fragility from all `settings.samples` samples of
+/// [`capacity_samples`], in order: the lognormal fitted to their capacities.
+pub fn capacity_fragility(
+    scene: &Scene,
+    settings: &Settings,
+    samples: Vec<Sample>,
+) -> Result<CapacityFragility, AnalysisError> {
+    check(scene, settings)?;
+    let site = site_of(scene)?;
+    if samples.len() != settings.samples {
+        return Err(AnalysisError::Other(format!(
+            "{}: {} samples given for a fragility of {}",
+            scene.origin,
+            samples.len(),
+            settings.samples
+        )));
     }
     let observations: Vec<Observation> = samples
         .iter()
@@ -284,6 +342,18 @@ pub fn capacity_route(
         site,
         fit,
     })
+}
+
+/// A chunk's range must lie in `0..samples` and hold at least one sample.
+fn check_range(range: &std::ops::Range<usize>, samples: usize) -> Result<(), AnalysisError> {
+    if range.start >= range.end || range.end > samples {
+        return Err(AnalysisError::Settings {
+            setting: "sample range".into(),
+            value: format!("{}..{}", range.start, range.end),
+            allowed: format!("a non-empty range within 0..{samples}"),
+        });
+    }
+    Ok(())
 }
 
 /// One sample's capacity: the least over the directions of the largest `ag` its nonlinear

@@ -306,13 +306,7 @@ fn stands_at_zero(
 impl StaticResult {
     /// At collapse, the ties' and the strips' forces from their tensions and the passive
     /// reactions (N, in their order), and no hinge where a strip holds the joint's other end.
-    fn read_interactions(
-        &mut self,
-        model: &Model,
-        ties: &[f64],
-        strips: &[f64],
-        passive: &[f64],
-    ) {
+    fn read_interactions(&mut self, model: &Model, ties: &[f64], strips: &[f64], passive: &[f64]) {
         if self.status != Status::Collapse {
             return;
         }

@@ -426,14 +426,17 @@ fn the_dynamic_route_counts_the_dem_runs_of_each_sample() {
     .expect("record");
     let stripes = [0.1, 0.6];
     let dynamic = voussoir::dem::dynamic::DynamicSettings::default();
-    let f = fragility::dynamic_route(
-        &scene,
-        &settings(2, 7),
-        std::slice::from_ref(&record),
-        &stripes,
-        &dynamic,
-    )
-    .expect("dynamic route");
+    let route = || {
+        fragility::dynamic_route(
+            &scene,
+            &settings(2, 7),
+            std::slice::from_ref(&record),
+            &stripes,
+            &dynamic,
+        )
+        .expect("dynamic route")
+    };
+    let f = route();
     assert_eq!(f.samples.len(), 2);
     for (j, stripe) in f.stripes.iter().enumerate() {
         assert_eq!(stripe.runs, 2);
@@ -459,8 +462,57 @@ fn the_dynamic_route_counts_the_dem_runs_of_each_sample() {
             run.result.collapsed || run.result.cannot_stand
         );
     }
-    // The same seed, the same runs.
-    let again = fragility::dynamic_route(&scene, &settings(2, 7), &[record], &stripes, &dynamic)
-        .expect("dynamic route");
-    assert_eq!(again.samples, f.samples);
+    // The same seed, the same runs; and the same again from chunks computed apart (a
+    // cluster's), each through JSON as Python's `fragility(..., client=)` carries them.
+    assert_eq!(route().samples, f.samples);
+    let mut chunks: Vec<fragility::DynamicSample> = Vec::new();
+    for range in [0..1, 1..2] {
+        let part = fragility::dynamic_samples(
+            &scene,
+            &settings(2, 7),
+            std::slice::from_ref(&record),
+            &stripes,
+            &dynamic,
+            range,
+        )
+        .expect("chunk");
+        let text = serde_json::to_string(&part).expect("json");
+        chunks.extend(serde_json::from_str::<Vec<fragility::DynamicSample>>(&text).expect("json"));
+    }
+    let joined = fragility::dynamic_fragility(&scene, &settings(2, 7), &[record], &stripes, chunks)
+        .expect("from chunks");
+    assert_eq!(joined.samples, f.samples);
+    assert_eq!(joined.stripes, f.stripes);
+    assert_eq!(joined.fit, f.fit);
+}
+
+#[test]
+fn chunks_computed_apart_give_the_local_samples_and_fit() {
+    // What Python's `fragility(..., client=)` does: the samples in chunks (on a cluster's
+    // workers), carried as JSON, joined in order and fitted here.
+    let scene = Scene::from_file(&data("fragility_portal.toml")).expect("scene");
+    let s = settings(24, 9);
+    let whole = fragility::capacity_route(&scene, &s).expect("fragility");
+    let mut samples: Vec<fragility::Sample> = Vec::new();
+    for range in [0..7, 7..16, 16..24] {
+        let part = fragility::capacity_samples(&scene, &s, range.clone()).expect("chunk");
+        assert_eq!(part.len(), range.len());
+        let text = serde_json::to_string(&part).expect("json");
+        samples.extend(serde_json::from_str::<Vec<fragility::Sample>>(&text).expect("json"));
+    }
+    let joined = fragility::capacity_fragility(&scene, &s, samples.clone()).expect("fit");
+    assert_eq!(joined.samples, whole.samples);
+    assert_eq!(joined.fit, whole.fit);
+    // A chunk outside the samples, an empty one, or too few samples for the fit: refused.
+    for range in [20..25, 5..5] {
+        let e = fragility::capacity_samples(&scene, &s, range)
+            .expect_err("refused")
+            .to_string();
+        assert!(e.contains("sample range") && e.contains("0..24"), "{e}");
+    }
+    samples.pop();
+    let e = fragility::capacity_fragility(&scene, &s, samples)
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("23 samples given for a fragility of 24"), "{e}");
 }

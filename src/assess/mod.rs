@@ -995,7 +995,8 @@ pub struct Check {
     /// `capacity / demand`; the check passes when it is at least 1.
     pub ratio: f64,
     pub passes: bool,
-    /// Largest `ag` (in g) that passes, by bisection; None when even `ag` = 2 g passes.
+    /// Largest `ag` (in g) that passes, by bisection (0 when none does); None when even
+    /// `ag` = 2 g passes.
     pub ag_max: Option<f64>,
 }
 
@@ -1112,15 +1113,22 @@ pub fn nonlinear_demand(site: &Site, ts: f64) -> f64 {
 /// The largest `ag` (in g, up to [`AG_SEARCH_MAX`]) at which `passes` holds: the largest
 /// passing point of a grid of steps of 0.005 g, then bisection between it and the next
 /// (failing) grid point down to round-off. The demand of soils B-E is not monotone in `ag`
-/// everywhere (`SS` falls as `ag` grows), hence the grid before the bisection. None when the
-/// check passes at [`AG_SEARCH_MAX`].
+/// everywhere (`SS` falls as `ag` grows), hence the grid before the bisection. When no grid
+/// point passes, the bisection runs between 0 and the first one (the demand vanishes with
+/// `ag`), so a weak structure gets its own small `ag`, and 0 when it fails at any `ag`. None
+/// only when the check passes at [`AG_SEARCH_MAX`].
 pub fn largest_passing_ag(site: &Site, passes: impl Fn(&Site) -> bool) -> Option<f64> {
     const STEPS: usize = AG_GRID_STEPS;
     if passes(&site.with_ag(AG_SEARCH_MAX)) {
         return None;
     }
     let grid = |i: usize| AG_SEARCH_MAX * i as f64 / STEPS as f64;
-    let i = (1..STEPS).rev().find(|&i| passes(&site.with_ag(grid(i))))?;
+    // Before this fix a check failing at every grid point also returned None, which the
+    // reports read as "passes at more than 2 g" (issue 30's fragility work found it).
+    let i = (1..STEPS)
+        .rev()
+        .find(|&i| passes(&site.with_ag(grid(i))))
+        .unwrap_or(0);
     let (mut lo, mut hi) = (grid(i), grid(i + 1));
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);

@@ -18,8 +18,8 @@
 //! `F0` and `Tc*` of its return period), while `S` and `TD` follow `ag` by their formulas.
 //! The fragility is the distribution of the capacities, `P(fail | ag = a) = P(C < a)`,
 //! fitted by a lognormal ([`fit`]); a sample that passes even at 2 g is a capacity above
-//! 2 g (censored in the fit), one that fails down to 0.005 g, or that cannot stand under its
-//! permanent loads at all, a capacity below 0.005 g. A sample that cannot be assessed
+//! 2 g (censored in the fit), one that fails at any `ag` (its capacity is not positive), or
+//! that cannot stand under its permanent loads at all, a capacity below 0.005 g. A sample that cannot be assessed
 //! (joints slide at collapse, no rotational mechanism) has no capacity in this model: it is
 //! listed with its reason and left out of the fit, and the result says how many.
 
@@ -28,7 +28,7 @@ pub mod dynamic;
 pub mod fit;
 
 use crate::analysis::{self, AssessOptions, Options};
-use crate::assess::{nonlinear_demand, AG_GRID_STEPS, AG_SEARCH_MAX};
+use crate::assess::{AG_GRID_STEPS, AG_SEARCH_MAX};
 use crate::error::AnalysisError;
 use crate::outcome::Direction;
 use crate::sampling::latin_hypercube;
@@ -79,7 +79,8 @@ pub enum Capacity {
     At { ag: f64, direction: Direction },
     /// It passes even at [`AG_SEARCH_MAX`].
     Above,
-    /// It fails at every `ag` down to the search's first grid point (this `ag`).
+    /// It fails at any `ag` (or cannot stand): a capacity below this `ag`, the search's
+    /// first grid point.
     Below(f64),
     /// It could not be assessed (why).
     NotAssessed(String),
@@ -381,18 +382,14 @@ fn capacity_of(scene: &Scene, settings: &Settings) -> Result<Capacity, AnalysisE
     for d in &a.directions {
         let v = &d.verdict;
         let c = match v.nonlinear.ag_max {
-            Some(ag) => Capacity::At {
+            Some(ag) if ag > 0.0 => Capacity::At {
                 ag,
                 direction: d.capacity.direction,
             },
-            // `ag_max` is None both when the check passes at the largest ag searched and
-            // when it fails at every grid point: tell them apart.
-            None if v.nonlinear.capacity
-                >= nonlinear_demand(&d.site.with_ag(AG_SEARCH_MAX), v.ts) =>
-            {
-                Capacity::Above
-            }
-            None => Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64),
+            // It fails at any ag (its capacity is not positive): below every ag, censored.
+            Some(_) => Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64),
+            // It passes at the largest ag searched (`largest_passing_ag`).
+            None => Capacity::Above,
         };
         let rank = |c: &Capacity| match c {
             Capacity::Below(_) => 0.0,

@@ -511,6 +511,16 @@ fn largest_passing_ag_is_where_the_verdict_flips() {
     let ag_rock = assess::largest_passing_ag(&rock, |s| cap.a0_star >= assess::linear_demand(s))
         .expect("limit");
     close(ag_rock, cap.a0_star * 2.0 / G, 1e-12, "ag = a0* q / g");
+    // A capacity below the demand at the grid's first point (0.005 g): its own small ag, by
+    // the same closed form, not "more than 2 g"; none at all when it fails at any ag; None
+    // only when it passes at 2 g.
+    let weak = cap.a0_star * 1e-3;
+    let ag_weak =
+        assess::largest_passing_ag(&rock, |s| weak >= assess::linear_demand(s)).expect("limit");
+    assert!(ag_weak < 0.005, "{ag_weak}");
+    close(ag_weak, weak * 2.0 / G, 1e-12, "small ag = a0* q / g");
+    assert_eq!(assess::largest_passing_ag(&rock, |_| false), Some(0.0));
+    assert_eq!(assess::largest_passing_ag(&rock, |_| true), None);
 }
 
 #[test]

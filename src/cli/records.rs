@@ -110,8 +110,15 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     request.validate()?;
     let names = file_names(args.count);
+    let created = !args.out.exists();
     check_outputs(&args.out, &names, args.force)?;
-    let records = records::generate(&site, &request)?;
+    let records = records::generate(&site, &request).inspect_err(|_| {
+        // A run refused after the directory was made for it (the spectra miss the code's
+        // tolerance) leaves nothing behind: remove the directory again, if still empty.
+        if created {
+            let _ = std::fs::remove_dir(&args.out);
+        }
+    })?;
     let sp = &records.spectrum;
     let describe = format!(
         "ag = {:.4} g, soil {}, topography {}, F0 = {:.3}, Tc* = {:.3} s; S = {:.3}, TB = {:.3} s, TC = {:.3} s, TD = {:.3} s",

@@ -983,6 +983,9 @@ pub const AG_SEARCH_MAX: f64 = 2.0;
 /// Steps of the grid of the search for the largest passing `ag` (0.005 g each; its least
 /// point is `AG_SEARCH_MAX / AG_GRID_STEPS`).
 pub const AG_GRID_STEPS: usize = 400;
+/// The least point of that grid (0.005 g): a capacity known only to lie below it is
+/// reported as below this `ag`.
+pub const AG_GRID_FIRST: f64 = AG_SEARCH_MAX / AG_GRID_STEPS as f64;
 
 /// One check: demand, capacity and the largest `ag` that passes.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

@@ -1,5 +1,5 @@
 //! The dynamic route: a multiple-stripe analysis of the samples (Baker 2015). Each sample
-//! (the scene with its uncertain values, [`super::sample_scenes`]) runs in the DEM
+//! (the scene with its uncertain values set) runs in the DEM
 //! (`analysis::dem_dynamic`, docs/dem.md: rigid blocks, Coulomb contacts, the scene's `[dem]`
 //! knobs) under each record, scaled so that its peak ground acceleration is each stripe's
 //! PGA, and each run collapses or not (the DEM's criterion, `DynamicSettings`); a structure
@@ -10,7 +10,7 @@
 //! analysis of a population of structures does.
 
 use super::fit::{self, FitError, LognormalFit, Observation};
-use super::{check, check_range, sample_scenes_from, sample_values, Settings};
+use super::{check, check_range, sample_scenes, sample_values, Settings};
 use crate::analysis;
 use crate::dem::dynamic::DynamicSettings;
 use crate::dem::record::{GroundInput, GroundMotion, STANDARD_GRAVITY};
@@ -150,7 +150,7 @@ pub fn dynamic_samples(
     check_range(&range, settings.samples)?;
     let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
     let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
-    let scenes = sample_scenes_from(scene, &values, range.start)?;
+    let scenes = sample_scenes(scene, &values, range.start)?;
     let (ns, nj, nr) = (scenes.len(), stripes.len(), records.len());
     let dynamic = DynamicSettings {
         history_every: None,

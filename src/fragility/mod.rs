@@ -28,7 +28,7 @@ pub mod dynamic;
 pub mod fit;
 
 use crate::analysis::{self, AssessOptions, Options};
-use crate::assess::{AG_GRID_STEPS, AG_SEARCH_MAX};
+use crate::assess::{AG_GRID_FIRST, AG_SEARCH_MAX};
 use crate::error::AnalysisError;
 use crate::outcome::Direction;
 use crate::sampling::latin_hypercube;
@@ -175,12 +175,8 @@ pub fn sample_values(inputs: &[UncertainInput], n: usize, seed: u64) -> Vec<Vec<
 /// The scenes of the samples, each validated; the first sample the scene refuses is an
 /// error naming it, its values and the scene's reason (samples are refused, never truncated:
 /// module docs).
-pub fn sample_scenes(scene: &Scene, values: &[Vec<f64>]) -> Result<Vec<Scene>, AnalysisError> {
-    sample_scenes_from(scene, values, 0)
-}
-
-/// [`sample_scenes`] of the samples numbered from `first` on (a chunk of them).
-fn sample_scenes_from(
+/// `first` is the number of the first of them (a chunk of the samples starts anywhere).
+fn sample_scenes(
     scene: &Scene,
     values: &[Vec<f64>],
     first: usize,
@@ -290,7 +286,7 @@ pub fn capacity_samples(
     check_range(&range, settings.samples)?;
     let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
     let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
-    let scenes = sample_scenes_from(scene, &values, range.start)?;
+    let scenes = sample_scenes(scene, &values, range.start)?;
     let capacities: Vec<Result<Capacity, AnalysisError>> = scenes
         .par_iter()
         .map(|s| capacity_of(s, settings))
@@ -374,7 +370,7 @@ fn capacity_of(scene: &Scene, settings: &Settings) -> Result<Capacity, AnalysisE
             return Ok(if stands {
                 Capacity::NotAssessed(e.to_string())
             } else {
-                Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64)
+                Capacity::Below(AG_GRID_FIRST)
             });
         }
     };
@@ -387,7 +383,7 @@ fn capacity_of(scene: &Scene, settings: &Settings) -> Result<Capacity, AnalysisE
                 direction: d.capacity.direction,
             },
             // It fails at any ag (its capacity is not positive): below every ag, censored.
-            Some(_) => Capacity::Below(AG_SEARCH_MAX / AG_GRID_STEPS as f64),
+            Some(_) => Capacity::Below(AG_GRID_FIRST),
             // It passes at the largest ag searched (`largest_passing_ag`).
             None => Capacity::Above,
         };

@@ -325,9 +325,9 @@ pub fn document(scene: &Scene, f: &CapacityFragility) -> Document {
     }
     if report.below_search > 0 {
         sec.line(format!(
-            "{} sample(s) fail at every ag down to {} g: their capacity lies below it (censored in the fit)",
+            "{} sample(s) fail at any ag or cannot stand: their capacity lies below {} g (censored in the fit)",
             report.below_search,
-            crate::assess::AG_SEARCH_MAX / crate::assess::AG_GRID_STEPS as f64
+            crate::assess::AG_GRID_FIRST
         ));
     }
     if report.not_assessed > 0 {

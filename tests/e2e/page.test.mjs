@@ -321,10 +321,20 @@ test('the line-load slider of the loaded portal gives the CLI\'s values for that
 test('the bridge preset: the axle slider moves the tandem and the adequacy factor follows the CLI', async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   try {
+    // Opened with the earthquake pointing left: live loads have no earthquake, so the page
+    // goes on to the right (the server refuses a direction there) and hides what means nothing.
+    await page.click('#v-direction button[data-direction="left"]');
+    await settled(page);
     await page.click('#v-shapes button[data-preset="bridge"]');
     await settled(page);
     const bridge = scenePath('rolling_bridge.toml');
     assertShows(await shown(page), analyze(bridge, {}, null), 'bridge as bundled');
+    assert.equal(await page.locator('#v-message').isVisible(), false, 'no error is shown');
+    assert.equal(await page.locator('#v-direction button[data-direction="right"]').getAttribute('aria-pressed'), 'true');
+    assert.equal(await page.locator('.direction').isVisible(), false, 'no earthquake direction for live loads');
+    assert.equal(await page.locator('fieldset[data-section="seismic"]').isVisible(), false,
+      'no vertical acceleration for live loads');
+    assert.equal(await page.locator('#v-na-row').isVisible(), false, 'no empty non-associative row');
     const at = field(page, 'vehicles[0].at');
     assert.equal(await at.row.count(), 1, 'the vehicle position has a field');
     const before = Number(await at.number.inputValue());

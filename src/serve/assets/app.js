@@ -286,6 +286,7 @@
     for (const [section, params] of groups) {
       const fieldset = document.createElement('fieldset');
       fieldset.className = 'panel group';
+      fieldset.dataset.section = section;
       const legend = document.createElement('legend');
       legend.textContent = SECTION_TITLES[section] || section.charAt(0).toUpperCase() + section.slice(1);
       fieldset.append(legend);
@@ -573,6 +574,12 @@
   }
 
   function showError(err, sent) {
+    // An earthquake direction means nothing for live loads (the server refuses "left" there):
+    // a preset of live loads opened while "left" was pressed goes on to the right.
+    if (err.kind === 'not_for_action' && state.direction === 'left') {
+      setDirection('right');
+      return;
+    }
     clearErrors();
     // A slider widened to a typed value the server refuses goes back to its range.
     const wide = err.key ? state.widened.get(err.key) : undefined;
@@ -749,6 +756,13 @@
     lambda.textContent = fmt(big, 4);
     lambda.classList.toggle('none', typeof big !== 'number');
     lambda.dataset.value = big === null || big === undefined ? '' : String(big);
+    // Live loads (an adequacy factor, docs/geometry.md) have no earthquake: its direction
+    // and the vertical acceleration are hidden, as the server ignores or refuses them.
+    const live = r.action === 'live';
+    $('v-direction').closest('.direction').hidden = live;
+    for (const group of $('v-params').querySelectorAll('fieldset[data-section="seismic"]')) {
+      group.hidden = live;
+    }
     const naRow = $('v-na-row');
     const na = r.friction_exact === false && typeof r.lambda_non_associative === 'number';
     naRow.hidden = !na;

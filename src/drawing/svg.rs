@@ -24,7 +24,10 @@
 //!   `region` outlines of its `Fill` loads), point loads as arrows ending at their point of
 //!   application (the largest 15 % of the structure's size long, the others in proportion,
 //!   labelled in kN), line loads as a row of small arrows on the loaded extrados labelled
-//!   `q = ... kN/m` (a load of `[[loads]]` applied as more than one piece is a line load);
+//!   `q = ... kN/m` (a load of `[[loads]]` applied as more than one piece is a line load); a
+//!   distributed load that is not uniform (an axle spread through the fill by Boussinesq's
+//!   law) has arrows as long as its local intensity, its outline over them, and its total in
+//!   kN over its peak;
 //! - the seismic load direction on the structure: an arrow `lambda g` in the direction of the
 //!   ground motion (with its vertical component `r lambda g` when the vertical ratio r is not
 //!   0), in free space near the top left of the structure;
@@ -635,12 +638,11 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         let labels = mk.labels(scale);
         let mut text = String::new();
         for (line, label) in mk.lines.iter().zip(&labels[mk.points.len()..]) {
-            let up = Vec2::new(0.0, line.len);
             let tails: Vec<String> = line
-                .path
+                .tails
                 .iter()
                 .map(|p| {
-                    let (x, y) = frame.pxf(p + up);
+                    let (x, y) = frame.pxf(*p);
                     format!("{x:.1},{y:.1}")
                 })
                 .collect();
@@ -650,9 +652,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
                 hex(LOAD),
                 tails.join(" ")
             ));
-            for tip in &line.tips {
+            for (tail, tip) in &line.arrows {
                 text.push_str(&arrow_svg(
-                    frame.pxf(tip + up),
+                    frame.pxf(*tail),
                     frame.pxf(*tip),
                     LOAD,
                     1.5,
@@ -662,9 +664,9 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             let (x, y) = frame.pxf(label.centre);
             text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
             text.push_str("</g>\n");
-            for tip in &line.tips {
+            for (tail, tip) in &line.arrows {
                 load_boxes.push(
-                    Rect::around(&[frame.pxf(*tip), frame.pxf(tip + up)])
+                    Rect::around(&[frame.pxf(*tip), frame.pxf(*tail)])
                         .grown(4.0)
                         .corners(),
                 );
@@ -1128,14 +1130,20 @@ struct PointMark {
     live: bool,
 }
 
-/// A line load as drawn: a row of arrows of length `len` ending on the extrados.
+/// A line load as drawn: a row of arrows ending on the extrados, all of one length for a
+/// uniform load, each as long as the local intensity for a load that is not (a load spread
+/// through the fill by Boussinesq's law, say).
 struct LineMark {
-    /// The loaded extrados, in x order (the arrows' tails run `len` above it).
+    /// The loaded extrados, in x order.
     path: Vec<Vec2>,
-    /// Arrow tips, on `path`.
-    tips: Vec<Vec2>,
-    len: f64,
+    /// The arrows' tails, one above each point of `path`: the load's outline.
+    tails: Vec<Vec2>,
+    /// Arrows as (tail, tip), tips on `path`.
+    arrows: Vec<(Vec2, Vec2)>,
     label: String,
+    /// The abscissa the label is centred on: the middle of a uniform load, the peak of one
+    /// that is not (two spread axles keep their labels apart).
+    label_x: f64,
 }
 
 /// The loads of a load case as drawn, in world coordinates.
@@ -1243,8 +1251,7 @@ impl LoadMarks {
             out.extend([p.tail, p.tip]);
         }
         for l in &self.lines {
-            let up = Vec2::new(0.0, l.len);
-            out.extend(l.path.iter().flat_map(|p| [*p, p + up]));
+            out.extend(l.path.iter().chain(&l.tails).copied());
         }
         out
     }
@@ -1272,22 +1279,21 @@ impl LoadMarks {
         }
         for l in &self.lines {
             let half = size(&l.label);
-            let (x0, x1) = (l.path[0].x, l.path[l.path.len() - 1].x);
-            let xm = 0.5 * (x0 + x1);
+            let xm = l.label_x;
             // Above the highest tail under the label.
             let top = l
-                .path
+                .tails
                 .iter()
                 .filter(|p| (p.x - xm).abs() <= half.x)
                 .map(|p| p.y)
                 .chain([
-                    interpolate(&l.path, xm - half.x),
-                    interpolate(&l.path, xm),
-                    interpolate(&l.path, xm + half.x),
+                    interpolate(&l.tails, xm - half.x),
+                    interpolate(&l.tails, xm),
+                    interpolate(&l.tails, xm + half.x),
                 ])
                 .fold(f64::NEG_INFINITY, f64::max);
             out.push(Label {
-                centre: Vec2::new(xm, top + l.len + half.y + 4.0 / scale),
+                centre: Vec2::new(xm, top + half.y + 4.0 / scale),
                 half,
                 text: l.label.clone(),
             });
@@ -1307,6 +1313,7 @@ impl LineMark {
         if total <= 0.0 {
             return None;
         }
+        let len = LINE_LOAD_SHARE * size;
         // The overlaps tile the loaded length, each centred on its piece: the centres of two
         // neighbours lie (w_i + w_i+1) / 2q apart. This gives q, and the ends of the load.
         let dx = pts[pts.len() - 1].0.x - pts[0].0.x;
@@ -1319,6 +1326,9 @@ impl LineMark {
                 (want - q * (w[1].0.x - w[0].0.x)).abs() <= 1e-6 * want.max(1e-12 * total)
             });
         let mut path: Vec<Vec2> = pts.iter().map(|p| p.0).collect();
+        // The arrows' length over each point of the path, in x order.
+        let heights: Vec<f64>;
+        let mut label_x = 0.5 * (pts[0].0.x + pts[pts.len() - 1].0.x);
         let label = if tiled {
             let n = pts.len();
             let start = pts[0].0.x - 0.5 * pts[0].1 / q;
@@ -1327,25 +1337,75 @@ impl LineMark {
             let last = extrapolate(path[n - 1], path[n - 2], end);
             path.insert(0, first);
             path.push(last);
+            heights = vec![len; path.len()];
             format!("q = {} kN/m", sig(q / 1000.0))
         } else {
+            // Not uniform: each piece's intensity is its force over the width it stands for
+            // (half-way to its neighbours, as far again at the ends), and the arrows follow it.
+            let intensity = local_intensities(&pts);
+            let peak = intensity.iter().copied().fold(0.0, f64::max);
+            if let Some(k) = intensity.iter().position(|w| *w == peak) {
+                label_x = pts[k].0.x;
+            }
+            heights = intensity
+                .iter()
+                .map(|w| if peak > 0.0 { len * w / peak } else { len })
+                .collect();
             format!("{} kN in all", sig(total / 1000.0))
         };
+        let tails: Vec<Vec2> = path
+            .iter()
+            .zip(&heights)
+            .map(|(p, h)| Vec2::new(p.x, p.y + h))
+            .collect();
+        let profile: Vec<Vec2> = path
+            .iter()
+            .zip(&heights)
+            .map(|(p, h)| Vec2::new(p.x, *h))
+            .collect();
         let (x0, x1) = (path[0].x, path[path.len() - 1].x);
-        let arrows = (((x1 - x0) / (LINE_LOAD_SPACING * size)).round() as usize).max(1) + 1;
-        let tips = (0..arrows)
+        let count = (((x1 - x0) / (LINE_LOAD_SPACING * size)).round() as usize).max(1) + 1;
+        let arrows = (0..count)
             .map(|i| {
-                let x = x0 + (x1 - x0) * i as f64 / (arrows - 1) as f64;
-                Vec2::new(x, interpolate(&path, x))
+                let x = x0 + (x1 - x0) * i as f64 / (count - 1) as f64;
+                let tip = Vec2::new(x, interpolate(&path, x));
+                (Vec2::new(x, tip.y + interpolate(&profile, x)), tip)
             })
+            // An arrow too short to have a head is left out; the outline still shows the load.
+            .filter(|(tail, tip)| tail.y - tip.y >= 0.15 * len)
             .collect();
         Some(LineMark {
             path,
-            tips,
-            len: LINE_LOAD_SHARE * size,
+            tails,
+            arrows,
             label,
+            label_x,
         })
     }
+}
+
+/// The intensity (force per unit length) each piece of a distributed load stands for: its
+/// force over the width from half-way to the neighbour before to half-way to the one after
+/// (at an end, as far out as in). `pts` are (point, force) in x order, at least two.
+fn local_intensities(pts: &[(Vec2, f64)]) -> Vec<f64> {
+    let n = pts.len();
+    let x = |i: usize| pts[i].0.x;
+    (0..n)
+        .map(|i| {
+            let before = if i > 0 { x(i) - x(i - 1) } else { x(1) - x(0) };
+            let after = if i + 1 < n {
+                x(i + 1) - x(i)
+            } else {
+                x(n - 1) - x(n - 2)
+            };
+            let width = 0.5 * (before + after);
+            if width > 0.0 {
+                pts[i].1 / width
+            } else {
+                0.0
+            }
+        })
+        .collect()
 }
 
 /// The point at abscissa `x` on the line through `a` and `b` (`a` when the line is vertical).

@@ -814,6 +814,89 @@ fn line_loads_are_a_row_of_arrows_labelled_with_their_intensity() {
     assert_inside_canvas(&doc);
 }
 
+/// A point load spread through the fill by Boussinesq's law is not uniform: its arrows are
+/// as long as the local intensity, longest under the load and shortest far from it, and its
+/// label gives the total over the peak.
+#[test]
+fn a_load_spread_by_boussinesq_draws_its_bell_not_a_uniform_row() {
+    let x_load = 0.3;
+    let m = model_of(&format!(
+        "{SEMI}[fill]\nlevel = 1.4\nunit_weight = 18000.0\nspread = \"boussinesq\"\n\
+         [[loads]]\ntype = \"point\"\nat = [{x_load:?}, 1.4]\nforce = [0.0, -4000.0]\n"
+    ));
+    let (_, text) = draw(
+        "boussinesq-load.svg",
+        &m,
+        Direction::Right,
+        "semicircle, spread point load",
+    );
+    let doc = Document::parse(&text).expect("well-formed XML");
+    let (x0, y0, s) = fit_frame(&doc, &m.assembly);
+    let g = group(&doc, "line-loads");
+    let rows: Vec<_> = g
+        .children()
+        .filter(|n| n.attribute("class") == Some("line-load"))
+        .collect();
+    assert_eq!(rows.len(), 1, "one row for the spread load");
+    // Each arrow: the tail (its shaft's first end) and the tip of its head, in metres.
+    let tails: Vec<(f64, f64)> = rows[0]
+        .descendants()
+        .filter(|n| n.has_tag_name("line"))
+        .map(|n| (attr_f(&n, "x1"), attr_f(&n, "y1")))
+        .collect();
+    let tips = head_tips(rows[0]);
+    assert_eq!(tails.len(), tips.len());
+    let arrows: Vec<(f64, f64)> = tails
+        .iter()
+        .zip(&tips)
+        .map(|(t, p)| ((p.0 - x0) / s, (p.1 - t.1).abs() / s))
+        .collect();
+    assert!(arrows.len() >= 5, "{} arrows", arrows.len());
+    let (peak_x, peak_len) = arrows
+        .iter()
+        .copied()
+        .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    let shortest = arrows.iter().map(|a| a.1).fold(f64::INFINITY, f64::min);
+    assert!(
+        shortest < 0.5 * peak_len,
+        "lengths vary: {shortest} against {peak_len}"
+    );
+    // The longest arrow stands near the load (within the arrows' spacing, about 0.1 m here).
+    assert!(
+        (peak_x - x_load).abs() < 0.15,
+        "peak at x = {peak_x}, load at {x_load}"
+    );
+    // The label: the total the blocks carry (what of the bell falls beyond the springings
+    // rests on the ground), over the peak.
+    let label = children(rows[0], "text")[0];
+    let words = label.text().unwrap_or_default();
+    assert!(words.ends_with("kN in all"), "{words}");
+    let total: f64 = m
+        .loads
+        .applied()
+        .iter()
+        .filter(|a| a.source == LoadSource::Load(0))
+        .map(|a| a.force.norm())
+        .sum();
+    assert!(
+        total > 0.9 * 4000.0 && total < 4000.0,
+        "{total} N of 4000 N on the blocks"
+    );
+    let shown: f64 = words
+        .trim_end_matches(" kN in all")
+        .parse()
+        .expect("a number");
+    assert!(
+        (shown - total / 1000.0).abs() <= 0.01 * total / 1000.0,
+        "{shown} kN against {total} N"
+    );
+    assert!(
+        ((attr_f(&label, "x") - x0) / s - peak_x).abs() < 0.15,
+        "the label is over the peak"
+    );
+    assert_inside_canvas(&doc);
+}
+
 /// Whether pixel point `p` lies strictly inside the convex polygon `poly`.
 fn strictly_inside(poly: &[(f64, f64)], p: (f64, f64)) -> bool {
     let n = poly.len();

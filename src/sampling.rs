@@ -19,6 +19,17 @@
 //!   `u_i = (pi(i) + v_i) / n` with `v_i` uniform in the stratum. So every stratum of every
 //!   variable is hit exactly once, and the variables are paired at random (independent
 //!   inputs: no correlation is imposed).
+//! - **Rank correlation** between inputs, when the scene asks for it (Iman and Conover, "A
+//!   distribution-free approach to inducing rank correlation among input variables", Comm.
+//!   Statist. Simul. Comput. 11(3), 1982): each variable's Latin hypercube values are
+//!   *reordered*, never changed, so every stratum is still hit once and every marginal is
+//!   kept exactly. The van der Waerden scores `a_m = Phi^-1(m / (n + 1))` are laid out in the
+//!   order of each variable's values (matrix `R`, its sample correlation `T = Q Q^T`), turned
+//!   into `R* = R Q^-T P^T` whose correlation is the target `C = P P^T`, and each variable's
+//!   values are put in the order of its column of `R*`. The target is a rank (Spearman)
+//!   correlation `rho`; the scores, normal, are given the Pearson correlation
+//!   `2 sin(pi rho / 6)` whose normal variables have rank correlation `rho` (Pearson, 1907;
+//!   Kruskal, 1958), so the samples' Spearman correlation approaches `rho` as `n` grows.
 //! - **The stream**: ChaCha8 (`rand_chacha`) seeded by `seed_from_u64(seed)`; its output
 //!   for a seed is specified by the algorithm, so a seed gives the same samples on every
 //!   platform. The order of draws is fixed: variable by variable, first the Fisher-Yates
@@ -191,6 +202,132 @@ pub fn latin_hypercube(variables: usize, n: usize, seed: u64) -> Vec<Vec<f64>> {
     u
 }
 
+/// The Pearson correlation of two standard normal variables whose rank (Spearman)
+/// correlation is `rho`: `2 sin(pi rho / 6)` (module docs).
+pub fn pearson_of_rank(rho: f64) -> f64 {
+    2.0 * (std::f64::consts::PI * rho / 6.0).sin()
+}
+
+/// The lower Cholesky factor `L` of the symmetric matrix `a` (`a = L L^T`), None when `a` is
+/// not positive definite (a pivot at or below `1e-12` times the diagonal's largest entry).
+pub fn cholesky(a: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let k = a.len();
+    let scale = (0..k).map(|i| a[i][i].abs()).fold(0.0, f64::max);
+    let mut l = vec![vec![0.0; k]; k];
+    for i in 0..k {
+        for j in 0..=i {
+            let dot: f64 = (0..j).map(|m| l[i][m] * l[j][m]).sum();
+            if i == j {
+                let pivot = a[i][i] - dot;
+                // NaN fails this test too.
+                if pivot.is_nan() || pivot <= 1e-12 * scale {
+                    return None;
+                }
+                l[i][i] = pivot.sqrt();
+            } else {
+                l[i][j] = (a[i][j] - dot) / l[j][j];
+            }
+        }
+    }
+    Some(l)
+}
+
+/// The order of `x` as ranks: `rank[i]` is the place of `x[i]` among the sorted values
+/// (ties broken by index).
+fn ranks(x: impl Iterator<Item = f64>) -> Vec<usize> {
+    let x: Vec<f64> = x.collect();
+    let mut order: Vec<usize> = (0..x.len()).collect();
+    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]).then(a.cmp(&b)));
+    let mut rank = vec![0; x.len()];
+    for (place, &i) in order.iter().enumerate() {
+        rank[i] = place;
+    }
+    rank
+}
+
+/// Reorder each column of `u` (`u[i][v]`: variable `v` of sample `i`) so that the columns'
+/// rank correlation approaches `target` (Spearman, `k x k`, unit diagonal), by Iman and
+/// Conover's method (module docs). Each column keeps its values; only their order across the
+/// samples changes, and no random number is drawn (the columns' own order is the random
+/// pairing the method starts from). The Pearson form of `target` must be positive definite
+/// (the scene checks it: [`cholesky`] of `pearson_of_rank` of each entry); when the
+/// samples' own score correlation is not (fewer samples than variables), it is taken as
+/// the identity.
+pub fn impose_rank_correlation(u: &mut [Vec<f64>], target: &[Vec<f64>]) {
+    let (n, k) = (u.len(), target.len());
+    if n < 2 || k < 2 {
+        return;
+    }
+    let pearson: Vec<Vec<f64>> = target
+        .iter()
+        .map(|row| row.iter().map(|&r| pearson_of_rank(r)).collect())
+        .collect();
+    let Some(p) = cholesky(&pearson) else {
+        return;
+    };
+    let scores: Vec<f64> = (1..=n)
+        .map(|m| normal_quantile(m as f64 / (n + 1) as f64))
+        .collect();
+    let ranked: Vec<Vec<usize>> = (0..k).map(|v| ranks(u.iter().map(|row| row[v]))).collect();
+    let r: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..k).map(|v| scores[ranked[v][i]]).collect())
+        .collect();
+    // The scores' sample correlation: every column holds the same scores (mean 0, as they
+    // are symmetric), so T = R^T R / sum a^2.
+    let norm: f64 = scores.iter().map(|a| a * a).sum();
+    let t: Vec<Vec<f64>> = (0..k)
+        .map(|a| {
+            (0..k)
+                .map(|b| r.iter().map(|row| row[a] * row[b]).sum::<f64>() / norm)
+                .collect()
+        })
+        .collect();
+    let q = cholesky(&t);
+    // R* = R Q^-T P^T, row by row: r* = P (Q^-1 r), Q^-1 r by forward substitution.
+    let target_scores: Vec<Vec<f64>> = r
+        .iter()
+        .map(|row| {
+            let mut y = row.clone();
+            if let Some(q) = &q {
+                for a in 0..k {
+                    let dot: f64 = (0..a).map(|b| q[a][b] * y[b]).sum();
+                    y[a] = (y[a] - dot) / q[a][a];
+                }
+            }
+            (0..k)
+                .map(|a| (0..=a).map(|b| p[a][b] * y[b]).sum())
+                .collect()
+        })
+        .collect();
+    for v in 0..k {
+        let mut sorted: Vec<f64> = u.iter().map(|row| row[v]).collect();
+        sorted.sort_by(f64::total_cmp);
+        let order = ranks(target_scores.iter().map(|row| row[v]));
+        for (row, &place) in u.iter_mut().zip(&order) {
+            row[v] = sorted[place];
+        }
+    }
+}
+
+/// Spearman's rank correlation of two equally long samples without ties: the Pearson
+/// correlation of their ranks.
+pub fn spearman(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len().min(y.len());
+    if n < 2 {
+        return f64::NAN;
+    }
+    let (rx, ry) = (ranks(x[..n].iter().copied()), ranks(y[..n].iter().copied()));
+    let mean = (n - 1) as f64 / 2.0;
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for i in 0..n {
+        let (a, b) = (rx[i] as f64 - mean, ry[i] as f64 - mean);
+        sxy += a * b;
+        sxx += a * a;
+        syy += b * b;
+    }
+    sxy / (sxx * syy).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -258,5 +395,64 @@ mod tests {
             cov: 0.0
         }
         .certain());
+    }
+
+    #[test]
+    fn iman_conover_reaches_the_rank_correlation_and_keeps_every_value() {
+        let n = 2000;
+        let target = vec![
+            vec![1.0, 0.6, -0.3],
+            vec![0.6, 1.0, 0.0],
+            vec![-0.3, 0.0, 1.0],
+        ];
+        let plain = latin_hypercube(3, n, 11);
+        let mut u = plain.clone();
+        impose_rank_correlation(&mut u, &target);
+        for v in 0..3 {
+            let mut a: Vec<f64> = plain.iter().map(|r| r[v]).collect();
+            let mut b: Vec<f64> = u.iter().map(|r| r[v]).collect();
+            a.sort_by(f64::total_cmp);
+            b.sort_by(f64::total_cmp);
+            assert_eq!(a, b, "variable {v} keeps its values (so its strata)");
+        }
+        // The standard error of a rank correlation of n samples is about 1 / sqrt(n) = 0.022;
+        // the method removes most of the sampling error, so the target is met well within it.
+        for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+            let x: Vec<f64> = u.iter().map(|r| r[a]).collect();
+            let y: Vec<f64> = u.iter().map(|r| r[b]).collect();
+            let rho = spearman(&x, &y);
+            assert!(
+                (rho - target[a][b]).abs() < 1.0 / (n as f64).sqrt(),
+                "{a}-{b}: {rho} against {}",
+                target[a][b]
+            );
+        }
+        // Deterministic: the same samples reorder the same way.
+        let mut again = plain.clone();
+        impose_rank_correlation(&mut again, &target);
+        assert_eq!(u, again);
+    }
+
+    #[test]
+    fn cholesky_refuses_what_is_not_positive_definite() {
+        let a = vec![vec![4.0, 2.0], vec![2.0, 3.0]];
+        let l = cholesky(&a).expect("positive definite");
+        for i in 0..2 {
+            for j in 0..2 {
+                let back: f64 = (0..2).map(|m| l[i][m] * l[j][m]).sum();
+                assert!((back - a[i][j]).abs() < 1e-14);
+            }
+        }
+        let bad = vec![
+            vec![1.0, 0.9, 0.9],
+            vec![0.9, 1.0, -0.9],
+            vec![0.9, -0.9, 1.0],
+        ];
+        assert!(cholesky(&bad).is_none());
+        // Rank and Pearson correlations of normals: 0 and 1 map to themselves, and a rank
+        // correlation of 0.5 is a Pearson one of 2 sin(pi / 12).
+        assert_eq!(pearson_of_rank(0.0), 0.0);
+        assert!((pearson_of_rank(1.0) - 1.0).abs() < 1e-15);
+        assert!((pearson_of_rank(0.5) - 0.517_638_090_205_041_5).abs() < 1e-15);
     }
 }

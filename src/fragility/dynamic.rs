@@ -15,7 +15,7 @@ use crate::analysis;
 use crate::dem::dynamic::DynamicSettings;
 use crate::dem::record::{GroundInput, GroundMotion, STANDARD_GRAVITY};
 use crate::error::AnalysisError;
-use crate::scene::uncertain::UncertainInput;
+use crate::scene::uncertain::{RankCorrelation, UncertainInput};
 use crate::scene::Scene;
 use rayon::prelude::*;
 
@@ -42,6 +42,8 @@ pub struct Stripe {
 #[derive(Debug, Clone)]
 pub struct DynamicFragility {
     pub inputs: Vec<UncertainInput>,
+    /// The rank correlations imposed between the inputs (empty: independent).
+    pub correlation: Vec<RankCorrelation>,
     pub seed: u64,
     /// Where each record came from.
     pub records: Vec<String>,
@@ -148,7 +150,12 @@ pub fn dynamic_samples(
 ) -> Result<Vec<DynamicSample>, AnalysisError> {
     check_dynamic(scene, settings, records, stripes)?;
     check_range(&range, settings.samples)?;
-    let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
+    let mut values = sample_values(
+        &scene.uncertain,
+        &scene.uncertain_correlation,
+        settings.samples,
+        settings.seed,
+    );
     let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
     let scenes = sample_scenes(scene, &values, range.start)?;
     let (ns, nj, nr) = (scenes.len(), stripes.len(), records.len());
@@ -241,6 +248,7 @@ pub fn dynamic_fragility(
         .collect();
     Ok(DynamicFragility {
         inputs: scene.uncertain.clone(),
+        correlation: scene.uncertain_correlation.clone(),
         seed: settings.seed,
         records: records.iter().map(|r| r.source.clone()).collect(),
         stripes,

@@ -31,8 +31,8 @@ use crate::analysis::{self, AssessOptions, Options};
 use crate::assess::{AG_GRID_FIRST, AG_SEARCH_MAX};
 use crate::error::AnalysisError;
 use crate::outcome::Direction;
-use crate::sampling::latin_hypercube;
-use crate::scene::uncertain::UncertainInput;
+use crate::sampling::{impose_rank_correlation, latin_hypercube};
+use crate::scene::uncertain::{correlation_matrix, RankCorrelation, UncertainInput};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use toml::Value;
@@ -119,6 +119,8 @@ pub struct Sample {
 #[derive(Debug, Clone)]
 pub struct CapacityFragility {
     pub inputs: Vec<UncertainInput>,
+    /// The rank correlations imposed between the inputs (empty: independent).
+    pub correlation: Vec<RankCorrelation>,
     pub seed: u64,
     pub samples: Vec<Sample>,
     /// The site (its `ag` is the scene's; the capacities search `ag`).
@@ -159,10 +161,20 @@ impl CapacityFragility {
 }
 
 /// The Latin hypercube values of `n` samples of `inputs` from `seed`: `values[i][k]` is
-/// input `k` of sample `i` (`sampling::latin_hypercube` through each input's quantile).
-pub fn sample_values(inputs: &[UncertainInput], n: usize, seed: u64) -> Vec<Vec<f64>> {
-    latin_hypercube(inputs.len(), n, seed)
-        .into_iter()
+/// input `k` of sample `i` (`sampling::latin_hypercube` through each input's quantile), with
+/// the rank correlations `correlation` imposed by reordering (none: independent inputs, the
+/// samples exactly as without the key).
+pub fn sample_values(
+    inputs: &[UncertainInput],
+    correlation: &[RankCorrelation],
+    n: usize,
+    seed: u64,
+) -> Vec<Vec<f64>> {
+    let mut u = latin_hypercube(inputs.len(), n, seed);
+    if !correlation.is_empty() {
+        impose_rank_correlation(&mut u, &correlation_matrix(inputs, correlation));
+    }
+    u.into_iter()
         .map(|u| {
             u.iter()
                 .zip(inputs)
@@ -284,7 +296,12 @@ pub fn capacity_samples(
     check(scene, settings)?;
     site_of(scene)?;
     check_range(&range, settings.samples)?;
-    let mut values = sample_values(&scene.uncertain, settings.samples, settings.seed);
+    let mut values = sample_values(
+        &scene.uncertain,
+        &scene.uncertain_correlation,
+        settings.samples,
+        settings.seed,
+    );
     let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
     let scenes = sample_scenes(scene, &values, range.start)?;
     let capacities: Vec<Result<Capacity, AnalysisError>> = scenes
@@ -334,6 +351,7 @@ pub fn capacity_fragility(
     let fit = fit::fit(&observations, settings.confidence);
     Ok(CapacityFragility {
         inputs: scene.uncertain.clone(),
+        correlation: scene.uncertain_correlation.clone(),
         seed: settings.seed,
         samples,
         site,

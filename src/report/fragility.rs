@@ -27,6 +27,9 @@ pub struct FragilityReport {
     pub seed: u64,
     /// The uncertain inputs: `key`, `dist` and its parameters as the scene gives them.
     pub inputs: Vec<InputReport>,
+    /// The rank (Spearman) correlations imposed between inputs: `between` (two keys) and
+    /// `rank`; empty when the inputs are independent.
+    pub correlation: Vec<crate::scene::uncertain::RankCorrelation>,
     /// The site, its `ag` the scene's (the capacities search `ag` with the rest held); null
     /// on the dynamic route.
     pub site: Option<SiteReport>,
@@ -116,6 +119,7 @@ impl FragilityReport {
             sample_count: f.samples.len(),
             seed: f.seed,
             inputs: inputs(&f.inputs),
+            correlation: f.correlation.clone(),
             site: Some(SiteReport::new(&f.site)),
             records: None,
             stripes: None,
@@ -163,6 +167,7 @@ impl FragilityReport {
             sample_count: f.samples.len(),
             seed: f.seed,
             inputs: inputs(&f.inputs),
+            correlation: f.correlation.clone(),
             site: None,
             records: Some(f.records.clone()),
             stripes: Some(
@@ -293,6 +298,7 @@ pub fn document(scene: &Scene, f: &CapacityFragility) -> Document {
     inputs_section(
         &mut doc,
         &f.inputs,
+        &f.correlation,
         "every sample is the scene itself, so the fragility is a step at its largest passing ag",
     );
     let sec = doc.section("Fragility");
@@ -419,6 +425,7 @@ pub fn dynamic_document(scene: &Scene, f: &DynamicFragility) -> Document {
     inputs_section(
         &mut doc,
         &f.inputs,
+        &f.correlation,
         "every sample is the scene itself (the spread comes from the records alone)",
     );
     let sec = doc.section("Stripes");
@@ -494,7 +501,12 @@ pub fn dynamic_chart(scene: &Scene, f: &DynamicFragility) -> Chart {
 }
 
 /// The uncertain inputs as a section (`empty`: what a scene without them gives).
-fn inputs_section(doc: &mut Document, inputs: &[UncertainInput], empty: &str) {
+fn inputs_section(
+    doc: &mut Document,
+    inputs: &[UncertainInput],
+    correlation: &[crate::scene::uncertain::RankCorrelation],
+    empty: &str,
+) {
     let sec = doc.section("Uncertain inputs");
     if inputs.is_empty() {
         sec.warning(format!("the scene has no [uncertain] table: {empty}"));
@@ -506,6 +518,15 @@ fn inputs_section(doc: &mut Document, inputs: &[UncertainInput], empty: &str) {
             i.dist.name(),
             i.dist.parameters()
         ));
+    }
+    for c in correlation {
+        sec.item(format!(
+            "rank correlation {} between {} and {} (Iman-Conover)",
+            c.rank, c.between[0], c.between[1]
+        ));
+    }
+    if !inputs.is_empty() && correlation.is_empty() && inputs.len() > 1 {
+        sec.line("the inputs are sampled independently");
     }
 }
 

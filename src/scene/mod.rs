@@ -234,6 +234,8 @@ pub struct Scene {
     /// `[uncertain]`: the uncertain inputs `voussoir fragility` samples (empty when none);
     /// every other command analyses the scene's own values.
     pub uncertain: Vec<uncertain::UncertainInput>,
+    /// `[uncertain] correlation`: rank correlations between those inputs (empty: independent).
+    pub uncertain_correlation: Vec<uncertain::RankCorrelation>,
     /// Where the scene came from (file path or "<string>"), for messages.
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
@@ -1093,6 +1095,15 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         &loads,
         &vehicles,
     )?;
+    let uncertain_table = section(&table, "uncertain", origin)?;
+    let uncertain = uncertain_table
+        .map(|t| uncertain::parse(t, origin))
+        .transpose()?
+        .unwrap_or_default();
+    let uncertain_correlation = uncertain_table
+        .map(|t| uncertain::parse_correlation(t, &uncertain, origin))
+        .transpose()?
+        .unwrap_or_default();
     let scene = Scene {
         arch,
         blocks,
@@ -1112,10 +1123,8 @@ fn parse(mut table: Table, origin: &str, base_dir: Option<&Path>) -> Result<Scen
         report: section(&table, "report", origin)?
             .map(|t| parse_report(Section::new("report", t, origin)))
             .transpose()?,
-        uncertain: section(&table, "uncertain", origin)?
-            .map(|t| uncertain::parse(t, origin))
-            .transpose()?
-            .unwrap_or_default(),
+        uncertain,
+        uncertain_correlation,
         origin: origin.to_string(),
         table,
         base_dir: base_dir.map(Path::to_path_buf),

@@ -176,7 +176,7 @@ fn every_stratum_of_every_variable_is_hit_exactly_once() {
     // back by each one's CDF, hit each stratum once too.
     let scene = Scene::from_file(&data("fragility_portal.toml")).expect("scene");
     let n = 64;
-    let values = fragility::sample_values(&scene.uncertain, n, 3);
+    let values = fragility::sample_values(&scene.uncertain, &scene.uncertain_correlation, n, 3);
     for (k, input) in scene.uncertain.iter().enumerate() {
         let cdf = |x: f64| match input.dist {
             voussoir::sampling::Distribution::Normal { mean, cov } => {
@@ -515,4 +515,116 @@ fn chunks_computed_apart_give_the_local_samples_and_fit() {
         .expect_err("refused")
         .to_string();
     assert!(e.contains("23 samples given for a fragility of 24"), "{e}");
+}
+
+/// `data/fragility_portal.toml` with `extra` appended to its `[uncertain]` table.
+fn portal_with(extra: &str) -> Result<Scene, voussoir::error::SceneError> {
+    let portal = std::fs::read_to_string(data("fragility_portal.toml")).expect("read");
+    Scene::from_toml_str(&format!("{portal}{extra}\n"), "correlated")
+}
+
+/// Correlated inputs (Iman and Conover's reordering): the samples' rank correlation is the
+/// one asked for, within a rank correlation's sampling error `1 / sqrt(n)`; every input keeps
+/// the very values of its independent Latin hypercube (so every stratum once); and two inputs
+/// that both raise the capacity, correlated positively, widen the fragility's dispersion,
+/// negatively narrow it.
+#[test]
+fn correlated_inputs_keep_their_strata_and_take_the_rank_correlation() {
+    let n = 400;
+    let pair = |rank: f64| {
+        format!(
+            "correlation = [{{ between = [\"arch.thickness\", \"piers.width\"], rank = {rank:?} }}]"
+        )
+    };
+    let independent = portal_with("").expect("scene");
+    let free = fragility::sample_values(&independent.uncertain, &[], n, 5);
+    let keys: Vec<&str> = independent
+        .uncertain
+        .iter()
+        .map(|u| u.key.as_str())
+        .collect();
+    let (t, w) = (
+        keys.iter().position(|k| *k == "arch.thickness").expect("t"),
+        keys.iter().position(|k| *k == "piers.width").expect("w"),
+    );
+    let column = |v: &[Vec<f64>], k: usize| -> Vec<f64> { v.iter().map(|row| row[k]).collect() };
+    let mut betas = Vec::new();
+    for rank in [-0.8, 0.0, 0.8] {
+        let scene = portal_with(&pair(rank)).expect("scene");
+        assert_eq!(scene.uncertain_correlation.len(), 1);
+        let values = fragility::sample_values(&scene.uncertain, &scene.uncertain_correlation, n, 5);
+        let rho = voussoir::sampling::spearman(&column(&values, t), &column(&values, w));
+        assert!(
+            (rho - rank).abs() < 1.0 / (n as f64).sqrt(),
+            "rank {rank}: the samples' Spearman correlation is {rho}"
+        );
+        for (k, key) in keys.iter().enumerate() {
+            let (mut a, mut b) = (column(&free, k), column(&values, k));
+            a.sort_by(f64::total_cmp);
+            b.sort_by(f64::total_cmp);
+            assert_eq!(a, b, "{key}: the same values, reordered");
+        }
+        let f = fragility::capacity_route(&scene, &settings(n, 5)).expect("fragility");
+        betas.push(f.fit.expect("a fit").beta);
+    }
+    assert!(
+        betas[0] < betas[1] && betas[1] < betas[2],
+        "dispersion against the correlation of two inputs that both raise the capacity: {betas:?}"
+    );
+    // No correlation key: the samples of the independent inputs, value for value.
+    let none = portal_with("").expect("scene");
+    assert_eq!(
+        fragility::sample_values(&none.uncertain, &none.uncertain_correlation, n, 5),
+        free
+    );
+}
+
+/// Correlations that name no input, an input twice, a pair twice, a rank of 1, or a set that
+/// cannot hold together are refused, naming the key.
+#[test]
+fn impossible_correlations_are_refused_naming_the_key() {
+    for (extra, key, words) in [
+        (
+            "correlation = [{ between = [\"arch.thicknes\", \"piers.width\"], rank = 0.5 }]",
+            "uncertain.correlation[0].between",
+            "arch.thickness",
+        ),
+        (
+            "correlation = [{ between = [\"piers.width\", \"piers.width\"], rank = 0.5 }]",
+            "uncertain.correlation[0].between",
+            "two different inputs",
+        ),
+        (
+            "correlation = [{ between = [\"arch.thickness\", \"piers.width\"], rank = 1.0 }]",
+            "uncertain.correlation[0].rank",
+            "strictly between -1 and 1",
+        ),
+        (
+            "correlation = [{ between = [\"arch.thickness\", \"piers.width\"], rank = 0.5 }, \
+             { between = [\"piers.width\", \"arch.thickness\"], rank = 0.2 }]",
+            "uncertain.correlation[1].between",
+            "each pair once",
+        ),
+        (
+            "correlation = [\
+             { between = [\"arch.thickness\", \"piers.width\"], rank = 0.9 }, \
+             { between = [\"arch.thickness\", \"material.unit_weight\"], rank = 0.9 }, \
+             { between = [\"piers.width\", \"material.unit_weight\"], rank = -0.9 }]",
+            "uncertain.correlation",
+            "positive definite",
+        ),
+        (
+            "correlation = [{ between = [\"arch.thickness\", \"piers.width\"], rho = 0.5 }]",
+            "uncertain.correlation[0].rho",
+            "between and rank",
+        ),
+        (
+            "correlation = { between = [\"arch.thickness\", \"piers.width\"], rank = 0.5 }",
+            "uncertain.correlation",
+            "an array of pairs",
+        ),
+    ] {
+        let e = portal_with(extra).expect_err(extra).to_string();
+        assert!(e.contains(key) && e.contains(words), "{extra}\n-> {e}");
+    }
 }

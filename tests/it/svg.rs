@@ -831,7 +831,7 @@ fn a_load_spread_by_boussinesq_draws_its_bell_not_a_uniform_row() {
         "semicircle, spread point load",
     );
     let doc = Document::parse(&text).expect("well-formed XML");
-    let (x0, y0, s) = fit_frame(&doc, &m.assembly);
+    let (x0, _, s) = fit_frame(&doc, &m.assembly);
     let g = group(&doc, "line-loads");
     let rows: Vec<_> = g
         .children()

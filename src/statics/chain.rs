@@ -744,8 +744,8 @@ impl ChainProgram {
         self.gradient_active_set(objective, cap, weight, [0.0; 3], None)
     }
 
-    /// [`Self::weighted_active_set`] maximising `objective lambda + gradient . (H', V', M0')
-    /// - weight sum T'`: the first basis takes, for each redundant, the artificial bound the
+    /// [`Self::weighted_active_set`] maximising
+    /// `objective lambda + gradient . (H', V', M0') - weight sum T'`: the first basis takes, for each redundant, the artificial bound the
     /// gradient pushes against (multiplier `|gradient|`), so it is dual feasible for any
     /// gradient. The least-friction equilibrium of the non-associative iteration
     /// ([`FixedShearChain`]) minimises `sum mu N`, linear in the redundants, this way.

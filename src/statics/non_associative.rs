@@ -38,6 +38,12 @@
 //! ([`Objective::LeastFriction`]), which steers toward the lower solutions; and the normal
 //! forces of the most central equilibrium under the permanent loads alone (the phase-one
 //! program's).
+//!
+//! On a chain (rigid joints, no ties, strips or passive resistance) each program is solved by
+//! the chain program's dual active set with fixed capacities, warm-started from the previous
+//! iterate's basis (`chain/fixed_shear.rs`); the full conic program otherwise, and wherever
+//! the active set does not decide. The starts are independent and run side by side (rayon),
+//! read back in the order above.
 
 use super::chain::FixedShearChain;
 use super::problem::{Objective, StaticProblem};
@@ -239,19 +245,9 @@ fn solve_fixed(
         format!("{:?} (fixed shear capacities)", sol.status),
         problem_size(&problem),
     );
-    // Read as a collapse whatever the sign of lambda: the iteration needs the forces of
-    // every iterate (a negative multiplier is judged by the caller).
-    result = result.read_solution(
-        &model.assembly,
-        model.strength,
-        settings,
-        lambda.max(0.0),
-        forces.clone(),
-        residual,
-        true,
-        || read_mechanism(&model.assembly, &problem, &sol.z),
-    );
-    result.lambda = Some(lambda);
+    result = result.read_iterate(model, settings, lambda, forces.clone(), residual, || {
+        read_mechanism(&model.assembly, &problem, &sol.z)
+    });
     result.set_tensions(model, &tension, &strip_tension, &passive);
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(Some(Iterate {
@@ -259,6 +255,35 @@ fn solve_fixed(
         forces,
         result,
     }))
+}
+
+impl StaticResult {
+    /// One iterate's solution (multiplier `lambda`, `forces`, equilibrium `residual`, the
+    /// program's `mechanism`) read into the result, as a collapse whatever the sign of lambda:
+    /// the iteration needs the forces of every iterate (a negative multiplier is judged by
+    /// the caller), and `lambda` is kept as it is.
+    pub(super) fn read_iterate(
+        self,
+        model: &Model,
+        settings: &StaticSettings,
+        lambda: f64,
+        forces: Vec<JointForce>,
+        residual: f64,
+        mechanism: impl FnOnce() -> Vec<[f64; 3]>,
+    ) -> StaticResult {
+        let mut result = self.read_solution(
+            &model.assembly,
+            model.strength,
+            settings,
+            lambda.max(0.0),
+            forces,
+            residual,
+            true,
+            mechanism,
+        );
+        result.lambda = Some(lambda);
+        result
+    }
 }
 
 /// Whether `it`, solved with the capacities of normal forces `nbar`, is a fixed point to

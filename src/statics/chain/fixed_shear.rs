@@ -180,19 +180,10 @@ impl FixedShearChain {
         let residual = model.equilibrium_residual(&forces, &ties, &strips, point[0], sign);
         let status = "active set; exact vertex (fixed shear capacities)".to_string();
         let unsolved = StaticResult::unsolved(settings, pivots, status, p.size());
-        // Read as a collapse whatever the sign of lambda, as the full program's iterate is:
-        // the iteration needs the forces of every iterate.
-        let mut result = unsolved.read_solution(
-            &model.assembly,
-            model.strength,
-            settings,
-            lambda.max(0.0),
-            forces.clone(),
-            residual,
-            true,
-            || p.mechanism(&model.assembly, &model.loads, sign, &z),
-        );
-        result.lambda = Some(lambda);
+        let mut result =
+            unsolved.read_iterate(model, settings, lambda, forces.clone(), residual, || {
+                p.mechanism(&model.assembly, &model.loads, sign, &z)
+            });
         result.exact_vertex = true;
         result.solve_time_s = start.elapsed().as_secs_f64();
         Some(Some(FixedShearSolution {

@@ -46,7 +46,10 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{SolverStatus, SupportedConeT};
 use std::time::Instant;
 
+mod fixed_shear;
 mod working_set;
+
+pub(super) use fixed_shear::FixedShearChain;
 
 /// The joint force as an affine function of `x = [lambda, H, V, M0]` (SI units):
 /// `F = F0 + base + lambda * per`, moment about the reference point likewise.
@@ -62,6 +65,19 @@ struct ActiveSet {
     x: Vec<f64>,
     duals: Vec<(usize, f64)>,
     pivots: u32,
+    /// The optimal basis (rows of the program, then the artificial ones) and the multipliers
+    /// of its rows: a dual feasible start for the same program with other constants
+    /// ([`ChainProgram::gradient_active_set`]'s warm start).
+    warm: Warm,
+}
+
+/// A basis of the dual active set and its rows' multipliers, `y >= 0` with the objective's
+/// gradient `-sum y_i a_i`: it stays dual feasible when only the rows' constants change, so
+/// the dual simplex may start from it (the textbook warm start of the dual simplex).
+#[derive(Debug, Clone, Default)]
+struct Warm {
+    basis: Vec<usize>,
+    y: Vec<f64>,
 }
 
 /// Solve `G d = rhs` (`transpose`: `G^T d = rhs`) for the 4 x 4 matrix whose rows are
@@ -196,6 +212,30 @@ impl Basis {
 /// (the optimum is checked to be the largest multiplier's at the end).
 const TIE_WEIGHT: f64 = 1e-9;
 
+/// The direction `d` of a friction row `d . F + constant >= 0` (F the joint's force), for the
+/// side `sv` (+1: `V <= limit`, -1: `V >= -limit`): Coulomb's `mu N - sv V` reads
+/// `d = mu n - sv u`; a fixed capacity `S - sv V` reads `d = -sv u` (no normal part). The
+/// same direction is the relative motion the row's dual stands for (slip with dilatancy
+/// `mu`, or without).
+fn friction_direction(mu: f64, n: Vec2, u: Vec2, sv: f64, fixed: bool) -> Vec2 {
+    if fixed {
+        -sv * u
+    } else {
+        mu * n - sv * u
+    }
+}
+
+/// Joint `k`'s fixed shear capacity in `capacity` (N), read as the full program reads
+/// `ShearLimit::Fixed`: missing, negative or not finite is 0.
+fn fixed_capacity(capacity: &[f64], k: usize) -> f64 {
+    let s = capacity.get(k).copied().unwrap_or(0.0);
+    if s.is_finite() {
+        s.max(0.0)
+    } else {
+        0.0
+    }
+}
+
 /// The dual simplex ratio test: of the basis rows with `w_k > 0`, the one whose multiplier
 /// `y_k` reaches 0 first as the entering row's multiplier `t` grows (`y_k - t w_k`), and `t`.
 fn ratio_test(y: &[f64], w: &[f64]) -> Option<(usize, f64)> {
@@ -256,6 +296,7 @@ impl Outcome {
 }
 
 /// The reduced program of a chain, with what is needed to read its solution back.
+#[derive(Clone)]
 struct ChainProgram {
     /// Per joint, the running sums of the loads before it.
     sums: Vec<Affine>,
@@ -285,10 +326,29 @@ struct ChainProgram {
     /// Per joint, the bonded strips' capacities at its ends p1 and p2 (N; empty without
     /// strips).
     strip_ends: Vec<[f64; 2]>,
+    /// Whether the friction rows bound the shear by fixed capacities, `S_j -+ V >= 0`
+    /// ([`ChainProgram::with_capacities`]), instead of Coulomb's `mu N -+ V >= 0`: their
+    /// duals are then slips without opening.
+    fixed_shear: bool,
 }
 
 impl ChainProgram {
     fn new(model: &Model, sign: f64, cap: Option<f64>) -> ChainProgram {
+        Self::with_capacities(model, sign, cap, None)
+    }
+
+    /// The program with each friction row `mu N -+ V >= 0` replaced, when `capacity` is
+    /// given, by a fixed shear capacity `S_j -+ V >= 0` (N, joint order; a capacity that is
+    /// not a finite number >= 0 is read as 0, as the full program's
+    /// `interaction::contact::ShearLimit::Fixed` reads it): the same half-planes in the four
+    /// unknowns, with a constant right-hand side. Strips are left out of the fixed rows'
+    /// constants (their tension adds to the normal force, which these rows no longer read).
+    fn with_capacities(
+        model: &Model,
+        sign: f64,
+        cap: Option<f64>,
+        capacity: Option<&[f64]>,
+    ) -> ChainProgram {
         let (assembly, loads, strength) = (&model.assembly, &model.loads, model.strength);
         let nj = assembly.joints.len();
         let ls = assembly.size();
@@ -391,14 +451,19 @@ impl ChainProgram {
                 None => c,
             };
             for sv in [1.0, -1.0] {
-                // mu N - sv V with N = F.n, V = F.u: the direction d = mu n - sv u.
-                let d = mu * n - sv * u;
+                // mu N - sv V with N = F.n, V = F.u: the direction d = mu n - sv u; with a
+                // fixed capacity, S - sv V: d = -sv u and the constant S.
+                let d = friction_direction(mu, n, u, sv, capacity.is_some());
                 let base = (d.x * s.base[0] + d.y * s.base[1]) / fs;
                 let per = (d.x * s.per[0] + d.y * s.per[1]) / fs;
                 for c in &tie_sums[k * nt..(k + 1) * nt] {
                     tie_coef.push(d.x * c[0] + d.y * c[1]);
                 }
-                push_row([per, d.x, d.y, 0.0], shift(base), &mut dense);
+                let constant = match capacity {
+                    Some(cap) => base + fixed_capacity(cap, k) / fs,
+                    None => shift(base),
+                };
+                push_row([per, d.x, d.y, 0.0], constant, &mut dense);
             }
             friction_joints.push(k);
         }
@@ -438,6 +503,7 @@ impl ChainProgram {
             tie_coef,
             tie_sums,
             strip_ends,
+            fixed_shear: capacity.is_some(),
         }
     }
 
@@ -675,6 +741,25 @@ impl ChainProgram {
     /// returned only when it is also the largest `objective lambda` (its basis's multipliers
     /// for that objective alone are non-negative), [`Outcome::Failed`] otherwise.
     fn weighted_active_set(&self, objective: f64, cap: f64, weight: f64) -> Outcome {
+        self.gradient_active_set(objective, cap, weight, [0.0; 3], None)
+    }
+
+    /// [`Self::weighted_active_set`] maximising
+    /// `objective lambda + gradient . (H', V', M0') - weight sum T'`: the first basis takes, for each redundant, the artificial bound the
+    /// gradient pushes against (multiplier `|gradient|`), so it is dual feasible for any
+    /// gradient. The least-friction equilibrium of the non-associative iteration
+    /// ([`FixedShearChain`]) minimises `sum mu N`, linear in the redundants, this way.
+    /// `warm`, the optimal basis of the same program (same rows and objective) with other
+    /// constants, starts the method from that basis instead: still dual feasible, it needs
+    /// only the pivots the new constants call for.
+    fn gradient_active_set(
+        &self,
+        objective: f64,
+        cap: f64,
+        weight: f64,
+        gradient: [f64; 3],
+        warm: Option<&Warm>,
+    ) -> Outcome {
         const BOX: f64 = 1e6;
         const MAX_ITER: usize = 500;
         let m = self.dense.len();
@@ -713,8 +798,20 @@ impl ChainProgram {
         // prestress (`T' - P' >= 0`), multiplier `weight`: the objective is
         // `-sum y_i a_i` over them.
         let first_tie = 2 * self.sums.len() + 2 * self.friction_joints.len();
-        let mut basis = vec![m, m + 1, m + 3, m + 5];
+        // Box row `m + 2c - 1` bounds redundant c from above, `m + 2c` from below.
+        let side = |c: usize| {
+            if gradient[c - 1] >= 0.0 {
+                2 * c - 1
+            } else {
+                2 * c
+            }
+        };
+        let mut basis = vec![m, m + side(1), m + side(2), m + side(3)];
         basis.extend((0..nt).map(|t| first_tie + 2 * t + 1));
+        let warm = warm.filter(|w| w.basis.len() == n && w.y.len() == n);
+        if let Some(w) = warm {
+            basis.clone_from(&w.basis);
+        }
         let mut in_basis = vec![false; m];
         for &i in &basis {
             if i < m {
@@ -723,7 +820,13 @@ impl ChainProgram {
         }
         let mut y = vec![0.0; n];
         y[0] = 1.0;
+        for (yc, g) in y[1..4].iter_mut().zip(gradient) {
+            *yc = g.abs();
+        }
         y[4..].fill(weight);
+        if let Some(w) = warm {
+            y.clone_from(&w.y);
+        }
         let mut a_r = vec![0.0; n];
         for pivots in 0..MAX_ITER {
             let rhs = matrix(&basis, &mut g);
@@ -784,6 +887,7 @@ impl ChainProgram {
                     x,
                     duals,
                     pivots: pivots as u32,
+                    warm: Warm { basis, y },
                 });
             };
             // Ratio test: a_r = sum w_i a_i over the basis; y'_i = y_i - t w_i, y'_r = t.
@@ -975,7 +1079,7 @@ impl ChainProgram {
             let jt = &assembly.joints[k];
             let (n, u, mu) = (jt.normal(), jt.tangent(), jt.friction);
             for (i, sv) in [1.0, -1.0].into_iter().enumerate() {
-                let d = mu * n - sv * u;
+                let d = friction_direction(mu, n, u, sv, self.fixed_shear);
                 let zf = z[nt + 2 * f + i];
                 rel[k][1] += zf * d.x;
                 rel[k][2] += zf * d.y;
@@ -1069,7 +1173,9 @@ fn active_set_result(
     program: &ChainProgram,
     settings: &StaticSettings,
 ) -> Option<StaticResult> {
-    let ActiveSet { x, duals, pivots } = match program.active_set(1.0, LAMBDA_CAP) {
+    let ActiveSet {
+        x, duals, pivots, ..
+    } = match program.active_set(1.0, LAMBDA_CAP) {
         Outcome::Optimal(a) => a,
         Outcome::Infeasible { pivots } => {
             return Some(StaticResult::unsolved(

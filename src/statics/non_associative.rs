@@ -38,7 +38,14 @@
 //! ([`Objective::LeastFriction`]), which steers toward the lower solutions; and the normal
 //! forces of the most central equilibrium under the permanent loads alone (the phase-one
 //! program's).
+//!
+//! On a chain (rigid joints, no ties, strips or passive resistance) each program is solved by
+//! the chain program's dual active set with fixed capacities, warm-started from the previous
+//! iterate's basis (`chain/fixed_shear.rs`); the full conic program otherwise, and wherever
+//! the active set does not decide. The starts are independent and run side by side (rayon),
+//! read back in the order above.
 
+use super::chain::FixedShearChain;
 use super::problem::{Objective, StaticProblem};
 use super::{
     check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips,
@@ -49,6 +56,7 @@ use crate::error::AnalysisError;
 use crate::interaction::contact::ShearLimit;
 use crate::model::Model;
 use clarabel::solver::SolverStatus;
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// How the non-associative iteration runs.
@@ -172,9 +180,18 @@ struct Iterate {
 fn solve_fixed(
     model: &Model,
     settings: &StaticSettings,
+    chain: Option<&mut FixedShearChain>,
     capacity: &[f64],
     least_friction: bool,
 ) -> Result<Option<Iterate>, AnalysisError> {
+    // A chain's program by its active set (exact), the full program where it does not decide.
+    if let Some(found) = chain.and_then(|c| c.solve(model, settings, capacity, least_friction)) {
+        return Ok(found.map(|s| Iterate {
+            lambda: s.lambda,
+            forces: s.forces,
+            result: s.result,
+        }));
+    }
     let start = Instant::now();
     let sign = settings.direction.sign();
     let program = |objective| {
@@ -228,19 +245,9 @@ fn solve_fixed(
         format!("{:?} (fixed shear capacities)", sol.status),
         problem_size(&problem),
     );
-    // Read as a collapse whatever the sign of lambda: the iteration needs the forces of
-    // every iterate (a negative multiplier is judged by the caller).
-    result = result.read_solution(
-        &model.assembly,
-        model.strength,
-        settings,
-        lambda.max(0.0),
-        forces.clone(),
-        residual,
-        true,
-        || read_mechanism(&model.assembly, &problem, &sol.z),
-    );
-    result.lambda = Some(lambda);
+    result = result.read_iterate(model, settings, lambda, forces.clone(), residual, || {
+        read_mechanism(&model.assembly, &problem, &sol.z)
+    });
     result.set_tensions(model, &tension, &strip_tension, &passive);
     result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(Some(Iterate {
@@ -248,6 +255,35 @@ fn solve_fixed(
         forces,
         result,
     }))
+}
+
+impl StaticResult {
+    /// One iterate's solution (multiplier `lambda`, `forces`, equilibrium `residual`, the
+    /// program's `mechanism`) read into the result, as a collapse whatever the sign of lambda:
+    /// the iteration needs the forces of every iterate (a negative multiplier is judged by
+    /// the caller), and `lambda` is kept as it is.
+    pub(super) fn read_iterate(
+        self,
+        model: &Model,
+        settings: &StaticSettings,
+        lambda: f64,
+        forces: Vec<JointForce>,
+        residual: f64,
+        mechanism: impl FnOnce() -> Vec<[f64; 3]>,
+    ) -> StaticResult {
+        let mut result = self.read_solution(
+            &model.assembly,
+            model.strength,
+            settings,
+            lambda.max(0.0),
+            forces,
+            residual,
+            true,
+            mechanism,
+        );
+        result.lambda = Some(lambda);
+        result
+    }
 }
 
 /// Whether `it`, solved with the capacities of normal forces `nbar`, is a fixed point to
@@ -279,6 +315,7 @@ fn iterate_from(
     model: &Model,
     settings: &StaticSettings,
     na: &NonAssociativeSettings,
+    mut chain: Option<FixedShearChain>,
     start: Start,
     n0: Vec<f64>,
 ) -> Result<(StartOutcome, Option<StaticResult>), AnalysisError> {
@@ -296,7 +333,7 @@ fn iterate_from(
         let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
         let least = start == Start::LeastFriction;
         programs += 1;
-        let Some(it) = solve_fixed(model, settings, &capacity, least)? else {
+        let Some(it) = solve_fixed(model, settings, chain.as_mut(), &capacity, least)? else {
             stopped = format!(
                 "the program with the capacities of iteration {iterations} has no solution"
             );
@@ -382,13 +419,26 @@ pub fn analyse_non_associative(
         (Start::Associative, n_associative.clone()),
         (Start::LeastFriction, n_associative),
     ];
-    let rest = super::stands(model, settings)?;
-    if rest.stands {
-        starts.push((Start::AtRest, rest.forces.iter().map(|f| f.n).collect()));
+    let chain = FixedShearChain::new(model, settings);
+    let rest = match chain.as_ref().and_then(|_| FixedShearChain::at_rest(model)) {
+        Some(rest) => rest,
+        None => {
+            let rest = super::stands(model, settings)?;
+            rest.stands
+                .then(|| rest.forces.iter().map(|f| f.n).collect())
+        }
+    };
+    if let Some(n) = rest {
+        starts.push((Start::AtRest, n));
     }
+    // The starts are independent: run them side by side, and read them in their order.
+    let outcomes: Vec<_> = starts
+        .into_par_iter()
+        .map(|(start, n0)| iterate_from(model, settings, na, chain.clone(), start, n0))
+        .collect();
     let mut best: Option<StaticResult> = None;
-    for (start, n0) in starts {
-        let (outcome, result) = iterate_from(model, settings, na, start, n0)?;
+    for found in outcomes {
+        let (outcome, result) = found?;
         out.iterations += outcome.iterations;
         if let (true, Some(r)) = (outcome.converged, result) {
             let value = |x: &StaticResult| x.lambda.unwrap_or(f64::INFINITY);

@@ -377,3 +377,75 @@ fn the_command_line_says_where_the_three_values_sit() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("non-associative"));
 }
+
+/// The non-associative multiplier of `model` toward `direction` by the chain's active set
+/// (the default settings) and by the full conic program (`Program::Full`, the path every
+/// program took before), from the same associative result.
+fn by_both_paths(
+    model: &Model,
+    direction: Direction,
+) -> (statics::NonAssociative, statics::NonAssociative) {
+    let s = StaticSettings::default().direction(direction);
+    let a = statics::analyse(model, &s).expect("static program");
+    let na = NonAssociativeSettings::default();
+    let chain = statics::analyse_non_associative(model, &s, &a, &na).expect("chain path");
+    let full_settings = s.clone().program(statics::Program::Full);
+    let full = statics::analyse_non_associative(model, &full_settings, &a, &na).expect("full path");
+    (chain, full)
+}
+
+/// Issue 25's benchmark item: on a chain the iteration's programs are solved by the chain's
+/// active set with fixed capacities (`statics/chain/fixed_shear.rs`) instead of the full
+/// conic program. On a grid of arches whose joints slide (semicircles, segmental and pointed
+/// arches, thick and thin, low friction, 8 to 48 voussoirs, with and without a line load, both
+/// directions) both paths take the same number of programs from every start, converge alike,
+/// and give the same multiplier to 1e-9 (each program's optimum is an LP's, unique in value;
+/// the interior point's tolerance leaves about 1e-11).
+#[test]
+fn the_chain_path_gives_the_full_programs_multiplier() {
+    let mut worst: f64 = 0.0;
+    let (mut cases, mut compared) = (0, 0);
+    for (shape, extra) in [
+        ("circular", ""),
+        ("circular", "embrace_deg = 140.0\n"),
+        ("pointed", "eccentricity = 0.2\n"),
+    ] {
+        for (t, mu) in [(0.25, 0.4), (0.3, 0.35), (0.2, 0.45), (0.35, 0.3)] {
+            for n in [8, 20, 48] {
+                for load in [
+                    "",
+                    "[[loads]]\ntype = \"line\"\nfrom_x = 0.0\nto_x = 0.6\nintensity = 2000.0\n",
+                ] {
+                    let text = format!(
+                        "[arch]\nshape = \"{shape}\"\nradius = 1.0\n{extra}thickness = {t}\nvoussoirs = {n}\n[material]\nfriction = {mu}\n{load}"
+                    );
+                    let m = model_of(&scene(&text));
+                    for d in [Direction::Right, Direction::Left] {
+                        let (chain, full) = by_both_paths(&m, d);
+                        assert_eq!(chain.converged, full.converged, "{text} {d:?}");
+                        for (c, f) in chain.starts.iter().zip(&full.starts) {
+                            assert_eq!(
+                                (c.start, c.converged, c.iterations),
+                                (f.start, f.converged, f.iterations),
+                                "{text} {d:?}"
+                            );
+                        }
+                        cases += 1;
+                        let (lc, lf) = match (chain.lambda, full.lambda) {
+                            (Some(lc), Some(lf)) => (lc, lf),
+                            (None, None) => continue,
+                            (c, f) => panic!("{text} {d:?}: chain {c:?}, full {f:?}"),
+                        };
+                        let diff = (lc - lf).abs() / lf.abs().max(1.0);
+                        assert!(diff <= 1e-9, "{text} {d:?}: chain {lc}, full {lf}");
+                        assert!(!chain.sliding.is_empty(), "{text} {d:?}: nothing slides");
+                        worst = worst.max(diff);
+                        compared += 1;
+                    }
+                }
+            }
+        }
+    }
+    println!("{cases} cases, {compared} with a multiplier; largest difference {worst:.1e}");
+    assert!(compared >= cases / 2, "{compared} of {cases}");
+}

@@ -1453,6 +1453,26 @@ fn parse_piers(s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
     Ok(piers)
 }
 
+/// Whether `key` of an entry is the string `"design"`: a capacity a retrofit design sizes
+/// (`[[ties]] capacity`, `[[reinforcements]] tensile_capacity`).
+fn is_design(table: &Table, key: &str) -> bool {
+    matches!(table.get(key), Some(Value::String(c)) if c.trim() == "design")
+}
+
+/// The optional `cost` of a tie or strip: its cost per newton of capacity in a retrofit
+/// design (default 1), a finite number > 0.
+fn design_cost(s: &mut Section) -> Result<f64, SceneError> {
+    let cost = s.opt_f64("cost")?.unwrap_or(1.0);
+    if !(cost.is_finite() && cost > 0.0) {
+        return Err(s.out_of_range(
+            "cost",
+            short(cost),
+            "must be a finite number > 0 (the cost of one newton of capacity in a retrofit design, relative to the other ties and strips)",
+        ));
+    }
+    Ok(cost)
+}
+
 /// The tables of the array of tables `list` (`[[loads]]`, `[[ties]]`), empty when absent;
 /// anything else there is an error naming the key.
 fn entries<'a>(table: &'a Table, list: &str, origin: &str) -> Result<Vec<&'a Table>, SceneError> {

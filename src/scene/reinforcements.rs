@@ -7,7 +7,8 @@
 //! face = "intrados"           # or "extrados"
 //! from_joint = 0              # arch joints, 0 = the left springing, n = the right one
 //! to_joint = 12
-//! tensile_capacity = 15000.0  # N at each joint it crosses (the strip's debonding force)
+//! tensile_capacity = 15000.0  # N at each joint it crosses (the strip's debonding force), or "design"
+//! cost = 1.0                  # default 1: cost per N of capacity in a retrofit design
 //! ```
 
 use super::{short, Section, MAX_FORCE};
@@ -23,11 +24,14 @@ pub struct ReinforcementSpec {
     pub face: JointEnd,
     pub from_joint: usize,
     pub to_joint: usize,
-    /// Tensile capacity at each crossed joint (N).
-    pub tensile_capacity: f64,
+    /// Tensile capacity at each crossed joint (N); None for `tensile_capacity = "design"`,
+    /// sized by `voussoir retrofit`.
+    pub tensile_capacity: Option<f64>,
+    /// Cost per newton of capacity in a retrofit design (default 1).
+    pub cost: f64,
 }
 
-const KEYS: &[&str] = &["face", "from_joint", "to_joint", "tensile_capacity"];
+const KEYS: &[&str] = &["face", "from_joint", "to_joint", "tensile_capacity", "cost"];
 
 /// The `[[reinforcements]]` list of a scene (empty when absent).
 pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec>, SceneError> {
@@ -56,23 +60,31 @@ pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec
                 &format!("must be at least from_joint = {from_joint}"),
             ));
         }
-        let tensile_capacity = s.finite(
-            "tensile_capacity",
-            "the strip's tensile (debonding) force at each joint it crosses, in N",
-        )?;
-        if !(0.0..=MAX_FORCE).contains(&tensile_capacity) {
-            return Err(s.out_of_range(
+        let tensile_capacity = if super::is_design(&t, "tensile_capacity") {
+            s.string("tensile_capacity", None)?;
+            None
+        } else {
+            let c = s.finite(
                 "tensile_capacity",
-                short(tensile_capacity),
-                &format!("must be from 0 to {MAX_FORCE:e} N"),
-            ));
-        }
+                "the strip's tensile (debonding) force at each joint it crosses, in N, or \"design\"",
+            )?;
+            if !(0.0..=MAX_FORCE).contains(&c) {
+                return Err(s.out_of_range(
+                    "tensile_capacity",
+                    short(c),
+                    &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
+                ));
+            }
+            Some(c)
+        };
+        let cost = super::design_cost(&mut s)?;
         s.finish("")?;
         out.push(ReinforcementSpec {
             face,
             from_joint,
             to_joint,
             tensile_capacity,
+            cost,
         });
     }
     Ok(out)
@@ -118,7 +130,9 @@ pub(super) fn strips(
                 out.push(Strip {
                     joint: i,
                     end: spec.face,
-                    capacity: spec.tensile_capacity,
+                    // A capacity to be designed starts at 0; the retrofit design sizes it
+                    // (a plain analysis refuses it, `super::build`).
+                    capacity: spec.tensile_capacity.unwrap_or(0.0),
                     source: k,
                 });
             }

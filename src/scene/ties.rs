@@ -15,7 +15,7 @@ use crate::error::SceneError;
 use crate::geometry::Vec2;
 
 use crate::model::{Anchor, Tie, DEFAULT_ULTIMATE_STRAIN};
-use toml::{Table, Value};
+use toml::Table;
 
 /// A tie as the user wrote it.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,8 +76,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must differ from `from`: a tie has a length",
             ));
         }
-        let capacity = if matches!(t.get("capacity"), Some(Value::String(c)) if c.trim() == "design")
-        {
+        let capacity = if super::is_design(&t, "capacity") {
             s.string("capacity", None)?;
             None
         } else {
@@ -103,14 +102,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 &format!("must be from 0 to the capacity, {} N", short(most)),
             ));
         }
-        let cost = s.opt_f64("cost")?.unwrap_or(1.0);
-        if !(cost.is_finite() && cost > 0.0) {
-            return Err(s.out_of_range(
-                "cost",
-                short(cost),
-                "must be a finite number > 0 (the cost of one newton of capacity, relative to the other ties)",
-            ));
-        }
+        let cost = super::design_cost(&mut s)?;
         let ultimate_strain = s
             .opt_f64("ultimate_strain")?
             .unwrap_or(DEFAULT_ULTIMATE_STRAIN);

@@ -50,7 +50,7 @@ pub fn build_for_design(scene: &Scene) -> Result<Model, SceneError> {
 }
 
 /// The assembly of a scene and the structure loads are placed on.
-fn structure(scene: &Scene) -> Result<(Assembly, Structure), SceneError> {
+pub(super) fn structure(scene: &Scene) -> Result<(Assembly, Structure), SceneError> {
     Ok(match (&scene.arch, &scene.blocks) {
         (Some(a), _) => {
             let (assembly, layout) = build_assembly(scene, a)?;

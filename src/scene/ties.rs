@@ -127,7 +127,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
 }
 
 /// The ties of a scene anchored on the placement's assembly: each anchor on the block that
-/// holds its point ([`Placement::locate`]), or the ground when the point lies in a fixed block
+/// holds its point ([`Placement::locate_all`], all anchors in one pass), or the ground when the point lies in a fixed block
 /// ([`Placement::fixed_at`]) or at or below the structure's base (its lowest point, within the placement's tolerance); any other point is
 /// an error naming the key.
 pub(super) fn anchor_ties(
@@ -148,11 +148,18 @@ pub(super) fn anchor_ties(
         value: format!("[{}, {}]", short(p[0]), short(p[1])),
         allowed,
     };
+    // Every anchor located in one pass over the blocks.
+    let points: Vec<Vec2> = specs
+        .iter()
+        .flat_map(|s| [s.from, s.to])
+        .map(|p| Vec2::new(p[0], p[1]))
+        .collect();
+    let located = placement.locate_all(&points);
     let mut ties = Vec::with_capacity(specs.len());
     for (k, spec) in specs.iter().enumerate() {
-        let anchor = |key: &str, p: [f64; 2]| -> Result<Anchor, SceneError> {
+        let anchor = |key: &str, p: [f64; 2], located: Option<usize>| -> Result<Anchor, SceneError> {
             let point = Vec2::new(p[0], p[1]);
-            let block = match placement.locate(point) {
+            let block = match located {
                 Some(b) => Some(b),
                 None if point.y <= base + tol => None,
                 // A point of a fixed block (`[blocks] fixed`) is a point of the ground.
@@ -171,7 +178,10 @@ pub(super) fn anchor_ties(
             };
             Ok(Anchor { block, point })
         };
-        let (from, to) = (anchor("from", spec.from)?, anchor("to", spec.to)?);
+        let (from, to) = (
+            anchor("from", spec.from, located[2 * k])?,
+            anchor("to", spec.to, located[2 * k + 1])?,
+        );
         // A capacity to be designed starts at its least value, the prestress; the retrofit
         // design sizes it (a plain analysis refuses it, `super::build`).
         let tie = Tie {

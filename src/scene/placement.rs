@@ -252,73 +252,90 @@ impl<'a> Placement<'a> {
     }
 
     /// [`Placement::locate`] of each of `points` (a tie's anchors), in one pass over the
-    /// blocks: a block's outline is tested only for the points inside its bounding box
-    /// ([`Placement::bounds`]), so a point costs a box test per block rather than an outline
-    /// test (the outline tests were most of the time a tied scene's build took at n = 1000).
-    pub(super) fn locate_all(&self, points: &[Vec2]) -> Vec<Option<usize>> {
+    /// blocks, and the lowest y of every block (the structure's base): a block's outline is
+    /// tested only for the points inside its bounding box ([`Placement::bounds`]), so a point
+    /// costs a box test per block rather than an outline test.
+    pub(super) fn locate_all(&self, points: &[Vec2]) -> (Vec<Option<usize>>, f64) {
         let order = |i: usize| match self.assembly.blocks[i].kind {
             BlockKind::User(s) => s,
             _ => i,
         };
         let mut found: Vec<Option<usize>> = vec![None; points.len()];
-        if points.is_empty() {
-            return found;
-        }
+        let mut base = f64::INFINITY;
         for i in 0..self.assembly.blocks.len() {
             let (lo, hi) = self.bounds(i);
+            base = base.min(lo.y);
+            let pad = self.pad(i);
             for (&p, f) in points.iter().zip(found.iter_mut()) {
-                let in_box = p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+                let in_box = p.x >= lo.x - pad
+                    && p.x <= hi.x + pad
+                    && p.y >= lo.y - pad
+                    && p.y <= hi.y + pad;
                 // The first block of least order that holds it, as `locate`'s `min_by_key`.
                 if in_box && f.is_none_or(|k| order(i) < order(k)) && self.contains(i, p) {
                     *f = Some(i);
                 }
             }
         }
-        found
+        (found, base)
     }
 
-    /// A box that holds every point [`Placement::contains`] finds in block `i`: its outline's
-    /// bounding box grown by what the tolerance adds at its sharpest corner and, for a curved
-    /// voussoir (whose exact piece lies in its quadrilateral and the circular segment of its
-    /// extrados beyond the chord), by that segment's height `r - sqrt(r^2 - c^2/4)`.
-    ///
-    /// The outline test accepts points up to `tol` outside each side, so near a corner of
-    /// interior angle `theta` up to `tol / sin(theta/2)` from it: with unit sides `a` into the
-    /// corner and `b` out of it, `sin(theta/2) = sqrt((1 + a.b)/2)`. The box takes twice the
-    /// largest (a curved voussoir's corners, between a joint and an arc, differ from its
-    /// quadrilateral's by half the arc's angle); a corner that folds back (`a.b` near -1)
-    /// gives an unbounded box, which rejects nothing.
+    /// The bounding box of block `i`'s outline (its least and largest x and y).
     fn bounds(&self, i: usize) -> (Vec2, Vec2) {
         let poly = &self.assembly.blocks[i].polygon;
         let (mut lo, mut hi) = (
             Vec2::new(f64::INFINITY, f64::INFINITY),
             Vec2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
-        let sides: Vec<Vec2> = (0..poly.len())
-            .map(|k| poly[(k + 1) % poly.len()] - poly[k])
-            .filter(|e| e.norm() > 0.0)
-            .map(|e| e / e.norm())
-            .collect();
-        let mut corner: f64 = 1.0;
-        for (k, a) in sides.iter().enumerate() {
-            let b = sides[(k + 1) % sides.len()];
-            corner = corner.max(1.0 / (0.5 * (1.0 + a.dot(&b))).max(0.0).sqrt());
-        }
         for p in poly {
             lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
             hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        (lo, hi)
+    }
+
+    /// How far outside block `i`'s bounding box [`Placement::contains`] may still find a
+    /// point (an upper bound, without a square root): what the tolerance adds at the
+    /// outline's sharpest corner and, for a curved voussoir (whose exact piece lies in its
+    /// quadrilateral and the circular segment of its extrados beyond the chord), that
+    /// segment's height.
+    ///
+    /// The outline test accepts points up to `tol` outside each side, so near a corner of
+    /// interior angle `theta` up to `tol / sin(theta/2)` from it. With the sides `a` into the
+    /// corner and `b` out of it, `1/sin^2(theta/2) = 2 |a||b| / (|a||b| + a.b)`: at most 2
+    /// when `a.b >= 0` (theta >= 90 deg), and at most `4 |a|^2 |b|^2 / (a x b)^2` otherwise
+    /// (multiply by `|a||b| - a.b <= 2 |a||b|`); its square root is at most `(1 + x)/2`. The
+    /// bound is doubled (a curved voussoir's corners, between a joint and an arc, differ from
+    /// its quadrilateral's by half the arc's angle). A side of length 0, or a corner that
+    /// folds back (`a x b = 0` with `a.b < 0`), gives an unbounded pad: the box then rejects
+    /// nothing. The segment's height `r - sqrt(r^2 - h^2)` (`h` half the chord) is at most
+    /// `h^2 / r`.
+    fn pad(&self, i: usize) -> f64 {
+        let poly = &self.assembly.blocks[i].polygon;
+        let m = poly.len();
+        let mut corner2: f64 = 2.0;
+        for k in 0..m {
+            let a = poly[k] - poly[(k + m - 1) % m];
+            let b = poly[(k + 1) % m] - poly[k];
+            let (aa, bb) = (a.norm_squared(), b.norm_squared());
+            if aa == 0.0 || bb == 0.0 {
+                return f64::INFINITY;
+            }
+            let dot = a.dot(&b);
+            if dot < 0.0 {
+                let c = cross(a, b);
+                corner2 = corner2.max(4.0 * aa * bb / (c * c));
+            }
         }
         let bulge = match self.ring_voussoir(i) {
             Some((g, j)) => {
                 let q = g.quad(j);
                 let r = g.arcs[j].radius + 0.5 * g.thickness;
-                let half = 0.5 * (q[2] - q[1]).norm();
-                r - (r * r - half * half).max(0.0).sqrt()
+                0.25 * (q[2] - q[1]).norm_squared() / r
             }
             None => 0.0,
         };
-        let pad = 2.0 * corner * self.tol + bulge * (1.0 + 1e-9);
-        (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad))
+        2.0 * (0.5 * (1.0 + corner2)) * self.tol + bulge * (1.0 + 1e-9)
     }
 
     /// The ring and voussoir of block `i` when it is a curved voussoir of the parametric
@@ -1129,7 +1146,11 @@ mod tests {
                 }
                 points.push(b.centroid);
             }
-            let all = placement.locate_all(&points);
+            let (all, base) = placement.locate_all(&points);
+            let lowest = (assembly.blocks.iter())
+                .flat_map(|b| b.polygon.iter())
+                .fold(f64::INFINITY, |m, p| m.min(p.y));
+            assert_eq!(base, lowest);
             for (p, found) in points.iter().zip(&all) {
                 assert_eq!(*found, placement.locate(*p), "{text}: at {p:?}");
             }

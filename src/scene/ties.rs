@@ -135,26 +135,25 @@ pub(super) fn anchor_ties(
     placement: &Placement,
     origin: &str,
 ) -> Result<Vec<Tie>, SceneError> {
+    if specs.is_empty() {
+        return Ok(Vec::new());
+    }
     let assembly = placement.assembly();
     let tol = placement.tolerance();
-    let base = assembly
-        .blocks
-        .iter()
-        .flat_map(|b| b.polygon.iter())
-        .fold(f64::INFINITY, |m, p| m.min(p.y));
     let error = |k: usize, key: &str, p: [f64; 2], allowed: String| SceneError::OutOfRange {
         origin: origin.to_string(),
         key: format!("ties[{k}].{key}"),
         value: format!("[{}, {}]", short(p[0]), short(p[1])),
         allowed,
     };
-    // Every anchor located in one pass over the blocks.
+    // Every anchor located in one pass over the blocks, which also finds the base (the
+    // lowest point of the structure).
     let points: Vec<Vec2> = specs
         .iter()
         .flat_map(|s| [s.from, s.to])
         .map(|p| Vec2::new(p[0], p[1]))
         .collect();
-    let located = placement.locate_all(&points);
+    let (located, base) = placement.locate_all(&points);
     let mut ties = Vec::with_capacity(specs.len());
     for (k, spec) in specs.iter().enumerate() {
         let anchor = |key: &str, p: [f64; 2], located: Option<usize>| -> Result<Anchor, SceneError> {

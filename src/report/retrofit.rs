@@ -149,6 +149,25 @@ impl RetrofitReport {
     }
 }
 
+impl RetrofitReport {
+    /// `retrofit --site --json`: the design's object with its verdict at the site.
+    pub fn for_site(scene: &Scene, r: &SiteRetrofit) -> Self {
+        let designed = crate::retrofit::designed_scene(scene, &r.design);
+        let mut report = RetrofitReport::new(scene, &r.design);
+        report.site = Some(SiteDesignReport {
+            passes: r.assessment.as_ref().is_some_and(|a| a.passes()),
+            lambda_needed: r.assessment.as_ref().and(r.bracket.0).map(|_| r.bracket.1),
+            lambda_failing: r.bracket.0,
+            evaluations: r.evaluations,
+            assessment: r
+                .assessment
+                .as_ref()
+                .map(|a| AssessmentReport::new(&designed, a)),
+        });
+        report
+    }
+}
+
 /// The document of a retrofit design.
 pub fn document(scene: &Scene, r: &Retrofit) -> Document {
     let mut doc = Document::new(&scene.origin);
@@ -283,7 +302,6 @@ pub fn site_document(scene: &Scene, r: &SiteRetrofit) -> Document {
             ),
         });
     }
-    let passes = r.assessment.as_ref().is_some_and(|a| a.passes());
     let sec = doc.section(match (&r.assessment, r.bracket) {
         (Some(_), (None, _)) => {
             "Site design: the structure passes at the site as it is; no tie is needed".to_string()
@@ -308,17 +326,6 @@ pub fn site_document(scene: &Scene, r: &SiteRetrofit) -> Document {
         let assessment = super::documents::assessment(&designed, a);
         doc.sections.extend(assessment.sections);
     }
-    if let Some(Data::Retrofit(report)) = doc.data.as_mut() {
-        report.site = Some(SiteDesignReport {
-            passes,
-            lambda_needed: r.assessment.as_ref().and(r.bracket.0).map(|_| r.bracket.1),
-            lambda_failing: r.bracket.0,
-            evaluations: r.evaluations,
-            assessment: r
-                .assessment
-                .as_ref()
-                .map(|a| AssessmentReport::new(&designed, a)),
-        });
-    }
+    doc.data = Some(Data::Retrofit(Box::new(RetrofitReport::for_site(scene, r))));
     doc
 }

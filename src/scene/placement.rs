@@ -1136,7 +1136,16 @@ mod tests {
                     let out = Vec2::new(c.y - a.y, a.x - c.x) / (c - a).norm();
                     for s in [0.0, 0.3, 0.5, 1.0] {
                         let on = a + s * (c - a);
-                        for d in [-1e-3, -tol, 0.0, 0.5 * tol, 0.99 * tol, 1.5 * tol, 1e-3, 0.02] {
+                        for d in [
+                            -1e-3,
+                            -tol,
+                            0.0,
+                            0.5 * tol,
+                            0.99 * tol,
+                            1.5 * tol,
+                            1e-3,
+                            0.02,
+                        ] {
                             points.push(on + d * out);
                             points.push(on - d * out);
                         }

@@ -60,7 +60,7 @@ pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec
                 &format!("must be at least from_joint = {from_joint}"),
             ));
         }
-        let tensile_capacity = if super::is_design(&t, "tensile_capacity") {
+        let tensile_capacity = if super::is_design(t, "tensile_capacity") {
             s.string("tensile_capacity", None)?;
             None
         } else {

@@ -76,7 +76,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must differ from `from`: a tie has a length",
             ));
         }
-        let capacity = if super::is_design(&t, "capacity") {
+        let capacity = if super::is_design(t, "capacity") {
             s.string("capacity", None)?;
             None
         } else {
@@ -156,7 +156,10 @@ pub(super) fn anchor_ties(
     let (located, base) = placement.locate_all(&points);
     let mut ties = Vec::with_capacity(specs.len());
     for (k, spec) in specs.iter().enumerate() {
-        let anchor = |key: &str, p: [f64; 2], located: Option<usize>| -> Result<Anchor, SceneError> {
+        let anchor = |key: &str,
+                      p: [f64; 2],
+                      located: Option<usize>|
+         -> Result<Anchor, SceneError> {
             let point = Vec2::new(p[0], p[1]);
             let block = match located {
                 Some(b) => Some(b),

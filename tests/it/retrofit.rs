@@ -346,7 +346,13 @@ fn portal_with(ties: &[(f64, Option<f64>, f64)], strips: &[StripEntry]) -> Strin
 /// short of it.
 #[test]
 fn designed_strips_give_the_target_and_each_is_needed() {
-    let cases: [(&[(f64, f64)], &[(&str, usize, usize, f64)], &[f64]); 3] = [
+    // (ties: height and cost; strips: face, joints and cost; targets)
+    type Case<'a> = (
+        &'a [(f64, f64)],
+        &'a [(&'a str, usize, usize, f64)],
+        &'a [f64],
+    );
+    let cases: [Case; 3] = [
         // Both faces of the whole arch: the extrados strip restrains the four-hinge
         // mechanism's extrados hinges, and is cheaper than the intrados one.
         (
@@ -361,7 +367,11 @@ fn designed_strips_give_the_target_and_each_is_needed() {
             &[0.2, 0.25],
         ),
         // Past 0.53 the strips alone cannot go; here both faces are needed.
-        (&[], &[("intrados", 0, 32, 1.0), ("extrados", 0, 32, 1.0)], &[0.5]),
+        (
+            &[],
+            &[("intrados", 0, 32, 1.0), ("extrados", 0, 32, 1.0)],
+            &[0.5],
+        ),
     ];
     for (ties, strips, targets) in cases {
         let text_of = |tie_caps: &[Option<f64>], strip_caps: &[Option<f64>]| {
@@ -379,8 +389,7 @@ fn designed_strips_give_the_target_and_each_is_needed() {
         };
         let design = text_of(&vec![None; ties.len()], &vec![None; strips.len()]);
         for &target in targets {
-            let r = retrofit::design(&scene(&design), target, &Options::default())
-                .expect("design");
+            let r = retrofit::design(&scene(&design), target, &Options::default()).expect("design");
             assert!(r.feasible, "target {target} is reachable");
             assert_eq!((r.ties.len(), r.strips.len()), (ties.len(), strips.len()));
             let lambda = r.lambda().expect("re-analysed");

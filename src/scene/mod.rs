@@ -1453,10 +1453,26 @@ fn parse_piers(s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
     Ok(piers)
 }
 
-/// Whether `key` of an entry is the string `"design"`: a capacity a retrofit design sizes
-/// (`[[ties]] capacity`, `[[reinforcements]] tensile_capacity`).
-fn is_design(table: &Table, key: &str) -> bool {
-    matches!(table.get(key), Some(Value::String(c)) if c.trim() == "design")
+/// A capacity that a retrofit design may size (`[[ties]] capacity`, `[[reinforcements]]
+/// tensile_capacity`): a force from 0 to [`MAX_FORCE`] N, or the string `"design"` (None).
+fn capacity_or_design(
+    s: &mut Section,
+    key: &'static str,
+    what: &str,
+) -> Result<Option<f64>, SceneError> {
+    if matches!(s.table.get(key), Some(Value::String(c)) if c.trim() == "design") {
+        s.string(key, None)?;
+        return Ok(None);
+    }
+    let c = s.finite(key, &format!("{what}, in N, or \"design\""))?;
+    if !(0.0..=MAX_FORCE).contains(&c) {
+        return Err(s.out_of_range(
+            key,
+            short(c),
+            &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
+        ));
+    }
+    Ok(Some(c))
 }
 
 /// The optional `cost` of a tie or strip: its cost per newton of capacity in a retrofit

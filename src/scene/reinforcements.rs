@@ -11,7 +11,7 @@
 //! cost = 1.0                  # default 1: cost per N of capacity in a retrofit design
 //! ```
 
-use super::{short, Section, MAX_FORCE};
+use super::Section;
 use crate::assembly::{Assembly, JointEnd, JointKind};
 use crate::error::SceneError;
 use crate::model::Strip;
@@ -60,23 +60,11 @@ pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec
                 &format!("must be at least from_joint = {from_joint}"),
             ));
         }
-        let tensile_capacity = if super::is_design(t, "tensile_capacity") {
-            s.string("tensile_capacity", None)?;
-            None
-        } else {
-            let c = s.finite(
-                "tensile_capacity",
-                "the strip's tensile (debonding) force at each joint it crosses, in N, or \"design\"",
-            )?;
-            if !(0.0..=MAX_FORCE).contains(&c) {
-                return Err(s.out_of_range(
-                    "tensile_capacity",
-                    short(c),
-                    &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
-                ));
-            }
-            Some(c)
-        };
+        let tensile_capacity = super::capacity_or_design(
+            &mut s,
+            "tensile_capacity",
+            "the strip's tensile (debonding) force at each joint it crosses",
+        )?;
         let cost = super::design_cost(&mut s)?;
         s.finish("")?;
         out.push(ReinforcementSpec {

@@ -76,23 +76,8 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must differ from `from`: a tie has a length",
             ));
         }
-        let capacity = if super::is_design(t, "capacity") {
-            s.string("capacity", None)?;
-            None
-        } else {
-            let c = s.finite(
-                "capacity",
-                "the force at which the tie yields, in N, or \"design\"",
-            )?;
-            if !(0.0..=MAX_FORCE).contains(&c) {
-                return Err(s.out_of_range(
-                    "capacity",
-                    short(c),
-                    &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
-                ));
-            }
-            Some(c)
-        };
+        let capacity =
+            super::capacity_or_design(&mut s, "capacity", "the force at which the tie yields")?;
         let prestress = s.opt_f64("prestress")?.unwrap_or(0.0);
         let most = capacity.unwrap_or(MAX_FORCE);
         if !(prestress.is_finite() && (0.0..=most).contains(&prestress)) {

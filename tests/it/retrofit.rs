@@ -46,6 +46,59 @@ fn lambda_both(text: &str) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Design the ties and strips of `text` for `target` and check the design: the re-analysed
+/// structure carries the target (1e-6) by both bounds, the scene with the capacities given
+/// as numbers (`given(ties, strips)`, in the design's order) carries it again, and 0.99 of
+/// any one needed capacity, tie or strip, falls short of it.
+fn check_design(
+    text: &str,
+    target: f64,
+    given: impl Fn(&[f64], &[f64]) -> String,
+) -> retrofit::Retrofit {
+    let r = retrofit::design(&scene(text), target, &Options::default()).expect("design");
+    assert!(r.feasible, "target {target} is reachable");
+    let lambda = r.lambda().expect("re-analysed");
+    assert!(
+        (lambda - target).abs() <= 1e-6 * target,
+        "target {target}: re-analysed {lambda}"
+    );
+    for (_, a) in &r.analyses {
+        let (l, u) = (
+            a.lower.lambda.expect("collapse"),
+            a.lambda_upper().expect("upper"),
+        );
+        assert!(
+            l >= target * (1.0 - 1e-6) && (u - l).abs() <= 1e-6 * l,
+            "{l} {u}"
+        );
+    }
+    let ties: Vec<f64> = r.ties.iter().map(|t| t.capacity).collect();
+    let strips: Vec<f64> = r.strips.iter().map(|t| t.capacity).collect();
+    let again = lambda_both(&given(&ties, &strips));
+    assert!(
+        (again - target).abs() <= 1e-6 * target,
+        "target {target}: scene with the capacities {again}"
+    );
+    let needed = (r.ties.iter().map(|t| ("tie", t.index, t.needed)))
+        .chain(r.strips.iter().map(|s| ("strip", s.index, s.needed)));
+    for (k, (what, index, needed)) in needed.enumerate() {
+        if !needed {
+            continue;
+        }
+        let (mut t, mut s) = (ties.clone(), strips.clone());
+        match k.checked_sub(ties.len()) {
+            None => t[k] *= 0.99,
+            Some(j) => s[j] *= 0.99,
+        }
+        let short = lambda_both(&given(&t, &s));
+        assert!(
+            short < target * (1.0 - 1e-7),
+            "target {target}: {what} {index} at 0.99 of its capacity still gives {short}"
+        );
+    }
+    r
+}
+
 /// Three candidate ties of different costs: the design reaches the target (1e-6) when the
 /// scene is analysed again with its capacities, by both bounds, and each needed capacity
 /// is needed: 0.99 of it alone gives less than the target.
@@ -54,49 +107,15 @@ fn designed_capacities_give_the_target_and_each_is_needed() {
     let candidates = [(-0.05, 1.0), (-0.4, 1.5), (-0.8, 0.7)];
     for target in [0.16, 0.2, 0.23] {
         let text = portal(&candidates.map(|(y, c)| (y, None, c)));
-        let r = retrofit::design(&scene(&text), target, &Options::default()).expect("design");
-        assert!(r.feasible, "target {target} is reachable");
-        let lambda = r.lambda().expect("re-analysed");
-        assert!(
-            (lambda - target).abs() <= 1e-6 * target,
-            "target {target}: re-analysed {lambda}"
-        );
-        for (_, a) in &r.analyses {
-            let (l, u) = (
-                a.lower.lambda.expect("collapse"),
-                a.lambda_upper().expect("upper"),
-            );
-            assert!(
-                l >= target * (1.0 - 1e-6) && (u - l).abs() <= 1e-6 * l,
-                "{l} {u}"
-            );
-        }
-        let caps: Vec<f64> = r.ties.iter().map(|t| t.capacity).collect();
-        // The same capacities given as numbers, through the scene: the same multiplier.
-        let given = |caps: &[f64]| {
+        // The same capacities given as numbers, through the scene.
+        let r = check_design(&text, target, |caps, _| {
             let ties: Vec<_> = candidates
                 .iter()
                 .zip(caps)
                 .map(|(&(y, c), &cap)| (y, Some(cap), c))
                 .collect();
-            lambda_both(&portal(&ties))
-        };
-        let again = given(&caps);
-        assert!(
-            (again - target).abs() <= 1e-6 * target,
-            "target {target}: scene with the capacities {again}"
-        );
-        for (i, t) in r.ties.iter().enumerate().filter(|(_, t)| t.needed) {
-            let mut less = caps.clone();
-            less[i] *= 0.99;
-            let short = given(&less);
-            assert!(
-                short < target * (1.0 - 1e-7),
-                "target {target}: tie {} at 0.99 x {} still gives {short}",
-                t.index,
-                t.capacity
-            );
-        }
+            portal(&ties)
+        });
         assert!(r.ties.iter().any(|t| t.needed));
     }
 }
@@ -109,20 +128,27 @@ fn the_cheaper_of_two_equal_ties_is_chosen() {
     assert!(!r.ties[0].needed && r.ties[1].needed, "{:?}", r.ties);
 }
 
-/// A target the bare structure carries needs no tie.
-#[test]
-fn a_target_already_carried_needs_no_tie() {
+/// The design of `text` (the bundled portal with elements to design) for 0.9 times the bare
+/// portal's multiplier needs nothing, and the summary says so in `words`.
+fn needs_nothing(text: &str, words: &str) {
     let bare = lambda_both(&portal(&[]));
-    let text = portal(&[(-0.05, None, 1.0)]);
-    let r = retrofit::design(&scene(&text), 0.9 * bare, &Options::default()).expect("design");
-    assert!(r.feasible && r.ties.iter().all(|t| !t.needed && t.capacity == 0.0));
+    let r = retrofit::design(&scene(text), 0.9 * bare, &Options::default()).expect("design");
+    assert!(r.feasible);
+    assert!(r.ties.iter().all(|t| !t.needed && t.capacity == 0.0));
+    assert!(r.strips.iter().all(|s| !s.needed && s.capacity == 0.0));
     let out = common::voussoir()
         .args(["retrofit", "--target-lambda", &format!("{}", 0.9 * bare)])
-        .arg(common::scene_file(&text).1)
+        .arg(common::scene_file(text).1)
         .output()
         .expect("runs");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("no tie is needed"), "{stdout}");
+    assert!(stdout.contains(words), "{stdout}");
+}
+
+/// A target the bare structure carries needs no tie.
+#[test]
+fn a_target_already_carried_needs_no_tie() {
+    needs_nothing(&portal(&[(-0.05, None, 1.0)]), "no tie is needed");
 }
 
 /// A target above what any capacity reaches is reported as such, with the best reachable
@@ -389,57 +415,11 @@ fn designed_strips_give_the_target_and_each_is_needed() {
         };
         let design = text_of(&vec![None; ties.len()], &vec![None; strips.len()]);
         for &target in targets {
-            let r = retrofit::design(&scene(&design), target, &Options::default()).expect("design");
-            assert!(r.feasible, "target {target} is reachable");
-            assert_eq!((r.ties.len(), r.strips.len()), (ties.len(), strips.len()));
-            let lambda = r.lambda().expect("re-analysed");
-            assert!(
-                (lambda - target).abs() <= 1e-6 * target,
-                "target {target}: re-analysed {lambda}"
-            );
-            for (_, a) in &r.analyses {
-                let (l, u) = (
-                    a.lower.lambda.expect("collapse"),
-                    a.lambda_upper().expect("upper"),
-                );
-                assert!(
-                    l >= target * (1.0 - 1e-6) && (u - l).abs() <= 1e-6 * l,
-                    "{l} {u}"
-                );
-            }
-            let tie_caps: Vec<f64> = r.ties.iter().map(|t| t.capacity).collect();
-            let strip_caps: Vec<f64> = r.strips.iter().map(|t| t.capacity).collect();
-            let given = |t: &[f64], s: &[f64]| {
+            let r = check_design(&design, target, |t, s| {
                 let some = |v: &[f64]| v.iter().map(|&c| Some(c)).collect::<Vec<_>>();
-                lambda_both(&text_of(&some(t), &some(s)))
-            };
-            let again = given(&tie_caps, &strip_caps);
-            assert!(
-                (again - target).abs() <= 1e-6 * target,
-                "target {target}: scene with the capacities {again}"
-            );
-            for (i, t) in r.ties.iter().enumerate().filter(|(_, t)| t.needed) {
-                let mut less = tie_caps.clone();
-                less[i] *= 0.99;
-                let short = given(&less, &strip_caps);
-                assert!(
-                    short < target * (1.0 - 1e-7),
-                    "target {target}: tie {} at 0.99 x {} still gives {short}",
-                    t.index,
-                    t.capacity
-                );
-            }
-            for (i, s) in r.strips.iter().enumerate().filter(|(_, s)| s.needed) {
-                let mut less = strip_caps.clone();
-                less[i] *= 0.99;
-                let short = given(&tie_caps, &less);
-                assert!(
-                    short < target * (1.0 - 1e-7),
-                    "target {target}: strip {} at 0.99 x {} still gives {short}",
-                    s.index,
-                    s.capacity
-                );
-            }
+                text_of(&some(t), &some(s))
+            });
+            assert_eq!((r.ties.len(), r.strips.len()), (ties.len(), strips.len()));
             assert!(r.strips.iter().any(|s| s.needed));
         }
     }
@@ -449,17 +429,15 @@ fn designed_strips_give_the_target_and_each_is_needed() {
 /// gives the best reachable multiplier, that of the strip too strong to debond.
 #[test]
 fn strip_designs_that_need_nothing_or_cannot_reach() {
+    needs_nothing(
+        &portal_with(&[], &[("extrados", 0, 32, None, 1.0)]),
+        "no strip is needed",
+    );
+    needs_nothing(
+        &portal_with(&[(-0.05, None, 1.0)], &[("extrados", 0, 32, None, 1.0)]),
+        "no tie or strip is needed",
+    );
     let bare = lambda_both(&portal(&[]));
-    let text = portal_with(&[], &[("extrados", 0, 32, None, 1.0)]);
-    let r = retrofit::design(&scene(&text), 0.9 * bare, &Options::default()).expect("design");
-    assert!(r.feasible && r.strips.iter().all(|s| !s.needed && s.capacity == 0.0));
-    let out = common::voussoir()
-        .args(["retrofit", "--target-lambda", &format!("{}", 0.9 * bare)])
-        .arg(common::scene_file(&text).1)
-        .output()
-        .expect("runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("no strip is needed"), "{stdout}");
 
     // A strip over the crown only: the hinges at the springings and in the piers stay free.
     let text = portal_with(&[], &[("intrados", 10, 22, None, 1.0)]);

@@ -1,21 +1,26 @@
-//! Retrofit design: the smallest tie rods that make a structure carry a target multiplier.
+//! Retrofit design: the smallest tie rods and bonded strips that make a structure carry a
+//! target multiplier.
 //!
-//! The scene's ties whose `capacity` is `"design"` are sized by one program
-//! ([`crate::statics::design`]): the least total capacity, weighted by each tie's `cost`,
-//! for which the static program carries lambda = target in both directions of a seismic
-//! action (the one direction of a live action's adequacy factor). The structure is then
+//! The scene's ties whose `capacity` is `"design"` and strips (`[[reinforcements]]`) whose
+//! `tensile_capacity` is `"design"` are sized by one program ([`crate::statics::design`]): the
+//! least total capacity, weighted by each element's `cost`, for which the static program
+//! carries lambda = target in both directions of a seismic action (the one direction of a
+//! live action's adequacy factor). A strip's capacity is its debonding force at each joint it
+//! crosses (one value for the whole strip, as the scene gives it). The structure is then
 //! analysed again with those capacities, by the same analysis as `voussoir analyze` (static
-//! and certified kinematic bounds), in each direction; and each needed capacity is matched
-//! with the smallest standard steel bar that carries it at the design strength
-//! `material.tie_design_strength` (default 391 MPa: B450C, 450 MPa over 1.15). A target no
-//! capacities reach is reported with the best multiplier reachable.
+//! and certified kinematic bounds), in each direction; and each needed tie capacity is
+//! matched with the smallest standard steel bar that carries it at the design strength
+//! `material.tie_design_strength` (default 391 MPa: B450C, 450 MPa over 1.15). A strip gets
+//! no bar: the debonding force is the strip system's (its product, its width, the bond to the
+//! masonry, CNR-DT 200), which the engineer chooses to reach it. A target no capacities reach
+//! is reported with the best multiplier reachable.
 
 use crate::analysis::{self, Options, SceneAnalysis};
 use crate::error::AnalysisError;
 use crate::model::Action;
 use crate::outcome::{Direction, LAMBDA_CAP};
 use crate::scene::Scene;
-use crate::statics::design::{self, Design, DesignedTie};
+use crate::statics::design::{self, Design, Designed, Element};
 
 /// Standard diameters of reinforcing bars (mm), EN 10080 / B450C.
 pub const BAR_DIAMETERS_MM: &[f64] = &[
@@ -60,6 +65,17 @@ pub struct TieDesign {
     pub bar: Option<Bar>,
 }
 
+/// One designed bonded strip (a `[[reinforcements]]` entry).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StripDesign {
+    /// Index of the strip in the scene's `[[reinforcements]]`.
+    pub index: usize,
+    /// The least debonding force it needs at each joint it crosses (N); 0 when not needed.
+    pub capacity: f64,
+    pub needed: bool,
+    pub cost: f64,
+}
+
 /// The outcome of a retrofit design.
 #[derive(Debug)]
 pub struct Retrofit {
@@ -68,6 +84,8 @@ pub struct Retrofit {
     pub feasible: bool,
     /// The designed ties (all of them, needed or not), in the scene's order.
     pub ties: Vec<TieDesign>,
+    /// The designed strips (all of them, needed or not), in the scene's order.
+    pub strips: Vec<StripDesign>,
     /// The analysis with the designed capacities, one per direction (feasible designs).
     pub analyses: Vec<(Direction, SceneAnalysis)>,
     /// The largest multiplier any capacities reach in every direction (infeasible designs;
@@ -100,9 +118,9 @@ impl Retrofit {
     }
 }
 
-/// Design the scene's `"design"` ties for lambda >= `target` (both directions of a seismic
-/// action), then analyse the retrofitted structure with `options` (its direction is set per
-/// direction here).
+/// Design the scene's `"design"` ties and strips for lambda >= `target` (both directions of
+/// a seismic action), then analyse the retrofitted structure with `options` (its direction is
+/// set per direction here).
 pub fn design(scene: &Scene, target: f64, options: &Options) -> Result<Retrofit, AnalysisError> {
     options.validate()?;
     if !(target.is_finite() && target > 0.0 && target < LAMBDA_CAP) {
@@ -113,18 +131,24 @@ pub fn design(scene: &Scene, target: f64, options: &Options) -> Result<Retrofit,
         });
     }
     let mut model = crate::scene::build_for_design(scene)?;
-    let designed: Vec<DesignedTie> = scene
-        .ties
-        .iter()
-        .enumerate()
+    let ties = (scene.ties.iter().enumerate())
         .filter(|(_, t)| t.capacity.is_none())
-        .map(|(tie, t)| DesignedTie { tie, cost: t.cost })
-        .collect();
+        .map(|(k, t)| Designed {
+            element: Element::Tie(k),
+            cost: t.cost,
+        });
+    let strips = (scene.reinforcements.iter().enumerate())
+        .filter(|(_, r)| r.tensile_capacity.is_none())
+        .map(|(k, r)| Designed {
+            element: Element::Strip(k),
+            cost: r.cost,
+        });
+    let designed: Vec<Designed> = ties.chain(strips).collect();
     if designed.is_empty() {
         return Err(AnalysisError::Settings {
-            setting: "ties[].capacity".into(),
-            value: "a number for every tie".into(),
-            allowed: "\"design\" for at least one [[ties]] entry: those are the ties a retrofit design sizes".into(),
+            setting: "ties[].capacity, reinforcements[].tensile_capacity".into(),
+            value: "a number for every tie and strip".into(),
+            allowed: "\"design\" for at least one [[ties]] capacity or [[reinforcements]] tensile_capacity: those are what a retrofit design sizes".into(),
         });
     }
     let directions: &[Direction] = match model.loads.action() {
@@ -135,56 +159,67 @@ pub fn design(scene: &Scene, target: f64, options: &Options) -> Result<Retrofit,
     let signs: Vec<f64> = directions.iter().map(|d| d.sign()).collect();
     let fyd = scene.material.tie_design_strength;
     let settings = &options.static_settings;
-    match design::smallest_capacities(&model, &designed, target, &signs, settings)? {
-        Design::Capacities(capacities) => {
-            let floor = NOT_NEEDED * model.loads.force_scale();
-            let mut ties = Vec::with_capacity(designed.len());
-            for (dt, &c) in designed.iter().zip(&capacities) {
-                let needed = c > floor;
-                let capacity = if needed { c } else { 0.0 };
-                let tie = &mut model.ties[dt.tie];
+    let (capacities, feasible) =
+        match design::smallest_capacities(&model, &designed, target, &signs, settings)? {
+            Design::Capacities(c) => (c, true),
+            Design::Infeasible => (vec![0.0; designed.len()], false),
+        };
+    let floor = NOT_NEEDED * model.loads.force_scale();
+    let (mut ties, mut strips) = (Vec::new(), Vec::new());
+    for (d, &c) in designed.iter().zip(&capacities) {
+        let needed = c > floor;
+        let capacity = if needed { c } else { 0.0 };
+        match d.element {
+            Element::Tie(index) => {
+                let tie = &mut model.ties[index];
                 tie.capacity = capacity.max(tie.prestress);
                 ties.push(TieDesign {
-                    index: dt.tie,
+                    index,
                     capacity,
                     needed,
-                    cost: dt.cost,
+                    cost: d.cost,
                     bar: if needed { bar_for(capacity, fyd) } else { None },
                 });
             }
-            let mut analyses = Vec::with_capacity(directions.len());
-            for &d in directions {
-                let mut o = options.clone();
-                o.static_settings = o.static_settings.direction(d);
-                analyses.push((d, analysis::analyse_model(scene, model.clone(), &o)?));
+            Element::Strip(index) => {
+                for s in model.strips.iter_mut().filter(|s| s.source == index) {
+                    s.capacity = capacity;
+                }
+                strips.push(StripDesign {
+                    index,
+                    capacity,
+                    needed,
+                    cost: d.cost,
+                });
             }
-            Ok(Retrofit {
-                target,
-                feasible: true,
-                ties,
-                analyses,
-                best_reachable: None,
-                design_strength: fyd,
-            })
         }
-        Design::Infeasible => Ok(Retrofit {
+    }
+    if !feasible {
+        return Ok(Retrofit {
             target,
-            feasible: false,
-            ties: designed
-                .iter()
-                .map(|dt| TieDesign {
-                    index: dt.tie,
-                    capacity: 0.0,
-                    needed: false,
-                    cost: dt.cost,
-                    bar: None,
-                })
-                .collect(),
+            feasible,
+            ties,
+            strips,
             analyses: Vec::new(),
             best_reachable: design::best_reachable(&model, &designed, &signs, settings)?,
             design_strength: fyd,
-        }),
+        });
     }
+    let mut analyses = Vec::with_capacity(directions.len());
+    for &d in directions {
+        let mut o = options.clone();
+        o.static_settings = o.static_settings.direction(d);
+        analyses.push((d, analysis::analyse_model(scene, model.clone(), &o)?));
+    }
+    Ok(Retrofit {
+        target,
+        feasible,
+        ties,
+        strips,
+        analyses,
+        best_reachable: None,
+        design_strength: fyd,
+    })
 }
 
 /// A retrofit design for a site: the least capacities whose structure passes the NTC 2018
@@ -207,13 +242,18 @@ pub struct SiteRetrofit {
 /// Relative width of the final bracket of the multiplier a site needs.
 pub const SITE_TARGET_TOLERANCE: f64 = 1e-3;
 
-/// The scene with the designed ties' capacities written in (so that every analysis of a
-/// scene, the assessment first, reads the retrofitted structure).
+/// The scene with the designed ties' and strips' capacities written in (so that every
+/// analysis of a scene, the assessment first, reads the retrofitted structure).
 pub fn designed_scene(scene: &Scene, r: &Retrofit) -> Scene {
     let mut s = scene.clone();
     for t in &r.ties {
         if let Some(spec) = s.ties.get_mut(t.index) {
             spec.capacity = Some(t.capacity.max(spec.prestress));
+        }
+    }
+    for t in &r.strips {
+        if let Some(spec) = s.reinforcements.get_mut(t.index) {
+            spec.tensile_capacity = Some(t.capacity);
         }
     }
     s
@@ -236,6 +276,13 @@ pub fn design_for_site(
     options: &Options,
     assess: &analysis::AssessOptions,
 ) -> Result<SiteRetrofit, AnalysisError> {
+    if !scene.reinforcements.is_empty() {
+        // `assess` refuses strips (`AssessError::Strips`): no verdict to design for.
+        return Err(AnalysisError::Other(format!(
+            "{}: reinforcements[0]: a site design needs the NTC 2018 verdict of `voussoir assess`, whose capacity curve does not follow bonded strips (a rigid-plastic strip debonds at the first opening of its joint; docs/assessment.md); design the strips for a multiplier instead (--target-lambda)",
+            scene.origin
+        )));
+    }
     if scene.site.is_none() {
         return Err(AnalysisError::Other(format!(
             "{}: no [site] table: give one in the scene or with --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3 (or --site latitude=42.35 --site longitude=13.40 --site soil=B for the national hazard grid, docs/assessment.md)",

@@ -658,18 +658,36 @@ fn min_thickness_json(
     to_json(&report::MinThicknessReport::new(&lib_scene, &model, &t))
 }
 
-/// `retrofit --json` of a scene, as JSON text: the least capacities of the ties marked
-/// `capacity = "design"` that give lambda >= `target_lambda`, the structure analysed again.
+/// `retrofit --json` of a scene, as JSON text: the least capacities of the ties and strips
+/// marked `"design"` that give lambda >= `target_lambda`, the structure analysed again; without
+/// `target_lambda`, the least that pass the NTC 2018 check at the scene's `[site]`
+/// (`retrofit --site`, its `site` object).
 #[pyfunction]
-#[pyo3(signature = (scene, target_lambda))]
-fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: f64) -> PyResult<String> {
+#[pyo3(signature = (scene, target_lambda = None))]
+fn retrofit_json(py: Python<'_>, scene: &Scene, target_lambda: Option<f64>) -> PyResult<String> {
+    if target_lambda.is_none() && scene.inner.site.is_none() {
+        return Err(PyValueError::new_err(format!(
+            "{}: what should the retrofit reach? Give target_lambda, or a site (site={{\"ag\": 0.25, \"soil\": \"B\", \"F0\": 2.4, \"Tc_star\": 0.3}}, or a [site] table in the scene)",
+            scene.inner.origin
+        )));
+    }
     let lib_scene = scene.inner.clone();
     let (lib_scene, r) = interruptible(py, Arc::default(), move || {
-        let r = voussoir::retrofit::design(&lib_scene, target_lambda, &Options::default());
+        let options = Options::default();
+        let r = match target_lambda {
+            Some(target) => voussoir::retrofit::design(&lib_scene, target, &options)
+                .map(|r| report::retrofit::RetrofitReport::new(&lib_scene, &r)),
+            None => voussoir::retrofit::design_for_site(
+                &lib_scene,
+                &options,
+                &analysis::AssessOptions::default(),
+            )
+            .map(|r| report::retrofit::RetrofitReport::for_site(&lib_scene, &r)),
+        };
         (lib_scene, r)
     })?;
-    let r = r.map_err(|e| analysis_error(py, &e))?;
-    to_json(&report::retrofit::RetrofitReport::new(&lib_scene, &r))
+    drop(lib_scene);
+    to_json(&r.map_err(|e| analysis_error(py, &e))?)
 }
 
 /// `fragility --json` of a scene and its chart (`--svg`), as JSON and SVG text: `samples`

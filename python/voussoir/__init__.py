@@ -229,18 +229,43 @@ class MinThicknessResult(Report):
 class RetrofitResult(Report):
     """The result of :func:`retrofit`: the fields of ``voussoir retrofit --json``
     (``target_lambda``, ``feasible``, ``ties`` with each designed tie's ``capacity_required``,
-    ``needed`` and ``bar``, ``not_needed``, ``lambda_lower``, ``best_reachable_lambda``,
-    ``analyses``: the retrofitted structure analysed in each direction)."""
+    ``needed`` and ``bar``, ``not_needed``, ``reinforcements`` with each designed strip's
+    ``capacity_required`` (its debonding force at each joint it crosses), ``needed``,
+    ``reinforcements_not_needed``, ``lambda_lower``, ``best_reachable_lambda``, ``analyses``:
+    the retrofitted structure analysed in each direction; ``site``: the verdict of a design
+    for a site, None for a target multiplier)."""
 
     __slots__ = ()
 
 
-def retrofit(scene: Scene, target_lambda: float) -> RetrofitResult:
-    """The smallest capacities of the scene's ties marked ``capacity = "design"`` for which
-    the structure carries ``target_lambda`` (both directions of a seismic action), the
-    smallest standard steel bar for each, and the structure analysed again with them, as
-    ``voussoir retrofit --target-lambda L --json`` (docs/retrofit.md). An unreachable target
-    gives ``feasible = False`` and ``best_reachable_lambda``."""
+def retrofit(
+    scene: Scene,
+    target_lambda: Optional[float] = None,
+    *,
+    site: Optional[Mapping[str, Any]] = None,
+) -> RetrofitResult:
+    """The smallest capacities of the scene's ties marked ``capacity = "design"`` and strips
+    (``[[reinforcements]]``) marked ``tensile_capacity = "design"`` for which the structure
+    carries ``target_lambda`` (both directions of a seismic action), the smallest standard
+    steel bar for each tie, and the structure analysed again with them, as ``voussoir
+    retrofit --target-lambda L --json`` (docs/retrofit.md). An unreachable target gives
+    ``feasible = False`` and ``best_reachable_lambda``.
+
+    Without ``target_lambda``, the least capacities whose structure passes the NTC 2018 check
+    of :func:`assess` at the scene's ``[site]``, as ``voussoir retrofit --site KEY=VALUE
+    --json``; ``site``: keys of the ``[site]`` table to set over the scene's own, as in
+    :func:`assess` (``{"ag": 0.25, "soil": "B", "F0": 2.4, "Tc_star": 0.3}``). The result's
+    ``site`` holds the verdict (``passes``, ``lambda_needed``, ``assessment``). Giving both
+    ``target_lambda`` and ``site`` raises :class:`ValueError`, as the command line refuses
+    both flags; a site design of a scene with strips raises :class:`AnalysisError` (the
+    assessment does not follow strips)."""
+    if target_lambda is not None and site:
+        raise ValueError(
+            "retrofit: give target_lambda or site, not both (a design reaches a multiplier, "
+            "or passes at a site)"
+        )
+    if site:
+        scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
     return RetrofitResult(json.loads(_voussoir.retrofit_json(scene, target_lambda)))
 
 

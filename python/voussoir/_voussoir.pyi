@@ -83,8 +83,9 @@ def min_thickness_json(
 ) -> str:
     """``voussoir min-thickness --json`` of a scene, as JSON text."""
 
-def retrofit_json(scene: Scene, target_lambda: float) -> str:
-    """``voussoir retrofit --json`` of a scene, as JSON text."""
+def retrofit_json(scene: Scene, target_lambda: Optional[float] = None) -> str:
+    """``voussoir retrofit --json`` of a scene, as JSON text (for its ``[site]`` without
+    ``target_lambda``)."""
 
 def fragility_json_svg(
     scene: Scene,

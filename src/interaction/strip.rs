@@ -67,13 +67,34 @@ impl Strip {
     /// The strip's part of the static program: its tension, pulling the joint's two sides
     /// together at the reinforced end, and its bounds `0 <= S <= F`. Returns its column.
     pub fn static_rows(&self, assembly: &Assembly, rows: &mut Rows) -> usize {
+        let col = self.pull(assembly, rows);
+        rows.nonnegative(vec![(col, -1.0)], 0.0, false);
+        rows.nonnegative(vec![(col, 1.0)], self.capacity / rows.force_scale, false);
+        col
+    }
+
+    /// [`Strip::static_rows`] with its capacity an unknown, column `capacity` (over the force
+    /// scale), as a retrofit design sizes it: `0 <= S <= C`, the one capacity of its
+    /// `[[reinforcements]]` entry at every joint it crosses. Returns the tension's column.
+    pub fn static_rows_designed(
+        &self,
+        assembly: &Assembly,
+        rows: &mut Rows,
+        capacity: usize,
+    ) -> usize {
+        let col = self.pull(assembly, rows);
+        rows.nonnegative(vec![(col, -1.0)], 0.0, false);
+        rows.nonnegative(vec![(col, 1.0), (capacity, -1.0)], 0.0, false);
+        col
+    }
+
+    /// The tension's column and its pull on the joint's two sides at the reinforced end.
+    fn pull(&self, assembly: &Assembly, rows: &mut Rows) -> usize {
         let col = rows.add_columns(1);
         let j = &assembly.joints[self.joint];
         let (n, p) = (j.normal(), self.point(assembly));
         rows.force_on(j.to, col, n, p, -1.0);
         rows.force_on(j.from, col, n, p, 1.0);
-        rows.nonnegative(vec![(col, -1.0)], 0.0, false);
-        rows.nonnegative(vec![(col, 1.0)], self.capacity / rows.force_scale, false);
         col
     }
 

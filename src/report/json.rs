@@ -470,6 +470,14 @@ impl PassiveReport {
     }
 }
 
+/// The name of a strip's face in the scene and the JSON.
+pub(crate) fn face_name(face: crate::assembly::JointEnd) -> &'static str {
+    match face {
+        crate::assembly::JointEnd::P1 => "intrados",
+        crate::assembly::JointEnd::P2 => "extrados",
+    }
+}
+
 /// A bonded strip and its forces at collapse.
 #[derive(Debug, Clone, Serialize)]
 pub struct ReinforcementReport {
@@ -504,14 +512,15 @@ impl ReinforcementReport {
             .enumerate()
             .map(|(index, spec)| ReinforcementReport {
                 index,
-                face: if spec.face == crate::assembly::JointEnd::P1 {
-                    "intrados"
-                } else {
-                    "extrados"
-                },
+                face: face_name(spec.face),
                 from_joint: spec.from_joint,
                 to_joint: spec.to_joint,
-                tensile_capacity: spec.tensile_capacity,
+                // The model's (the scene's, or a retrofit design's when it sized it).
+                tensile_capacity: (model.strips.iter())
+                    .find(|s| s.source == index)
+                    .map(|s| s.capacity)
+                    .or(spec.tensile_capacity)
+                    .unwrap_or(0.0),
                 joints: model
                     .strips
                     .iter()

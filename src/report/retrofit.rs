@@ -20,6 +20,11 @@ pub struct RetrofitReport {
     pub ties: Vec<DesignedTieReport>,
     /// Indices of the designed ties that are not needed (capacity 0).
     pub not_needed: Vec<usize>,
+    /// Added: the designed bonded strips (`tensile_capacity = "design"`), in the scene's
+    /// order.
+    pub reinforcements: Vec<DesignedStripReport>,
+    /// Added: indices of the designed strips that are not needed (capacity 0).
+    pub reinforcements_not_needed: Vec<usize>,
     /// The least static multiplier of the retrofitted structure over the directions (null
     /// when infeasible).
     pub lambda_lower: Option<f64>,
@@ -69,6 +74,22 @@ pub struct DesignedTieReport {
     pub bar: Option<Bar>,
 }
 
+/// One designed bonded strip.
+#[derive(Debug, Serialize)]
+pub struct DesignedStripReport {
+    /// Index in `[[reinforcements]]`.
+    pub index: usize,
+    /// `intrados` or `extrados`.
+    pub face: &'static str,
+    pub from_joint: usize,
+    pub to_joint: usize,
+    /// The least debonding force it needs at each joint it crosses (N), 0 when not needed:
+    /// the strip system (product, width, bond) must reach it; no steel bar.
+    pub capacity_required: f64,
+    pub needed: bool,
+    pub cost: f64,
+}
+
 impl RetrofitReport {
     pub fn new(scene: &Scene, r: &Retrofit) -> Self {
         RetrofitReport {
@@ -92,6 +113,28 @@ impl RetrofitReport {
                 .filter(|t| !t.needed)
                 .map(|t| t.index)
                 .collect(),
+            reinforcements: r
+                .strips
+                .iter()
+                .map(|t| {
+                    let spec = &scene.reinforcements[t.index];
+                    DesignedStripReport {
+                        index: t.index,
+                        face: super::json::face_name(spec.face),
+                        from_joint: spec.from_joint,
+                        to_joint: spec.to_joint,
+                        capacity_required: t.capacity,
+                        needed: t.needed,
+                        cost: t.cost,
+                    }
+                })
+                .collect(),
+            reinforcements_not_needed: r
+                .strips
+                .iter()
+                .filter(|t| !t.needed)
+                .map(|t| t.index)
+                .collect(),
             lambda_lower: r.lambda(),
             lambda_governing: r.lambda_governing(),
             best_reachable_lambda: r.best_reachable,
@@ -106,6 +149,25 @@ impl RetrofitReport {
     }
 }
 
+impl RetrofitReport {
+    /// `retrofit --site --json`: the design's object with its verdict at the site.
+    pub fn for_site(scene: &Scene, r: &SiteRetrofit) -> Self {
+        let designed = crate::retrofit::designed_scene(scene, &r.design);
+        let mut report = RetrofitReport::new(scene, &r.design);
+        report.site = Some(SiteDesignReport {
+            passes: r.assessment.as_ref().is_some_and(|a| a.passes()),
+            lambda_needed: r.assessment.as_ref().and(r.bracket.0).map(|_| r.bracket.1),
+            lambda_failing: r.bracket.0,
+            evaluations: r.evaluations,
+            assessment: r
+                .assessment
+                .as_ref()
+                .map(|a| AssessmentReport::new(&designed, a)),
+        });
+        report
+    }
+}
+
 /// The document of a retrofit design.
 pub fn document(scene: &Scene, r: &Retrofit) -> Document {
     let mut doc = Document::new(&scene.origin);
@@ -113,11 +175,12 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
         doc.lead = scene_lines(scene, &a.model);
     }
     let sec = doc.untitled();
+    let what = designed_words(r);
     if r.feasible {
-        let needed: Vec<_> = r.ties.iter().filter(|t| t.needed).collect();
-        if needed.is_empty() {
+        let needed = r.ties.iter().any(|t| t.needed) || r.strips.iter().any(|t| t.needed);
+        if !needed {
             sec.head(format!(
-                "Retrofit for lambda >= {}: no tie is needed, the structure already carries it",
+                "Retrofit for lambda >= {}: no {what} is needed, the structure already carries it",
                 num(r.target)
             ));
         } else {
@@ -126,7 +189,9 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
                 num(r.target)
             ));
         }
-        sec.line("designed ties:");
+        if !r.ties.is_empty() {
+            sec.line("designed ties:");
+        }
         for t in &r.ties {
             sec.item(match (t.needed, t.bar) {
                 (false, _) => format!("tie {}: not needed (capacity 0)", t.index),
@@ -142,6 +207,27 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
                     "tie {}: needs {:.1} N, more than one 40 mm bar carries",
                     t.index, t.capacity
                 ),
+            });
+        }
+        if !r.strips.is_empty() {
+            sec.line("designed strips (the debonding force at each joint a strip crosses; the strip system, its product, width and bond, must reach it: no steel bar):");
+        }
+        for t in &r.strips {
+            let spec = &scene.reinforcements[t.index];
+            let at = format!(
+                "strip {} ({}, joints {} to {})",
+                t.index,
+                super::json::face_name(spec.face),
+                spec.from_joint,
+                spec.to_joint
+            );
+            sec.item(if t.needed {
+                format!(
+                    "{at}: needs a debonding force of {:.1} N at each joint",
+                    t.capacity
+                )
+            } else {
+                format!("{at}: not needed (capacity 0)")
             });
         }
         for (d, a) in &r.analyses {
@@ -174,18 +260,27 @@ pub fn document(scene: &Scene, r: &Retrofit) -> Document {
         }
     } else {
         sec.head(format!(
-            "Retrofit for lambda >= {}: NOT REACHABLE with the ties given",
+            "Retrofit for lambda >= {}: NOT REACHABLE with the {what}s given",
             num(r.target)
         ));
         match r.best_reachable {
             Some(b) => sec.line(format!(
-                "the best these ties reach, whatever their capacity, is lambda = {b:.6} (another mechanism, which they do not restrain, governs)"
+                "the best these {what}s reach, whatever their capacity, is lambda = {b:.6} (another mechanism, which they do not restrain, governs)"
             )),
-            None => sec.line("the structure cannot stand under its permanent loads, whatever the ties"),
+            None => sec.line(format!("the structure cannot stand under its permanent loads, whatever the {what}s")),
         };
     }
     doc.data = Some(Data::Retrofit(Box::new(RetrofitReport::new(scene, r))));
     doc
+}
+
+/// What a design sized, in words: "tie", "strip" or "tie or strip".
+fn designed_words(r: &Retrofit) -> &'static str {
+    match (r.ties.is_empty(), r.strips.is_empty()) {
+        (false, true) => "tie",
+        (true, false) => "strip",
+        _ => "tie or strip",
+    }
 }
 
 /// The document of a retrofit design for a site: the design's own document, the search's
@@ -207,7 +302,6 @@ pub fn site_document(scene: &Scene, r: &SiteRetrofit) -> Document {
             ),
         });
     }
-    let passes = r.assessment.as_ref().is_some_and(|a| a.passes());
     let sec = doc.section(match (&r.assessment, r.bracket) {
         (Some(_), (None, _)) => {
             "Site design: the structure passes at the site as it is; no tie is needed".to_string()
@@ -232,17 +326,6 @@ pub fn site_document(scene: &Scene, r: &SiteRetrofit) -> Document {
         let assessment = super::documents::assessment(&designed, a);
         doc.sections.extend(assessment.sections);
     }
-    if let Some(Data::Retrofit(report)) = doc.data.as_mut() {
-        report.site = Some(SiteDesignReport {
-            passes,
-            lambda_needed: r.assessment.as_ref().and(r.bracket.0).map(|_| r.bracket.1),
-            lambda_failing: r.bracket.0,
-            evaluations: r.evaluations,
-            assessment: r
-                .assessment
-                .as_ref()
-                .map(|a| AssessmentReport::new(&designed, a)),
-        });
-    }
+    doc.data = Some(Data::Retrofit(Box::new(RetrofitReport::for_site(scene, r))));
     doc
 }

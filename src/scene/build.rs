@@ -22,13 +22,19 @@ pub fn builds_on_this_thread() -> u64 {
 }
 
 /// Build the assembly and load case of a scene: the one place a scene becomes a model, run
-/// once per analysis (a [`Scene`] holds values only). A tie whose capacity is `"design"` is
-/// refused: only a retrofit design sizes it ([`build_for_design`]).
+/// once per analysis (a [`Scene`] holds values only). A tie or strip whose capacity is
+/// `"design"` is refused: only a retrofit design sizes it ([`build_for_design`]).
 pub fn build(scene: &Scene) -> Result<Model, SceneError> {
-    if let Some(k) = scene.ties.iter().position(|t| t.capacity.is_none()) {
+    let tie = (scene.ties.iter())
+        .position(|t| t.capacity.is_none())
+        .map(|k| format!("ties[{k}].capacity"));
+    let strip = (scene.reinforcements.iter())
+        .position(|r| r.tensile_capacity.is_none())
+        .map(|k| format!("reinforcements[{k}].tensile_capacity"));
+    if let Some(key) = tie.or(strip) {
         return Err(SceneError::OutOfRange {
             origin: scene.origin.clone(),
-            key: format!("ties[{k}].capacity"),
+            key,
             value: "\"design\"".into(),
             allowed: "a number in N for an analysis: a capacity to be designed is sized by `voussoir retrofit` (run that, or give the capacity)".into(),
         });
@@ -37,13 +43,14 @@ pub fn build(scene: &Scene) -> Result<Model, SceneError> {
 }
 
 /// [`build`] for a retrofit design: the ties whose capacity is `"design"` get their
-/// prestress as capacity for now; the design sizes them.
+/// prestress as capacity for now, the strips whose `tensile_capacity` is `"design"` 0; the
+/// design sizes them.
 pub fn build_for_design(scene: &Scene) -> Result<Model, SceneError> {
     build_model(scene)
 }
 
 /// The assembly of a scene and the structure loads are placed on.
-fn structure(scene: &Scene) -> Result<(Assembly, Structure), SceneError> {
+pub(super) fn structure(scene: &Scene) -> Result<(Assembly, Structure), SceneError> {
     Ok(match (&scene.arch, &scene.blocks) {
         (Some(a), _) => {
             let (assembly, layout) = build_assembly(scene, a)?;

@@ -1462,6 +1462,42 @@ fn parse_piers(s: Section, arch: &ArchSpec) -> Result<Piers, SceneError> {
     Ok(piers)
 }
 
+/// A capacity that a retrofit design may size (`[[ties]] capacity`, `[[reinforcements]]
+/// tensile_capacity`): a force from 0 to [`MAX_FORCE`] N, or the string `"design"` (None).
+fn capacity_or_design(
+    s: &mut Section,
+    key: &'static str,
+    what: &str,
+) -> Result<Option<f64>, SceneError> {
+    if matches!(s.table.get(key), Some(Value::String(c)) if c.trim() == "design") {
+        s.string(key, None)?;
+        return Ok(None);
+    }
+    let c = s.finite(key, &format!("{what}, in N, or \"design\""))?;
+    if !(0.0..=MAX_FORCE).contains(&c) {
+        return Err(s.out_of_range(
+            key,
+            short(c),
+            &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
+        ));
+    }
+    Ok(Some(c))
+}
+
+/// The optional `cost` of a tie or strip: its cost per newton of capacity in a retrofit
+/// design (default 1), a finite number > 0.
+fn design_cost(s: &mut Section) -> Result<f64, SceneError> {
+    let cost = s.opt_f64("cost")?.unwrap_or(1.0);
+    if !(cost.is_finite() && cost > 0.0) {
+        return Err(s.out_of_range(
+            "cost",
+            short(cost),
+            "must be a finite number > 0 (the cost of one newton of capacity in a retrofit design, relative to the other ties and strips)",
+        ));
+    }
+    Ok(cost)
+}
+
 /// The tables of the array of tables `list` (`[[loads]]`, `[[ties]]`), empty when absent;
 /// anything else there is an error naming the key.
 fn entries<'a>(table: &'a Table, list: &str, origin: &str) -> Result<Vec<&'a Table>, SceneError> {

@@ -251,20 +251,113 @@ impl<'a> Placement<'a> {
             .min_by_key(|&i| order(i))
     }
 
+    /// [`Placement::locate`] of each of `points` (a tie's anchors), in one pass over the
+    /// blocks, and the lowest y of every block (the structure's base): a block's outline is
+    /// tested only for the points inside its bounding box ([`Placement::bounds`]), so a point
+    /// costs a box test per block rather than an outline test.
+    pub(super) fn locate_all(&self, points: &[Vec2]) -> (Vec<Option<usize>>, f64) {
+        let order = |i: usize| match self.assembly.blocks[i].kind {
+            BlockKind::User(s) => s,
+            _ => i,
+        };
+        let mut found: Vec<Option<usize>> = vec![None; points.len()];
+        let mut base = f64::INFINITY;
+        for i in 0..self.assembly.blocks.len() {
+            let (lo, hi) = self.bounds(i);
+            base = base.min(lo.y);
+            let pad = self.pad(i);
+            for (&p, f) in points.iter().zip(found.iter_mut()) {
+                let in_box = p.x >= lo.x - pad
+                    && p.x <= hi.x + pad
+                    && p.y >= lo.y - pad
+                    && p.y <= hi.y + pad;
+                // The first block of least order that holds it, as `locate`'s `min_by_key`.
+                if in_box && f.is_none_or(|k| order(i) < order(k)) && self.contains(i, p) {
+                    *f = Some(i);
+                }
+            }
+        }
+        (found, base)
+    }
+
+    /// The bounding box of block `i`'s outline (its least and largest x and y).
+    fn bounds(&self, i: usize) -> (Vec2, Vec2) {
+        let poly = &self.assembly.blocks[i].polygon;
+        let (mut lo, mut hi) = (
+            Vec2::new(f64::INFINITY, f64::INFINITY),
+            Vec2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for p in poly {
+            lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        (lo, hi)
+    }
+
+    /// How far outside block `i`'s bounding box [`Placement::contains`] may still find a
+    /// point (an upper bound, without a square root): what the tolerance adds at the
+    /// outline's sharpest corner and, for a curved voussoir (whose exact piece lies in its
+    /// quadrilateral and the circular segment of its extrados beyond the chord), that
+    /// segment's height.
+    ///
+    /// The outline test accepts points up to `tol` outside each side, so near a corner of
+    /// interior angle `theta` up to `tol / sin(theta/2)` from it. With the sides `a` into the
+    /// corner and `b` out of it, `1/sin^2(theta/2) = 2 |a||b| / (|a||b| + a.b)`: at most 2
+    /// when `a.b >= 0` (theta >= 90 deg), and at most `4 |a|^2 |b|^2 / (a x b)^2` otherwise
+    /// (multiply by `|a||b| - a.b <= 2 |a||b|`); its square root is at most `(1 + x)/2`. The
+    /// bound is doubled (a curved voussoir's corners, between a joint and an arc, differ from
+    /// its quadrilateral's by half the arc's angle). A side of length 0, or a corner that
+    /// folds back (`a x b = 0` with `a.b < 0`), gives an unbounded pad: the box then rejects
+    /// nothing. The segment's height `r - sqrt(r^2 - h^2)` (`h` half the chord) is at most
+    /// `h^2 / r`.
+    fn pad(&self, i: usize) -> f64 {
+        let poly = &self.assembly.blocks[i].polygon;
+        let m = poly.len();
+        let mut corner2: f64 = 2.0;
+        for k in 0..m {
+            let a = poly[k] - poly[(k + m - 1) % m];
+            let b = poly[(k + 1) % m] - poly[k];
+            let (aa, bb) = (a.norm_squared(), b.norm_squared());
+            if aa == 0.0 || bb == 0.0 {
+                return f64::INFINITY;
+            }
+            let dot = a.dot(&b);
+            if dot < 0.0 {
+                let c = cross(a, b);
+                corner2 = corner2.max(4.0 * aa * bb / (c * c));
+            }
+        }
+        let bulge = match self.ring_voussoir(i) {
+            Some((g, j)) => {
+                let q = g.quad(j);
+                let r = g.arcs[j].radius + 0.5 * g.thickness;
+                0.25 * (q[2] - q[1]).norm_squared() / r
+            }
+            None => 0.0,
+        };
+        2.0 * (0.5 * (1.0 + corner2)) * self.tol + bulge * (1.0 + 1e-9)
+    }
+
+    /// The ring and voussoir of block `i` when it is a curved voussoir of the parametric
+    /// arch (whose exact annular piece [`inside_curved`] tests).
+    fn ring_voussoir(&self, i: usize) -> Option<(&crate::geometry::ArchGeometry, usize)> {
+        match &self.structure {
+            Structure::Arch(arch) if arch.curved => arch.rings.iter().find_map(|(g, first)| {
+                let j = i.wrapping_sub(*first);
+                (j < g.voussoirs()).then_some((g, j))
+            }),
+            _ => None,
+        }
+    }
+
     /// Whether block `i` holds `p` within the tolerance.
     fn contains(&self, i: usize, p: Vec2) -> bool {
         let poly = &self.assembly.blocks[i].polygon;
         match &self.structure {
-            Structure::Arch(arch) => {
-                let ring = arch.rings.iter().find_map(|(g, first)| {
-                    let j = i.wrapping_sub(*first);
-                    (j < g.voussoirs()).then_some((g, j))
-                });
-                match ring {
-                    Some((g, j)) if arch.curved => inside_curved(g, j, p, self.tol),
-                    _ => inside_convex(poly, p, self.tol, orientation(poly)),
-                }
-            }
+            Structure::Arch(_) => match self.ring_voussoir(i) {
+                Some((g, j)) => inside_curved(g, j, p, self.tol),
+                None => inside_convex(poly, p, self.tol, orientation(poly)),
+            },
             Structure::Blocks { .. } => inside_convex(poly, p, self.tol, 1.0),
         }
     }
@@ -954,7 +1047,16 @@ fn inside_curved(g: &ArchGeometry, j: usize, p: Vec2, tol: f64) -> bool {
         s * cross(e, p - a) / e.norm() >= -tol
     };
     let centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    side(q[0], q[1], centre) && side(q[2], q[3], centre) && r >= ri - tol && r <= re + tol
+    // And on the voussoir's side of the arc's centre: joints that are not radial (vertical,
+    // horizontal beds) meet in a wedge that crosses the ring a second time on its far side,
+    // where the three tests above would take a point of another voussoir for one of this one.
+    let towards = centre - arc.centre;
+    let near_side = (p - arc.centre).dot(&towards) / towards.norm() >= -tol;
+    side(q[0], q[1], centre)
+        && side(q[2], q[3], centre)
+        && r >= ri - tol
+        && r <= re + tol
+        && near_side
 }
 
 /// The block nearest to `p` (by distance to its outline's vertices and edges) and that
@@ -991,5 +1093,77 @@ fn describe(kind: BlockKind) -> String {
         BlockKind::BayVoussoir(k, j) => format!("voussoir {j} of bay {k}"),
         BlockKind::Column(k, c) => format!("column {k} course {c}"),
         BlockKind::Spandrel(c, k) => format!("spandrel course {c} piece {k}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// `locate_all` (a box test first, one pass over the blocks) finds exactly the blocks
+    /// `locate` (every outline tested) finds, for points inside, on and just outside the
+    /// outlines (within and past the tolerance, at the corners and the arcs' bulges) of
+    /// polygon and curved voussoirs, radial and horizontal joints, piers and user blocks.
+    #[test]
+    fn locate_all_finds_what_locate_finds() {
+        let arch = |shape: &str, extra: &str| {
+            format!(
+                "[arch]\nshape = \"{shape}\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 9\n{extra}\n[piers]\nheight = 1.0\nwidth = 0.4\ncourses = 3\n"
+            )
+        };
+        let scenes = [
+            arch("circular", ""),
+            arch("circular", "voussoir_shape = \"curved\""),
+            arch("circular", "voussoir_shape = \"curved\"\njoints = \"vertical\""),
+            arch(
+                "circular",
+                "voussoir_shape = \"curved\"\njoints = \"horizontal_bed\"\nhorizontal_bed_deg = 30",
+            ),
+            "[blocks]\npolygons = [[[0, 0], [1, 0], [1, 1], [0, 1]], [[0, 1], [1, 1], [0.02, 1.6]]]\n"
+                .to_string(),
+        ];
+        for text in scenes {
+            let scene = Scene::from_toml_str(&text, "t").unwrap_or_else(|e| panic!("{e}"));
+            let (assembly, structure) = super::super::build::structure(&scene).expect("builds");
+            let placement = Placement::new(&assembly, structure);
+            let tol = placement.tolerance();
+            let mut points = Vec::new();
+            for b in &assembly.blocks {
+                let m = b.polygon.len();
+                for k in 0..m {
+                    let (a, c) = (b.polygon[k], b.polygon[(k + 1) % m]);
+                    let out = Vec2::new(c.y - a.y, a.x - c.x) / (c - a).norm();
+                    for s in [0.0, 0.3, 0.5, 1.0] {
+                        let on = a + s * (c - a);
+                        for d in [
+                            -1e-3,
+                            -tol,
+                            0.0,
+                            0.5 * tol,
+                            0.99 * tol,
+                            1.5 * tol,
+                            1e-3,
+                            0.02,
+                        ] {
+                            points.push(on + d * out);
+                            points.push(on - d * out);
+                        }
+                    }
+                    points.push(b.centroid + 0.999 * (a - b.centroid));
+                    points.push(b.centroid + 1.001 * (a - b.centroid));
+                }
+                points.push(b.centroid);
+            }
+            let (all, base) = placement.locate_all(&points);
+            let lowest = (assembly.blocks.iter())
+                .flat_map(|b| b.polygon.iter())
+                .fold(f64::INFINITY, |m, p| m.min(p.y));
+            assert_eq!(base, lowest);
+            for (p, found) in points.iter().zip(&all) {
+                assert_eq!(*found, placement.locate(*p), "{text}: at {p:?}");
+            }
+            assert!(all.iter().any(Option::is_some) && all.iter().any(Option::is_none));
+        }
     }
 }

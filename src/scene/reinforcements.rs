@@ -7,10 +7,11 @@
 //! face = "intrados"           # or "extrados"
 //! from_joint = 0              # arch joints, 0 = the left springing, n = the right one
 //! to_joint = 12
-//! tensile_capacity = 15000.0  # N at each joint it crosses (the strip's debonding force)
+//! tensile_capacity = 15000.0  # N at each joint it crosses (the strip's debonding force), or "design"
+//! cost = 1.0                  # default 1: cost per N of capacity in a retrofit design
 //! ```
 
-use super::{short, Section, MAX_FORCE};
+use super::Section;
 use crate::assembly::{Assembly, JointEnd, JointKind};
 use crate::error::SceneError;
 use crate::model::Strip;
@@ -23,11 +24,14 @@ pub struct ReinforcementSpec {
     pub face: JointEnd,
     pub from_joint: usize,
     pub to_joint: usize,
-    /// Tensile capacity at each crossed joint (N).
-    pub tensile_capacity: f64,
+    /// Tensile capacity at each crossed joint (N); None for `tensile_capacity = "design"`,
+    /// sized by `voussoir retrofit`.
+    pub tensile_capacity: Option<f64>,
+    /// Cost per newton of capacity in a retrofit design (default 1).
+    pub cost: f64,
 }
 
-const KEYS: &[&str] = &["face", "from_joint", "to_joint", "tensile_capacity"];
+const KEYS: &[&str] = &["face", "from_joint", "to_joint", "tensile_capacity", "cost"];
 
 /// The `[[reinforcements]]` list of a scene (empty when absent).
 pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec>, SceneError> {
@@ -56,23 +60,19 @@ pub(super) fn parse(table: &Table, origin: &str) -> Result<Vec<ReinforcementSpec
                 &format!("must be at least from_joint = {from_joint}"),
             ));
         }
-        let tensile_capacity = s.finite(
+        let tensile_capacity = super::capacity_or_design(
+            &mut s,
             "tensile_capacity",
-            "the strip's tensile (debonding) force at each joint it crosses, in N",
+            "the strip's tensile (debonding) force at each joint it crosses",
         )?;
-        if !(0.0..=MAX_FORCE).contains(&tensile_capacity) {
-            return Err(s.out_of_range(
-                "tensile_capacity",
-                short(tensile_capacity),
-                &format!("must be from 0 to {MAX_FORCE:e} N"),
-            ));
-        }
+        let cost = super::design_cost(&mut s)?;
         s.finish("")?;
         out.push(ReinforcementSpec {
             face,
             from_joint,
             to_joint,
             tensile_capacity,
+            cost,
         });
     }
     Ok(out)
@@ -118,7 +118,9 @@ pub(super) fn strips(
                 out.push(Strip {
                     joint: i,
                     end: spec.face,
-                    capacity: spec.tensile_capacity,
+                    // A capacity to be designed starts at 0; the retrofit design sizes it
+                    // (a plain analysis refuses it, `super::build`).
+                    capacity: spec.tensile_capacity.unwrap_or(0.0),
                     source: k,
                 });
             }

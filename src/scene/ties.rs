@@ -15,7 +15,7 @@ use crate::error::SceneError;
 use crate::geometry::Vec2;
 
 use crate::model::{Anchor, Tie, DEFAULT_ULTIMATE_STRAIN};
-use toml::{Table, Value};
+use toml::Table;
 
 /// A tie as the user wrote it.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,24 +76,8 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 "must differ from `from`: a tie has a length",
             ));
         }
-        let capacity = if matches!(t.get("capacity"), Some(Value::String(c)) if c.trim() == "design")
-        {
-            s.string("capacity", None)?;
-            None
-        } else {
-            let c = s.finite(
-                "capacity",
-                "the force at which the tie yields, in N, or \"design\"",
-            )?;
-            if !(0.0..=MAX_FORCE).contains(&c) {
-                return Err(s.out_of_range(
-                    "capacity",
-                    short(c),
-                    &format!("must be from 0 to {MAX_FORCE:e} N, or \"design\""),
-                ));
-            }
-            Some(c)
-        };
+        let capacity =
+            super::capacity_or_design(&mut s, "capacity", "the force at which the tie yields")?;
         let prestress = s.opt_f64("prestress")?.unwrap_or(0.0);
         let most = capacity.unwrap_or(MAX_FORCE);
         if !(prestress.is_finite() && (0.0..=most).contains(&prestress)) {
@@ -103,14 +87,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
                 &format!("must be from 0 to the capacity, {} N", short(most)),
             ));
         }
-        let cost = s.opt_f64("cost")?.unwrap_or(1.0);
-        if !(cost.is_finite() && cost > 0.0) {
-            return Err(s.out_of_range(
-                "cost",
-                short(cost),
-                "must be a finite number > 0 (the cost of one newton of capacity, relative to the other ties)",
-            ));
-        }
+        let cost = super::design_cost(&mut s)?;
         let ultimate_strain = s
             .opt_f64("ultimate_strain")?
             .unwrap_or(DEFAULT_ULTIMATE_STRAIN);
@@ -135,7 +112,7 @@ pub(super) fn parse_ties(table: &Table, origin: &str) -> Result<Vec<TieSpec>, Sc
 }
 
 /// The ties of a scene anchored on the placement's assembly: each anchor on the block that
-/// holds its point ([`Placement::locate`]), or the ground when the point lies in a fixed block
+/// holds its point ([`Placement::locate_all`], all anchors in one pass), or the ground when the point lies in a fixed block
 /// ([`Placement::fixed_at`]) or at or below the structure's base (its lowest point, within the placement's tolerance); any other point is
 /// an error naming the key.
 pub(super) fn anchor_ties(
@@ -143,24 +120,33 @@ pub(super) fn anchor_ties(
     placement: &Placement,
     origin: &str,
 ) -> Result<Vec<Tie>, SceneError> {
+    if specs.is_empty() {
+        return Ok(Vec::new());
+    }
     let assembly = placement.assembly();
     let tol = placement.tolerance();
-    let base = assembly
-        .blocks
-        .iter()
-        .flat_map(|b| b.polygon.iter())
-        .fold(f64::INFINITY, |m, p| m.min(p.y));
     let error = |k: usize, key: &str, p: [f64; 2], allowed: String| SceneError::OutOfRange {
         origin: origin.to_string(),
         key: format!("ties[{k}].{key}"),
         value: format!("[{}, {}]", short(p[0]), short(p[1])),
         allowed,
     };
+    // Every anchor located in one pass over the blocks, which also finds the base (the
+    // lowest point of the structure).
+    let points: Vec<Vec2> = specs
+        .iter()
+        .flat_map(|s| [s.from, s.to])
+        .map(|p| Vec2::new(p[0], p[1]))
+        .collect();
+    let (located, base) = placement.locate_all(&points);
     let mut ties = Vec::with_capacity(specs.len());
     for (k, spec) in specs.iter().enumerate() {
-        let anchor = |key: &str, p: [f64; 2]| -> Result<Anchor, SceneError> {
+        let anchor = |key: &str,
+                      p: [f64; 2],
+                      located: Option<usize>|
+         -> Result<Anchor, SceneError> {
             let point = Vec2::new(p[0], p[1]);
-            let block = match placement.locate(point) {
+            let block = match located {
                 Some(b) => Some(b),
                 None if point.y <= base + tol => None,
                 // A point of a fixed block (`[blocks] fixed`) is a point of the ground.
@@ -179,7 +165,10 @@ pub(super) fn anchor_ties(
             };
             Ok(Anchor { block, point })
         };
-        let (from, to) = (anchor("from", spec.from)?, anchor("to", spec.to)?);
+        let (from, to) = (
+            anchor("from", spec.from, located[2 * k])?,
+            anchor("to", spec.to, located[2 * k + 1])?,
+        );
         // A capacity to be designed starts at its least value, the prestress; the retrofit
         // design sizes it (a plain analysis refuses it, `super::build`).
         let tie = Tie {

@@ -157,7 +157,7 @@ impl StaticProblem {
             strips,
             passive,
             sign,
-            &[],
+            DesignColumns::default(),
             shear,
             &mut rows,
         );
@@ -201,10 +201,20 @@ impl StaticProblem {
     }
 }
 
+/// The columns of the capacities a retrofit design sizes (`crate::statics::design`), by
+/// interaction: `ties[k]` for tie k, `strips[k]` for strip k (`Model::strips`); None, or an
+/// index past the slice, keeps the interaction's own capacity.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct DesignColumns<'a> {
+    pub ties: &'a [Option<usize>],
+    pub strips: &'a [Option<usize>],
+}
+
 /// The rows of the static program, without its objective and its own bounds on column 0: the
 /// loads (the action toward `sign` times column 0, the permanent loads on the right-hand
-/// side) and every interaction. `design[k]`, when given for tie k, is the column of its
-/// capacity, an unknown of a retrofit design (`crate::statics::design`); `shear` bounds the
+/// side) and every interaction. `design.ties[k]`, when given for tie k, is the column of its
+/// capacity, an unknown of a retrofit design (`crate::statics::design`), and
+/// `design.strips[k]` that of strip k's; `shear` bounds the
 /// contacts' shear ([`ShearLimit`]). Returns the joints with friction rows, the ties' columns,
 /// the strips' and the passive reactions'.
 #[allow(clippy::too_many_arguments)]
@@ -216,7 +226,7 @@ pub(crate) fn program_rows(
     strips: &[Strip],
     passive: &[Passive],
     sign: f64,
-    design: &[Option<usize>],
+    design: DesignColumns<'_>,
     shear: ShearLimit<'_>,
     rows: &mut Rows,
 ) -> (Vec<usize>, Vec<usize>, Vec<usize>, Vec<usize>) {
@@ -253,14 +263,18 @@ pub(crate) fn program_rows(
         let tie_columns = ties
             .iter()
             .enumerate()
-            .map(|(k, t)| match design.get(k).copied().flatten() {
+            .map(|(k, t)| match design.ties.get(k).copied().flatten() {
                 Some(capacity) => t.static_rows_designed(rows, capacity),
                 None => t.static_rows(rows),
             })
             .collect();
         let strip_columns = strips
             .iter()
-            .map(|s| s.static_rows(assembly, rows))
+            .enumerate()
+            .map(|(k, s)| match design.strips.get(k).copied().flatten() {
+                Some(capacity) => s.static_rows_designed(assembly, rows, capacity),
+                None => s.static_rows(assembly, rows),
+            })
             .collect();
         let passive_columns = passive.iter().map(|p| p.static_rows(rows)).collect();
         (friction_joints, tie_columns, strip_columns, passive_columns)

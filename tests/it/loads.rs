@@ -1266,3 +1266,38 @@ fn set_reaches_an_entry_of_loads() {
         .expect_err("negative");
     assert_eq!(err.key(), Some("loads[1].intensity"), "{err}");
 }
+
+/// A point load in a curved voussoir whose joints are not radial (vertical, or horizontal
+/// beds) belongs to that voussoir: its mirror image, loaded the other way, gives the same
+/// multiplier. The joint lines of such a voussoir meet in a wedge that crosses the ring again
+/// on its far side, where a point of the far voussoir was once taken for one of this one (the
+/// springing voussoir on the left held the load at (1.055, 0.307) of a 9-voussoir ring with
+/// 30 deg beds, and the arch "could not stand").
+#[test]
+fn point_loads_in_curved_voussoirs_with_non_radial_joints_are_mirror_symmetric() {
+    for joints in [
+        "joints = \"vertical\"\n",
+        "joints = \"horizontal_bed\"\nhorizontal_bed_deg = 30.0\n",
+        "joints = \"horizontal_bed\"\nhorizontal_bed_deg = 60.0\n",
+    ] {
+        // Angles (at r = 1.099) off every joint: a point on a joint belongs to the first
+        // voussoir in chain order, which its mirror image does not.
+        for angle_deg in [8.0_f64, 16.0, 25.0, 50.0, 70.0] {
+            let (s, c) = angle_deg.to_radians().sin_cos();
+            let lambda = |x: f64, d: Direction| {
+                let text = format!(
+                    "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.2\nvoussoirs = 9\nvoussoir_shape = \"curved\"\n{joints}{}",
+                    point_load(Vec2::new(x * 1.099, 1.099 * s), Vec2::new(0.0, -3000.0), true)
+                );
+                let r = statics(&build(&text), d);
+                assert_eq!(r.status, Status::Collapse, "{text}");
+                r.lambda.expect("collapse")
+            };
+            let (right, left) = (lambda(c, Direction::Right), lambda(-c, Direction::Left));
+            assert!(
+                rel(right, left) <= 1e-9,
+                "{joints} at {angle_deg} deg: {right} vs mirrored {left}"
+            );
+        }
+    }
+}

@@ -1573,18 +1573,30 @@ fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
             .map(|s| (s.joint, frame.pxf(s.point(assembly))))
             .collect();
         pts.sort_by_key(|p| p.0);
+        // A strip of no capacity at any joint carries nothing (not needed by a retrofit
+        // design): thin and dashed, as a tie of none.
+        let none = drawing
+            .strips
+            .iter()
+            .filter(|s| s.source == k)
+            .all(|s| s.capacity <= 0.0);
+        let stroke = if none {
+            format!("stroke-width=\"1.5\" stroke-dasharray=\"{DASH}\"")
+        } else {
+            "stroke-width=\"4\"".to_string()
+        };
         let line: Vec<String> = pts
             .iter()
             .map(|(_, (x, y))| format!("{x:.1},{y:.1}"))
             .collect();
         text.push_str(&format!(
-            "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"4\" stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"{}\"/>\n",
+            "<polyline fill=\"none\" stroke=\"{}\" {stroke} stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"{}\"/>\n",
             hex(STRIP),
             line.join(" ")
         ));
     }
     for (s, f) in drawing.strips.iter().zip(drawing.strip_forces) {
-        if f.yielded {
+        if f.yielded && s.capacity > 0.0 {
             let (x, y) = frame.pxf(s.point(assembly));
             text.push_str(&format!(
                 "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"5\" fill=\"white\" stroke=\"{}\" stroke-width=\"2.5\"/>\n",
@@ -1643,8 +1655,16 @@ fn ties_svg(drawing: &Drawing, frame: &Frame) -> String {
     let mut text = String::new();
     for (k, t) in drawing.ties.iter().enumerate() {
         let (a, b) = (frame.pxf(t.from.point), frame.pxf(t.to.point));
+        // A tie of no capacity carries nothing (a retrofit design found it not needed): drawn
+        // thin and dashed, where it would go, so it is not read as a tie in place.
+        let none = t.capacity <= 0.0;
+        let stroke = if none {
+            format!("stroke-width=\"1.5\" stroke-dasharray=\"{DASH}\"")
+        } else {
+            "stroke-width=\"3\"".to_string()
+        };
         text.push_str(&format!(
-            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" stroke-width=\"3\"/>\n",
+            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" {stroke}/>\n",
             a.0,
             a.1,
             b.0,
@@ -1660,6 +1680,7 @@ fn ties_svg(drawing: &Drawing, frame: &Frame) -> String {
             ));
         }
         let label = match drawing.tie_forces.get(k) {
+            _ if none => format!("tie {k}: none (capacity 0 N)"),
             Some(f) if f.yielded => format!("tie {k}: {} N, yielded", sig(f.force)),
             Some(f) => format!("tie {k}: {} N of {} N", sig(f.force), sig(t.capacity)),
             None => format!("tie {k}: capacity {} N", sig(t.capacity)),

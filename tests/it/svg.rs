@@ -1072,3 +1072,50 @@ fn long_titles_stay_inside_the_canvas() {
     let doc = Document::parse(&text).expect("well-formed XML");
     assert_inside_canvas(&doc);
 }
+
+/// A tie of no capacity (one a retrofit design found not needed) carries nothing: it is drawn
+/// thin and dashed with its label saying so, not as a tie in place; a tie with a capacity is
+/// a solid line.
+#[test]
+fn a_tie_of_no_capacity_is_drawn_as_none() {
+    let m = model_of(&format!(
+        "{PORTAL}[[ties]]\nfrom = [-1.0, -0.05]\nto = [1.0, -0.05]\ncapacity = 1500.0\n\
+         [[ties]]\nfrom = [-0.9, 0.5]\nto = [0.9, 0.5]\ncapacity = 0.0\n"
+    ));
+    let r = statics::analyse(&m, &StaticSettings::default()).expect("analysis runs");
+    let drawing = Drawing {
+        ties: &m.ties,
+        tie_forces: &r.ties,
+        ..full_drawing("portal, a tie and none", &m, &r, Direction::Right)
+    };
+    let text = svg::structure_svg(&m.assembly, &drawing).expect("drawing");
+    keep("ties-none.svg", &text);
+    let doc = Document::parse(&text).expect("well-formed XML");
+    let g = group(&doc, "ties");
+    let lines = children(g, "line");
+    assert_eq!(lines.len(), 2);
+    assert_eq!(
+        lines[0].attribute("stroke-dasharray"),
+        None,
+        "the tie in place is solid"
+    );
+    assert_eq!(
+        lines[1].attribute("stroke-dasharray"),
+        Some(DASH),
+        "the tie of none is dashed"
+    );
+    let words: Vec<String> = children(g, "text")
+        .iter()
+        .filter_map(|t| t.text().map(str::to_string))
+        .collect();
+    assert!(
+        words.iter().any(|w| w == "tie 1: none (capacity 0 N)"),
+        "{words:?}"
+    );
+    assert!(
+        words
+            .iter()
+            .any(|w| w.starts_with("tie 0: ") && !w.contains("none")),
+        "{words:?}"
+    );
+}

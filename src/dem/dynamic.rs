@@ -219,6 +219,8 @@ pub struct DynamicResult {
     /// rest test; `None` when the ground never reached the threshold and the blocks stayed at
     /// rest throughout (nothing was integrated, not even the settling).
     pub integration_start: Option<f64>,
+    /// The time stepping used (`dem.integrator`).
+    pub integrator: crate::dem_settings::Integrator,
 }
 
 impl DynamicResult {
@@ -428,6 +430,7 @@ fn run_motion(
         extended: 0.0,
         planned_steps: settle_steps.saturating_add(motion_steps),
         warnings: settled_warnings(&world, model),
+        integrator: params.integrator,
     };
     if result.cannot_stand {
         result.wall_time_s = clock.elapsed().as_secs_f64();
@@ -683,6 +686,7 @@ fn at_rest_throughout(
         rest_test: rest,
         first_exceedance: None,
         integration_start: None,
+        integrator: world.params.integrator,
     }
 }
 

@@ -25,7 +25,7 @@
 //!    tangential one `p_t <- proj_[-mu p_n, mu p_n](p_t - u_t / W_tt)` (Coulomb: sticking
 //!    with `u_t = 0`, or sliding at `|p_t| = mu p_n` against the slip), sweeping until no
 //!    impulse changes a contact velocity by more than 1e-3 of `rest_velocity`, or
-//!    [`MAX_SWEEPS`] sweeps.
+//!    [`MAX_SWEEPS`] sweeps; forward and backward in turn (symmetric Gauss-Seidel).
 //! 4. [`advance`]: `v_{k+1} = v_free + M^-1 J^T p`, `q_{k+1} = q_k + h v_{k+1}` (theta = 1:
 //!    positions from the new velocities, which for the smooth motion is the symplectic Euler of
 //!    the explicit stepping, so a free rocking block keeps its energy between impacts; theta
@@ -219,7 +219,15 @@ fn contact_rows(world: &World, state: &State) -> Vec<Row> {
 fn solve(rows: &mut [Row], state: &mut State, tolerance: f64) -> usize {
     for sweep in 1..=MAX_SWEEPS {
         let mut change: f64 = 0.0;
-        for row in rows.iter_mut() {
+        // Symmetric Gauss-Seidel: forward and backward sweeps in turn, so a load change at
+        // one end of a chain of blocks (an arch) reaches the other end in one sweep pair
+        // whichever way the contacts are numbered.
+        let order: Box<dyn Iterator<Item = &mut Row>> = if sweep % 2 == 1 {
+            Box::new(rows.iter_mut())
+        } else {
+            Box::new(rows.iter_mut().rev())
+        };
+        for row in order {
             let un = state.relative(row).dot(&row.n);
             let pn = (row.pn - (un - row.target) * row.kn).max(0.0);
             let dn = pn - row.pn;

@@ -1036,6 +1036,8 @@ pub struct DemReport {
     /// defaults do not fit, the DEM contradicting the static status), one sentence each;
     /// empty when nothing did.
     pub warnings: Vec<String>,
+    /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
+    pub integrator: crate::dem_settings::Integrator,
 }
 
 impl DemReport {
@@ -1130,6 +1132,7 @@ impl DemReport {
             planned_steps_per_run: r.planned_steps_per_run,
             max_steps: r.params.max_steps,
             warnings: r.warnings.clone(),
+            integrator: r.params.integrator,
         }
     }
 }
@@ -1207,6 +1210,8 @@ pub struct DynamicReport {
     /// the test; null when the ground never reached the threshold and nothing was integrated).
     pub first_exceedance_s: Option<f64>,
     pub integration_start_s: Option<f64>,
+    /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
+    pub integrator: crate::dem_settings::Integrator,
 }
 
 impl DynamicReport {
@@ -1239,6 +1244,7 @@ impl DynamicReport {
             rest: RestTestReport::new(&r.rest_test),
             first_exceedance_s: r.first_exceedance,
             integration_start_s: r.integration_start,
+            integrator: r.integrator,
         }
     }
 }

@@ -584,6 +584,14 @@ fn run_motion(
         }
     }
     result.extended = (world.time - end).max(0.0);
+    if world.unconverged > 0 {
+        result.warnings.push(format!(
+            "the Moreau-Jean contact solve stopped short of its tolerance in {} of {} time steps (projected Gauss-Seidel, {} sweeps): the contact laws hold only approximately there; compare with dem.integrator = \"explicit\"",
+            world.unconverged,
+            world.steps,
+            super::moreau::MAX_SWEEPS
+        ));
+    }
     if result.end_state == EndState::Moving {
         result.warnings.push(format!(
             "still moving {:.3} s after the ground motion and its tail ended (speed {:.3e} m/s): neither at rest nor collapsed, the run is undecided",

@@ -149,6 +149,9 @@ pub(crate) struct World {
     /// speed of any block point (m/s), from the last `integrate`.
     pub unbalanced: f64,
     pub max_speed: f64,
+    /// Moreau-Jean steps whose contact solve stopped at `moreau::MAX_SWEEPS` short of its
+    /// tolerance (0 with the explicit stepping).
+    pub unconverged: u64,
 }
 
 impl World {
@@ -316,6 +319,7 @@ impl World {
                 .collect(),
             unbalanced: 0.0,
             max_speed: 0.0,
+            unconverged: 0,
         };
         w.broad_phase();
         w.search_contacts();

@@ -1037,7 +1037,7 @@ pub struct DemReport {
     /// empty when nothing did.
     pub warnings: Vec<String>,
     /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
-    pub integrator: crate::dem_settings::Integrator,
+    pub integrator: crate::dem::Integrator,
 }
 
 impl DemReport {
@@ -1211,7 +1211,7 @@ pub struct DynamicReport {
     pub first_exceedance_s: Option<f64>,
     pub integration_start_s: Option<f64>,
     /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
-    pub integrator: crate::dem_settings::Integrator,
+    pub integrator: crate::dem::Integrator,
 }
 
 impl DynamicReport {

@@ -10,6 +10,12 @@
 //! record scaled to 1.6 (above the threshold from 7.3 s) and the IDA, with and without the
 //! test. `--quick` (or `VOUSSOIR_BENCH_QUICK=1`) leaves out the runs without the test.
 //!
+//! Issue 28's rigid-contact stepping (`dem.integrator = "moreau"`, `dem::moreau`): the record
+//! scaled to 1.6 (the arch rocks from 7.3 s and survives) and to 2.1 (it collapses), integrated
+//! over the whole 30 s (rest test off) and with the rest test, by the explicit and the
+//! Moreau-Jean stepping; the target is the 30 s record that rocks in under 1 s.
+//! `VOUSSOIR_BENCH_MOREAU=1` runs only this part.
+//!
 //! The record is synthetic (no network, no bundled data): a sum of sines of 1-8 Hz under a
 //! trapezoidal envelope (2 s rise, 20 s strong motion, 8 s decay), sampled every 0.01 s as a
 //! PEER record is, and scaled to a peak of 0.1 g.
@@ -69,6 +75,10 @@ fn main() {
         "DEM under ground motion: semicircle R = 1 m, t/R = 0.15, n = 20, mu = 0.8; {}\n",
         motion.main.describe()
     );
+    if std::env::var("VOUSSOIR_BENCH_MOREAU").is_ok_and(|v| v == "1") {
+        integrators(&scene, &motion, &settings, &pool, quick);
+        return;
+    }
     // The rest test alone: its static solves, then the run beyond them.
     let model = voussoir::scene::build(&scene).expect("model");
     let params = analysis::dem_parameters(&scene, &model).expect("parameters");
@@ -156,5 +166,50 @@ fn main() {
             ida.steps as f64 / ida.wall_time_s,
             ida.wall_time_s
         );
+    }
+    integrators(&scene, &motion, &settings, &pool, quick);
+}
+
+/// The explicit and the Moreau-Jean stepping side by side (issue 28, item 2); `quick` leaves
+/// out the explicit runs without the rest test.
+fn integrators(
+    scene: &Scene,
+    motion: &GroundInput,
+    settings: &DynamicSettings,
+    pool: &rayon::ThreadPool,
+    quick: bool,
+) {
+    println!("\nRigid-contact stepping (issue 28):\n");
+    println!("| integrator | scale | rest test | status | peak displacement (m) | time step (s) | steps | wall s |");
+    println!("|---|---:|---|---|---:|---:|---:|---:|");
+    for scale in [1.6, 2.1] {
+        for integrator in ["explicit", "moreau"] {
+            for rest in [false, true] {
+                if quick && integrator == "explicit" && !rest {
+                    continue;
+                }
+                let s = scene
+                    .with_overrides(&[format!("dem.integrator={integrator}")])
+                    .expect("integrator");
+                let settings = DynamicSettings {
+                    rest_test: rest,
+                    ..settings.clone()
+                };
+                let m = motion.scaled(scale);
+                let r = pool
+                    .install(|| analysis::dem_dynamic(&s, &m, &settings))
+                    .expect("dynamic run");
+                let res = &r.result;
+                println!(
+                    "| {integrator} | {scale} | {} | {} | {:.5} | {:.3e} | {} | {:.3} |",
+                    res.rest_test.name(),
+                    res.status(),
+                    res.peak_displacement,
+                    res.time_step,
+                    res.steps,
+                    res.wall_time_s
+                );
+            }
+        }
     }
 }

@@ -219,6 +219,8 @@ pub struct DynamicResult {
     /// rest test; `None` when the ground never reached the threshold and the blocks stayed at
     /// rest throughout (nothing was integrated, not even the settling).
     pub integration_start: Option<f64>,
+    /// The time stepping used (`dem.integrator`).
+    pub integrator: crate::dem_settings::Integrator,
 }
 
 impl DynamicResult {
@@ -428,6 +430,7 @@ fn run_motion(
         extended: 0.0,
         planned_steps: settle_steps.saturating_add(motion_steps),
         warnings: settled_warnings(&world, model),
+        integrator: params.integrator,
     };
     if result.cannot_stand {
         result.wall_time_s = clock.elapsed().as_secs_f64();
@@ -581,6 +584,14 @@ fn run_motion(
         }
     }
     result.extended = (world.time - end).max(0.0);
+    if world.unconverged > 0 {
+        result.warnings.push(format!(
+            "the Moreau-Jean contact solve stopped short of its tolerance in {} of {} time steps (projected Gauss-Seidel, {} sweeps): the contact laws hold only approximately there; compare with dem.integrator = \"explicit\"",
+            world.unconverged,
+            world.steps,
+            super::moreau::MAX_SWEEPS
+        ));
+    }
     if result.end_state == EndState::Moving {
         result.warnings.push(format!(
             "still moving {:.3} s after the ground motion and its tail ended (speed {:.3e} m/s): neither at rest nor collapsed, the run is undecided",
@@ -683,6 +694,7 @@ fn at_rest_throughout(
         rest_test: rest,
         first_exceedance: None,
         integration_start: None,
+        integrator: world.params.integrator,
     }
 }
 

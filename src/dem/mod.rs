@@ -43,13 +43,14 @@ pub mod dynamic;
 // The DEM's settings and the `[dem]` table live beside it (`crate::dem_settings`), so a scene
 // checks its `[dem]` knobs without importing the simulation.
 use crate::dem_settings as params;
+mod moreau;
 mod protocol;
 pub mod record;
 pub mod rest;
 mod world;
 
 pub use crate::dem_settings::{
-    allowed_range, show_value, IntegrationParameters, DEFAULT_MAX_STEPS, DEM_KEYS,
+    allowed_range, show_value, IntegrationParameters, Integrator, DEFAULT_MAX_STEPS, DEM_KEYS,
 };
 pub use protocol::{Onset, Outcome, Run, Snapshot};
 
@@ -352,8 +353,31 @@ fn settled_warnings(world: &World, model: &Model) -> Vec<String> {
 }
 
 /// A time step above the explicit stability limit makes the integration blow up, which
-/// would then read as a collapse: refuse it.
+/// would then read as a collapse: refuse it. The Moreau-Jean stepping has no such limit, but
+/// a step longer than `MOREAU_MAX_STEP_SHARE` of the gravity time finds contacts too late,
+/// and it cannot integrate the stiff bars of ties, strips and passive fill: refused too.
 fn check_time_step(world: &World) -> Result<(), DemError> {
+    if world.params.integrator == Integrator::Moreau {
+        let size = world
+            .bodies
+            .iter()
+            .filter_map(|b| b.block.map(|_| b.radius))
+            .fold(0.0, f64::max);
+        let limit = params::MOREAU_MAX_STEP_SHARE * (2.0 * size / world.params.gravity).sqrt();
+        if !(world.dt > 0.0 && world.dt <= limit) {
+            return Err(DemError::Settings(format!(
+                "dem.time_step = {:e} s is too long for dem.integrator = \"moreau\": at most {limit:e} s ({} of the gravity time of the largest block)",
+                world.dt,
+                params::MOREAU_MAX_STEP_SHARE
+            )));
+        }
+        if !world.bars.is_empty() {
+            return Err(DemError::Settings(
+                "dem.integrator = \"moreau\" does not model ties, strips or the fill's passive reaction (elastic bars as stiff as the explicit contacts): use dem.integrator = \"explicit\"".to_string(),
+            ));
+        }
+        return Ok(());
+    }
     if world.dt > world.stability_limit {
         return Err(DemError::Settings(format!(
             "dem.time_step = {:e} s exceeds the stability limit {:e} s of the stiffest contact (leave it unset to use {} of the limit)",

@@ -38,7 +38,7 @@
 //!   not seismic add force and no mass.
 
 use super::body::{Body, BodyLoads, ExtraLoads};
-use crate::dem_settings::IntegrationParameters;
+use crate::dem_settings::{IntegrationParameters, Integrator, MOREAU_STEP_SHARE};
 use crate::geometry::{cross, Vec2};
 use crate::model::{LoadSource, Model};
 
@@ -58,6 +58,9 @@ pub(crate) struct Contact {
     pub depth: f64,
     /// Whether the contact slid (|S| = mu N) in the last step.
     pub sliding: bool,
+    /// Normal and tangential impulses (N s) of the last Moreau-Jean step
+    /// ([`super::moreau`]), kept while the contact persists to warm-start the next one.
+    pub impulse: (f64, f64),
 }
 
 impl Contact {
@@ -146,6 +149,9 @@ pub(crate) struct World {
     /// speed of any block point (m/s), from the last `integrate`.
     pub unbalanced: f64,
     pub max_speed: f64,
+    /// Moreau-Jean steps whose contact solve stopped at `moreau::MAX_SWEEPS` short of its
+    /// tolerance (0 with the explicit stepping).
+    pub unconverged: u64,
 }
 
 impl World {
@@ -225,9 +231,11 @@ impl World {
             params.infinite_friction
         };
         let stability_limit = critical_time_step(&bodies, params);
-        let dt = params
-            .time_step
-            .unwrap_or(stability_limit * params.time_step_factor);
+        let dt = params.time_step.unwrap_or(match params.integrator {
+            Integrator::Explicit => stability_limit * params.time_step_factor,
+            // Rigid contacts have no stability limit: the step resolves the blocks' motion.
+            Integrator::Moreau => MOREAU_STEP_SHARE * (size / params.gravity).sqrt(),
+        });
         let n = bodies.len();
         let mut w = World {
             bodies,
@@ -311,25 +319,38 @@ impl World {
                 .collect(),
             unbalanced: 0.0,
             max_speed: 0.0,
+            unconverged: 0,
         };
         w.broad_phase();
         w.search_contacts();
         w
     }
 
-    /// One time step: the five stages of the pipeline.
+    /// One time step: the five stages of the pipeline, or with `dem.integrator = "moreau"`
+    /// the contact search followed by the Moreau-Jean stages ([`super::moreau`]).
     pub fn step(&mut self) {
+        self.find_contacts();
+        match self.params.integrator {
+            Integrator::Explicit => {
+                self.contact_forces();
+                self.tie_forces();
+                self.integrate();
+            }
+            Integrator::Moreau => super::moreau::step(self),
+        }
+        self.time += self.dt;
+        self.steps += 1;
+    }
+
+    /// Stages 1 and 2: the broad phase when some body has moved by half the margin, else the
+    /// narrow phase.
+    pub fn find_contacts(&mut self) {
         if moved(&self.bodies, &self.broad_pos, 0.5 * self.margin) {
             self.broad_phase();
             self.search_contacts();
         } else {
             self.narrow_phase();
         }
-        self.contact_forces();
-        self.tie_forces();
-        self.integrate();
-        self.time += self.dt;
-        self.steps += 1;
     }
 
     /// Stage 1: candidate pairs by sort-and-sweep of the grown bounding boxes along x. The
@@ -415,10 +436,11 @@ impl World {
                     // The two edges of the vertex's own body that meet at it.
                     let adj = [v_body.normals[(i + n - 1) % n], v_body.normals[i]];
                     if let Some((edge, depth)) = touch(p, adj, e_body, window) {
-                        let shear = old
+                        let kept = old
                             .iter()
-                            .find(|c| c.flipped == flipped && c.vertex == i && c.edge == edge)
-                            .map_or(0.0, |c| c.shear);
+                            .find(|c| c.flipped == flipped && c.vertex == i && c.edge == edge);
+                        let shear = kept.map_or(0.0, |c| c.shear);
+                        let impulse = kept.map_or((0.0, 0.0), |c| c.impulse);
                         found.push(Contact {
                             flipped,
                             vertex: i,
@@ -427,6 +449,7 @@ impl World {
                             normal_force: 0.0,
                             depth,
                             sliding: false,
+                            impulse,
                         });
                     }
                 }
@@ -544,21 +567,8 @@ impl World {
             if body.fixed {
                 continue;
             }
+            let (f, m) = add_loads(body, self.load, d, *fc, *mc);
             let l = &body.loads;
-            let w = l.weight;
-            // Own weight and its seismic force at the centroid.
-            let sw = self.load.lambda * w;
-            let mut f = fc + Vec2::new(sw * d.x, -self.load.gravity * w + sw * d.y);
-            let mut m = *mc;
-            if let Some(e) = &l.extra {
-                let (sin, cos) = body.angle.sin_cos();
-                let se = self.load.lambda * e.seismic_weight;
-                let lambda = self.load.lambda;
-                f += self.load.gravity * e.force + se * d + lambda * e.live_force;
-                m += self.load.gravity * e.moment(sin, cos)
-                    + se * cross(body.rotate(e.seismic_offset), d)
-                    + lambda * e.live_moment(sin, cos);
-            }
             unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / l.scale);
             // Cundall's local damping opposes the motion of each degree of freedom with a
             // force proportional to the unbalanced force, never larger than it.
@@ -636,6 +646,27 @@ impl World {
             .map(|c| 0.5 * kn * c.depth * c.depth + 0.5 * c.shear * c.shear / ks)
             .sum()
     }
+}
+
+/// `f0` and `m0` (N, N m) plus the loads `body` carries at the factors `load`, the seismic
+/// ones along `d` (module docs): own weight and its seismic force at the centroid, the other
+/// loads at their body-fixed points.
+pub(crate) fn add_loads(body: &Body, load: Load, d: Vec2, f0: Vec2, m0: f64) -> (Vec2, f64) {
+    let l = &body.loads;
+    let w = l.weight;
+    let sw = load.lambda * w;
+    let mut f = f0 + Vec2::new(sw * d.x, -load.gravity * w + sw * d.y);
+    let mut m = m0;
+    if let Some(e) = &l.extra {
+        let (sin, cos) = body.angle.sin_cos();
+        let se = load.lambda * e.seismic_weight;
+        let lambda = load.lambda;
+        f += load.gravity * e.force + se * d + lambda * e.live_force;
+        m += load.gravity * e.moment(sin, cos)
+            + se * cross(body.rotate(e.seismic_offset), d)
+            + lambda * e.live_moment(sin, cos);
+    }
+    (f, m)
 }
 
 /// Whether vertex `p` (whose own body's edges meeting at it have outward normals `adj`)

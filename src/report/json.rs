@@ -1045,6 +1045,8 @@ pub struct DemReport {
     /// defaults do not fit, the DEM contradicting the static status), one sentence each;
     /// empty when nothing did.
     pub warnings: Vec<String>,
+    /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
+    pub integrator: crate::dem::Integrator,
 }
 
 impl DemReport {
@@ -1139,6 +1141,7 @@ impl DemReport {
             planned_steps_per_run: r.planned_steps_per_run,
             max_steps: r.params.max_steps,
             warnings: r.warnings.clone(),
+            integrator: r.params.integrator,
         }
     }
 }
@@ -1216,6 +1219,8 @@ pub struct DynamicReport {
     /// the test; null when the ground never reached the threshold and nothing was integrated).
     pub first_exceedance_s: Option<f64>,
     pub integration_start_s: Option<f64>,
+    /// The time stepping (`dem.integrator`): `explicit` or `moreau`.
+    pub integrator: crate::dem::Integrator,
 }
 
 impl DynamicReport {
@@ -1248,6 +1253,7 @@ impl DynamicReport {
             rest: RestTestReport::new(&r.rest_test),
             first_exceedance_s: r.first_exceedance,
             integration_start_s: r.integration_start,
+            integrator: r.integrator,
         }
     }
 }

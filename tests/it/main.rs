@@ -18,6 +18,7 @@ mod dem;
 mod dem_brackets;
 mod dem_dynamic;
 mod dem_fuzz;
+mod dem_moreau;
 mod dem_record;
 mod dem_rest;
 mod extremes;

@@ -155,12 +155,14 @@ impl Grid {
 fn geometric_map(assembly: &Assembly) -> Option<MirrorMap> {
     let (blocks, joints) = (&assembly.blocks, &assembly.joints);
     let tol = tolerance(assembly);
-    if blocks.is_empty() || !(tol > 0.0) {
+    if blocks.is_empty() || tol.is_nan() || tol <= 0.0 {
         return None;
     }
-    let (lo, hi) = blocks.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), b| {
-        (l.min(b.centroid.x), h.max(b.centroid.x))
-    });
+    let (lo, hi) = blocks
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), b| {
+            (l.min(b.centroid.x), h.max(b.centroid.x))
+        });
     let axis = 0.5 * (lo + hi);
     // A quick test first: the centre of gravity of a symmetric assembly lies on the axis.
     let (w, wx) = blocks.iter().fold((0.0, 0.0), |(w, wx), b| {
@@ -286,7 +288,10 @@ mod tests {
             let (j, q) = (&a.joints[k], &a.joints[m]);
             let (i1, i2) = (map.point(j.p1), map.point(j.p2));
             let (q1, q2) = if swapped { (q.p2, q.p1) } else { (q.p1, q.p2) };
-            assert!((i1 - q1).norm() < 1e-12 && (i2 - q2).norm() < 1e-12, "joint {k}");
+            assert!(
+                (i1 - q1).norm() < 1e-12 && (i2 - q2).norm() < 1e-12,
+                "joint {k}"
+            );
             let side = |b: Option<usize>| b.map(|i| map.blocks[i]);
             let mut pair = [side(j.from), side(j.to)];
             pair.sort();

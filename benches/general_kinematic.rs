@@ -144,8 +144,52 @@ fn peak_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// Solve `min q'x` subject to `A x + s = b`, `s` in `cones`, by Clarabel at voussoir's
+/// tolerances with `set` applied to its settings (`PROBE_VERBOSE` prints its log), and print
+/// the status, lambda (column 0), the iterations and the time under `name`.
+fn solve_timed(
+    name: &str,
+    q: &[f64],
+    a: &clarabel::algebra::CscMatrix<f64>,
+    b: &[f64],
+    cones: &[clarabel::solver::SupportedConeT<f64>],
+    set: &dyn Fn(&mut clarabel::solver::DefaultSettings<f64>),
+) {
+    use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
+    let mut s = DefaultSettingsBuilder::default()
+        .verbose(std::env::var("PROBE_VERBOSE").is_ok())
+        .tol_gap_abs(1e-10)
+        .tol_gap_rel(1e-10)
+        .tol_feas(1e-10)
+        .max_iter(200)
+        .build()
+        .expect("settings");
+    set(&mut s);
+    let t = std::time::Instant::now();
+    let p = clarabel::algebra::CscMatrix::zeros((a.n, a.n));
+    let mut solver = DefaultSolver::new(&p, q, a, b, cones, s).expect("Clarabel setup");
+    solver.solve();
+    let sol = &solver.solution;
+    eprintln!(
+        "{name}: {:?} lambda {:.12} after {} iterations, {:.3} s",
+        sol.status,
+        sol.x[0],
+        sol.iterations,
+        t.elapsed().as_secs_f64()
+    );
+}
+
 /// A change to Clarabel's settings.
 type Variant = Box<dyn Fn(&mut clarabel::solver::DefaultSettings<f64>)>;
+
+/// The static program of `m` as `analyse_full` gives it to Clarabel (the action toward +x).
+fn static_program(m: &Model) -> statics::StaticProblem {
+    let objective = statics::Objective::MaxLambda {
+        sign: 1.0,
+        cap: None,
+    };
+    statics::StaticProblem::new(&m.assembly, &m.loads, objective)
+}
 
 /// The KKT matrix Clarabel factors for `p` (upper triangle of `[I A'; A -I]`): its factor's
 /// nonzeros under Clarabel's AMD ordering; then the program solved with Clarabel's settings
@@ -153,15 +197,7 @@ type Variant = Box<dyn Fn(&mut clarabel::solver::DefaultSettings<f64>)>;
 fn probe(m: &Model) {
     use clarabel::algebra::CscMatrix;
     use clarabel::qdldl::{QDLDLFactorisation, QDLDLSettingsBuilder};
-    use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
-    let p = statics::StaticProblem::new(
-        &m.assembly,
-        &m.loads,
-        statics::Objective::MaxLambda {
-            sign: 1.0,
-            cap: None,
-        },
-    );
+    let p = static_program(m);
     let (n, rows) = (p.a.n, p.a.m);
     let mut tr = (Vec::new(), Vec::new(), Vec::new());
     for j in 0..n {
@@ -241,27 +277,7 @@ fn probe(m: &Model) {
         if only.as_deref().is_some_and(|o| o != *name) {
             continue;
         }
-        let mut s = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .tol_gap_abs(1e-10)
-            .tol_gap_rel(1e-10)
-            .tol_feas(1e-10)
-            .max_iter(200)
-            .build()
-            .expect("settings");
-        set(&mut s);
-        let t = std::time::Instant::now();
-        let mut solver =
-            DefaultSolver::new(&p.p, &p.q, &p.a, &p.b, &p.cones, s).expect("Clarabel setup");
-        solver.solve();
-        let sol = &solver.solution;
-        eprintln!(
-            "{name}: {:?} lambda {:.12} after {} iterations, {:.3} s",
-            sol.status,
-            sol.x[0],
-            sol.iterations,
-            t.elapsed().as_secs_f64()
-        );
+        solve_timed(name, &p.q, &p.a, &p.b, &p.cones, set);
     }
     if only.is_some() {
         return;
@@ -274,26 +290,8 @@ fn probe(m: &Model) {
             *v *= k;
         }
         let b: Vec<f64> = p.b.iter().map(|v| v * k).collect();
-        let s = DefaultSettingsBuilder::default()
-            .verbose(std::env::var("PROBE_VERBOSE").is_ok())
-            .tol_gap_abs(1e-10)
-            .tol_gap_rel(1e-10)
-            .tol_feas(1e-10)
-            .max_iter(200)
-            .build()
-            .expect("settings");
-        let t = std::time::Instant::now();
-        let mut solver =
-            DefaultSolver::new(&p.p, &p.q, &a, &b, &p.cones, s).expect("Clarabel setup");
-        solver.solve();
-        let sol = &solver.solution;
-        eprintln!(
-            "force unit / {k}: {:?} lambda {:.12} after {} iterations, {:.3} s",
-            sol.status,
-            sol.x[0],
-            sol.iterations,
-            t.elapsed().as_secs_f64()
-        );
+        let name = format!("force unit / {k}");
+        solve_timed(&name, &p.q, &a, &b, &p.cones, &|_| {});
     }
     {
         // The friction cone by its four extreme rays: (c1, c2, V) = a (1, 0, mu) +
@@ -350,29 +348,7 @@ fn probe(m: &Model) {
             clarabel::solver::SupportedConeT::ZeroConeT(eq),
             clarabel::solver::SupportedConeT::NonnegativeConeT(4 * nj),
         ];
-        {
-            let s = DefaultSettingsBuilder::default()
-                .verbose(std::env::var("PROBE_VERBOSE").is_ok())
-                .tol_gap_abs(1e-10)
-                .tol_gap_rel(1e-10)
-                .tol_feas(1e-10)
-                .max_iter(200)
-                .build()
-                .expect("settings");
-            let t = std::time::Instant::now();
-            let pz = CscMatrix::zeros((nvar, nvar));
-            let mut solver =
-                DefaultSolver::new(&pz, &q, &a, &b, &cones, s).expect("Clarabel setup");
-            solver.solve();
-            let sol = &solver.solution;
-            eprintln!(
-                "rays: {:?} lambda {:.12} after {} iterations, {:.3} s",
-                sol.status,
-                sol.x[0],
-                sol.iterations,
-                t.elapsed().as_secs_f64()
-            );
-        }
+        solve_timed("rays", &q, &a, &b, &cones, &|_| {});
     }
     let t = std::time::Instant::now();
     let st = statics::stands(m, &StaticSettings::default()).expect("phase one");
@@ -484,14 +460,7 @@ fn child(method: &str, n: usize) {
             // The static program exactly as Clarabel receives it, for HiGHS
             // (benches/highs_wall.py): path in VOUSSOIR_EXPORT_MPS.
             let path = std::env::var("VOUSSOIR_EXPORT_MPS").unwrap_or("/tmp/wall.mps".into());
-            let p = statics::StaticProblem::new(
-                &m.assembly,
-                &m.loads,
-                statics::Objective::MaxLambda {
-                    sign: 1.0,
-                    cap: None,
-                },
-            );
+            let p = static_program(&m);
             write_mps(&p, &path).expect("write the MPS file");
             eprintln!("wrote {path}");
             (0.0, None)

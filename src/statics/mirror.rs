@@ -220,30 +220,11 @@ fn geometric_map(assembly: &Assembly) -> Option<MirrorMap> {
 mod tests {
     use super::*;
     use crate::assembly::{Block, BlockKind, Joint, JointKind};
-    use crate::geometry::polygon_area_centroid;
 
-    /// A block from its corners.
+    /// A block from its corners (unit weight 1000 N/m^2).
     fn block(corners: &[(f64, f64)]) -> Block {
-        let polygon: Vec<Vec2> = corners.iter().map(|&(x, y)| Vec2::new(x, y)).collect();
-        let (area, centroid) = polygon_area_centroid(&polygon);
-        Block {
-            polygon,
-            area,
-            centroid,
-            weight: 1000.0 * area,
-            kind: BlockKind::Other,
-        }
-    }
-
-    fn joint(p1: (f64, f64), p2: (f64, f64), from: Option<usize>, to: Option<usize>) -> Joint {
-        Joint {
-            p1: Vec2::new(p1.0, p1.1),
-            p2: Vec2::new(p2.0, p2.1),
-            from,
-            to,
-            friction: 0.6,
-            kind: JointKind::Other,
-        }
+        let polygon = corners.iter().map(|&(x, y)| Vec2::new(x, y)).collect();
+        crate::scene::arcade::rect_block(polygon, 1000.0, BlockKind::Other)
     }
 
     /// Two courses of a running bond between x = 2 and x = 4.4, numbered course by course
@@ -258,20 +239,32 @@ mod tests {
             block(&r(2.6, 3.8, 0.5)),
             block(&r(3.8, 4.4, 0.5)),
         ];
-        let joints = vec![
+        // (p1, p2, from, to), friction 0.6.
+        let ground = None;
+        let joints = [
             // Beds on the ground (normal up: p1 right of p2).
-            joint((3.2, 0.0), (2.0, 0.0), None, Some(0)),
-            joint((4.4, 0.0), (3.2, 0.0), None, Some(1)),
+            ((3.2, 0.0), (2.0, 0.0), ground, Some(0)),
+            ((4.4, 0.0), (3.2, 0.0), ground, Some(1)),
             // Head joints (normal toward +x: p1 below p2).
-            joint((3.2, 0.0), (3.2, 0.5), Some(0), Some(1)),
-            joint((2.6, 0.5), (2.6, 1.0), Some(2), Some(3)),
-            joint((3.8, 0.5), (3.8, 1.0), Some(3), Some(4)),
+            ((3.2, 0.0), (3.2, 0.5), Some(0), Some(1)),
+            ((2.6, 0.5), (2.6, 1.0), Some(2), Some(3)),
+            ((3.8, 0.5), (3.8, 1.0), Some(3), Some(4)),
             // Beds between the courses.
-            joint((2.6, 0.5), (2.0, 0.5), Some(0), Some(2)),
-            joint((3.2, 0.5), (2.6, 0.5), Some(0), Some(3)),
-            joint((3.8, 0.5), (3.2, 0.5), Some(1), Some(3)),
-            joint((4.4, 0.5), (3.8, 0.5), Some(1), Some(4)),
-        ];
+            ((2.6, 0.5), (2.0, 0.5), Some(0), Some(2)),
+            ((3.2, 0.5), (2.6, 0.5), Some(0), Some(3)),
+            ((3.8, 0.5), (3.2, 0.5), Some(1), Some(3)),
+            ((4.4, 0.5), (3.8, 0.5), Some(1), Some(4)),
+        ]
+        .into_iter()
+        .map(|(p1, p2, from, to)| Joint {
+            p1: Vec2::new(p1.0, p1.1),
+            p2: Vec2::new(p2.0, p2.1),
+            from,
+            to,
+            friction: 0.6,
+            kind: JointKind::Other,
+        })
+        .collect();
         Assembly { blocks, joints }
     }
 

@@ -8,7 +8,20 @@
 //! printed beside them, the difference being what the program itself needs.
 //!
 //! Run with `cargo bench --bench general_kinematic` (100 and 1,000 blocks), or
-//! `cargo bench --bench general_kinematic -- 10000` to add the 10,000-block wall.
+//! `cargo bench --bench general_kinematic -- 10000` to add the 10,000-block wall (`static`
+//! among the arguments leaves the general program out). Each row is one program: `static` is
+//! `analyse_full` as it is, `static_before` what it ran before it recognised the wall
+//! (numbered course by course) as its own mirror image: the same program, then the phase-one
+//! program at lambda = 0 (issue 28); CPU time beside the wall time, since the machine is
+//! shared.
+//!
+//! Two diagnostics of the static program (issue 28, docs/performance.md "Large assemblies"):
+//! `VOUSSOIR_BENCH_CHILD=probe:N` prints the size of the KKT matrix Clarabel factors and of its
+//! factor, a factorisation's and a solve's time, and the program solved with Clarabel's
+//! settings varied, the force unit changed and the friction cones written by their extreme
+//! rays (`PROBE_SOLVE=0`: the factor only; `PROBE_ONLY=default`: one variant);
+//! `VOUSSOIR_BENCH_CHILD=export:N` writes the program as an MPS file
+//! (`VOUSSOIR_EXPORT_MPS`, default `/tmp/wall.mps`) for HiGHS (`benches/highs_wall.py`).
 
 mod common;
 use common::median;
@@ -131,6 +144,272 @@ fn peak_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// Solve `min q'x` subject to `A x + s = b`, `s` in `cones`, by Clarabel at voussoir's
+/// tolerances with `set` applied to its settings (`PROBE_VERBOSE` prints its log), and print
+/// the status, lambda (column 0), the iterations and the time under `name`.
+fn solve_timed(
+    name: &str,
+    q: &[f64],
+    a: &clarabel::algebra::CscMatrix<f64>,
+    b: &[f64],
+    cones: &[clarabel::solver::SupportedConeT<f64>],
+    set: &dyn Fn(&mut clarabel::solver::DefaultSettings<f64>),
+) {
+    use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver};
+    let mut s = DefaultSettingsBuilder::default()
+        .verbose(std::env::var("PROBE_VERBOSE").is_ok())
+        .tol_gap_abs(1e-10)
+        .tol_gap_rel(1e-10)
+        .tol_feas(1e-10)
+        .max_iter(200)
+        .build()
+        .expect("settings");
+    set(&mut s);
+    let t = std::time::Instant::now();
+    let p = clarabel::algebra::CscMatrix::zeros((a.n, a.n));
+    let mut solver = DefaultSolver::new(&p, q, a, b, cones, s).expect("Clarabel setup");
+    solver.solve();
+    let sol = &solver.solution;
+    eprintln!(
+        "{name}: {:?} lambda {:.12} after {} iterations, {:.3} s",
+        sol.status,
+        sol.x[0],
+        sol.iterations,
+        t.elapsed().as_secs_f64()
+    );
+}
+
+/// A change to Clarabel's settings.
+type Variant = Box<dyn Fn(&mut clarabel::solver::DefaultSettings<f64>)>;
+
+/// The static program of `m` as `analyse_full` gives it to Clarabel (the action toward +x).
+fn static_program(m: &Model) -> statics::StaticProblem {
+    let objective = statics::Objective::MaxLambda {
+        sign: 1.0,
+        cap: None,
+    };
+    statics::StaticProblem::new(&m.assembly, &m.loads, objective)
+}
+
+/// The KKT matrix Clarabel factors for `p` (upper triangle of `[I A'; A -I]`): its factor's
+/// nonzeros under Clarabel's AMD ordering; then the program solved with Clarabel's settings
+/// varied, and the phase-one program, each timed.
+fn probe(m: &Model) {
+    use clarabel::algebra::CscMatrix;
+    use clarabel::qdldl::{QDLDLFactorisation, QDLDLSettingsBuilder};
+    let p = static_program(m);
+    let (n, rows) = (p.a.n, p.a.m);
+    let mut tr = (Vec::new(), Vec::new(), Vec::new());
+    for j in 0..n {
+        tr.0.push(j);
+        tr.1.push(j);
+        tr.2.push(1.0);
+        for k in p.a.colptr[j]..p.a.colptr[j + 1] {
+            tr.0.push(j);
+            tr.1.push(n + p.a.rowval[k]);
+            tr.2.push(p.a.nzval[k]);
+        }
+    }
+    for i in 0..rows {
+        tr.0.push(n + i);
+        tr.1.push(n + i);
+        tr.2.push(-1.0);
+    }
+    let kkt = CscMatrix::new_from_triplets(n + rows, n + rows, tr.0, tr.1, tr.2);
+    for scale in [1.5, 1e9] {
+        let t = std::time::Instant::now();
+        let opts = QDLDLSettingsBuilder::default()
+            .logical(true)
+            .amd_dense_scale(scale)
+            .build()
+            .expect("settings");
+        let f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
+        eprintln!(
+            "KKT {} x {}, nnz(K) {}, nnz(L) {} (amd dense scale {scale}; {:.3} s)",
+            n + rows,
+            n + rows,
+            f.nnzA(),
+            f.nnzL(),
+            t.elapsed().as_secs_f64()
+        );
+    }
+    {
+        let opts = QDLDLSettingsBuilder::default()
+            .amd_dense_scale(1.5)
+            .Dsigns((0..n + rows).map(|i| if i < n { 1 } else { -1 }).collect())
+            .build()
+            .expect("settings");
+        let t = std::time::Instant::now();
+        let mut f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
+        let t1 = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        for _ in 0..10 {
+            f.refactor().expect("the KKT factor");
+        }
+        let t2 = t.elapsed().as_secs_f64() / 10.0;
+        let mut x = vec![1.0; n + rows];
+        let t = std::time::Instant::now();
+        for _ in 0..10 {
+            f.solve(&mut x);
+        }
+        eprintln!(
+            "numeric: new {t1:.4} s, refactor {t2:.4} s, solve {:.5} s",
+            t.elapsed().as_secs_f64() / 10.0
+        );
+    }
+    if std::env::var("PROBE_SOLVE").is_ok_and(|v| v == "0") {
+        return;
+    }
+    let variants: Vec<(&str, Variant)> = vec![
+        ("default", Box::new(|_| {})),
+        (
+            "no equilibration",
+            Box::new(|s| s.equilibrate_enable = false),
+        ),
+        (
+            "no refinement",
+            Box::new(|s| s.iterative_refinement_enable = false),
+        ),
+        ("no presolve", Box::new(|s| s.presolve_enable = false)),
+    ];
+    let only = std::env::var("PROBE_ONLY").ok();
+    for (name, set) in &variants {
+        if only.as_deref().is_some_and(|o| o != *name) {
+            continue;
+        }
+        solve_timed(name, &p.q, &p.a, &p.b, &p.cones, set);
+    }
+    if only.is_some() {
+        return;
+    }
+    for k in [10.0, 100.0, 1000.0, 10000.0] {
+        // The force unit divided by k: the forces and the right-hand side times k, and the
+        // action's coefficients (lambda's column) too; lambda itself unchanged.
+        let mut a = p.a.clone();
+        for v in &mut a.nzval[a.colptr[0]..a.colptr[1]] {
+            *v *= k;
+        }
+        let b: Vec<f64> = p.b.iter().map(|v| v * k).collect();
+        let name = format!("force unit / {k}");
+        solve_timed(&name, &p.q, &a, &b, &p.cones, &|_| {});
+    }
+    {
+        // The friction cone by its four extreme rays: (c1, c2, V) = a (1, 0, mu) +
+        // b (1, 0, -mu) + c (0, 1, mu) + d (0, 1, -mu), a, b, c, d >= 0; the equilibrium rows
+        // only, and the rays' bounds.
+        let eq = p.equality_rows;
+        let nj = m.assembly.joints.len();
+        let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+        let col_entries = |col: usize| {
+            (p.a.colptr[col]..p.a.colptr[col + 1])
+                .filter(|&k| p.a.rowval[k] < eq)
+                .map(|k| (p.a.rowval[k], p.a.nzval[k]))
+                .collect::<Vec<_>>()
+        };
+        for (row, val) in col_entries(0) {
+            r.push(row);
+            c.push(0);
+            v.push(val);
+        }
+        for j in 0..nj {
+            let mu = m.assembly.joints[j].friction;
+            let (c1, c2, vv) = (
+                col_entries(statics::column(j, 0)),
+                col_entries(statics::column(j, 1)),
+                col_entries(statics::column(j, 2)),
+            );
+            for (ray, (cn, sv)) in [(&c1, mu), (&c1, -mu), (&c2, mu), (&c2, -mu)]
+                .iter()
+                .enumerate()
+            {
+                let col = 1 + 4 * j + ray;
+                for &(row, val) in cn.iter() {
+                    r.push(row);
+                    c.push(col);
+                    v.push(val);
+                }
+                for &(row, val) in vv.iter() {
+                    r.push(row);
+                    c.push(col);
+                    v.push(sv * val);
+                }
+                r.push(eq + 4 * j + ray);
+                c.push(col);
+                v.push(-1.0);
+            }
+        }
+        let nvar = 1 + 4 * nj;
+        let a = CscMatrix::new_from_triplets(eq + 4 * nj, nvar, r, c, v);
+        let mut b = p.b[..eq].to_vec();
+        b.extend(std::iter::repeat_n(0.0, 4 * nj));
+        let mut q = vec![0.0; nvar];
+        q[0] = -1.0;
+        let cones = vec![
+            clarabel::solver::SupportedConeT::ZeroConeT(eq),
+            clarabel::solver::SupportedConeT::NonnegativeConeT(4 * nj),
+        ];
+        solve_timed("rays", &q, &a, &b, &cones, &|_| {});
+    }
+    let t = std::time::Instant::now();
+    let st = statics::stands(m, &StaticSettings::default()).expect("phase one");
+    eprintln!(
+        "phase one: stands {} in {:.3} s",
+        st.stands,
+        t.elapsed().as_secs_f64()
+    );
+}
+
+/// Write `p` (`min q'x` subject to `A x + s = b`, `s` in the zero cone for the equilibrium rows
+/// and in the nonnegative cone for the others, `x` free) as a free-format MPS file: `E` rows
+/// `A x = b`, `L` rows `A x <= b`, every column free. Values in Rust's shortest round-trip form,
+/// so the file holds exactly Clarabel's program. Only for a program without second-order cones.
+fn write_mps(p: &statics::StaticProblem, path: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    assert_eq!(p.cone_rows, 0, "an LP only");
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let m = p.a.m;
+    writeln!(f, "NAME wall\nROWS\n N obj")?;
+    for i in 0..m {
+        let kind = if i < p.equality_rows { 'E' } else { 'L' };
+        writeln!(f, " {kind} r{i}")?;
+    }
+    writeln!(f, "COLUMNS")?;
+    for j in 0..p.a.n {
+        if p.q[j] != 0.0 {
+            writeln!(f, " x{j} obj {:?}", p.q[j])?;
+        }
+        for k in p.a.colptr[j]..p.a.colptr[j + 1] {
+            writeln!(f, " x{j} r{} {:?}", p.a.rowval[k], p.a.nzval[k])?;
+        }
+    }
+    writeln!(f, "RHS")?;
+    for (i, &b) in p.b.iter().enumerate() {
+        if b != 0.0 {
+            writeln!(f, " rhs r{i} {b:?}")?;
+        }
+    }
+    writeln!(f, "BOUNDS")?;
+    for j in 0..p.a.n {
+        writeln!(f, " FR bnd x{j}")?;
+    }
+    writeln!(f, "ENDATA")
+}
+
+/// CPU time of this process so far (s, user and system), from `/proc/self/stat` (ticks of
+/// 1/100 s): on the shared machine it varies less with the load than the wall time.
+fn cpu_s() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // The fields after the command name (which ends with ')'); utime and stime are the
+            // 14th and 15th of the line, the 12th and 13th after it.
+            let rest = s.rsplit_once(')')?.1;
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
+}
+
 /// One measurement in this process: `method` (`build`, `static`, `general`) on the wall of
 /// about `n` blocks; prints `seconds lambda peak_MiB`.
 fn child(method: &str, n: usize) {
@@ -145,10 +424,22 @@ fn child(method: &str, n: usize) {
             median(5, f)
         }
     };
+    let cpu0 = cpu_s();
     let (t, lambda) = match method {
         "static" => timed(&mut || {
             let r = statics::analyse_full(&m, &StaticSettings::default()).ok()?;
             eprintln!("{} after {} iterations", r.solver_status, r.iterations);
+            r.lambda
+        }),
+        // What `analyse_full` did before it recognised the wall as its own mirror image:
+        // the static program, then the phase-one program at lambda = 0.
+        "static_before" => timed(&mut || {
+            let r = statics::analyse_full(&m, &StaticSettings::default()).ok()?;
+            let st = statics::stands(&m, &StaticSettings::default()).ok()?;
+            eprintln!(
+                "{} after {} iterations; stands {}",
+                r.solver_status, r.iterations, st.stands
+            );
             r.lambda
         }),
         "static12" => timed(&mut || {
@@ -161,9 +452,25 @@ fn child(method: &str, n: usize) {
             eprintln!("{}", r.note.as_deref().unwrap_or(""));
             r.lambda_upper
         }),
+        "probe" => {
+            probe(&m);
+            (0.0, None)
+        }
+        "export" => {
+            // The static program exactly as Clarabel receives it, for HiGHS
+            // (benches/highs_wall.py): path in VOUSSOIR_EXPORT_MPS.
+            let path = std::env::var("VOUSSOIR_EXPORT_MPS").unwrap_or("/tmp/wall.mps".into());
+            let p = static_program(&m);
+            write_mps(&p, &path).expect("write the MPS file");
+            eprintln!("wrote {path}");
+            (0.0, None)
+        }
         _ => (0.0, None),
     };
-    println!("{t} {} {}", lambda.unwrap_or(f64::NAN), peak_mib());
+    // CPU time per measured run (the smaller walls run six times: a warm-up and five).
+    let runs = if n >= 10_000 { 1.0 } else { 6.0 };
+    let cpu = (cpu_s() - cpu0) / runs;
+    println!("{t} {} {} {cpu}", lambda.unwrap_or(f64::NAN), peak_mib());
 }
 
 fn main() {
@@ -176,8 +483,13 @@ fn main() {
     if std::env::args().any(|a| a == "10000") {
         sizes.push(10_000);
     }
+    // `static` leaves the general kinematic program out (it is 4 to 8 times slower).
+    let mut methods = vec!["static_before", "static"];
+    if !std::env::args().any(|a| a == "static") {
+        methods.push("general");
+    }
     let exe = std::env::current_exe().expect("this bench");
-    let run = |method: &str, n: usize| -> (f64, f64, f64) {
+    let run = |method: &str, n: usize| -> ([f64; 4], String) {
         let out = std::process::Command::new(&exe)
             .env("VOUSSOIR_BENCH_CHILD", format!("{method}:{n}"))
             .output()
@@ -187,37 +499,36 @@ fn main() {
             .split_whitespace()
             .map(|x| x.parse().unwrap_or(f64::NAN))
             .collect();
+        let note = String::from_utf8_lossy(&out.stderr);
+        let note = note.lines().last().unwrap_or("").to_string();
         match v.as_slice() {
-            [t, l, p] => (*t, *l, *p),
-            _ => panic!(
-                "child {method}:{n}: {text} {}",
-                String::from_utf8_lossy(&out.stderr)
-            ),
+            [t, l, p, c] => ([*t, *l, *p, *c], note),
+            _ => panic!("child {method}:{n}: {text} {note}"),
         }
     };
     println!(
-        "{:>7} {:>7} {:>16} {:>16} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9}",
-        "blocks",
-        "joints",
-        "lambda static",
-        "lambda general",
-        "static s",
-        "general s",
-        "ratio",
-        "model MiB",
-        "static",
-        "general"
+        "{:>7} {:>7} {:>14} {:>16} {:>10} {:>10} {:>9}  solver",
+        "blocks", "joints", "program", "lambda", "wall s", "CPU s", "peak MiB"
     );
     for n in sizes {
         let m = model(n);
-        let (_, _, base) = run("build", n);
-        let (ts, ls, ps) = run("static", n);
-        let (tg, lg, pg) = run("general", n);
+        let ([_, _, base, _], _) = run("build", n);
         println!(
-            "{:>7} {:>7} {ls:>16.12} {lg:>16.12} {ts:>10.4} {tg:>10.4} {:>9.2} {base:>9.1} {ps:>9.1} {pg:>9.1}",
+            "{:>7} {:>7} {:>14} {:>16} {:>10} {:>10} {base:>9.1}",
             m.assembly.blocks.len(),
             m.assembly.joints.len(),
-            tg / ts,
+            "model only",
+            "",
+            "",
+            ""
         );
+        for method in &methods {
+            let ([t, l, p, c], note) = run(method, n);
+            println!(
+                "{:>7} {:>7} {method:>14} {l:>16.12} {t:>10.4} {c:>10.3} {p:>9.1}  {note}",
+                m.assembly.blocks.len(),
+                m.assembly.joints.len(),
+            );
+        }
     }
 }

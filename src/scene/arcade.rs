@@ -350,7 +350,7 @@ pub(super) fn voussoir_block(
     }
 }
 
-pub(super) fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
+pub(crate) fn rect_block(polygon: Vec<Vec2>, gamma: f64, kind: BlockKind) -> Block {
     let (area, centroid) = polygon_area_centroid(&polygon);
     Block {
         polygon,

@@ -15,6 +15,7 @@
 mod chain;
 pub mod design;
 mod friction;
+mod mirror;
 pub mod non_associative;
 mod problem;
 mod settings;
@@ -192,52 +193,23 @@ pub fn analyse_full(
     Ok(result)
 }
 
-/// Whether the assembly is its own mirror image about x = 0 (blocks, weights, joints and
-/// friction), to round-off relative to its size: block i against the mirror of block
-/// n - 1 - i and joint k against the mirror of joint m - 1 - k, as [`Assembly::mirrored`]
-/// numbers them, without building the image (this runs on every self-weight analysis).
-///
-/// [`Assembly::mirrored`]: crate::assembly::Assembly::mirrored
-pub(crate) fn mirror_symmetric(assembly: &crate::assembly::Assembly) -> bool {
-    use crate::geometry::mirror;
-    let (nb, nj) = (assembly.blocks.len(), assembly.joints.len());
-    let tol = 1e-9 * assembly.size();
-    let same = |a: crate::geometry::Vec2, b: crate::geometry::Vec2| (a - b).norm() <= tol;
-    let flip = |b: Option<usize>| b.map(|i| nb - 1 - i);
-    let blocks = &assembly.blocks;
-    let joints = &assembly.joints;
-    (0..nb).all(|i| {
-        let (p, q) = (&blocks[nb - 1 - i], &blocks[i]);
-        same(mirror(p.centroid), q.centroid) && (p.weight - q.weight).abs() <= 1e-9 * q.weight
-    }) && (0..nj).all(|k| {
-        let (p, q) = (&joints[nj - 1 - k], &joints[k]);
-        same(mirror(p.p1), q.p1)
-            && same(mirror(p.p2), q.p2)
-            && flip(p.to) == q.from
-            && flip(p.from) == q.to
-            && (p.friction == q.friction || (p.friction - q.friction).abs() <= 1e-12 * q.friction)
-    })
-}
-
 /// Whether `model` is its own mirror image under self-weight alone, its ties and strips
-/// included: its multipliers toward the right and the left are then the same.
+/// included: its multipliers toward the right and the left are then the same. The blocks and
+/// joints may be numbered in any order (`mirror::mirror_map`).
 pub fn symmetric_self_weight(model: &Model) -> bool {
     model.loads.is_self_weight_only()
         && model.passive.is_empty()
-        && mirror_symmetric(&model.assembly)
-        && interactions_symmetric(model)
+        && mirror::mirror_map(&model.assembly).is_some_and(|m| interactions_symmetric(model, &m))
 }
 
-/// Whether the ties and the strips of `model` (whose assembly is its own mirror image) are
-/// their own mirror image: each one's image (as [`Model::mirrored`] makes it) is another of
-/// them, one for one, with the same capacity and prestress.
-fn interactions_symmetric(model: &Model) -> bool {
-    use crate::geometry::mirror;
+/// Whether the ties and the strips of `model` (whose assembly maps onto its own mirror image
+/// by `map`) are their own mirror image: each one's image is another of them, one for one,
+/// with the same capacity and prestress.
+fn interactions_symmetric(model: &Model, map: &mirror::MirrorMap) -> bool {
     use crate::interaction::Anchor;
-    let (nb, nj) = (model.assembly.blocks.len(), model.assembly.joints.len());
     let tol = 1e-9 * model.assembly.size();
     let image = |a: Anchor, b: Anchor| {
-        a.block.map(|i| nb - 1 - i) == b.block && (mirror(a.point) - b.point).norm() <= tol
+        a.block.map(|i| map.blocks[i]) == b.block && (map.point(a.point) - b.point).norm() <= tol
     };
     let close = |a: f64, b: f64| a == b || (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
     // Greedy one-for-one matching: "is the image of" pairs equal items, so it cannot miss.
@@ -258,7 +230,9 @@ fn interactions_symmetric(model: &Model) -> bool {
                 || (image(t.from, u.to) && image(t.to, u.from)))
     }) && matched(strips.len(), &|i, j| {
         let (s, u) = (&strips[i], &strips[j]);
-        u.joint == nj - 1 - s.joint && u.end == s.end && close(s.capacity, u.capacity)
+        u.joint == map.joints[s.joint].0
+            && u.end == map.end(s.joint, s.end)
+            && close(s.capacity, u.capacity)
     })
 }
 

@@ -751,6 +751,8 @@ pub struct IdaResult {
     /// never reached the threshold and nothing was integrated).
     pub rest_test: RestTest,
     pub integration_starts: Vec<Option<f64>>,
+    /// The time stepping of the runs (`dem.integrator`).
+    pub integrator: crate::dem_settings::Integrator,
 }
 
 /// Scale `ground` up (doubling from 1) until a run collapses, then bisect until the bracket
@@ -791,6 +793,7 @@ pub fn ida_xy(
     let clock = Instant::now();
     ida_runs(
         clock,
+        params.integrator,
         settings,
         tolerance,
         max_scale,
@@ -821,6 +824,7 @@ pub fn ida_input(
     };
     ida_runs(
         clock,
+        params.integrator,
         settings,
         tolerance,
         max_scale,
@@ -845,6 +849,7 @@ fn function_rest(settings: &DynamicSettings) -> RestTest {
 /// history or frames); `rest` is the test asked for, reported as the runs applied it.
 fn ida_runs(
     clock: Instant,
+    integrator: crate::dem_settings::Integrator,
     settings: &DynamicSettings,
     tolerance: f64,
     max_scale: f64,
@@ -874,6 +879,7 @@ fn ida_runs(
         criterion: settings.criterion,
         rest_test: used.unwrap_or(rest),
         integration_starts: starts,
+        integrator,
     })
 }
 

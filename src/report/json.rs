@@ -1293,6 +1293,8 @@ pub struct IdaReport {
     #[serde(flatten)]
     pub rest: RestTestReport,
     pub runs_integration_start_s: Vec<Option<f64>>,
+    /// The time stepping of the runs (`dem.integrator`): `explicit` or `moreau`.
+    pub integrator: crate::dem::Integrator,
 }
 
 impl IdaReport {
@@ -1321,6 +1323,7 @@ impl IdaReport {
             criterion: r.criterion,
             rest: RestTestReport::new(&r.rest_test),
             runs_integration_start_s: r.integration_starts.clone(),
+            integrator: r.integrator,
         }
     }
 }

@@ -155,6 +155,43 @@ fn ida_brackets_the_collapse_scale() {
     );
 }
 
+/// The same IDA through the binary with the rigid-contact stepping (`--set
+/// dem.integrator=moreau`): the JSON names the integrator of the runs (the default names
+/// `explicit`), and the collapse PGA lies within 3 % of Housner's threshold as well.
+#[test]
+fn ida_with_the_moreau_stepping_says_so_and_finds_housners_threshold() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = block_scene(dir.path());
+    let (_, p) = housner();
+    let amplitude = 0.25 * a_min(1.0);
+    let (a, t) = (format!("{amplitude}"), format!("{}", 1.0 / p));
+    let args = [
+        "--pulse",
+        "rect",
+        "--units",
+        "m/s2",
+        "--amplitude",
+        a.as_str(),
+        "--period",
+        t.as_str(),
+        "--ida",
+        "--tolerance",
+        "0.02",
+    ];
+    let explicit = dem_json(&scene, &args);
+    assert_eq!(explicit["integrator"], "explicit", "{explicit}");
+    let mut moreau_args = vec!["--set", "dem.integrator=moreau"];
+    moreau_args.extend(args);
+    let v = dem_json(&scene, &moreau_args);
+    assert_eq!(v["integrator"], "moreau", "{v}");
+    let (lo, hi) = (num(&v, "scale_survives"), num(&v, "scale_collapses"));
+    let (a_lo, a_hi, a) = (lo * amplitude, hi * amplitude, a_min(1.0));
+    assert!(
+        a_hi >= 0.97 * a && a_lo <= 1.03 * a,
+        "Moreau IDA [{a_lo}, {a_hi}] vs a_min {a}"
+    );
+}
+
 /// `--component y`: the pulse acts vertically. A downward ground acceleration of 0.8 g held
 /// for a second leaves the effective gravity at 0.2 g > 0, and nothing pushes sideways: the
 /// block does not move (peak rotation and displacement zero to round-off), whereas the same

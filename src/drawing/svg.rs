@@ -1555,6 +1555,16 @@ fn arrow_svg(tail: Px, tip: Px, colour: RGBColor, width: f64, head: f64) -> Stri
     )
 }
 
+/// The stroke of a tie or a strip: `width` px when it carries something, thin and dashed when
+/// it has no capacity (not needed by a retrofit design).
+fn element_stroke(none: bool, width: f64) -> String {
+    if none {
+        format!("stroke-width=\"1.5\" stroke-dasharray=\"{DASH}\"")
+    } else {
+        format!("stroke-width=\"{width}\"")
+    }
+}
+
 /// The bonded strips: a line along the face through the reinforced ends of the joints each
 /// crosses, and a dot where it has reached its capacity.
 fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
@@ -1580,11 +1590,7 @@ fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
             .iter()
             .filter(|s| s.source == k)
             .all(|s| s.capacity <= 0.0);
-        let stroke = if none {
-            format!("stroke-width=\"1.5\" stroke-dasharray=\"{DASH}\"")
-        } else {
-            "stroke-width=\"4\"".to_string()
-        };
+        let stroke = element_stroke(none, 4.0);
         let line: Vec<String> = pts
             .iter()
             .map(|(_, (x, y))| format!("{x:.1},{y:.1}"))
@@ -1658,11 +1664,7 @@ fn ties_svg(drawing: &Drawing, frame: &Frame) -> String {
         // A tie of no capacity carries nothing (a retrofit design found it not needed): drawn
         // thin and dashed, where it would go, so it is not read as a tie in place.
         let none = t.capacity <= 0.0;
-        let stroke = if none {
-            format!("stroke-width=\"1.5\" stroke-dasharray=\"{DASH}\"")
-        } else {
-            "stroke-width=\"3\"".to_string()
-        };
+        let stroke = element_stroke(none, 3.0);
         text.push_str(&format!(
             "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" {stroke}/>\n",
             a.0,

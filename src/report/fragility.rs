@@ -4,7 +4,7 @@
 use super::assessment::SiteReport;
 use super::document::{Column, Data, Document, Row, Table, Value};
 use crate::drawing::chart::{Chart, Series};
-use crate::fragility::{Capacity, CapacityFragility, DynamicFragility, LognormalFit};
+use crate::fragility::{Capacity, CapacityFragility, DynamicFragility, FitError, LognormalFit};
 use crate::outcome::Direction;
 use crate::scene::uncertain::UncertainInput;
 use crate::scene::Scene;
@@ -37,14 +37,9 @@ pub struct FragilityReport {
     /// `collapses` over every sample and record); null on the capacity route.
     pub records: Option<Vec<String>>,
     pub stripes: Option<Vec<StripeReport>>,
-    /// The fitted lognormal: median (g), dispersion beta, their bounds at `confidence`;
-    /// `null` when no fit exists (`fit_error` says why).
-    pub median: Option<f64>,
-    pub beta: Option<f64>,
-    pub median_bounds: Option<[f64; 2]>,
-    pub beta_bounds: Option<[f64; 2]>,
-    pub confidence: Option<f64>,
-    pub fit_error: Option<String>,
+    /// The fitted lognormal, its fields in this object.
+    #[serde(flatten)]
+    pub fit: FitReport,
     /// Samples with a capacity found, above the search's largest `ag` (2 g), below its
     /// least (0.005 g), and not assessed.
     pub assessed: usize,
@@ -53,6 +48,32 @@ pub struct FragilityReport {
     pub not_assessed: usize,
     /// One row per sample.
     pub samples: Vec<SampleReport>,
+}
+
+/// The fitted lognormal: median (g), dispersion beta, their bounds at `confidence`; `null`
+/// when no fit exists (`fit_error` says why). The same for both routes.
+#[derive(Debug, Serialize)]
+pub struct FitReport {
+    pub median: Option<f64>,
+    pub beta: Option<f64>,
+    pub median_bounds: Option<[f64; 2]>,
+    pub beta_bounds: Option<[f64; 2]>,
+    pub confidence: Option<f64>,
+    pub fit_error: Option<String>,
+}
+
+impl FitReport {
+    fn new(fit: &Result<LognormalFit, FitError>) -> Self {
+        let ok = fit.as_ref().ok();
+        FitReport {
+            median: ok.map(|x| x.median),
+            beta: ok.map(|x| x.beta),
+            median_bounds: ok.map(|x| x.median_bounds),
+            beta_bounds: ok.map(|x| x.beta_bounds),
+            confidence: ok.map(|x| x.confidence),
+            fit_error: fit.as_ref().err().map(|e| e.to_string()),
+        }
+    }
 }
 
 /// One stripe of the dynamic route.
@@ -109,7 +130,6 @@ fn direction_name(d: Direction) -> &'static str {
 
 impl FragilityReport {
     pub fn new(scene: &Scene, f: &CapacityFragility) -> Self {
-        let fit = f.fit.as_ref().ok();
         let count = |p: fn(&Capacity) -> bool| f.samples.iter().filter(|s| p(&s.capacity)).count();
         FragilityReport {
             scene: scene.origin.clone(),
@@ -123,12 +143,7 @@ impl FragilityReport {
             site: Some(SiteReport::new(&f.site)),
             records: None,
             stripes: None,
-            median: fit.map(|x| x.median),
-            beta: fit.map(|x| x.beta),
-            median_bounds: fit.map(|x| x.median_bounds),
-            beta_bounds: fit.map(|x| x.beta_bounds),
-            confidence: fit.map(|x| x.confidence),
-            fit_error: f.fit.as_ref().err().map(|e| e.to_string()),
+            fit: FitReport::new(&f.fit),
             assessed: count(|c| matches!(c, Capacity::At { .. })),
             above_search: count(|c| matches!(c, Capacity::Above)),
             below_search: count(|c| matches!(c, Capacity::Below(_))),
@@ -158,7 +173,6 @@ impl FragilityReport {
 
     /// The dynamic route's object.
     pub fn dynamic(scene: &Scene, f: &DynamicFragility) -> Self {
-        let fit = f.fit.as_ref().ok();
         FragilityReport {
             scene: scene.origin.clone(),
             route: "dynamic",
@@ -180,12 +194,7 @@ impl FragilityReport {
                     })
                     .collect(),
             ),
-            median: fit.map(|x| x.median),
-            beta: fit.map(|x| x.beta),
-            median_bounds: fit.map(|x| x.median_bounds),
-            beta_bounds: fit.map(|x| x.beta_bounds),
-            confidence: fit.map(|x| x.confidence),
-            fit_error: f.fit.as_ref().err().map(|e| e.to_string()),
+            fit: FitReport::new(&f.fit),
             assessed: f.samples.len(),
             above_search: 0,
             below_search: 0,

@@ -690,20 +690,23 @@ pub fn dem_disagreement(
     }
 }
 
-/// The time step of a scene's DEM (s) and the most time steps one run may take (see
+/// The time step of a scene's DEM (s), the most time steps one run may take (see
 /// [`crate::dem::plan`]; `motion`: seconds of ground motion and tail of a dynamic run),
-/// refused above `max_steps` (default [`crate::dem::DEFAULT_MAX_STEPS`]) before anything runs.
+/// refused above `max_steps` (default [`crate::dem::DEFAULT_MAX_STEPS`]) before anything runs,
+/// and the time stepping the runs use (`dem.integrator`).
 pub fn dem_plan(
     scene: &Scene,
     motion: Option<f64>,
     max_steps: Option<u64>,
-) -> Result<(f64, u64), AnalysisError> {
+) -> Result<(f64, u64, crate::dem_settings::Integrator), AnalysisError> {
     let model = crate::scene::build(scene)?;
     let mut params = dem_parameters(scene, &model)?;
     if let Some(n) = max_steps {
         params.max_steps = n;
     }
-    crate::dem::plan(&model, &params, motion).map_err(|e| AnalysisError::Other(e.to_string()))
+    let (dt, steps) = crate::dem::plan(&model, &params, motion)
+        .map_err(|e| AnalysisError::Other(e.to_string()))?;
+    Ok((dt, steps, params.integrator))
 }
 
 /// The static lower bound of the shapes the DEM simulates for `model`, whose own static bound

@@ -345,9 +345,10 @@ fn state_plan(
     scene: &voussoir::scene::Scene,
     motion: Option<f64>,
 ) -> Result<(), Error> {
-    let (dt, steps) = analysis::dem_plan(scene, motion, args.max_steps)?;
+    let (dt, steps, integrator) = analysis::dem_plan(scene, motion, args.max_steps)?;
     eprintln!(
-        "dem: time step {dt:.3e} s, at most {steps} time steps a run (limit {}; --max-steps lifts it); Ctrl-C stops",
+        "dem: {} time stepping (dem.integrator), time step {dt:.3e} s, at most {steps} time steps a run (limit {}; --max-steps lifts it); Ctrl-C stops",
+        integrator.name(),
         args.max_steps.unwrap_or(dem::DEFAULT_MAX_STEPS)
     );
     Ok(())

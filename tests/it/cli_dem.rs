@@ -638,7 +638,8 @@ fn runs_are_planned_and_refused_above_the_step_limit() {
         .success();
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(
-        err.starts_with("dem: time step") && err.contains("time steps a run (limit 50000000"),
+        err.starts_with("dem: explicit time stepping (dem.integrator), time step")
+            && err.contains("time steps a run (limit 50000000"),
         "{err}"
     );
 }

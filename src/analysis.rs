@@ -698,7 +698,7 @@ pub fn dem_plan(
     scene: &Scene,
     motion: Option<f64>,
     max_steps: Option<u64>,
-) -> Result<(f64, u64, crate::dem_settings::Integrator), AnalysisError> {
+) -> Result<(f64, u64, crate::dem::Integrator), AnalysisError> {
     let model = crate::scene::build(scene)?;
     let mut params = dem_parameters(scene, &model)?;
     if let Some(n) = max_steps {

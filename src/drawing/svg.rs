@@ -1199,10 +1199,18 @@ impl LoadMarks {
             };
             groups.entry(key).or_default().push(a);
         }
+        // A point load: one piece, or equal shares at one point on a joint (drawn as one).
+        let point_of = |g: &[&AppliedLoad]| -> Option<(Vec2, Vec2)> {
+            let first = g.first()?;
+            g.iter().all(|a| a.point == first.point).then(|| {
+                let force = g.iter().fold(Vec2::new(0.0, 0.0), |f, a| f + a.force);
+                (first.point, force)
+            })
+        };
         let fmax = groups
             .values()
-            .filter(|g| g.len() == 1)
-            .map(|g| g[0].force.norm())
+            .filter_map(|g| point_of(g))
+            .map(|(_, force)| force.norm())
             .fold(0.0, f64::max);
         let mut points = Vec::new();
         let mut lines = Vec::new();
@@ -1215,13 +1223,13 @@ impl LoadMarks {
             } else {
                 ""
             };
-            if let [a] = g.as_slice() {
-                let f = a.force.norm();
+            if let Some((point, force)) = point_of(g) {
+                let f = force.norm();
                 if f > 0.0 {
                     let len = POINT_LOAD_SHARE * size * (f / fmax).max(0.2);
                     points.push(PointMark {
-                        tail: a.point - a.force * (len / f),
-                        tip: a.point,
+                        tail: point - force * (len / f),
+                        tip: point,
                         label: format!("{times}{} kN", sig(f / 1000.0)),
                         live: !times.is_empty(),
                     });

@@ -7,10 +7,13 @@
 //!
 //! The scene-key contract:
 //! - a point load acts on the block whose outline contains `at` (within the placement's
-//!   tolerance); on a joint, the first such block: in chain order for the arch (left pier from
-//!   its base, the voussoirs from left to right, right pier from its top), in source order for
-//!   the user's blocks. A curved voussoir's outline is its annular piece, a polygon voussoir's
-//!   its quadrilateral (its extrados the chord between its corners);
+//!   tolerance); on a joint (or a corner where several blocks meet), an equal share of it on
+//!   each block that holds the point, so that a structure and its mirror image carry it alike.
+//!   How a load on a joint divides is part of the model, as it was when the whole load went to
+//!   the first block in chain order: a joint with finite friction or one near opening passes
+//!   only so much of a difference on, so another split can give another multiplier. A curved
+//!   voussoir's outline is its annular piece, a polygon voussoir's its quadrilateral (its
+//!   extrados the chord between its corners);
 //! - the roof: over the arch, every extrados edge that faces up (its corners run left to right:
 //!   below the springing line of a horseshoe arch the extrados faces down, and the load above it
 //!   rests on the voussoirs higher up) and, on a portal, the exposed part of each pier top
@@ -239,19 +242,25 @@ impl<'a> Placement<'a> {
         self.tol
     }
 
-    /// The block that holds `p`: the first (chain order for the arch, source order for the
-    /// user's blocks) whose outline contains it within the tolerance.
-    pub(super) fn locate(&self, p: Vec2) -> Option<usize> {
+    /// Every block that holds `p` (within the tolerance), the first in chain order for the arch (left pier
+    /// from its base, the voussoirs from left to right, right pier from its top), in source order
+    /// for the user's blocks:
+    /// one block inside it, two or more on a joint or a corner where blocks meet. A point load
+    /// there is shared equally among them (the module docs), so that a structure and its mirror
+    /// image carry it alike.
+    pub(super) fn holders(&self, p: Vec2) -> Vec<usize> {
         let order = |i: usize| match self.assembly.blocks[i].kind {
             BlockKind::User(s) => s,
             _ => i,
         };
-        (0..self.assembly.blocks.len())
+        let mut found: Vec<usize> = (0..self.assembly.blocks.len())
             .filter(|&i| self.contains(i, p))
-            .min_by_key(|&i| order(i))
+            .collect();
+        found.sort_by_key(|&i| order(i));
+        found
     }
 
-    /// [`Placement::locate`] of each of `points` (a tie's anchors), in one pass over the
+    /// The first of [`Placement::holders`] of each of `points` (a tie's anchors), in one pass over the
     /// blocks, and the lowest y of every block (the structure's base): a block's outline is
     /// tested only for the points inside its bounding box ([`Placement::bounds`]), so a point
     /// costs a box test per block rather than an outline test.
@@ -271,7 +280,7 @@ impl<'a> Placement<'a> {
                     && p.x <= hi.x + pad
                     && p.y >= lo.y - pad
                     && p.y <= hi.y + pad;
-                // The first block of least order that holds it, as `locate`'s `min_by_key`.
+                // The first block of least order that holds it, as `holders` orders them.
                 if in_box && f.is_none_or(|k| order(i) < order(k)) && self.contains(i, p) {
                     *f = Some(i);
                 }
@@ -494,7 +503,7 @@ impl<'a> Placement<'a> {
         law: Law,
         load: Standing,
     ) -> bool {
-        let Some((top, edge)) = self.roof_at(p.x) else {
+        let Some((top, _)) = self.roof_at(p.x) else {
             return false;
         };
         let depth = (p.y - top.y).max(0.0);
@@ -541,10 +550,20 @@ impl<'a> Placement<'a> {
                     }
                 }
             }
-            // No spread (an angle of 0, or no fill between the load and the top).
+            // No spread (an angle of 0, or no fill between the load and the top): on the top
+            // edge under it, or shared equally by the movable blocks whose top edges meet
+            // there (a joint at the top), as a point load on a joint is.
             _ => {
-                if let Some(block) = edge.block {
-                    share(case, block, top, weight);
+                let blocks: Vec<usize> = self
+                    .roof
+                    .iter()
+                    .filter(|e| e.a.x - self.tol <= p.x && p.x <= e.b.x + self.tol)
+                    .filter(|e| (e.at(p.x.clamp(e.a.x, e.b.x)).y - top.y).abs() <= self.tol)
+                    .filter_map(|e| e.block)
+                    .collect();
+                let n = blocks.len() as f64;
+                for block in blocks {
+                    share(case, block, top, weight / n);
                 }
             }
         }
@@ -723,8 +742,15 @@ pub(super) fn place(
             } => {
                 let p = Vec2::new(at[0], at[1]);
                 let force = Vec2::new(force[0], force[1]);
-                if let Some(block) = placement.locate(p) {
-                    case.add(AppliedLoad::point(k, block, p, force, seismic).live(live));
+                let holders = placement.holders(p);
+                if !holders.is_empty() {
+                    // On a joint: an equal share on each block that meets there.
+                    let share = 1.0 / holders.len() as f64;
+                    for block in holders {
+                        case.add(
+                            AppliedLoad::point(k, block, p, force * share, seismic).live(live),
+                        );
+                    }
                     continue;
                 }
                 // Outside every block: a load standing in the fill (up to its road surface)
@@ -1102,7 +1128,7 @@ mod tests {
     use crate::scene::Scene;
 
     /// `locate_all` (a box test first, one pass over the blocks) finds exactly the blocks
-    /// `locate` (every outline tested) finds, for points inside, on and just outside the
+    /// `holders` (every outline tested) finds, for points inside, on and just outside the
     /// outlines (within and past the tolerance, at the corners and the arcs' bulges) of
     /// polygon and curved voussoirs, radial and horizontal joints, piers and user blocks.
     #[test]
@@ -1161,7 +1187,11 @@ mod tests {
                 .fold(f64::INFINITY, |m, p| m.min(p.y));
             assert_eq!(base, lowest);
             for (p, found) in points.iter().zip(&all) {
-                assert_eq!(*found, placement.locate(*p), "{text}: at {p:?}");
+                assert_eq!(
+                    *found,
+                    placement.holders(*p).first().copied(),
+                    "{text}: at {p:?}"
+                );
             }
             assert!(all.iter().any(Option::is_some) && all.iter().any(Option::is_none));
         }

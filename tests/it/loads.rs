@@ -1301,3 +1301,70 @@ fn point_loads_in_curved_voussoirs_with_non_radial_joints_are_mirror_symmetric()
         }
     }
 }
+
+/// A point load on a joint is shared equally by the blocks that meet there, so a structure
+/// and its mirror image carry it alike: on an 8-voussoir semicircle (a joint at the crown)
+/// and a 6-voussoir pointed arch, loads at the extrados and intrados ends of every joint,
+/// and at the crown, give the same multiplier as their mirror images loaded the other way,
+/// by both bounds. Before, the whole load went to the first block in chain order, and the
+/// two differed.
+#[test]
+fn point_loads_on_joints_are_shared_and_mirror_symmetric() {
+    for (shape, n) in [(SEMICIRCLE, 8), (POINTED, 6)] {
+        let base = arch(shape, 0.3, n, false);
+        let model = build(&base);
+        // Both ends of every interior joint of the ring (the springings are supports).
+        let ends: Vec<Vec2> = model
+            .assembly
+            .joints
+            .iter()
+            .filter(|j| j.from.is_some() && j.to.is_some())
+            .flat_map(|j| [j.p1, j.p2])
+            .collect();
+        assert_eq!(ends.len(), 2 * (n - 1), "{shape}");
+        for p in ends {
+            let text = |x: f64| {
+                format!(
+                    "{base}{}",
+                    point_load(Vec2::new(x, p.y), Vec2::new(0.0, -4000.0), true)
+                )
+            };
+            let m = build(&text(p.x));
+            // Two equal halves, one on each block of the joint, at the point itself.
+            let shares: Vec<_> = m
+                .loads
+                .applied()
+                .iter()
+                .filter(|a| a.source == voussoir::model::LoadSource::Load(0))
+                .collect();
+            assert_eq!(shares.len(), 2, "{shape} at {p:?}");
+            assert_ne!(shares[0].block, shares[1].block);
+            for a in &shares {
+                assert!(rel(a.force.y, -2000.0) <= 1e-12, "{shape} at {p:?}: {a:?}");
+                assert!(rel(a.seismic_weight, 2000.0) <= 1e-12);
+                assert_eq!(a.point, p);
+            }
+            let mirror = build(&text(-p.x));
+            for (d, dm) in [
+                (Direction::Right, Direction::Left),
+                (Direction::Left, Direction::Right),
+            ] {
+                let (s, sm) = (statics(&m, d), statics(&mirror, dm));
+                assert_eq!(s.status, sm.status, "{shape} at {p:?}");
+                if let (Some(a), Some(b)) = (s.lambda, sm.lambda) {
+                    assert!(
+                        rel(a, b) <= 1e-9,
+                        "{shape} at {p:?} {d:?}: static {a} vs mirrored {b}"
+                    );
+                }
+                let (k, km) = (kinematics(&m, d), kinematics(&mirror, dm));
+                if let (Some(a), Some(b)) = (k.lambda_upper, km.lambda_upper) {
+                    assert!(
+                        rel(a, b) <= 1e-9,
+                        "{shape} at {p:?} {d:?}: kinematic {a} vs mirrored {b}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -257,6 +257,34 @@ fn probe(m: &Model) {
             t.elapsed().as_secs_f64() / 10.0
         );
     }
+    {
+        // The same matrix under a nested-dissection ordering of the blocks (each joint's
+        // unknowns and rows first, then the blocks' equilibrium rows, separators last).
+        let perm = nested_dissection(m, &p);
+        let t = std::time::Instant::now();
+        let mut opts = QDLDLSettingsBuilder::default()
+            .Dsigns((0..n + rows).map(|i| if i < n { 1 } else { -1 }).collect())
+            .build()
+            .expect("settings");
+        opts.perm = Some(perm.clone());
+        let mut f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
+        let t1 = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        for _ in 0..10 {
+            f.refactor().expect("the KKT factor");
+        }
+        let t2 = t.elapsed().as_secs_f64() / 10.0;
+        eprintln!(
+            "nested dissection: nnz(L) {}, new {t1:.4} s, refactor {t2:.4} s",
+            f.nnzL()
+        );
+        if std::env::var("PROBE_FAER").is_ok() {
+            probe_faer(&kkt, n, Some(&perm));
+        }
+    }
+    if std::env::var("PROBE_FAER").is_ok() {
+        probe_faer(&kkt, n, None);
+    }
     if std::env::var("PROBE_SOLVE").is_ok_and(|v| v == "0") {
         return;
     }
@@ -271,6 +299,46 @@ fn probe(m: &Model) {
             Box::new(|s| s.iterative_refinement_enable = false),
         ),
         ("no presolve", Box::new(|s| s.presolve_enable = false)),
+        ("step 0.995", Box::new(|s| s.max_step_fraction = 0.995)),
+        ("step 0.999", Box::new(|s| s.max_step_fraction = 0.999)),
+        ("step 0.95", Box::new(|s| s.max_step_fraction = 0.95)),
+        (
+            "static reg 1e-10",
+            Box::new(|s| s.static_regularization_constant = 1e-10),
+        ),
+        (
+            "static reg 1e-6",
+            Box::new(|s| s.static_regularization_constant = 1e-6),
+        ),
+        (
+            "refine reltol 1e-10",
+            Box::new(|s| {
+                s.iterative_refinement_reltol = 1e-10;
+                s.iterative_refinement_abstol = 1e-10;
+            }),
+        ),
+        (
+            "refine max 1",
+            Box::new(|s| s.iterative_refinement_max_iter = 1),
+        ),
+        (
+            "equilibrate 50",
+            Box::new(|s| s.equilibrate_max_iter = 50),
+        ),
+        (
+            "faer1",
+            Box::new(|s| {
+                s.direct_solve_method = "faer".into();
+                s.max_threads = 1;
+            }),
+        ),
+        (
+            "faer2",
+            Box::new(|s| {
+                s.direct_solve_method = "faer".into();
+                s.max_threads = 2;
+            }),
+        ),
     ];
     let only = std::env::var("PROBE_ONLY").ok();
     for (name, set) in &variants {
@@ -357,6 +425,234 @@ fn probe(m: &Model) {
         st.stands,
         t.elapsed().as_secs_f64()
     );
+}
+
+/// faer's LDL of `kkt` (upper triangle; the first `n` pivots positive, the others negative):
+/// simplicial and supernodal, AMD ordering, one thread; factor size, flops and times.
+fn probe_faer(kkt: &clarabel::algebra::CscMatrix<f64>, n: usize, order: Option<&[usize]>) {
+    use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+    use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+    use faer::sparse::linalg::cholesky::{
+        factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholeskyRaw,
+        SymmetricOrdering,
+    };
+    use faer::sparse::linalg::SupernodalThreshold;
+    use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+    use faer::{MatMut, Par, Side};
+    let dim = kkt.n;
+    let symb = SymbolicSparseColMatRef::new_checked(dim, dim, &kkt.colptr, None, &kkt.rowval);
+    let a = SparseColMatRef::new(symb, &kkt.nzval);
+    let signs: Vec<i8> = (0..dim).map(|i| if i < n { 1 } else { -1 }).collect();
+    let threads: usize = std::env::var("PROBE_THREADS").ok().and_then(|t| t.parse().ok()).unwrap_or(1);
+    let par = if threads == 1 { Par::Seq } else { Par::rayon(threads) };
+    let perm = order.map(|o| {
+        let mut inv = vec![0usize; dim];
+        for (k, &i) in o.iter().enumerate() {
+            inv[i] = k;
+        }
+        faer::perm::Perm::new_checked(o.to_vec().into_boxed_slice(), inv.into_boxed_slice(), dim)
+    });
+    let label = if order.is_some() { "nested dissection" } else { "AMD" };
+    for (name, thr) in [
+        ("simplicial", SupernodalThreshold::FORCE_SIMPLICIAL),
+        ("supernodal", SupernodalThreshold::FORCE_SUPERNODAL),
+    ] {
+        let t = std::time::Instant::now();
+        let sym = factorize_symbolic_cholesky(
+            symb,
+            Side::Upper,
+            match &perm {
+                Some(p) => SymmetricOrdering::Custom(p.as_ref()),
+                None => SymmetricOrdering::Amd,
+            },
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: thr,
+                ..Default::default()
+            },
+        )
+        .expect("symbolic");
+        let ts = t.elapsed().as_secs_f64();
+        let supernodes = match sym.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                // Flops of the supernodal factor and its largest fronts.
+                let (b, e, rp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
+                let mut flops = 0.0;
+                let mut fronts: Vec<(usize, usize)> = Vec::new();
+                for k in 0..s.n_supernodes() {
+                    let w = e[k] - b[k];
+                    let below = rp[k + 1] - rp[k];
+                    for j in 0..w {
+                        let c = (w - j - 1 + below) as f64;
+                        flops += c * (c + 1.0) / 2.0 + c;
+                    }
+                    fronts.push((w, below));
+                }
+                fronts.sort_by_key(|f| std::cmp::Reverse(f.0 + f.1));
+                let hist = |lo: usize, hi: usize| fronts.iter().filter(|f| f.0 >= lo && f.0 < hi).count();
+                eprintln!(
+                    "supernodal flops {flops:.3e}; largest fronts (width, below) {:?}; widths 1: {}, 2-3: {}, 4-15: {}, 16-63: {}, 64+: {}",
+                    &fronts[..8.min(fronts.len())],
+                    hist(1, 2),
+                    hist(2, 4),
+                    hist(4, 16),
+                    hist(16, 64),
+                    hist(64, usize::MAX)
+                );
+                s.n_supernodes()
+            }
+            SymbolicCholeskyRaw::Simplicial(_) => 0,
+        };
+        let mut vals = vec![0.0; sym.len_val()];
+        let req = StackReq::any_of(&[
+            sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
+            sym.solve_in_place_scratch::<f64>(1, par),
+        ]);
+        let mut work = MemBuffer::new(req);
+        let reg = LdltRegularization {
+            dynamic_regularization_signs: Some(&signs),
+            dynamic_regularization_delta: 2e-7,
+            dynamic_regularization_epsilon: 1e-13,
+        };
+        let reps = 5;
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            sym.factorize_numeric_ldlt(
+                &mut vals,
+                a,
+                Side::Upper,
+                reg,
+                par,
+                MemStack::new(&mut work),
+                Default::default(),
+            )
+            .expect("numeric");
+        }
+        let tf = t.elapsed().as_secs_f64() / reps as f64;
+        let ldlt = LdltRef::new(&sym, &vals);
+        let mut x = vec![1.0; dim];
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            ldlt.solve_in_place_with_conj(
+                faer::Conj::No,
+                MatMut::from_column_major_slice_mut(&mut x, dim, 1),
+                par,
+                MemStack::new(&mut work),
+            );
+        }
+        let tsol = t.elapsed().as_secs_f64() / reps as f64;
+        eprintln!(
+            "faer {name} ({label}): len_val {} supernodes {supernodes}; symbolic {ts:.3} s, factor {tf:.4} s, solve {tsol:.5} s ({threads} threads)",
+            sym.len_val()
+        );
+    }
+}
+
+/// A nested-dissection ordering of the KKT matrix `[I A'; A -I]` of `p` (the wall `m`):
+/// the blocks bisected recursively by the median of their centroids across the longer side,
+/// the blocks of the smaller side that touch the other side being the separator, numbered
+/// after both halves; in the KKT matrix each joint's unknowns and rows come first (they
+/// touch only the two blocks' rows), then the equilibrium rows of the blocks in that order,
+/// the multiplier last. Returns `perm` (new position -> KKT index).
+fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
+    let a = &m.assembly;
+    let nb = a.blocks.len();
+    let mut adj = vec![Vec::new(); nb];
+    for j in &a.joints {
+        if let (Some(f), Some(t)) = (j.from, j.to) {
+            adj[f].push(t);
+            adj[t].push(f);
+        }
+    }
+    let leaf: usize = std::env::var("PROBE_LEAF").ok().and_then(|v| v.parse().ok()).unwrap_or(4);
+    let mut order = Vec::with_capacity(nb);
+    let mut side = vec![0u32; nb];
+    let mut label = 1u32;
+    fn recurse(
+        set: Vec<usize>,
+        a: &voussoir::assembly::Assembly,
+        adj: &[Vec<usize>],
+        side: &mut [u32],
+        label: &mut u32,
+        leaf: usize,
+        order: &mut Vec<usize>,
+    ) {
+        if set.len() <= leaf {
+            order.extend(set);
+            return;
+        }
+        let (mut lo, mut hi) = (Vec2::new(f64::MAX, f64::MAX), Vec2::new(f64::MIN, f64::MIN));
+        for &i in &set {
+            let c = a.blocks[i].centroid;
+            lo = Vec2::new(lo.x.min(c.x), lo.y.min(c.y));
+            hi = Vec2::new(hi.x.max(c.x), hi.y.max(c.y));
+        }
+        let key = |i: usize| {
+            let c = a.blocks[i].centroid;
+            if hi.x - lo.x >= hi.y - lo.y { c.x } else { c.y }
+        };
+        let mut sorted = set.clone();
+        sorted.sort_by(|&i, &j| key(i).total_cmp(&key(j)));
+        let half = sorted.len() / 2;
+        let (left, right) = sorted.split_at(half);
+        let (l, r) = (*label, *label + 1);
+        *label += 2;
+        for &i in left {
+            side[i] = l;
+        }
+        for &i in right {
+            side[i] = r;
+        }
+        let touches = |i: usize, other: u32, side: &[u32]| adj[i].iter().any(|&k| side[k] == other);
+        let sep_l: Vec<usize> = left.iter().copied().filter(|&i| touches(i, r, side)).collect();
+        let sep_r: Vec<usize> = right.iter().copied().filter(|&i| touches(i, l, side)).collect();
+        let (sep, sep_side) = if sep_l.len() <= sep_r.len() { (sep_l, l) } else { (sep_r, r) };
+        let mut in_sep = std::collections::HashSet::new();
+        in_sep.extend(sep.iter().copied());
+        let _ = sep_side;
+        let left: Vec<usize> = left.iter().copied().filter(|i| !in_sep.contains(i)).collect();
+        let right: Vec<usize> = right.iter().copied().filter(|i| !in_sep.contains(i)).collect();
+        for &i in &sep {
+            side[i] = 0;
+        }
+        recurse(left, a, adj, side, label, leaf, order);
+        recurse(right, a, adj, side, label, leaf, order);
+        order.extend(sep);
+    }
+    recurse((0..nb).collect(), a, &adj, &mut side, &mut label, leaf, &mut order);
+    let (n, rows) = (p.a.n, p.a.m);
+    // Rows of A by the joint whose columns they touch (inequality rows), or by block.
+    let joint_of_column = |c: usize| (c >= 1 && c < 1 + 3 * a.joints.len()).then(|| (c - 1) / 3);
+    let mut joint_rows = vec![Vec::new(); a.joints.len()];
+    let mut row_joint = vec![None; rows];
+    for c in 0..n {
+        for k in p.a.colptr[c]..p.a.colptr[c + 1] {
+            let r = p.a.rowval[k];
+            if r >= p.equality_rows && row_joint[r].is_none() {
+                row_joint[r] = joint_of_column(c);
+            }
+        }
+    }
+    for (r, j) in row_joint.iter().enumerate() {
+        if let Some(j) = j {
+            joint_rows[*j].push(r);
+        }
+    }
+    let mut perm = Vec::with_capacity(n + rows);
+    for (j, jr) in joint_rows.iter().enumerate() {
+        perm.extend(jr.iter().map(|r| n + r));
+        perm.extend((0..3).map(|k| statics::column(j, k)));
+    }
+    for &i in &order {
+        perm.extend((0..3).map(|k| n + 3 * i + k));
+    }
+    // Whatever is left (the multiplier, rows of no joint) last.
+    let mut seen = vec![false; n + rows];
+    for &i in &perm {
+        seen[i] = true;
+    }
+    perm.extend((0..n + rows).filter(|&i| !seen[i]));
+    assert_eq!(perm.len(), n + rows);
+    perm
 }
 
 /// Write `p` (`min q'x` subject to `A x + s = b`, `s` in the zero cone for the equilibrium rows

@@ -10,16 +10,20 @@
 //! Run with `cargo bench --bench general_kinematic` (100 and 1,000 blocks), or
 //! `cargo bench --bench general_kinematic -- 10000` to add the 10,000-block wall (`static`
 //! among the arguments leaves the general program out). Each row is one program: `static` is
-//! `analyse_full` as it is, `static_before` what it ran before it recognised the wall
-//! (numbered course by course) as its own mirror image: the same program, then the phase-one
-//! program at lambda = 0 (issue 28); CPU time beside the wall time, since the machine is
-//! shared.
+//! `analyse_full` as it is, `static_refined` the same with Clarabel's iterative refinement
+//! always on (`Refinement::Always`, as before issue 28's item 4: the walls of 1,008 and
+//! 10,050 blocks are solved without it now); `static_before` (asked for by name only) what
+//! it ran before it recognised the wall (numbered course by course) as its own mirror image:
+//! the same program, then the phase-one program at lambda = 0. CPU time beside the wall
+//! time, since the machine is shared.
 //!
 //! Two diagnostics of the static program (issue 28, docs/performance.md "Large assemblies"):
 //! `VOUSSOIR_BENCH_CHILD=probe:N` prints the size of the KKT matrix Clarabel factors and of its
 //! factor, a factorisation's and a solve's time, and the program solved with Clarabel's
 //! settings varied, the force unit changed and the friction cones written by their extreme
-//! rays (`PROBE_SOLVE=0`: the factor only; `PROBE_ONLY=default`: one variant);
+//! rays (`PROBE_SOLVE=0`: the factor only; `PROBE_ONLY=default`: one variant), and the
+//! factor's size and time under a nested-dissection ordering of the blocks (qdldl given the
+//! permutation) beside Clarabel's AMD;
 //! `VOUSSOIR_BENCH_CHILD=export:N` writes the program as an MPS file
 //! (`VOUSSOIR_EXPORT_MPS`, default `/tmp/wall.mps`) for HiGHS (`benches/highs_wall.py`).
 
@@ -278,12 +282,6 @@ fn probe(m: &Model) {
             "nested dissection: nnz(L) {}, new {t1:.4} s, refactor {t2:.4} s",
             f.nnzL()
         );
-        if std::env::var("PROBE_FAER").is_ok() {
-            probe_faer(&kkt, n, Some(&perm));
-        }
-    }
-    if std::env::var("PROBE_FAER").is_ok() {
-        probe_faer(&kkt, n, None);
     }
     if std::env::var("PROBE_SOLVE").is_ok_and(|v| v == "0") {
         return;
@@ -321,24 +319,7 @@ fn probe(m: &Model) {
             "refine max 1",
             Box::new(|s| s.iterative_refinement_max_iter = 1),
         ),
-        (
-            "equilibrate 50",
-            Box::new(|s| s.equilibrate_max_iter = 50),
-        ),
-        (
-            "faer1",
-            Box::new(|s| {
-                s.direct_solve_method = "faer".into();
-                s.max_threads = 1;
-            }),
-        ),
-        (
-            "faer2",
-            Box::new(|s| {
-                s.direct_solve_method = "faer".into();
-                s.max_threads = 2;
-            }),
-        ),
+        ("equilibrate 50", Box::new(|s| s.equilibrate_max_iter = 50)),
     ];
     let only = std::env::var("PROBE_ONLY").ok();
     for (name, set) in &variants {
@@ -427,126 +408,6 @@ fn probe(m: &Model) {
     );
 }
 
-/// faer's LDL of `kkt` (upper triangle; the first `n` pivots positive, the others negative):
-/// simplicial and supernodal, AMD ordering, one thread; factor size, flops and times.
-fn probe_faer(kkt: &clarabel::algebra::CscMatrix<f64>, n: usize, order: Option<&[usize]>) {
-    use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-    use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
-    use faer::sparse::linalg::cholesky::{
-        factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholeskyRaw,
-        SymmetricOrdering,
-    };
-    use faer::sparse::linalg::SupernodalThreshold;
-    use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-    use faer::{MatMut, Par, Side};
-    let dim = kkt.n;
-    let symb = SymbolicSparseColMatRef::new_checked(dim, dim, &kkt.colptr, None, &kkt.rowval);
-    let a = SparseColMatRef::new(symb, &kkt.nzval);
-    let signs: Vec<i8> = (0..dim).map(|i| if i < n { 1 } else { -1 }).collect();
-    let threads: usize = std::env::var("PROBE_THREADS").ok().and_then(|t| t.parse().ok()).unwrap_or(1);
-    let par = if threads == 1 { Par::Seq } else { Par::rayon(threads) };
-    let perm = order.map(|o| {
-        let mut inv = vec![0usize; dim];
-        for (k, &i) in o.iter().enumerate() {
-            inv[i] = k;
-        }
-        faer::perm::Perm::new_checked(o.to_vec().into_boxed_slice(), inv.into_boxed_slice(), dim)
-    });
-    let label = if order.is_some() { "nested dissection" } else { "AMD" };
-    for (name, thr) in [
-        ("simplicial", SupernodalThreshold::FORCE_SIMPLICIAL),
-        ("supernodal", SupernodalThreshold::FORCE_SUPERNODAL),
-    ] {
-        let t = std::time::Instant::now();
-        let sym = factorize_symbolic_cholesky(
-            symb,
-            Side::Upper,
-            match &perm {
-                Some(p) => SymmetricOrdering::Custom(p.as_ref()),
-                None => SymmetricOrdering::Amd,
-            },
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: thr,
-                ..Default::default()
-            },
-        )
-        .expect("symbolic");
-        let ts = t.elapsed().as_secs_f64();
-        let supernodes = match sym.raw() {
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                // Flops of the supernodal factor and its largest fronts.
-                let (b, e, rp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
-                let mut flops = 0.0;
-                let mut fronts: Vec<(usize, usize)> = Vec::new();
-                for k in 0..s.n_supernodes() {
-                    let w = e[k] - b[k];
-                    let below = rp[k + 1] - rp[k];
-                    for j in 0..w {
-                        let c = (w - j - 1 + below) as f64;
-                        flops += c * (c + 1.0) / 2.0 + c;
-                    }
-                    fronts.push((w, below));
-                }
-                fronts.sort_by_key(|f| std::cmp::Reverse(f.0 + f.1));
-                let hist = |lo: usize, hi: usize| fronts.iter().filter(|f| f.0 >= lo && f.0 < hi).count();
-                eprintln!(
-                    "supernodal flops {flops:.3e}; largest fronts (width, below) {:?}; widths 1: {}, 2-3: {}, 4-15: {}, 16-63: {}, 64+: {}",
-                    &fronts[..8.min(fronts.len())],
-                    hist(1, 2),
-                    hist(2, 4),
-                    hist(4, 16),
-                    hist(16, 64),
-                    hist(64, usize::MAX)
-                );
-                s.n_supernodes()
-            }
-            SymbolicCholeskyRaw::Simplicial(_) => 0,
-        };
-        let mut vals = vec![0.0; sym.len_val()];
-        let req = StackReq::any_of(&[
-            sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
-            sym.solve_in_place_scratch::<f64>(1, par),
-        ]);
-        let mut work = MemBuffer::new(req);
-        let reg = LdltRegularization {
-            dynamic_regularization_signs: Some(&signs),
-            dynamic_regularization_delta: 2e-7,
-            dynamic_regularization_epsilon: 1e-13,
-        };
-        let reps = 5;
-        let t = std::time::Instant::now();
-        for _ in 0..reps {
-            sym.factorize_numeric_ldlt(
-                &mut vals,
-                a,
-                Side::Upper,
-                reg,
-                par,
-                MemStack::new(&mut work),
-                Default::default(),
-            )
-            .expect("numeric");
-        }
-        let tf = t.elapsed().as_secs_f64() / reps as f64;
-        let ldlt = LdltRef::new(&sym, &vals);
-        let mut x = vec![1.0; dim];
-        let t = std::time::Instant::now();
-        for _ in 0..reps {
-            ldlt.solve_in_place_with_conj(
-                faer::Conj::No,
-                MatMut::from_column_major_slice_mut(&mut x, dim, 1),
-                par,
-                MemStack::new(&mut work),
-            );
-        }
-        let tsol = t.elapsed().as_secs_f64() / reps as f64;
-        eprintln!(
-            "faer {name} ({label}): len_val {} supernodes {supernodes}; symbolic {ts:.3} s, factor {tf:.4} s, solve {tsol:.5} s ({threads} threads)",
-            sym.len_val()
-        );
-    }
-}
-
 /// A nested-dissection ordering of the KKT matrix `[I A'; A -I]` of `p` (the wall `m`):
 /// the blocks bisected recursively by the median of their centroids across the longer side,
 /// the blocks of the smaller side that touch the other side being the separator, numbered
@@ -563,7 +424,8 @@ fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
             adj[t].push(f);
         }
     }
-    let leaf: usize = std::env::var("PROBE_LEAF").ok().and_then(|v| v.parse().ok()).unwrap_or(4);
+    // Parts of at most this many blocks are not dissected further.
+    let leaf = 4;
     let mut order = Vec::with_capacity(nb);
     let mut side = vec![0u32; nb];
     let mut label = 1u32;
@@ -588,7 +450,11 @@ fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
         }
         let key = |i: usize| {
             let c = a.blocks[i].centroid;
-            if hi.x - lo.x >= hi.y - lo.y { c.x } else { c.y }
+            if hi.x - lo.x >= hi.y - lo.y {
+                c.x
+            } else {
+                c.y
+            }
         };
         let mut sorted = set.clone();
         sorted.sort_by(|&i, &j| key(i).total_cmp(&key(j)));
@@ -603,14 +469,32 @@ fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
             side[i] = r;
         }
         let touches = |i: usize, other: u32, side: &[u32]| adj[i].iter().any(|&k| side[k] == other);
-        let sep_l: Vec<usize> = left.iter().copied().filter(|&i| touches(i, r, side)).collect();
-        let sep_r: Vec<usize> = right.iter().copied().filter(|&i| touches(i, l, side)).collect();
-        let (sep, sep_side) = if sep_l.len() <= sep_r.len() { (sep_l, l) } else { (sep_r, r) };
-        let mut in_sep = std::collections::HashSet::new();
-        in_sep.extend(sep.iter().copied());
-        let _ = sep_side;
-        let left: Vec<usize> = left.iter().copied().filter(|i| !in_sep.contains(i)).collect();
-        let right: Vec<usize> = right.iter().copied().filter(|i| !in_sep.contains(i)).collect();
+        let sep_l: Vec<usize> = left
+            .iter()
+            .copied()
+            .filter(|&i| touches(i, r, side))
+            .collect();
+        let sep_r: Vec<usize> = right
+            .iter()
+            .copied()
+            .filter(|&i| touches(i, l, side))
+            .collect();
+        let sep = if sep_l.len() <= sep_r.len() {
+            sep_l
+        } else {
+            sep_r
+        };
+        let in_sep: std::collections::HashSet<usize> = sep.iter().copied().collect();
+        let left: Vec<usize> = left
+            .iter()
+            .copied()
+            .filter(|i| !in_sep.contains(i))
+            .collect();
+        let right: Vec<usize> = right
+            .iter()
+            .copied()
+            .filter(|i| !in_sep.contains(i))
+            .collect();
         for &i in &sep {
             side[i] = 0;
         }
@@ -618,7 +502,15 @@ fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
         recurse(right, a, adj, side, label, leaf, order);
         order.extend(sep);
     }
-    recurse((0..nb).collect(), a, &adj, &mut side, &mut label, leaf, &mut order);
+    recurse(
+        (0..nb).collect(),
+        a,
+        &adj,
+        &mut side,
+        &mut label,
+        leaf,
+        &mut order,
+    );
     let (n, rows) = (p.a.n, p.a.m);
     // Rows of A by the joint whose columns they touch (inequality rows), or by block.
     let joint_of_column = |c: usize| (c >= 1 && c < 1 + 3 * a.joints.len()).then(|| (c - 1) / 3);
@@ -738,6 +630,15 @@ fn child(method: &str, n: usize) {
             );
             r.lambda
         }),
+        "static_refined" => timed(&mut || {
+            let settings = StaticSettings {
+                refinement: statics::Refinement::Always,
+                ..StaticSettings::default()
+            };
+            let r = statics::analyse_full(&m, &settings).ok()?;
+            eprintln!("{} after {} iterations", r.solver_status, r.iterations);
+            r.lambda
+        }),
         "static12" => timed(&mut || {
             let r = statics::analyse_full(&m, &StaticSettings::default().tolerance(1e-12)).ok()?;
             eprintln!("{} after {} iterations", r.solver_status, r.iterations);
@@ -780,7 +681,10 @@ fn main() {
         sizes.push(10_000);
     }
     // `static` leaves the general kinematic program out (it is 4 to 8 times slower).
-    let mut methods = vec!["static_before", "static"];
+    let mut methods = vec!["static_refined", "static"];
+    if std::env::args().any(|a| a == "static_before") {
+        methods.insert(0, "static_before");
+    }
     if !std::env::args().any(|a| a == "static") {
         methods.push("general");
     }

@@ -28,7 +28,7 @@ pub use non_associative::{
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
-pub use settings::{Program, StaticSettings};
+pub use settings::{Program, Refinement, StaticSettings, LARGE_KKT};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
@@ -452,7 +452,10 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
     )
 }
 
-/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`.
+/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`. A large
+/// program is first solved without iterative refinement ([`Refinement::Auto`]); when that
+/// solve does not end solved or infeasible it is repeated with the refinement, and the
+/// iterations of both are counted.
 fn solve_conic(
     p: &clarabel::algebra::CscMatrix<f64>,
     q: &[f64],
@@ -461,7 +464,34 @@ fn solve_conic(
     cones: &[clarabel::solver::SupportedConeT<f64>],
     s: &StaticSettings,
 ) -> Result<RawSolution, AnalysisError> {
+    let large = a.n + a.m >= LARGE_KKT;
+    if s.refinement == Refinement::Auto && large {
+        let first = clarabel_solve(p, q, a, b, cones, s, false)?;
+        if matches!(
+            first.status,
+            SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
+        ) {
+            return Ok(first);
+        }
+        let mut sol = clarabel_solve(p, q, a, b, cones, s, true)?;
+        sol.iterations += first.iterations;
+        return Ok(sol);
+    }
+    clarabel_solve(p, q, a, b, cones, s, true)
+}
+
+/// One Clarabel solve under `s`, with or without iterative refinement (`refine`).
+fn clarabel_solve(
+    p: &clarabel::algebra::CscMatrix<f64>,
+    q: &[f64],
+    a: &clarabel::algebra::CscMatrix<f64>,
+    b: &[f64],
+    cones: &[clarabel::solver::SupportedConeT<f64>],
+    s: &StaticSettings,
+    refine: bool,
+) -> Result<RawSolution, AnalysisError> {
     let settings = DefaultSettingsBuilder::default()
+        .iterative_refinement_enable(refine)
         .verbose(false)
         .tol_gap_abs(s.tol_gap)
         .tol_gap_rel(s.tol_gap)

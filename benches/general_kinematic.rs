@@ -12,7 +12,8 @@
 //! among the arguments leaves the general program out). Each row is one program: `static` is
 //! `analyse_full` as it is, `static_refined` the same with Clarabel's iterative refinement
 //! always on (`Refinement::Always`, as before issue 28's item 4: the walls of 1,008 and
-//! 10,050 blocks are solved without it now); `static_before` (asked for by name only) what
+//! 10,050 blocks are solved without it now), `general_refined` likewise for the general
+//! program (whose 10,050-block wall is solved without it now); `static_before` (asked for by name only) what
 //! it ran before it recognised the wall (numbered course by course) as its own mirror image:
 //! the same program, then the phase-one program at lambda = 0. CPU time beside the wall
 //! time, since the machine is shared.
@@ -644,6 +645,15 @@ fn child(method: &str, n: usize) {
             eprintln!("{} after {} iterations", r.solver_status, r.iterations);
             r.lambda
         }),
+        "general_refined" => timed(&mut || {
+            let settings = KinematicSettings {
+                refinement: statics::Refinement::Always,
+                ..KinematicSettings::default()
+            };
+            let r = kinematic::analyse_general(&m, &settings).ok()?;
+            eprintln!("{}", r.note.as_deref().unwrap_or(""));
+            r.lambda_upper
+        }),
         "general" => timed(&mut || {
             let r = kinematic::analyse_general(&m, &KinematicSettings::default()).ok()?;
             eprintln!("{}", r.note.as_deref().unwrap_or(""));
@@ -686,7 +696,7 @@ fn main() {
         methods.insert(0, "static_before");
     }
     if !std::env::args().any(|a| a == "static") {
-        methods.push("general");
+        methods.extend(["general_refined", "general"]);
     }
     let exe = std::env::current_exe().expect("this bench");
     let run = |method: &str, n: usize| -> ([f64; 4], String) {

@@ -560,3 +560,40 @@ fn large_programs_without_refinement_keep_the_multiplier() {
     assert_eq!(a.lambda, b.lambda);
     assert_eq!(a.iterations, b.iterations);
 }
+
+/// The general kinematic program of a wall of 1,580 blocks (three unknowns per block, four
+/// rows per joint of finite friction and the normalisation: more than `statics::LARGE_KKT`)
+/// is solved without iterative refinement by default too: its certified multiplier equals the
+/// refined solve's to 1e-9 (relative) and stays above the static (lower) bound.
+#[test]
+fn large_kinematic_programs_without_refinement_keep_the_multiplier() {
+    let model = Model::self_weight(rect_assembly(&running_bond(40, 39, 0.4, 0.2), 0.6));
+    let (nb, nj) = (model.assembly.blocks.len(), model.assembly.joints.len());
+    assert_eq!(nb, 1580);
+    assert!(
+        3 * nb + 4 * nj + 1 >= statics::LARGE_KKT,
+        "{nb} blocks, {nj} joints"
+    );
+    let auto = general(&model, Direction::Right);
+    let refined = kinematic::analyse_general(
+        &model,
+        &KinematicSettings {
+            refinement: statics::Refinement::Always,
+            ..KinematicSettings::default()
+        },
+    )
+    .expect("general kinematic program");
+    let (la, lr) = (
+        auto.lambda_upper.expect("upper bound"),
+        refined.lambda_upper.expect("upper bound"),
+    );
+    assert!(rel(la, lr) <= 1e-9, "without refinement {la}, with {lr}");
+    check_virtual_work(&model, &auto, Direction::Right);
+    let lower = full_static(&model, Direction::Right)
+        .lambda
+        .expect("static bound");
+    assert!(
+        lower <= la * (1.0 + 1e-9),
+        "static {lower} above upper {la}"
+    );
+}

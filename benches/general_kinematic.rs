@@ -238,12 +238,15 @@ fn probe(m: &Model) {
             t.elapsed().as_secs_f64()
         );
     }
-    {
-        let opts = QDLDLSettingsBuilder::default()
+    // qdldl's factor of the KKT matrix under `perm` (None: AMD), the time of its first
+    // factorisation and the average of ten more.
+    let factor = |perm: Option<Vec<usize>>| {
+        let mut opts = QDLDLSettingsBuilder::default()
             .amd_dense_scale(1.5)
             .Dsigns((0..n + rows).map(|i| if i < n { 1 } else { -1 }).collect())
             .build()
             .expect("settings");
+        opts.perm = perm;
         let t = std::time::Instant::now();
         let mut f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
         let t1 = t.elapsed().as_secs_f64();
@@ -251,7 +254,10 @@ fn probe(m: &Model) {
         for _ in 0..10 {
             f.refactor().expect("the KKT factor");
         }
-        let t2 = t.elapsed().as_secs_f64() / 10.0;
+        (f, t1, t.elapsed().as_secs_f64() / 10.0)
+    };
+    {
+        let (mut f, t1, t2) = factor(None);
         let mut x = vec![1.0; n + rows];
         let t = std::time::Instant::now();
         for _ in 0..10 {
@@ -265,20 +271,7 @@ fn probe(m: &Model) {
     {
         // The same matrix under a nested-dissection ordering of the blocks (each joint's
         // unknowns and rows first, then the blocks' equilibrium rows, separators last).
-        let perm = nested_dissection(m, &p);
-        let t = std::time::Instant::now();
-        let mut opts = QDLDLSettingsBuilder::default()
-            .Dsigns((0..n + rows).map(|i| if i < n { 1 } else { -1 }).collect())
-            .build()
-            .expect("settings");
-        opts.perm = Some(perm.clone());
-        let mut f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
-        let t1 = t.elapsed().as_secs_f64();
-        let t = std::time::Instant::now();
-        for _ in 0..10 {
-            f.refactor().expect("the KKT factor");
-        }
-        let t2 = t.elapsed().as_secs_f64() / 10.0;
+        let (f, t1, t2) = factor(Some(nested_dissection(m, &p)));
         eprintln!(
             "nested dissection: nnz(L) {}, new {t1:.4} s, refactor {t2:.4} s",
             f.nnzL()

@@ -464,52 +464,40 @@ fn solve_conic(
     cones: &[clarabel::solver::SupportedConeT<f64>],
     s: &StaticSettings,
 ) -> Result<RawSolution, AnalysisError> {
-    let large = a.n + a.m >= LARGE_KKT;
-    if s.refinement == Refinement::Auto && large {
-        let first = clarabel_solve(p, q, a, b, cones, s, false)?;
-        if matches!(
-            first.status,
-            SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
-        ) {
-            return Ok(first);
-        }
-        let mut sol = clarabel_solve(p, q, a, b, cones, s, true)?;
-        sol.iterations += first.iterations;
-        return Ok(sol);
+    let solve = |refine: bool| -> Result<RawSolution, AnalysisError> {
+        let settings = DefaultSettingsBuilder::default()
+            .iterative_refinement_enable(refine)
+            .verbose(false)
+            .tol_gap_abs(s.tol_gap)
+            .tol_gap_rel(s.tol_gap)
+            .tol_feas(s.tol_feas)
+            .max_iter(s.max_iter)
+            .direct_solve_method(s.linear_solver.clone())
+            .build()
+            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+        let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
+            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+        solver.solve();
+        let sol = &solver.solution;
+        Ok(RawSolution {
+            status: sol.status,
+            x: sol.x.clone(),
+            z: sol.z.clone(),
+            iterations: sol.iterations,
+        })
+    };
+    let plain = s.refinement == Refinement::Auto && a.n + a.m >= LARGE_KKT;
+    let first = solve(!plain)?;
+    let settled = matches!(
+        first.status,
+        SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
+    );
+    if !plain || settled {
+        return Ok(first);
     }
-    clarabel_solve(p, q, a, b, cones, s, true)
-}
-
-/// One Clarabel solve under `s`, with or without iterative refinement (`refine`).
-fn clarabel_solve(
-    p: &clarabel::algebra::CscMatrix<f64>,
-    q: &[f64],
-    a: &clarabel::algebra::CscMatrix<f64>,
-    b: &[f64],
-    cones: &[clarabel::solver::SupportedConeT<f64>],
-    s: &StaticSettings,
-    refine: bool,
-) -> Result<RawSolution, AnalysisError> {
-    let settings = DefaultSettingsBuilder::default()
-        .iterative_refinement_enable(refine)
-        .verbose(false)
-        .tol_gap_abs(s.tol_gap)
-        .tol_gap_rel(s.tol_gap)
-        .tol_feas(s.tol_feas)
-        .max_iter(s.max_iter)
-        .direct_solve_method(s.linear_solver.clone())
-        .build()
-        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-    let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
-        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-    solver.solve();
-    let sol = &solver.solution;
-    Ok(RawSolution {
-        status: sol.status,
-        x: sol.x.clone(),
-        z: sol.z.clone(),
-        iterations: sol.iterations,
-    })
+    let mut sol = solve(true)?;
+    sol.iterations += first.iterations;
+    Ok(sol)
 }
 
 fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointForce> {

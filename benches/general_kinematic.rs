@@ -10,16 +10,21 @@
 //! Run with `cargo bench --bench general_kinematic` (100 and 1,000 blocks), or
 //! `cargo bench --bench general_kinematic -- 10000` to add the 10,000-block wall (`static`
 //! among the arguments leaves the general program out). Each row is one program: `static` is
-//! `analyse_full` as it is, `static_before` what it ran before it recognised the wall
-//! (numbered course by course) as its own mirror image: the same program, then the phase-one
-//! program at lambda = 0 (issue 28); CPU time beside the wall time, since the machine is
-//! shared.
+//! `analyse_full` as it is, `static_refined` the same with Clarabel's iterative refinement
+//! always on (`Refinement::Always`, as before issue 28's item 4: the walls of 1,008 and
+//! 10,050 blocks are solved without it now), `general_refined` likewise for the general
+//! program (whose 10,050-block wall is solved without it now); `static_before` (asked for by name only) what
+//! it ran before it recognised the wall (numbered course by course) as its own mirror image:
+//! the same program, then the phase-one program at lambda = 0. CPU time beside the wall
+//! time, since the machine is shared.
 //!
 //! Two diagnostics of the static program (issue 28, docs/performance.md "Large assemblies"):
 //! `VOUSSOIR_BENCH_CHILD=probe:N` prints the size of the KKT matrix Clarabel factors and of its
 //! factor, a factorisation's and a solve's time, and the program solved with Clarabel's
 //! settings varied, the force unit changed and the friction cones written by their extreme
-//! rays (`PROBE_SOLVE=0`: the factor only; `PROBE_ONLY=default`: one variant);
+//! rays (`PROBE_SOLVE=0`: the factor only; `PROBE_ONLY=default`: one variant), and the
+//! factor's size and time under a nested-dissection ordering of the blocks (qdldl given the
+//! permutation) beside Clarabel's AMD;
 //! `VOUSSOIR_BENCH_CHILD=export:N` writes the program as an MPS file
 //! (`VOUSSOIR_EXPORT_MPS`, default `/tmp/wall.mps`) for HiGHS (`benches/highs_wall.py`).
 
@@ -233,12 +238,15 @@ fn probe(m: &Model) {
             t.elapsed().as_secs_f64()
         );
     }
-    {
-        let opts = QDLDLSettingsBuilder::default()
+    // qdldl's factor of the KKT matrix under `perm` (None: AMD), the time of its first
+    // factorisation and the average of ten more.
+    let factor = |perm: Option<Vec<usize>>| {
+        let mut opts = QDLDLSettingsBuilder::default()
             .amd_dense_scale(1.5)
             .Dsigns((0..n + rows).map(|i| if i < n { 1 } else { -1 }).collect())
             .build()
             .expect("settings");
+        opts.perm = perm;
         let t = std::time::Instant::now();
         let mut f = QDLDLFactorisation::<f64>::new(&kkt, Some(opts)).expect("the KKT factor");
         let t1 = t.elapsed().as_secs_f64();
@@ -246,7 +254,10 @@ fn probe(m: &Model) {
         for _ in 0..10 {
             f.refactor().expect("the KKT factor");
         }
-        let t2 = t.elapsed().as_secs_f64() / 10.0;
+        (f, t1, t.elapsed().as_secs_f64() / 10.0)
+    };
+    {
+        let (mut f, t1, t2) = factor(None);
         let mut x = vec![1.0; n + rows];
         let t = std::time::Instant::now();
         for _ in 0..10 {
@@ -255,6 +266,15 @@ fn probe(m: &Model) {
         eprintln!(
             "numeric: new {t1:.4} s, refactor {t2:.4} s, solve {:.5} s",
             t.elapsed().as_secs_f64() / 10.0
+        );
+    }
+    {
+        // The same matrix under a nested-dissection ordering of the blocks (each joint's
+        // unknowns and rows first, then the blocks' equilibrium rows, separators last).
+        let (f, t1, t2) = factor(Some(nested_dissection(m, &p)));
+        eprintln!(
+            "nested dissection: nnz(L) {}, new {t1:.4} s, refactor {t2:.4} s",
+            f.nnzL()
         );
     }
     if std::env::var("PROBE_SOLVE").is_ok_and(|v| v == "0") {
@@ -271,6 +291,29 @@ fn probe(m: &Model) {
             Box::new(|s| s.iterative_refinement_enable = false),
         ),
         ("no presolve", Box::new(|s| s.presolve_enable = false)),
+        ("step 0.995", Box::new(|s| s.max_step_fraction = 0.995)),
+        ("step 0.999", Box::new(|s| s.max_step_fraction = 0.999)),
+        ("step 0.95", Box::new(|s| s.max_step_fraction = 0.95)),
+        (
+            "static reg 1e-10",
+            Box::new(|s| s.static_regularization_constant = 1e-10),
+        ),
+        (
+            "static reg 1e-6",
+            Box::new(|s| s.static_regularization_constant = 1e-6),
+        ),
+        (
+            "refine reltol 1e-10",
+            Box::new(|s| {
+                s.iterative_refinement_reltol = 1e-10;
+                s.iterative_refinement_abstol = 1e-10;
+            }),
+        ),
+        (
+            "refine max 1",
+            Box::new(|s| s.iterative_refinement_max_iter = 1),
+        ),
+        ("equilibrate 50", Box::new(|s| s.equilibrate_max_iter = 50)),
     ];
     let only = std::env::var("PROBE_ONLY").ok();
     for (name, set) in &variants {
@@ -359,6 +402,145 @@ fn probe(m: &Model) {
     );
 }
 
+/// A nested-dissection ordering of the KKT matrix `[I A'; A -I]` of `p` (the wall `m`):
+/// the blocks bisected recursively by the median of their centroids across the longer side,
+/// the blocks of the smaller side that touch the other side being the separator, numbered
+/// after both halves; in the KKT matrix each joint's unknowns and rows come first (they
+/// touch only the two blocks' rows), then the equilibrium rows of the blocks in that order,
+/// the multiplier last. Returns `perm` (new position -> KKT index).
+fn nested_dissection(m: &Model, p: &statics::StaticProblem) -> Vec<usize> {
+    let a = &m.assembly;
+    let nb = a.blocks.len();
+    let mut adj = vec![Vec::new(); nb];
+    for j in &a.joints {
+        if let (Some(f), Some(t)) = (j.from, j.to) {
+            adj[f].push(t);
+            adj[t].push(f);
+        }
+    }
+    // Parts of at most this many blocks are not dissected further.
+    let leaf = 4;
+    let mut order = Vec::with_capacity(nb);
+    let mut side = vec![0u32; nb];
+    let mut label = 1u32;
+    fn recurse(
+        set: Vec<usize>,
+        a: &voussoir::assembly::Assembly,
+        adj: &[Vec<usize>],
+        side: &mut [u32],
+        label: &mut u32,
+        leaf: usize,
+        order: &mut Vec<usize>,
+    ) {
+        if set.len() <= leaf {
+            order.extend(set);
+            return;
+        }
+        let (mut lo, mut hi) = (Vec2::new(f64::MAX, f64::MAX), Vec2::new(f64::MIN, f64::MIN));
+        for &i in &set {
+            let c = a.blocks[i].centroid;
+            lo = Vec2::new(lo.x.min(c.x), lo.y.min(c.y));
+            hi = Vec2::new(hi.x.max(c.x), hi.y.max(c.y));
+        }
+        let key = |i: usize| {
+            let c = a.blocks[i].centroid;
+            if hi.x - lo.x >= hi.y - lo.y {
+                c.x
+            } else {
+                c.y
+            }
+        };
+        let mut sorted = set.clone();
+        sorted.sort_by(|&i, &j| key(i).total_cmp(&key(j)));
+        let half = sorted.len() / 2;
+        let (left, right) = sorted.split_at(half);
+        let (l, r) = (*label, *label + 1);
+        *label += 2;
+        for &i in left {
+            side[i] = l;
+        }
+        for &i in right {
+            side[i] = r;
+        }
+        let touches = |i: usize, other: u32, side: &[u32]| adj[i].iter().any(|&k| side[k] == other);
+        let sep_l: Vec<usize> = left
+            .iter()
+            .copied()
+            .filter(|&i| touches(i, r, side))
+            .collect();
+        let sep_r: Vec<usize> = right
+            .iter()
+            .copied()
+            .filter(|&i| touches(i, l, side))
+            .collect();
+        let sep = if sep_l.len() <= sep_r.len() {
+            sep_l
+        } else {
+            sep_r
+        };
+        let in_sep: std::collections::HashSet<usize> = sep.iter().copied().collect();
+        let left: Vec<usize> = left
+            .iter()
+            .copied()
+            .filter(|i| !in_sep.contains(i))
+            .collect();
+        let right: Vec<usize> = right
+            .iter()
+            .copied()
+            .filter(|i| !in_sep.contains(i))
+            .collect();
+        for &i in &sep {
+            side[i] = 0;
+        }
+        recurse(left, a, adj, side, label, leaf, order);
+        recurse(right, a, adj, side, label, leaf, order);
+        order.extend(sep);
+    }
+    recurse(
+        (0..nb).collect(),
+        a,
+        &adj,
+        &mut side,
+        &mut label,
+        leaf,
+        &mut order,
+    );
+    let (n, rows) = (p.a.n, p.a.m);
+    // Rows of A by the joint whose columns they touch (inequality rows), or by block.
+    let joint_of_column = |c: usize| (c >= 1 && c < 1 + 3 * a.joints.len()).then(|| (c - 1) / 3);
+    let mut joint_rows = vec![Vec::new(); a.joints.len()];
+    let mut row_joint = vec![None; rows];
+    for c in 0..n {
+        for k in p.a.colptr[c]..p.a.colptr[c + 1] {
+            let r = p.a.rowval[k];
+            if r >= p.equality_rows && row_joint[r].is_none() {
+                row_joint[r] = joint_of_column(c);
+            }
+        }
+    }
+    for (r, j) in row_joint.iter().enumerate() {
+        if let Some(j) = j {
+            joint_rows[*j].push(r);
+        }
+    }
+    let mut perm = Vec::with_capacity(n + rows);
+    for (j, jr) in joint_rows.iter().enumerate() {
+        perm.extend(jr.iter().map(|r| n + r));
+        perm.extend((0..3).map(|k| statics::column(j, k)));
+    }
+    for &i in &order {
+        perm.extend((0..3).map(|k| n + 3 * i + k));
+    }
+    // Whatever is left (the multiplier, rows of no joint) last.
+    let mut seen = vec![false; n + rows];
+    for &i in &perm {
+        seen[i] = true;
+    }
+    perm.extend((0..n + rows).filter(|&i| !seen[i]));
+    assert_eq!(perm.len(), n + rows);
+    perm
+}
+
 /// Write `p` (`min q'x` subject to `A x + s = b`, `s` in the zero cone for the equilibrium rows
 /// and in the nonnegative cone for the others, `x` free) as a free-format MPS file: `E` rows
 /// `A x = b`, `L` rows `A x <= b`, every column free. Values in Rust's shortest round-trip form,
@@ -442,10 +624,28 @@ fn child(method: &str, n: usize) {
             );
             r.lambda
         }),
+        "static_refined" => timed(&mut || {
+            let settings = StaticSettings {
+                refinement: statics::Refinement::Always,
+                ..StaticSettings::default()
+            };
+            let r = statics::analyse_full(&m, &settings).ok()?;
+            eprintln!("{} after {} iterations", r.solver_status, r.iterations);
+            r.lambda
+        }),
         "static12" => timed(&mut || {
             let r = statics::analyse_full(&m, &StaticSettings::default().tolerance(1e-12)).ok()?;
             eprintln!("{} after {} iterations", r.solver_status, r.iterations);
             r.lambda
+        }),
+        "general_refined" => timed(&mut || {
+            let settings = KinematicSettings {
+                refinement: statics::Refinement::Always,
+                ..KinematicSettings::default()
+            };
+            let r = kinematic::analyse_general(&m, &settings).ok()?;
+            eprintln!("{}", r.note.as_deref().unwrap_or(""));
+            r.lambda_upper
         }),
         "general" => timed(&mut || {
             let r = kinematic::analyse_general(&m, &KinematicSettings::default()).ok()?;
@@ -484,9 +684,12 @@ fn main() {
         sizes.push(10_000);
     }
     // `static` leaves the general kinematic program out (it is 4 to 8 times slower).
-    let mut methods = vec!["static_before", "static"];
+    let mut methods = vec!["static_refined", "static"];
+    if std::env::args().any(|a| a == "static_before") {
+        methods.insert(0, "static_before");
+    }
     if !std::env::args().any(|a| a == "static") {
-        methods.push("general");
+        methods.extend(["general_refined", "general"]);
     }
     let exe = std::env::current_exe().expect("this bench");
     let run = |method: &str, n: usize| -> ([f64; 4], String) {

@@ -508,6 +508,7 @@ fn refine_row(
             direction: settings.direction,
             max_joints: settings.kinematic_max_joints,
             parallel: false,
+            ..KinematicSettings::default()
         };
         let clock = Instant::now();
         let k = kinematic::analyse(&model, &ks);

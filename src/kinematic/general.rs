@@ -83,9 +83,10 @@ use super::{Mechanism, Search, Status, Sums, Twist};
 use crate::assembly::{Assembly, JointEnd};
 use crate::geometry::{cross, Vec2};
 use crate::model::Model;
+use crate::statics::{Refinement, LARGE_KKT};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+    DefaultSettingsBuilder, DefaultSolution, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
 use std::time::Instant;
 
@@ -325,22 +326,25 @@ impl Program {
         }
     }
 
-    /// Solve; the twists `[omega, vx0, vy0]` about the origin of each block.
-    fn solve(&self, model: &Model) -> Result<Solved, KinematicError> {
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .tol_gap_abs(SOLVER_TOL)
-            .tol_gap_rel(SOLVER_TOL)
-            .tol_feas(SOLVER_TOL)
-            .max_iter(200)
-            .build()
-            .map_err(|e| KinematicError::General(e.to_string()))?;
-        let n = self.q.len();
-        let p = CscMatrix::zeros((n, n));
-        let mut solver = DefaultSolver::new(&p, &self.q, &self.a, &self.b, &self.cones, settings)
-            .map_err(|e| KinematicError::General(e.to_string()))?;
-        solver.solve();
-        let sol = &solver.solution;
+    /// Solve; the twists `[omega, vx0, vy0]` about the origin of each block. A large program
+    /// is solved without Clarabel's iterative refinement first, as the static one
+    /// (`statics::Refinement`), and again with it when that solve does not end solved or
+    /// infeasible (the iterations of both counted).
+    fn solve(&self, model: &Model, refinement: Refinement) -> Result<Solved, KinematicError> {
+        let plain = refinement == Refinement::Auto && self.a.n + self.a.m >= LARGE_KKT;
+        let mut sol = self.clarabel(!plain)?;
+        if plain
+            && !matches!(
+                sol.status,
+                SolverStatus::Solved
+                    | SolverStatus::PrimalInfeasible
+                    | SolverStatus::DualInfeasible
+            )
+        {
+            let first = sol.iterations;
+            sol = self.clarabel(true)?;
+            sol.iterations += first;
+        }
         let twists = |x: &[f64]| -> Vec<Twist> {
             (0..model.assembly.blocks.len())
                 .map(|i| {
@@ -381,6 +385,25 @@ impl Program {
                 sol.iterations
             ))),
         }
+    }
+
+    /// One Clarabel solve of the program, with or without iterative refinement (`refine`).
+    fn clarabel(&self, refine: bool) -> Result<DefaultSolution<f64>, KinematicError> {
+        let settings = DefaultSettingsBuilder::default()
+            .iterative_refinement_enable(refine)
+            .verbose(false)
+            .tol_gap_abs(SOLVER_TOL)
+            .tol_gap_rel(SOLVER_TOL)
+            .tol_feas(SOLVER_TOL)
+            .max_iter(200)
+            .build()
+            .map_err(|e| KinematicError::General(e.to_string()))?;
+        let n = self.q.len();
+        let p = CscMatrix::zeros((n, n));
+        let mut solver = DefaultSolver::new(&p, &self.q, &self.a, &self.b, &self.cones, settings)
+            .map_err(|e| KinematicError::General(e.to_string()))?;
+        solver.solve();
+        Ok(solver.solution)
     }
 }
 
@@ -588,7 +611,7 @@ pub(crate) fn least_mechanism(
         }
         Ok((c.twists, (g + d) / a))
     };
-    match Program::new(model, sign, 1.0).solve(model)? {
+    match Program::new(model, sign, 1.0).solve(model, Refinement::Auto)? {
         Solved::Optimal { twists, .. } => {
             let (twists, lambda) = certified(twists)?;
             if !one {
@@ -596,7 +619,7 @@ pub(crate) fn least_mechanism(
             }
             // Best effort: a vertex that fails its certificate (the perturbed program is
             // solved less accurately on a badly scaled assembly) leaves the blend.
-            match Program::sparse(model, sign, 1.0, SPARSITY).solve(model) {
+            match Program::sparse(model, sign, 1.0, SPARSITY).solve(model, Refinement::Auto) {
                 Ok(Solved::Optimal { twists: t, .. }) => match certified(t) {
                     Ok((t, _)) => Ok(Least::Mechanism(t, lambda)),
                     Err(_) => Ok(Least::Mechanism(twists, lambda)),
@@ -626,7 +649,7 @@ pub fn analyse_general(
     model.validate()?;
     let sign = settings.direction.sign();
     let assembly = &model.assembly;
-    let upper = Program::new(model, sign, 1.0).solve(model)?;
+    let upper = Program::new(model, sign, 1.0).solve(model, settings.refinement)?;
     if let Solved::Unbounded = upper {
         return Ok(cannot_stand(model, settings, start, 1));
     }
@@ -637,7 +660,7 @@ pub fn analyse_general(
     let lower = if symmetric {
         Solved::Infeasible
     } else {
-        Program::new(model, sign, -1.0).solve(model)?
+        Program::new(model, sign, -1.0).solve(model, settings.refinement)?
     };
     let programs: u64 = if symmetric { 1 } else { 2 };
     let mut iterations = 0;

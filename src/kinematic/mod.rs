@@ -165,6 +165,11 @@ pub struct KinematicSettings {
     pub max_joints: usize,
     /// Use rayon threads. Default true.
     pub parallel: bool,
+    /// Clarabel's iterative refinement in the general kinematic program, as in the static one
+    /// ([`crate::statics::Refinement`]). Default `Auto`: off from
+    /// [`crate::statics::LARGE_KKT`] rows of its KKT matrix, the solve repeated with it when
+    /// the first does not end solved or infeasible.
+    pub refinement: crate::statics::Refinement,
 }
 
 impl Default for KinematicSettings {
@@ -173,6 +178,7 @@ impl Default for KinematicSettings {
             direction: Direction::Right,
             max_joints: 600,
             parallel: true,
+            refinement: crate::statics::Refinement::Auto,
         }
     }
 }

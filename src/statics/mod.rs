@@ -28,7 +28,7 @@ pub use non_associative::{
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};
 pub use problem::{column, Objective, StaticProblem};
-pub use settings::{Program, StaticSettings};
+pub use settings::{Program, Refinement, StaticSettings, LARGE_KKT};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
@@ -452,7 +452,10 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
     )
 }
 
-/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`.
+/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`. A large
+/// program is first solved without iterative refinement ([`Refinement::Auto`]); when that
+/// solve does not end solved or infeasible it is repeated with the refinement, and the
+/// iterations of both are counted.
 fn solve_conic(
     p: &clarabel::algebra::CscMatrix<f64>,
     q: &[f64],
@@ -461,25 +464,40 @@ fn solve_conic(
     cones: &[clarabel::solver::SupportedConeT<f64>],
     s: &StaticSettings,
 ) -> Result<RawSolution, AnalysisError> {
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(s.tol_gap)
-        .tol_gap_rel(s.tol_gap)
-        .tol_feas(s.tol_feas)
-        .max_iter(s.max_iter)
-        .direct_solve_method(s.linear_solver.clone())
-        .build()
-        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-    let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
-        .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-    solver.solve();
-    let sol = &solver.solution;
-    Ok(RawSolution {
-        status: sol.status,
-        x: sol.x.clone(),
-        z: sol.z.clone(),
-        iterations: sol.iterations,
-    })
+    let solve = |refine: bool| -> Result<RawSolution, AnalysisError> {
+        let settings = DefaultSettingsBuilder::default()
+            .iterative_refinement_enable(refine)
+            .verbose(false)
+            .tol_gap_abs(s.tol_gap)
+            .tol_gap_rel(s.tol_gap)
+            .tol_feas(s.tol_feas)
+            .max_iter(s.max_iter)
+            .direct_solve_method(s.linear_solver.clone())
+            .build()
+            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+        let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
+            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
+        solver.solve();
+        let sol = &solver.solution;
+        Ok(RawSolution {
+            status: sol.status,
+            x: sol.x.clone(),
+            z: sol.z.clone(),
+            iterations: sol.iterations,
+        })
+    };
+    let plain = s.refinement == Refinement::Auto && a.n + a.m >= LARGE_KKT;
+    let first = solve(!plain)?;
+    let settled = matches!(
+        first.status,
+        SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
+    );
+    if !plain || settled {
+        return Ok(first);
+    }
+    let mut sol = solve(true)?;
+    sol.iterations += first.iterations;
+    Ok(sol)
 }
 
 fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointForce> {

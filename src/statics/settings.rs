@@ -46,7 +46,31 @@ pub struct StaticSettings {
     /// all joints when it does not finish. Default true; false solves the chain program with
     /// the cones of every joint directly (as before issue 28, for cross-checks).
     pub working_set: bool,
+    /// Clarabel's iterative refinement of each KKT solve. Default [`Refinement::Auto`].
+    pub refinement: Refinement,
 }
+
+/// When Clarabel refines its KKT solves (docs/performance.md, "Large assemblies").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Refinement {
+    /// Off for a program whose KKT matrix (variables plus constraints) has at least
+    /// [`LARGE_KKT`] rows, with the solve repeated with it on when the first does not end
+    /// solved or infeasible; on (Clarabel's default) below. The refinement only polishes the
+    /// search directions: the stopping tests, and so the accuracy of the answer, are the same
+    /// either way; on the running-bond walls of 1,008 and 10,050 blocks it was 29 to 39 % of
+    /// the CPU time.
+    #[default]
+    Auto,
+    /// Always on (Clarabel's default; every program as before issue 28's item 4).
+    Always,
+}
+
+/// The size of KKT matrix (variables plus constraints) from which [`Refinement::Auto`] turns
+/// the iterative refinement off: below the 1,008-block running-bond wall's 23,528, above the
+/// full program of a 2,000-voussoir arch (20,008; long chains near their minimum thickness are
+/// the nearly degenerate programs the refinement is kept for) and every static program of the
+/// test suite but the two tests of this rule (at most 8,199).
+pub const LARGE_KKT: usize = 22_000;
 
 /// The static program to solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -71,6 +95,7 @@ impl Default for StaticSettings {
             program: Program::Auto,
             active_set: true,
             working_set: true,
+            refinement: Refinement::Auto,
         }
     }
 }

@@ -511,3 +511,89 @@ fn general_equals_static_on_arcades_with_and_without_a_wall() {
         }
     }
 }
+
+/// Issue 28 item 4: a program whose KKT matrix has at least `statics::LARGE_KKT` rows (the
+/// 1,008-block running-bond wall of the `general_kinematic` bench, 23,528) is solved without
+/// Clarabel's iterative refinement by default. Its multiplier equals the refined solve's to
+/// 1e-9 (relative), its forces balance every block to 1e-8 of the wall's weight, and it stays
+/// below the general kinematic (upper) bound; below the size the default is the refined solve
+/// itself, bit for bit.
+#[test]
+fn large_programs_without_refinement_keep_the_multiplier() {
+    let refined = StaticSettings {
+        refinement: statics::Refinement::Always,
+        ..StaticSettings::default()
+    };
+    let model = Model::self_weight(rect_assembly(&running_bond(32, 31, 0.4, 0.2), 0.6));
+    assert_eq!(model.assembly.blocks.len(), 1008);
+    let objective = statics::Objective::MaxLambda {
+        sign: 1.0,
+        cap: None,
+    };
+    let p = statics::StaticProblem::new(&model.assembly, &model.loads, objective);
+    assert!(p.a.n + p.a.m >= statics::LARGE_KKT, "{}", p.a.n + p.a.m);
+    let auto = full_static(&model, Direction::Right);
+    let always = statics::analyse_full(&model, &refined).expect("static");
+    assert_eq!(auto.status, Status::Collapse);
+    assert_eq!(always.status, Status::Collapse);
+    let (la, lr) = (auto.lambda.expect("lambda"), always.lambda.expect("lambda"));
+    assert!(rel(la, lr) <= 1e-9, "without refinement {la}, with {lr}");
+    let weight: f64 = model.assembly.blocks.iter().map(|b| b.weight).sum();
+    assert!(
+        auto.equilibrium_residual <= 1e-8 * weight,
+        "residual {} N of {weight} N",
+        auto.equilibrium_residual
+    );
+    let upper = general(&model, Direction::Right)
+        .lambda_upper
+        .expect("upper bound");
+    assert!(
+        la <= upper * (1.0 + 1e-9),
+        "static {la} above upper {upper}"
+    );
+    // Below the size nothing changes.
+    let small = Model::self_weight(rect_assembly(&running_bond(10, 6, 0.4, 0.2), 0.6));
+    let (a, b) = (
+        full_static(&small, Direction::Right),
+        statics::analyse_full(&small, &refined).expect("static"),
+    );
+    assert_eq!(a.lambda, b.lambda);
+    assert_eq!(a.iterations, b.iterations);
+}
+
+/// The general kinematic program of a wall of 1,580 blocks (three unknowns per block, four
+/// rows per joint of finite friction and the normalisation: more than `statics::LARGE_KKT`)
+/// is solved without iterative refinement by default too: its certified multiplier equals the
+/// refined solve's to 1e-9 (relative) and stays above the static (lower) bound.
+#[test]
+fn large_kinematic_programs_without_refinement_keep_the_multiplier() {
+    let model = Model::self_weight(rect_assembly(&running_bond(40, 39, 0.4, 0.2), 0.6));
+    let (nb, nj) = (model.assembly.blocks.len(), model.assembly.joints.len());
+    assert_eq!(nb, 1580);
+    assert!(
+        3 * nb + 4 * nj + 1 >= statics::LARGE_KKT,
+        "{nb} blocks, {nj} joints"
+    );
+    let auto = general(&model, Direction::Right);
+    let refined = kinematic::analyse_general(
+        &model,
+        &KinematicSettings {
+            refinement: statics::Refinement::Always,
+            ..KinematicSettings::default()
+        },
+    )
+    .expect("general kinematic program");
+    let (la, lr) = (
+        auto.lambda_upper.expect("upper bound"),
+        refined.lambda_upper.expect("upper bound"),
+    );
+    assert!(rel(la, lr) <= 1e-9, "without refinement {la}, with {lr}");
+    check_virtual_work(&model, &auto, Direction::Right);
+    let lower = full_static(&model, Direction::Right)
+        .lambda
+        .expect("static bound");
+    assert!(
+        lower <= la * (1.0 + 1e-9),
+        "static {lower} above upper {la}"
+    );
+}

@@ -17,6 +17,7 @@ pub mod design;
 mod friction;
 mod mirror;
 pub mod non_associative;
+pub mod simplex;
 mod problem;
 mod settings;
 

@@ -17,9 +17,9 @@ pub mod design;
 mod friction;
 mod mirror;
 pub mod non_associative;
-pub mod simplex;
 mod problem;
 mod settings;
+pub mod simplex;
 
 pub use chain::{analyse_chain, declines, Declined};
 pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};

@@ -79,6 +79,9 @@ pub struct BoundedLp {
     /// Per row of the original zero cone, its row here, or the column it fixed (and the
     /// coefficient), for reading the duals back.
     equality_map: Vec<RowFate>,
+    /// Columns written as `centre + p - q` ([`BoundedLp::nearest`]): the column (it holds
+    /// `p`) and the centre; `q` is column `n - split.len() + k` for the k-th.
+    split: Vec<(usize, f64)>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,7 +204,54 @@ impl BoundedLp {
             lower,
             upper,
             equality_map,
+            split: Vec::new(),
         })
+    }
+
+    /// The program of the optimal equilibria of `self` (a program maximising column 0) at
+    /// the multiplier `lambda` (column 0 fixed there, a hair below the optimum), nearest
+    /// `centre`: each column `k` of `columns` is written `x_k = centre_k + p_k - q_k` with
+    /// `p, q >= 0` (so only bounds, the right-hand side and two columns change; no row is
+    /// added) and the objective is `sum (primary_k + weight) p_k + (weight - primary_k)
+    /// q_k`, that is `sum primary_k x_k + weight sum |x_k - centre_k|` up to a constant.
+    /// With `primary = 0` it picks, among the optima, the equilibrium nearest the centre in
+    /// the 1-norm; with `primary` the least-friction objective and a small `weight`, the
+    /// least-friction equilibrium nearest it. Solving it again with another centre changes
+    /// only `b` and the bounds: a warm start.
+    pub fn nearest(
+        &self,
+        lambda: f64,
+        columns: &[usize],
+        centre: &[f64],
+        primary: &[f64],
+        weight: f64,
+    ) -> BoundedLp {
+        let mut lp = self.clone();
+        lp.c = vec![0.0; self.n];
+        lp.lower[0] = lambda;
+        lp.upper[0] = lambda;
+        for ((&k, &c), &w) in columns.iter().zip(centre).zip(primary) {
+            let (l, u) = (self.lower[k], self.upper[k]);
+            let c = c.max(l).min(u);
+            // p = x - c >= 0 and q = c - x >= 0 within x's bounds.
+            lp.lower[k] = (l - c).max(0.0);
+            lp.upper[k] = u - c;
+            lp.lower.push((c - u).max(0.0));
+            lp.upper.push(c - l);
+            lp.c[k] = w + weight;
+            lp.c.push(weight - w);
+            let (first, end) = (self.colptr[k], self.colptr[k + 1]);
+            for t in first..end {
+                let (r, v) = (self.rowval[t], self.nzval[t]);
+                lp.rowval.push(r);
+                lp.nzval.push(-v);
+                lp.b[r] -= v * c;
+            }
+            lp.colptr.push(lp.rowval.len());
+            lp.split.push((k, c));
+        }
+        lp.n = lp.c.len();
+        lp
     }
 
     /// Whether `other` has the same matrix and costs (only `b` and the bounds may differ):
@@ -269,7 +319,8 @@ pub struct LpSolution {
     /// The duals of the zero cone's rows with Clarabel's sign (`q + A' z = 0` on the
     /// columns off their bounds), in the [`StaticProblem`]'s row order.
     pub z: Vec<f64>,
-    /// The objective `q'x`.
+    /// The objective of the program solved (`q'x`; for [`BoundedLp::nearest`] up to its
+    /// constant).
     pub objective: f64,
     /// Pivots of this solve (dual and primal).
     pub pivots: u32,
@@ -350,6 +401,7 @@ impl DualSimplex {
         self.lp.b = lp.b;
         self.lp.lower = lp.lower;
         self.lp.upper = lp.upper;
+        self.lp.split = lp.split;
         // Nonbasic columns back on the bound their reduced cost asks for (a column whose
         // bounds were equal may now have two).
         for j in 0..self.lp.n {
@@ -482,7 +534,10 @@ impl DualSimplex {
             for c in 0..m {
                 inv[k * m + c] /= piv;
             }
-            let (bk, ik) = (b[k * m..(k + 1) * m].to_vec(), inv[k * m..(k + 1) * m].to_vec());
+            let (bk, ik) = (
+                b[k * m..(k + 1) * m].to_vec(),
+                inv[k * m..(k + 1) * m].to_vec(),
+            );
             for i in 0..m {
                 let f = b[i * m + k];
                 if i == k || f == 0.0 {
@@ -539,20 +594,33 @@ impl DualSimplex {
         let m = self.lp.m;
         let p = self.basis[r];
         let piv = alpha_q[r];
-        let row_r: Vec<f64> = self.binv[r * m..(r + 1) * m].iter().map(|v| v / piv).collect();
+        let row_r: Vec<f64> = self.binv[r * m..(r + 1) * m]
+            .iter()
+            .map(|v| v / piv)
+            .collect();
+        // The inverse's rows are sparse (a quarter full on a wall): update over the new pivot
+        // row's nonzeros only, and each weight by `||a - f b||^2 = ||a||^2 - 2 f a.b +
+        // f^2 ||b||^2` (recomputed exactly at every reinversion).
+        let nz: Vec<(usize, f64)> = row_r
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| **v != 0.0)
+            .map(|(k, &v)| (k, v))
+            .collect();
+        let norm_r: f64 = nz.iter().map(|(_, v)| v * v).sum();
         for (i, &f) in alpha_q.iter().enumerate() {
             if i == r || f == 0.0 {
                 continue;
             }
             let row = &mut self.binv[i * m..(i + 1) * m];
-            let mut w = 0.0;
-            for (t, s) in row.iter_mut().zip(&row_r) {
-                *t -= f * s;
-                w += *t * *t;
+            let mut dot = 0.0;
+            for &(k, v) in &nz {
+                dot += row[k] * v;
+                row[k] -= f * v;
             }
-            self.weight[i] = w;
+            self.weight[i] = (self.weight[i] - 2.0 * f * dot + f * f * norm_r).max(1e-12);
         }
-        self.weight[r] = row_r.iter().map(|v| v * v).sum();
+        self.weight[r] = norm_r;
         self.binv[r * m..(r + 1) * m].copy_from_slice(&row_r);
         self.basis[r] = q;
         self.state[q] = State::Basic;
@@ -928,7 +996,11 @@ impl DualSimplex {
                     self.x[self.basis[i]] -= dir * own * a;
                 }
                 self.x[q] += dir * own;
-                self.state[q] = if dir > 0.0 { State::Upper } else { State::Lower };
+                self.state[q] = if dir > 0.0 {
+                    State::Upper
+                } else {
+                    State::Lower
+                };
                 pivots += 1;
                 continue;
             }
@@ -977,7 +1049,11 @@ impl DualSimplex {
     /// The optimum in the [`StaticProblem`]'s columns and rows.
     fn solution(&mut self, pivots: u32) -> LpSolution {
         let y = self.compute_dual();
-        let x = self.x[..self.lp.n].to_vec();
+        let n0 = self.lp.n - self.lp.split.len();
+        let mut x = self.x[..n0].to_vec();
+        for (i, &(k, c)) in self.lp.split.iter().enumerate() {
+            x[k] = c + self.x[k] - self.x[n0 + i];
+        }
         let z = self
             .lp
             .equality_map
@@ -989,7 +1065,7 @@ impl DualSimplex {
                 RowFate::Bound { column, coef } => -self.d[column] / coef,
             })
             .collect();
-        let objective = self.lp.c.iter().zip(&x).map(|(c, v)| c * v).sum();
+        let objective = self.lp.c.iter().zip(&self.x).map(|(c, v)| c * v).sum();
         LpSolution {
             x,
             z,

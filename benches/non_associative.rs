@@ -67,6 +67,19 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     common::median(reps, f)
 }
 
+/// One line per start of the iteration, indented by `indent`.
+fn print_starts(indent: &str, starts: &[statics::StartOutcome]) {
+    for st in starts {
+        println!(
+            "{indent}start {:<15} lambda {:>10} programs {:>4} converged {}",
+            st.start.as_str(),
+            st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
+            st.iterations,
+            st.converged
+        );
+    }
+}
+
 fn main() {
     let arch = |n: usize| {
         scene(&format!(
@@ -147,24 +160,8 @@ fn main() {
                 lp.iterations,
                 t_lp / t_assoc
             );
-            for st in &lp.starts {
-                println!(
-                    "        start {:<15} lambda {:>10} programs {:>4} converged {}",
-                    st.start.as_str(),
-                    st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
-                    st.iterations,
-                    st.converged
-                );
-            }
+            print_starts("        ", &lp.starts);
         }
-        for st in &na.starts {
-            println!(
-                "    start {:<15} lambda {:>10} programs {:>4} converged {}",
-                st.start.as_str(),
-                st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
-                st.iterations,
-                st.converged
-            );
-        }
+        print_starts("    ", &na.starts);
     }
 }

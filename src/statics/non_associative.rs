@@ -42,7 +42,10 @@
 //! On a chain (rigid joints, no ties, strips or passive resistance) each program is solved by
 //! the chain program's dual active set with fixed capacities, warm-started from the previous
 //! iterate's basis (`chain/fixed_shear.rs`); the full conic program otherwise, and wherever
-//! the active set does not decide. The starts are independent and run side by side (rayon),
+//! the active set does not decide. [`NonAssociativeSettings::simplex`] (off by default,
+//! measured slower) solves the programs of other linear models by the warm-started dual
+//! simplex of [`super::simplex`], each followed by the optimum nearest the last iterate
+//! ([`super::simplex::BoundedLp::nearest`]), Clarabel wherever the simplex does not decide. The starts are independent and run side by side (rayon),
 //! read back in the order above.
 
 use super::chain::FixedShearChain;
@@ -284,6 +287,13 @@ fn solve_in(slot: &mut Option<DualSimplex>, lp: BoundedLp) -> LpOutcome {
 
 /// The largest-multiplier program of `model` with the shear capacities `capacity` (N).
 fn fixed_program(model: &Model, settings: &StaticSettings, capacity: &[f64]) -> StaticProblem {
+    let sign = settings.direction.sign();
+    let cap = Some(LAMBDA_CAP);
+    program_with(model, capacity, Objective::MaxLambda { sign, cap })
+}
+
+/// The static program of `model` with the shear capacities `capacity` (N) and `objective`.
+fn program_with(model: &Model, capacity: &[f64], objective: Objective) -> StaticProblem {
     StaticProblem::with_shear_limit(
         &model.assembly,
         &model.loads,
@@ -292,10 +302,7 @@ fn fixed_program(model: &Model, settings: &StaticSettings, capacity: &[f64]) -> 
         &model.strips,
         &model.passive,
         ShearLimit::Fixed(capacity),
-        Objective::MaxLambda {
-            sign: settings.direction.sign(),
-            cap: Some(LAMBDA_CAP),
-        },
+        objective,
     )
 }
 
@@ -440,14 +447,9 @@ fn solve_fixed(
     // the mechanism stays the first program's (its duals hold on the whole optimal face).
     let least = if least_friction {
         let below = lambda - 1e-9 * lambda.abs().max(1.0);
-        let p2 = StaticProblem::with_shear_limit(
-            &model.assembly,
-            &model.loads,
-            model.strength,
-            &model.ties,
-            &model.strips,
-            &model.passive,
-            ShearLimit::Fixed(capacity),
+        let p2 = program_with(
+            model,
+            capacity,
             Objective::LeastFriction {
                 sign,
                 lambda: below,

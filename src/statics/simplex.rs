@@ -27,11 +27,15 @@
 //!   first; a nonbasic free column (reduced cost 0) enters as soon as its pivot is not 0;
 //!   no column to enter is a Farkas certificate of the row (checked against the bounds:
 //!   infeasible, or, when not certain, undecided);
-//! - *basis*: the explicit inverse `B^-1` (dense, row-major), updated by the product form
-//!   of each pivot (Bixby 1992, Maros 2003 §8) and recomputed from scratch (Gauss-Jordan with
-//!   partial pivoting) every [`REFACTOR`] pivots and whenever the residuals of the basic
-//!   solution grow. Dense: the path is for programs up to [`MAX_ROWS`] rows (the 205-block
-//!   wall has 615, the 3-bay arcade 942); larger ones stay with Clarabel.
+//! - *basis*: the explicit inverse `B^-1` (dense storage, row-major), updated by the product
+//!   form of each pivot over the nonzeros of the new pivot row (Bixby 1992, Maros 2003 §8;
+//!   the inverse of a wall's basis is about a quarter full) and recomputed from scratch
+//!   (Gauss-Jordan with partial pivoting) every [`REFACTOR`] pivots and whenever the
+//!   residuals of the basic solution grow. Dense storage: the path is for programs up to
+//!   [`MAX_ROWS`] rows (the 205-block wall has 615, the 3-bay arcade 942); larger ones stay
+//!   with Clarabel. It still costs `O(m^2)`-ish per pivot, more than a sparse LU with
+//!   Forrest-Tomlin updates would, and is why the path is slower than Clarabel on the wall
+//!   and the arcade (docs/performance.md).
 //!
 //! **Degeneracy.** Masonry programs are highly degenerate, and the objective has one nonzero
 //! (lambda): nearly every reduced cost is zero, and the ratio test would tie everywhere. The
@@ -44,8 +48,15 @@
 //! infeasibilities"). The answer is returned only when, with the real costs, the basis is
 //! primal feasible, dual feasible and the equilibrium residual small (all to [`TOL`]): an
 //! optimal vertex of the real program. Anything else (the iterations running out, a
-//! singular basis, a Farkas row the bounds do not confirm) is [`LpOutcome::Undecided`], and
-//! the caller solves the program with Clarabel: never a wrong number.
+//! singular basis, a Farkas row the bounds do not confirm, a program unbounded above) is
+//! [`LpOutcome::Undecided`], and the caller solves the program with Clarabel: never a wrong
+//! number.
+//!
+//! **The nearest optimum.** A simplex answers a vertex of the optimal face; the
+//! non-associative iteration reads the normal forces, and on a wall the vertex jumps between
+//! iterations. [`BoundedLp::nearest`] builds, from a program, the program of its optima (the
+//! multiplier fixed) nearest a centre in the 1-norm, without a new row: each column `x_k`
+//! becomes `centre_k + p_k - q_k`, `p, q >= 0` (docs/friction.md).
 
 use super::problem::StaticProblem;
 use clarabel::solver::SupportedConeT;
@@ -1006,10 +1017,10 @@ impl DualSimplex {
             }
             let mut r = usize::MAX;
             let mut big = 0.0;
-            for i in 0..m {
+            for (i, a) in alpha_q.iter().enumerate() {
                 if let Some(t) = room(i, 0.0) {
-                    if t <= t_max && alpha_q[i].abs() > big {
-                        big = alpha_q[i].abs();
+                    if t <= t_max && a.abs() > big {
+                        big = a.abs();
                         r = i;
                     }
                 }

@@ -4,6 +4,9 @@
 //! blocks side by side and a tied portal, cold and warm-started from one program to the next.
 
 use crate::common::*;
+#[allow(dead_code)] // the benches' scene builders; only the wall is used here
+#[path = "../../benches/common/mod.rs"]
+mod bench_common;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
 use voussoir::interaction::contact::ShearLimit;
 use voussoir::model::Model;
@@ -32,9 +35,9 @@ fn clarabel(p: &StaticProblem) -> (SolverStatus, f64, Vec<f64>) {
 /// The largest violation of `A x + s = b, s in K` by `x` (zero cone, then nonnegative).
 fn violation(p: &StaticProblem, x: &[f64]) -> f64 {
     let mut ax = vec![0.0; p.b.len()];
-    for j in 0..p.a.n {
+    for (j, xj) in x.iter().enumerate().take(p.a.n) {
         for k in p.a.colptr[j]..p.a.colptr[j + 1] {
-            ax[p.a.rowval[k]] += p.a.nzval[k] * x[j];
+            ax[p.a.rowval[k]] += p.a.nzval[k] * xj;
         }
     }
     ax.iter()
@@ -70,24 +73,24 @@ fn polygons(rects: &[[f64; 4]], mu: f64, extra: &str) -> Scene {
     ))
 }
 
-/// A running-bond wall of `courses` courses of `per` blocks 0.4 x 0.2 m.
-pub fn wall(courses: usize, per: usize, mu: f64) -> Scene {
-    let (b, h) = (0.4, 0.2);
-    let mut rects = Vec::new();
-    for c in 0..courses {
-        let y0 = c as f64 * h;
-        let mut xs: Vec<f64> = (0..=per).map(|k| k as f64 * b).collect();
-        if c % 2 == 1 {
-            xs = std::iter::once(0.0)
-                .chain((0..per).map(|k| (k as f64 + 0.5) * b))
-                .chain(std::iter::once(per as f64 * b))
-                .collect();
-        }
-        for w in xs.windows(2) {
-            rects.push([w[0], y0, w[1], y0 + h]);
-        }
-    }
+/// A running-bond wall of `courses` courses of `per` blocks 0.4 x 0.2 m (the benches' wall).
+fn wall(courses: usize, per: usize, mu: f64) -> Scene {
+    let rects: Vec<[f64; 4]> = bench_common::running_bond_wall(courses, per)
+        .iter()
+        .map(|p| [p[0][0], p[0][1], p[2][0], p[2][1]])
+        .collect();
     polygons(&rects, mu, "")
+}
+
+/// `data/arcade.toml` with two bays of 8 voussoirs and friction 0.4.
+fn two_bay_arcade() -> Model {
+    let arcade = std::fs::read_to_string(data("arcade.toml")).expect("bundled arcade");
+    model_of(&scene(
+        &arcade
+            .replace("friction = inf", "friction = 0.4")
+            .replace("bays = 3", "bays = 2")
+            .replace("voussoirs = 16", "voussoirs = 8"),
+    ))
 }
 
 fn cases() -> Vec<(&'static str, Model)> {
@@ -96,7 +99,6 @@ fn cases() -> Vec<(&'static str, Model)> {
         [1.8, 0.0, 2.4, 1.2],
         [0.0, 1.2, 2.4, 1.6],
     ];
-    let arcade = std::fs::read_to_string(data("arcade.toml")).expect("bundled arcade");
     vec![
         ("wall 6 x 8", model_of(&wall(6, 8, 0.6))),
         (
@@ -129,15 +131,7 @@ fn cases() -> Vec<(&'static str, Model)> {
                     .expect("override"),
             ),
         ),
-        (
-            "2-bay arcade",
-            model_of(&scene(
-                &arcade
-                    .replace("friction = inf", "friction = 0.4")
-                    .replace("bays = 3", "bays = 2")
-                    .replace("voussoirs = 16", "voussoirs = 8"),
-            )),
-        ),
+        ("2-bay arcade", two_bay_arcade()),
     ]
 }
 
@@ -379,7 +373,6 @@ fn both_paths(
 /// iterate.
 #[test]
 fn the_simplex_path_converges_on_a_solution_near_the_full_programs() {
-    let arcade = std::fs::read_to_string(data("arcade.toml")).expect("bundled arcade");
     let portal = [
         [0.0, 0.0, 0.6, 1.2],
         [1.8, 0.0, 2.4, 1.2],
@@ -399,15 +392,7 @@ fn the_simplex_path_converges_on_a_solution_near_the_full_programs() {
             )),
         ),
         ("wall 6 x 8", model_of(&wall(6, 8, 0.6))),
-        (
-            "2-bay arcade",
-            model_of(&scene(
-                &arcade
-                    .replace("friction = inf", "friction = 0.4")
-                    .replace("bays = 3", "bays = 2")
-                    .replace("voussoirs = 16", "voussoirs = 8"),
-            )),
-        ),
+        ("2-bay arcade", two_bay_arcade()),
     ];
     for (name, m) in cases {
         let t = std::time::Instant::now();

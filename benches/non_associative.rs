@@ -5,7 +5,9 @@
 //! not friction-exact, one joint slips in the associative mechanism, so `analyze` iterates),
 //! a 200-block running-bond wall (mu = 0.6) and the 3-bay arcade of `data/arcade.toml` with
 //! mu = 0.4 (314 blocks; one run, it takes minutes). `slip` is the number of joints that slip
-//! in the associative mechanism. Median of a few runs; run with
+//! in the associative mechanism. On the wall and the arcade the warm-started dual simplex path
+//! (`NonAssociativeSettings::simplex`, off by default) is timed too, one run. Median of a few
+//! runs; run with
 //! `cargo bench --bench non_associative`.
 
 mod common;
@@ -63,6 +65,19 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
         return (t.elapsed().as_secs_f64(), out);
     }
     common::median(reps, f)
+}
+
+/// One line per start of the iteration, indented by `indent`.
+fn print_starts(indent: &str, starts: &[statics::StartOutcome]) {
+    for st in starts {
+        println!(
+            "{indent}start {:<15} lambda {:>10} programs {:>4} converged {}",
+            st.start.as_str(),
+            st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
+            st.iterations,
+            st.converged
+        );
+    }
 }
 
 fn main() {
@@ -125,14 +140,28 @@ fn main() {
             na.iterations,
             t_na / t_assoc
         );
-        for st in &na.starts {
+        if !name.starts_with("semicircle") {
+            // The warm-started dual simplex path (`NonAssociativeSettings::simplex`), one run.
+            let lp_settings = NonAssociativeSettings {
+                simplex: true,
+                ..na_settings.clone()
+            };
+            let (t_lp, lp) = timed(1, || {
+                statics::analyse_non_associative(&m, &settings, &a, &lp_settings)
+            });
+            let lp = match lp {
+                Ok(n) => n,
+                Err(e) => panic!("{name}: {e}"),
+            };
             println!(
-                "    start {:<15} lambda {:>10} programs {:>4} converged {}",
-                st.start.as_str(),
-                st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
-                st.iterations,
-                st.converged
+                "    simplex path: {:.3} ms, lambda {}, {} programs, {:.1} x assoc",
+                1e3 * t_lp,
+                lp.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
+                lp.iterations,
+                t_lp / t_assoc
             );
+            print_starts("        ", &lp.starts);
         }
+        print_starts("    ", &na.starts);
     }
 }

@@ -19,6 +19,7 @@ mod mirror;
 pub mod non_associative;
 mod problem;
 mod settings;
+pub mod simplex;
 
 pub use chain::{analyse_chain, declines, Declined};
 pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};

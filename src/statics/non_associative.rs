@@ -42,14 +42,19 @@
 //! On a chain (rigid joints, no ties, strips or passive resistance) each program is solved by
 //! the chain program's dual active set with fixed capacities, warm-started from the previous
 //! iterate's basis (`chain/fixed_shear.rs`); the full conic program otherwise, and wherever
-//! the active set does not decide. The starts are independent and run side by side (rayon),
+//! the active set does not decide. [`NonAssociativeSettings::simplex`] (off by default,
+//! measured slower) solves the programs of other linear models by the warm-started dual
+//! simplex of [`super::simplex`], each followed by the optimum nearest the last iterate
+//! ([`super::simplex::BoundedLp::nearest`]), Clarabel wherever the simplex does not decide. The starts are independent and run side by side (rayon),
 //! read back in the order above.
 
 use super::chain::FixedShearChain;
+use super::problem::column;
 use super::problem::{Objective, StaticProblem};
+use super::simplex::{BoundedLp, DualSimplex, LpOutcome};
 use super::{
     check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips,
-    read_ties, run, slipping_joints, StaticResult, StaticSettings, Status, LAMBDA_CAP,
+    read_ties, run, slipping_joints, Program, StaticResult, StaticSettings, Status, LAMBDA_CAP,
 };
 use crate::assembly::JointForce;
 use crate::error::AnalysisError;
@@ -70,6 +75,13 @@ pub struct NonAssociativeSettings {
     pub tolerance: f64,
     /// The first relaxation factor `beta` (0 < beta <= 1). Default 1.
     pub relaxation: f64,
+    /// Solve the fixed-shear programs of assemblies that are not chains by the warm-started
+    /// dual simplex ([`super::simplex`], each program followed by the optimum nearest the
+    /// last iterate) instead of Clarabel. Default false: on the 205-block wall and the 3-bay
+    /// arcade it measured slower than Clarabel per program (docs/performance.md), and its
+    /// vertex solutions settle on other solutions of the non-associative problem than the
+    /// interior point's (docs/friction.md).
+    pub simplex: bool,
 }
 
 impl Default for NonAssociativeSettings {
@@ -78,6 +90,7 @@ impl Default for NonAssociativeSettings {
             max_iterations: 100,
             tolerance: 1e-6,
             relaxation: 1.0,
+            simplex: false,
         }
     }
 }
@@ -172,6 +185,225 @@ struct Iterate {
     lambda: f64,
     forces: Vec<JointForce>,
     result: StaticResult,
+    /// Programs solved for it.
+    programs: u32,
+}
+
+/// The fixed-shear programs of a model that is not a chain but a linear program (rigid
+/// joints; ties, strips and passive reactions are bounds), by the dual simplex of
+/// [`super::simplex`], each warm-started from the last optimal basis of its kind, since only
+/// the capacities (bounds) change between iterations. A simplex answers a vertex of the
+/// optimal face where the interior point answers a point inside it; the iteration reads the
+/// normal forces, and vertices jump between iterations where the face is wide (a wall), so
+/// each program is followed by a second one that picks among its optima the equilibrium
+/// nearest the last iterate's ([`BoundedLp::nearest`]): at a fixed point that is the last
+/// iterate itself.
+#[derive(Clone)]
+struct FixedShearLp {
+    /// The largest-multiplier program's simplex (None before the first solve, or after one
+    /// it did not decide).
+    main: Option<DualSimplex>,
+    /// The second program's (the nearest optimum, or the least-friction one).
+    near: Option<DualSimplex>,
+    /// The contact columns' values (c1, c2 of every joint, over the force scale) of the last
+    /// iterate: the centre of the next second program.
+    centre: Vec<f64>,
+}
+
+/// The weight of the distance to the last iterate beside the least-friction objective
+/// (`sum mu N` over the force scale): a tie-break among its optima.
+const NEAREST_TIE_BREAK: f64 = 1e-6;
+
+impl FixedShearLp {
+    /// The simplex path for `model`, or None when the full program should solve every
+    /// iterate: `settings` asking for the full program or no active set (the cross-checks),
+    /// crushing (a conic program), a chain (its own active set, [`FixedShearChain`]), or a
+    /// program [`BoundedLp::from_problem`] does not take (too large, rows of several entries).
+    fn new(
+        model: &Model,
+        settings: &StaticSettings,
+        chain: bool,
+        capacity: &[f64],
+    ) -> Option<FixedShearLp> {
+        let off = settings.program != Program::Auto || !settings.active_set;
+        if off || chain || model.strength.is_finite() {
+            return None;
+        }
+        let problem = fixed_program(model, settings, capacity);
+        let lp = BoundedLp::from_problem(&problem).ok()?;
+        // The first program of the two starts from the associative solution, solved here
+        // once: every start then begins from its optimal basis, not from the slack basis.
+        let mut main = DualSimplex::new(lp);
+        let main = matches!(main.solve(), LpOutcome::Optimal(_)).then_some(main);
+        Some(FixedShearLp {
+            main,
+            near: None,
+            centre: Vec::new(),
+        })
+    }
+
+    /// The contact columns and their values (over the force scale) for joint forces `forces`.
+    fn contact_values(model: &Model, forces: &[JointForce], fs: f64) -> Vec<f64> {
+        model
+            .assembly
+            .joints
+            .iter()
+            .zip(forces)
+            .flat_map(|(jt, f)| {
+                // N = c1 + c2, M = (c2 - c1) L / 2.
+                let half = 0.5 * f.n.max(0.0);
+                let d = f.m / jt.length();
+                [(half - d).max(0.0) / fs, (half + d).max(0.0) / fs]
+            })
+            .collect()
+    }
+
+    /// Start from the normal forces `n` (centred resultants).
+    fn start_at(&mut self, model: &Model, n: &[f64]) {
+        let forces: Vec<JointForce> = n
+            .iter()
+            .map(|&n| JointForce { n, v: 0.0, m: 0.0 })
+            .collect();
+        self.centre = Self::contact_values(model, &forces, model.loads.force_scale());
+    }
+}
+
+/// Solve `lp` with the simplex kept in `slot` (warm when it has the same matrix); a simplex
+/// that did not decide is dropped, so the next program starts afresh.
+fn solve_in(slot: &mut Option<DualSimplex>, lp: BoundedLp) -> LpOutcome {
+    let simplex = match slot {
+        Some(s) => {
+            s.update(lp);
+            s
+        }
+        None => slot.insert(DualSimplex::new(lp)),
+    };
+    let out = simplex.solve();
+    if matches!(out, LpOutcome::Undecided(_)) {
+        *slot = None;
+    }
+    out
+}
+
+/// The largest-multiplier program of `model` with the shear capacities `capacity` (N).
+fn fixed_program(model: &Model, settings: &StaticSettings, capacity: &[f64]) -> StaticProblem {
+    let sign = settings.direction.sign();
+    let cap = Some(LAMBDA_CAP);
+    program_with(model, capacity, Objective::MaxLambda { sign, cap })
+}
+
+/// The static program of `model` with the shear capacities `capacity` (N) and `objective`.
+fn program_with(model: &Model, capacity: &[f64], objective: Objective) -> StaticProblem {
+    StaticProblem::with_shear_limit(
+        &model.assembly,
+        &model.loads,
+        model.strength,
+        &model.ties,
+        &model.strips,
+        &model.passive,
+        ShearLimit::Fixed(capacity),
+        objective,
+    )
+}
+
+/// One iterate by the simplex path: the largest multiplier, then the optimum nearest the
+/// last iterate (or, with `least_friction`, the least-friction optimum, nearest it among
+/// those). `Some(None)`: no equilibrium with these capacities; None: the simplex did not
+/// decide, and Clarabel should.
+fn solve_fixed_lp(
+    model: &Model,
+    settings: &StaticSettings,
+    lp: &mut FixedShearLp,
+    capacity: &[f64],
+    least_friction: bool,
+) -> Result<Option<Option<Iterate>>, AnalysisError> {
+    let start = Instant::now();
+    let problem = fixed_program(model, settings, capacity);
+    let Ok(first) = BoundedLp::from_problem(&problem) else {
+        return Ok(None);
+    };
+    let sol = match solve_in(&mut lp.main, first.clone()) {
+        LpOutcome::Optimal(sol) => sol,
+        LpOutcome::Infeasible => return Ok(Some(None)),
+        LpOutcome::Undecided(_) => return Ok(None),
+    };
+    let lambda = sol.x[0];
+    let below = lambda - 1e-9 * lambda.abs().max(1.0);
+    let nj = model.assembly.joints.len();
+    let columns: Vec<usize> = (0..nj).flat_map(|j| [column(j, 0), column(j, 1)]).collect();
+    if lp.centre.len() != columns.len() {
+        lp.centre = columns.iter().map(|&k| sol.x[k]).collect();
+    }
+    let (primary, weight): (Vec<f64>, f64) = if least_friction {
+        let mu = |j: usize| {
+            let f = model.assembly.joints[j].friction;
+            if f.is_finite() {
+                f
+            } else {
+                0.0
+            }
+        };
+        let primary = (0..nj).flat_map(|j| [mu(j), mu(j)]).collect();
+        (primary, NEAREST_TIE_BREAK)
+    } else {
+        (vec![0.0; columns.len()], 1.0)
+    };
+    let second = first.nearest(below, &columns, &lp.centre, &primary, weight);
+    let x = match solve_in(&mut lp.near, second) {
+        LpOutcome::Optimal(s) => s.x,
+        // The vertex of the first program is an optimum too; the least-friction one is not.
+        _ if !least_friction => sol.x.clone(),
+        _ => return Ok(None),
+    };
+    let iterate = read_fixed(
+        model,
+        settings,
+        &problem,
+        &x,
+        &sol.z,
+        (lambda, SolverStatus::Solved, sol.pivots),
+        "dual simplex; optimal vertex (fixed shear capacities)".to_string(),
+        2,
+    )?;
+    lp.centre = columns.iter().map(|&k| x[k]).collect();
+    let mut iterate = iterate;
+    iterate.result.solve_time_s = start.elapsed().as_secs_f64();
+    Ok(Some(Some(iterate)))
+}
+
+/// One iterate read from a program's solution: the forces of `x`, the mechanism of the
+/// duals `z`, the multiplier, status and iterations of `solved`; `programs` solved.
+#[allow(clippy::too_many_arguments)]
+fn read_fixed(
+    model: &Model,
+    settings: &StaticSettings,
+    problem: &StaticProblem,
+    x: &[f64],
+    z: &[f64],
+    solved: (f64, SolverStatus, u32),
+    words: String,
+    programs: u32,
+) -> Result<Iterate, AnalysisError> {
+    let (lambda, status, iterations) = solved;
+    let sign = settings.direction.sign();
+    let forces = read_forces(&model.assembly, problem, x);
+    let tension = read_ties(problem, x);
+    let strip_tension = read_strips(problem, x);
+    let passive = read_passive(problem, x);
+    let residual =
+        model.residual_with_passive(&forces, &tension, &strip_tension, &passive, lambda, sign);
+    check_almost_solved(status, residual, problem.force_scale, iterations)?;
+    let mut result = StaticResult::unsolved(settings, iterations, words, problem_size(problem));
+    result = result.read_iterate(model, settings, lambda, forces.clone(), residual, || {
+        read_mechanism(&model.assembly, problem, z)
+    });
+    result.set_tensions(model, &tension, &strip_tension, &passive);
+    Ok(Iterate {
+        lambda,
+        forces,
+        result,
+        programs,
+    })
 }
 
 /// Solve the static program of `model` with each joint's shear bounded by `capacity` (N),
@@ -181,6 +413,7 @@ fn solve_fixed(
     model: &Model,
     settings: &StaticSettings,
     chain: Option<&mut FixedShearChain>,
+    lp: Option<&mut FixedShearLp>,
     capacity: &[f64],
     least_friction: bool,
 ) -> Result<Option<Iterate>, AnalysisError> {
@@ -190,26 +423,18 @@ fn solve_fixed(
             lambda: s.lambda,
             forces: s.forces,
             result: s.result,
+            programs: 1 + u32::from(least_friction),
         }));
+    }
+    // Any other linear program by the warm-started simplex, likewise.
+    if let Some(lp) = lp {
+        if let Some(found) = solve_fixed_lp(model, settings, lp, capacity, least_friction)? {
+            return Ok(found);
+        }
     }
     let start = Instant::now();
     let sign = settings.direction.sign();
-    let program = |objective| {
-        StaticProblem::with_shear_limit(
-            &model.assembly,
-            &model.loads,
-            model.strength,
-            &model.ties,
-            &model.strips,
-            &model.passive,
-            ShearLimit::Fixed(capacity),
-            objective,
-        )
-    };
-    let problem = program(Objective::MaxLambda {
-        sign,
-        cap: Some(LAMBDA_CAP),
-    });
+    let problem = fixed_program(model, settings, capacity);
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -222,39 +447,32 @@ fn solve_fixed(
     // the mechanism stays the first program's (its duals hold on the whole optimal face).
     let least = if least_friction {
         let below = lambda - 1e-9 * lambda.abs().max(1.0);
-        let p2 = program(Objective::LeastFriction {
-            sign,
-            lambda: below,
-        });
+        let p2 = program_with(
+            model,
+            capacity,
+            Objective::LeastFriction {
+                sign,
+                lambda: below,
+            },
+        );
         let s2 = run(&p2, settings)?;
         matches!(s2.status, SolverStatus::Solved | SolverStatus::AlmostSolved).then_some(s2.x)
     } else {
         None
     };
     let x = least.as_deref().unwrap_or(&sol.x);
-    let forces = read_forces(&model.assembly, &problem, x);
-    let tension = read_ties(&problem, x);
-    let strip_tension = read_strips(&problem, x);
-    let passive = read_passive(&problem, x);
-    let residual =
-        model.residual_with_passive(&forces, &tension, &strip_tension, &passive, lambda, sign);
-    check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
-    let mut result = StaticResult::unsolved(
+    let mut iterate = read_fixed(
+        model,
         settings,
-        sol.iterations,
+        &problem,
+        x,
+        &sol.z,
+        (lambda, sol.status, sol.iterations),
         format!("{:?} (fixed shear capacities)", sol.status),
-        problem_size(&problem),
-    );
-    result = result.read_iterate(model, settings, lambda, forces.clone(), residual, || {
-        read_mechanism(&model.assembly, &problem, &sol.z)
-    });
-    result.set_tensions(model, &tension, &strip_tension, &passive);
-    result.solve_time_s = start.elapsed().as_secs_f64();
-    Ok(Some(Iterate {
-        lambda,
-        forces,
-        result,
-    }))
+        1 + u32::from(least_friction),
+    )?;
+    iterate.result.solve_time_s = start.elapsed().as_secs_f64();
+    Ok(Some(iterate))
 }
 
 impl StaticResult {
@@ -316,6 +534,7 @@ fn iterate_from(
     settings: &StaticSettings,
     na: &NonAssociativeSettings,
     mut chain: Option<FixedShearChain>,
+    mut lp: Option<FixedShearLp>,
     start: Start,
     n0: Vec<f64>,
 ) -> Result<(StartOutcome, Option<StaticResult>), AnalysisError> {
@@ -332,14 +551,22 @@ fn iterate_from(
         iterations += 1;
         let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
         let least = start == Start::LeastFriction;
-        programs += 1;
-        let Some(it) = solve_fixed(model, settings, chain.as_mut(), &capacity, least)? else {
+        let Some(it) = solve_fixed(
+            model,
+            settings,
+            chain.as_mut(),
+            lp.as_mut(),
+            &capacity,
+            least,
+        )?
+        else {
+            programs += 1;
             stopped = format!(
                 "the program with the capacities of iteration {iterations} has no solution"
             );
             break;
         };
-        programs += u32::from(least);
+        programs += it.programs;
         let settled = lambdas.last().is_some_and(|&prev| {
             (it.lambda - prev).abs() <= na.tolerance * it.lambda.abs().max(1.0)
         }) && fixed_point(model, &nbar, &it, na.tolerance);
@@ -415,11 +642,25 @@ pub fn analyse_non_associative(
         return Ok(out);
     };
     let n_associative: Vec<f64> = forces.iter().map(|f| f.n).collect();
+    let chain = FixedShearChain::new(model, settings);
+    let capacity: Vec<f64> = model
+        .assembly
+        .joints
+        .iter()
+        .zip(&n_associative)
+        .map(|(j, n)| j.friction * n.max(0.0))
+        .collect();
+    let lp = na
+        .simplex
+        .then(|| FixedShearLp::new(model, settings, chain.is_some(), &capacity))
+        .flatten();
     let mut starts = vec![
         (Start::Associative, n_associative.clone()),
         (Start::LeastFriction, n_associative),
     ];
-    let chain = FixedShearChain::new(model, settings);
+    // The at-rest start's phase-one program relaxes every inequality row by tau (rows of two
+    // entries, not bounds): it stays with Clarabel (one program per analysis), or with the
+    // chain's active set on a chain.
     let rest = match chain.as_ref().and_then(|_| FixedShearChain::at_rest(model)) {
         Some(rest) => rest,
         None => {
@@ -434,7 +675,13 @@ pub fn analyse_non_associative(
     // The starts are independent: run them side by side, and read them in their order.
     let outcomes: Vec<_> = starts
         .into_par_iter()
-        .map(|(start, n0)| iterate_from(model, settings, na, chain.clone(), start, n0))
+        .map(|(start, n0)| {
+            let mut lp = lp.clone();
+            if let Some(lp) = lp.as_mut() {
+                lp.start_at(model, &n0);
+            }
+            iterate_from(model, settings, na, chain.clone(), lp, start, n0)
+        })
         .collect();
     let mut best: Option<StaticResult> = None;
     for found in outcomes {

@@ -45,6 +45,7 @@ mod reports;
 mod retrofit;
 mod rolling;
 mod serve_api;
+mod simplex;
 mod static_bound;
 mod strips;
 mod studies;

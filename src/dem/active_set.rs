@@ -29,7 +29,8 @@
 //! as soon as an iterate breaks no fewer laws than the last, the statuses change one at a
 //! time, the most broken law (in velocity: the impulse over `W`'s diagonal) first, a
 //! principal pivoting step (Murty 1988, "Linear complementarity, linear and nonlinear
-//! programming", ch. 4).
+//! programming", ch. 4), skipping a change that leads back to statuses already tried in the
+//! step (with friction the pivoting can cycle: the cone makes the problem non-monotone).
 //!
 //! **The linear solve.** The matrix is sparse: two rows are coupled only through a body both
 //! touch. With the contacts numbered pair by pair (`World::pairs`, sorted by body), the
@@ -60,8 +61,15 @@ use crate::geometry::{cross, Vec2};
 /// Most active-set iterations (one factorisation each) in one step.
 pub const MAX_ITERATIONS: usize = 200;
 
-/// Share of the Delassus operator's diagonal added to it (module docs).
-pub const REGULARISATION: f64 = 1e-10;
+/// Share of the Delassus operator's diagonal added to it (module docs). It changes a contact
+/// velocity by this share of `W_ii p_i`, the velocity the contact's impulse alone would make
+/// (up to about 0.2 m/s at the springings of the 20-voussoir arch of `benches/dynamic.rs`),
+/// which must stay under the tolerance (1e-3 `rest_velocity`, 3e-8 m/s there): measured on
+/// that arch under the record at scale 2.1 (before the rule against cycling, which brings
+/// the 90 below to 23), 1e-7 broke the laws by its own error in 90 % of the steps, 1e-8 left
+/// 90 steps of 21,610 unsettled, 1e-9 and 1e-10 about 225 (a matrix that ill-conditioned
+/// defeats the refinement).
+pub const REGULARISATION: f64 = 1e-8;
 
 /// Steps of iterative refinement after each solve.
 pub const REFINEMENTS: usize = 3;
@@ -160,7 +168,9 @@ pub(super) fn solve(
     let mut column = vec![(usize::MAX, 0.0); 2 * m];
     let mut lu = Envelope::default();
     let (mut one_at_a_time, mut last_broken) = (false, usize::MAX);
+    let mut tried = std::collections::HashSet::new();
     for _ in 0..MAX_ITERATIONS {
+        tried.insert(key(&status));
         // Unknowns F (in row order): p_n of the closed contacts, p_t of the sticking ones;
         // a slipping contact's p_t = s mu p_n enters through its p_n's column.
         let mut unknowns = Vec::with_capacity(2 * m);
@@ -189,35 +199,32 @@ pub(super) fn solve(
         }
         lu.solve(&mut rhs);
         let mut x = rhs;
+        let mut r = Vec::with_capacity(x.len());
         spread(&x, &local, &status, rows, &mut p);
-        // Iterative refinement (Wilkinson): the redundant contacts make the matrix as
-        // ill-conditioned as the regularisation is small, so the residual of the equations,
-        // measured on the velocities themselves, is solved for again with the same factors.
+        // Iterative refinement of the equations without the regularisation (iterated
+        // Tikhonov: each step solves for the residual `-u_F` measured on the velocities with
+        // the same factors, so `u_F` goes to 0 wherever `W` is not singular, and the
+        // regularisation's own error `REGULARISATION W_ii p_i` goes with it); a step is
+        // kept only if it at least halves the largest residual (a residual `W` cannot reach,
+        // where the targets of redundant contacts disagree, would only grow the impulses).
+        let mut norm = equations(rows, state, free, &p, &unknowns, &mut r);
         for _ in 0..REFINEMENTS {
-            set_velocities(rows, state, free, &p);
-            let mut r: Vec<f64> = unknowns
-                .iter()
-                .zip(&x)
-                .zip(&lu.scale)
-                .map(|((&j, &xi), &w)| {
-                    let row = &rows[j / 2];
-                    let u = state.relative(row);
-                    let u = if j % 2 == 0 {
-                        u.dot(&row.n) - row.target
-                    } else {
-                        u.dot(&row.t)
-                    };
-                    -u - REGULARISATION * w * xi
-                })
-                .collect();
-            if r.iter().all(|v| v.abs() <= 1e-3 * tolerance) {
+            if norm <= 1e-3 * tolerance {
                 break;
             }
             lu.solve(&mut r);
+            let before = x.clone();
             for (xi, d) in x.iter_mut().zip(&r) {
                 *xi += d;
             }
             spread(&x, &local, &status, rows, &mut p);
+            let next = equations(rows, state, free, &p, &unknowns, &mut r);
+            if !(next <= 0.5 * norm) {
+                x = before;
+                spread(&x, &local, &status, rows, &mut p);
+                break;
+            }
+            norm = next;
         }
         // The velocities of this iterate, and the laws it breaks.
         set_velocities(rows, state, free, &p);
@@ -250,7 +257,16 @@ pub(super) fn solve(
         // nonlinear programming", ch. 4).
         if one_at_a_time || broken.len() >= last_broken {
             one_at_a_time = true;
-            if let Some(&(_, k, next)) = broken.iter().max_by(|x, y| x.0.total_cmp(&y.0)) {
+            // The most broken law whose change leads to statuses not tried yet in this
+            // step (so the pivoting cannot cycle), else the most broken.
+            broken.sort_by(|x, y| y.0.total_cmp(&x.0));
+            let fresh = broken.iter().find(|&&(_, k, next)| {
+                let old = std::mem::replace(&mut status[k], next);
+                let seen = tried.contains(&key(&status));
+                status[k] = old;
+                !seen
+            });
+            if let Some(&(_, k, next)) = fresh.or(broken.first()) {
                 status[k] = next;
             }
         } else {
@@ -282,6 +298,42 @@ fn spread(x: &[f64], local: &[usize], status: &[Status], rows: &[Row], p: &mut [
         p[2 * k] = pn;
         p[2 * k + 1] = pt;
     }
+}
+
+/// The velocities of the impulses `p`, and the residual `-u` of each unknown's equation (its
+/// row's velocity less its target) into `r`; returns the largest.
+fn equations(
+    rows: &[Row],
+    state: &mut State,
+    free: &[(Vec2, f64)],
+    p: &[f64],
+    unknowns: &[usize],
+    r: &mut Vec<f64>,
+) -> f64 {
+    set_velocities(rows, state, free, p);
+    r.clear();
+    r.extend(unknowns.iter().map(|&j| {
+        let row = &rows[j / 2];
+        let u = state.relative(row);
+        if j % 2 == 0 {
+            row.target - u.dot(&row.n)
+        } else {
+            -u.dot(&row.t)
+        }
+    }));
+    r.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The statuses as a key of the set of those tried.
+fn key(status: &[Status]) -> Vec<i8> {
+    status
+        .iter()
+        .map(|s| match *s {
+            Status::Open => 0,
+            Status::Stick => 1,
+            Status::Slip(sign) => 2 + i8::from(sign > 0.0),
+        })
+        .collect()
 }
 
 /// `state.vel = free + M^-1 J^T p`.

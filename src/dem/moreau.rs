@@ -209,8 +209,12 @@ fn contact_rows(world: &World, state: &State) -> Vec<Row> {
             if !(wn > 0.0 && wt > 0.0) {
                 continue;
             }
-            let target = if c.depth < 0.0 {
-                // Open: a constraint only if the free motion closes it within the step.
+            let target = if c.depth < -slop {
+                // Open: a constraint only if the free motion closes it within the step. A gap
+                // within the slop counts as touching: a contact the free motion does not close
+                // (the crown joint of an arch under its weight, both blocks falling alike) may
+                // still be pressed shut by the rest of the structure, and a gap of round-off
+                // must not drop it.
                 let un = state.point_velocity(a, ra) - state.point_velocity(b, rb);
                 if -c.depth + h * un.dot(&n) > 0.0 {
                     continue;

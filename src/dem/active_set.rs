@@ -219,7 +219,8 @@ pub(super) fn solve(
             }
             spread(&x, &local, &status, rows, &mut p);
             let next = equations(rows, state, free, &p, &unknowns, &mut r);
-            if !(next <= 0.5 * norm) {
+            // A NaN residual is no improvement either.
+            if next.is_nan() || next > 0.5 * norm {
                 x = before;
                 spread(&x, &local, &status, rows, &mut p);
                 break;

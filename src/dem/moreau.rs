@@ -43,14 +43,17 @@
 //!
 //! Which contacts are rows, and their right-hand side `b_n` (gap `g`, the negative of the
 //! depth):
-//! - an open contact, `g > 0`, is a row only when the free motion closes it within the step,
-//!   `g + h u_n,free <= 0` (the index set of Moreau-Jean, predicted from the free velocity
-//!   so that a block resting on a gap of round-off is held, not dropped for a step), with
+//! - an open contact, `g >` [`SLOP`] of `contact_tolerance`, is a row only when the free
+//!   motion closes it within the step, `g + h u_n,free <= 0` (the index set of Moreau-Jean,
+//!   predicted from the free velocity so that a block resting on a gap of round-off is held,
+//!   not dropped for a step; a smaller gap counts as closed, since a contact the free motion
+//!   leaves alone, the crown joint of an arch under its weight, may be pressed shut by the
+//!   others), with
 //!   `b_n = 0`: the impact is taken at the start of the step in which the contact lands, and
 //!   the block may end the step up to `h |u_n|` short of touching (first order in `h`:
 //!   `tests/it/dem_moreau.rs` measures it on Housner's impact);
-//! - a closed contact, `g <= 0`: `u_n >= 0`, Newton's impact law with a coefficient of
-//!   restitution 0 at the contact point (the blocks do not bounce off each other; a rocking
+//! - a closed contact, `g <= SLOP contact_tolerance`: `u_n >= 0`, Newton's impact law with a
+//!   coefficient of restitution 0 at the contact point (the blocks do not bounce off each other; a rocking
 //!   block still rocks on, since the impulse at the new pivot leaves it turning about that
 //!   pivot: Housner's impact, `omega+ / omega- = 1 - 1.5 sin^2 alpha` for a rectangle, arises
 //!   from the geometry);

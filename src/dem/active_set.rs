@@ -45,10 +45,13 @@
 //! every joint are more constraints than the blocks' degrees of freedom), so `W` is singular:
 //! its diagonal is raised by [`REGULARISATION`] of itself (a contact compliance: the impulses
 //! of the redundant constraints are shared as elastic contacts of equal stiffness would share
-//! them), which changes the contact velocities by that share of the velocity each impulse
-//! makes, far below the tolerance. The matrix is then as ill-conditioned as the
-//! regularisation is small, so each solve is followed by [`REFINEMENTS`] steps of iterative
-//! refinement on the equations' residual measured on the velocities themselves.
+//! them). Each solve is followed by up to [`REFINEMENTS`] steps of iterative refinement of
+//! the equations without the regularisation, their residual measured on the velocities
+//! themselves (iterated Tikhonov regularisation: it removes the regularisation's velocity
+//! error `REGULARISATION W_ii p_i` wherever `W` is not singular, and the round-off of a matrix
+//! as ill-conditioned as the regularisation is small), a step kept only if it halves the
+//! largest residual (where the Baumgarte targets of redundant contacts disagree no impulse
+//! meets them all, and refining would only grow the self-equilibrated impulses).
 //!
 //! It gives up (and the caller's projected Gauss-Seidel solves the step from the last step's
 //! impulses, as it would alone) when the statuses have not settled in [`MAX_ITERATIONS`],
@@ -61,14 +64,15 @@ use crate::geometry::{cross, Vec2};
 /// Most active-set iterations (one factorisation each) in one step.
 pub const MAX_ITERATIONS: usize = 200;
 
-/// Share of the Delassus operator's diagonal added to it (module docs). It changes a contact
-/// velocity by this share of `W_ii p_i`, the velocity the contact's impulse alone would make
-/// (up to about 0.2 m/s at the springings of the 20-voussoir arch of `benches/dynamic.rs`),
-/// which must stay under the tolerance (1e-3 `rest_velocity`, 3e-8 m/s there): measured on
-/// that arch under the record at scale 2.1 (before the rule against cycling, which brings
-/// the 90 below to 23), 1e-7 broke the laws by its own error in 90 % of the steps, 1e-8 left
+/// Share of the Delassus operator's diagonal added to it (module docs). One solve changes a
+/// contact velocity by this share of `W_ii p_i`, the velocity the contact's impulse alone
+/// would make (up to about 0.2 m/s at the springings of the 20-voussoir arch of
+/// `benches/dynamic.rs`), against a tolerance of 1e-3 `rest_velocity` (3e-8 m/s there); the
+/// refinement then removes that error wherever `W` is not singular. Chosen on that arch under
+/// the record at scale 2.1 when the refinement still kept the regularisation (and before the
+/// rule against cycling): 1e-7 broke the laws by its own error in 90 % of the steps, 1e-8 left
 /// 90 steps of 21,610 unsettled, 1e-9 and 1e-10 about 225 (a matrix that ill-conditioned
-/// defeats the refinement).
+/// defeats the refinement). With both, 20 steps.
 pub const REGULARISATION: f64 = 1e-8;
 
 /// Steps of iterative refinement after each solve.
@@ -87,7 +91,8 @@ enum Status {
 }
 
 /// One row of `J` (a contact's normal or tangent) on one body: its signed direction and
-/// signed moment arm `cross(r, d)`, with the body's inverse mass and inertia folded in.
+/// signed moment arm `cross(r, d)` (the body's inverse mass and inertia are applied where `W`
+/// is assembled).
 #[derive(Clone, Copy)]
 struct Entry {
     row: usize,

@@ -38,6 +38,7 @@
 //! of the same model by default) and narrowed by bisection until its width is below
 //! `tolerance` times its midpoint. Both ends of the bracket are DEM runs.
 
+mod active_set;
 mod body;
 pub mod dynamic;
 // The DEM's settings and the `[dem]` table live beside it (`crate::dem_settings`), so a scene

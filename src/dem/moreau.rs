@@ -17,16 +17,25 @@
 //! 2. [`contact_rows`]: one row per contact point, with its normal `n` (the touched edge's
 //!    outward normal) and tangent `t`, the lever arms to both centroids, the diagonal of the
 //!    Delassus operator `W = J M^-1 J^T` for the normal and the tangent, and the normal
-//!    velocity the contact must reach (its right-hand side), see below.
-//! 3. [`solve`]: projected Gauss-Seidel on the contact impulses `(p_n, p_t)` (Jean & Moreau's
-//!    "NSCD" solver), warm-started from the last step's impulses of the contacts that persist:
-//!    for each contact in turn the normal impulse `p_n <- max(0, p_n - (u_n - b_n) / W_nn)`
+//!    velocity the contact must reach (its right-hand side), see below. The two contacts
+//!    the explicit world keeps at each end of a joint (a vertex of each block on the other's
+//!    face, at the same point along opposite normals) are one constraint for rigid blocks:
+//!    [`merge_corners`] keeps one row for them.
+//! 3. The contact impulses `(p_n, p_t)`: first the direct solve of
+//!    [`super::active_set`] (a primal-dual active set on the contacts' statuses, each iterate
+//!    a sparse direct solve of `W` restricted to the closed contacts), warm-started from the
+//!    last step's impulses of the contacts that persist; where it gives up, [`solve`]:
+//!    projected Gauss-Seidel (Jean & Moreau's "NSCD" solver) from the same warm start: for
+//!    each contact in turn the normal impulse `p_n <- max(0, p_n - (u_n - b_n) / W_nn)`
 //!    (Signorini at the velocity level: `0 <= p_n`, `u_n >= b_n`, complementary), then the
 //!    tangential one `p_t <- proj_[-mu p_n, mu p_n](p_t - u_t / W_tt)` (Coulomb: sticking
 //!    with `u_t = 0`, or sliding at `|p_t| = mu p_n` against the slip), sweeping until no
 //!    contact law is violated by more than 1e-3 of `rest_velocity` (in the velocities,
 //!    [`residual`]), or [`MAX_SWEEPS`] sweeps; forward and backward in turn (symmetric
-//!    Gauss-Seidel).
+//!    Gauss-Seidel). Alone, Gauss-Seidel converges on single blocks but not on an arch (a
+//!    chain of 20 blocks: it stopped at its sweeps short of the tolerance in 91 % of the
+//!    moving steps of `benches/dynamic.rs`, docs/performance.md), which the direct solve
+//!    settles in one to a few factorisations.
 //! 4. [`advance`]: `v_{k+1} = v_free + M^-1 J^T p`, `q_{k+1} = q_k + h v_{k+1}` (theta = 1:
 //!    positions from the new velocities, which for the smooth motion is the symplectic Euler of
 //!    the explicit stepping, so a free rocking block keeps its energy between impacts; theta
@@ -34,14 +43,17 @@
 //!
 //! Which contacts are rows, and their right-hand side `b_n` (gap `g`, the negative of the
 //! depth):
-//! - an open contact, `g > 0`, is a row only when the free motion closes it within the step,
-//!   `g + h u_n,free <= 0` (the index set of Moreau-Jean, predicted from the free velocity
-//!   so that a block resting on a gap of round-off is held, not dropped for a step), with
+//! - an open contact, `g >` [`SLOP`] of `contact_tolerance`, is a row only when the free
+//!   motion closes it within the step, `g + h u_n,free <= 0` (the index set of Moreau-Jean,
+//!   predicted from the free velocity so that a block resting on a gap of round-off is held,
+//!   not dropped for a step; a smaller gap counts as closed, since a contact the free motion
+//!   leaves alone, the crown joint of an arch under its weight, may be pressed shut by the
+//!   others), with
 //!   `b_n = 0`: the impact is taken at the start of the step in which the contact lands, and
 //!   the block may end the step up to `h |u_n|` short of touching (first order in `h`:
 //!   `tests/it/dem_moreau.rs` measures it on Housner's impact);
-//! - a closed contact, `g <= 0`: `u_n >= 0`, Newton's impact law with a coefficient of
-//!   restitution 0 at the contact point (the blocks do not bounce off each other; a rocking
+//! - a closed contact, `g <= SLOP contact_tolerance`: `u_n >= 0`, Newton's impact law with a
+//!   coefficient of restitution 0 at the contact point (the blocks do not bounce off each other; a rocking
 //!   block still rocks on, since the impulse at the new pivot leaves it turning about that
 //!   pivot: Housner's impact, `omega+ / omega- = 1 - 1.5 sin^2 alpha` for a rectangle, arises
 //!   from the geometry);
@@ -70,46 +82,49 @@ pub const SLOP: f64 = 0.01;
 pub const BAUMGARTE: f64 = 0.2;
 
 /// One contact point's constraint: vertex body `a` against edge body `b`.
-struct Row {
-    a: usize,
-    b: usize,
+pub(super) struct Row {
+    pub(super) a: usize,
+    pub(super) b: usize,
     /// Lever arms from the centroids of `a` and `b` to the contact point.
-    ra: Vec2,
-    rb: Vec2,
-    n: Vec2,
-    t: Vec2,
+    pub(super) ra: Vec2,
+    pub(super) rb: Vec2,
+    pub(super) n: Vec2,
+    pub(super) t: Vec2,
     /// Inverse diagonal of the Delassus operator along `n` and `t` (1 / W_nn, 1 / W_tt).
-    kn: f64,
-    kt: f64,
+    pub(super) kn: f64,
+    pub(super) kt: f64,
     /// Normal velocity the contact must reach at least (m/s).
-    target: f64,
-    mu: f64,
-    pn: f64,
-    pt: f64,
+    pub(super) target: f64,
+    pub(super) mu: f64,
+    pub(super) pn: f64,
+    pub(super) pt: f64,
+    /// The contact point (the vertex) and its penetration (m; negative: a gap).
+    point: Vec2,
+    depth: f64,
     /// Pair and contact index in `World::pairs`.
-    pair: usize,
-    contact: usize,
+    pub(super) pair: usize,
+    pub(super) contact: usize,
 }
 
 /// Velocities and inverse masses of the bodies for the solve.
-struct State {
-    vel: Vec<(Vec2, f64)>,
-    inv: Vec<(f64, f64)>,
+pub(super) struct State {
+    pub(super) vel: Vec<(Vec2, f64)>,
+    pub(super) inv: Vec<(f64, f64)>,
 }
 
 impl State {
-    fn point_velocity(&self, i: usize, r: Vec2) -> Vec2 {
+    pub(super) fn point_velocity(&self, i: usize, r: Vec2) -> Vec2 {
         let (v, w) = self.vel[i];
         v + w * Vec2::new(-r.y, r.x)
     }
 
     /// Relative velocity of the vertex body's point over the edge body's.
-    fn relative(&self, row: &Row) -> Vec2 {
+    pub(super) fn relative(&self, row: &Row) -> Vec2 {
         self.point_velocity(row.a, row.ra) - self.point_velocity(row.b, row.rb)
     }
 
     /// Apply the impulse `p` at the row's point, `+p` on the vertex body, `-p` on the other.
-    fn apply(&mut self, row: &Row, p: Vec2) {
+    pub(super) fn apply(&mut self, row: &Row, p: Vec2) {
         let (ma, ia) = self.inv[row.a];
         let va = &mut self.vel[row.a];
         va.0 += ma * p;
@@ -125,12 +140,23 @@ impl State {
 /// advances the clock.
 pub(crate) fn step(world: &mut World) {
     let mut state = free_velocities(world);
+    let free = state.vel.clone();
     let mut rows = contact_rows(world, &state);
-    // Warm start: the last step's impulses of the persisting contacts.
-    for row in &rows {
-        state.apply(row, row.pn * row.n + row.pt * row.t);
-    }
-    if !solve(&mut rows, &mut state, 1e-3 * world.params.rest_velocity) {
+    let tolerance = 1e-3 * world.params.rest_velocity;
+    let warm: Vec<(f64, f64)> = rows.iter().map(|r| (r.pn, r.pt)).collect();
+    let direct = super::active_set::solve(&mut rows, &mut state, &free, tolerance);
+    // If the active set gives up, the Gauss-Seidel sweeps start from the last step's
+    // impulses (warm start), as they would alone.
+    let ok = direct || {
+        state.vel.copy_from_slice(&free);
+        for (row, &(pn, pt)) in rows.iter_mut().zip(&warm) {
+            row.pn = pn;
+            row.pt = pt;
+            state.apply(row, pn * row.n + pt * row.t);
+        }
+        solve(&mut rows, &mut state, tolerance)
+    };
+    if !ok {
         world.unconverged += 1;
     }
     advance(world, &state, &rows);
@@ -165,6 +191,7 @@ fn contact_rows(world: &World, state: &State) -> Vec<Row> {
     let slop = SLOP * world.params.contact_tolerance;
     let mut rows = Vec::new();
     for (k, pair) in world.pairs.iter().enumerate() {
+        let from = rows.len();
         for (j, c) in pair.contacts.iter().enumerate() {
             let (a, b) = if c.flipped {
                 (pair.b, pair.a)
@@ -185,8 +212,12 @@ fn contact_rows(world: &World, state: &State) -> Vec<Row> {
             if !(wn > 0.0 && wt > 0.0) {
                 continue;
             }
-            let target = if c.depth < 0.0 {
-                // Open: a constraint only if the free motion closes it within the step.
+            let target = if c.depth < -slop {
+                // Open: a constraint only if the free motion closes it within the step. A gap
+                // within the slop counts as touching: a contact the free motion does not close
+                // (the crown joint of an arch under its weight, both blocks falling alike) may
+                // still be pressed shut by the rest of the structure, and a gap of round-off
+                // must not drop it.
                 let un = state.point_velocity(a, ra) - state.point_velocity(b, rb);
                 if -c.depth + h * un.dot(&n) > 0.0 {
                     continue;
@@ -212,12 +243,48 @@ fn contact_rows(world: &World, state: &State) -> Vec<Row> {
                     .1
                     .max(-pair.mu * c.impulse.0)
                     .min(pair.mu * c.impulse.0),
+                point,
+                depth: c.depth,
                 pair: k,
                 contact: j,
             });
         }
+        merge_corners(&mut rows, from, world.params.contact_tolerance);
     }
     rows
+}
+
+/// Fold the rows of one pair (from `from` on) that are one corner seen from both blocks: at
+/// each end of a joint between faces that end at the same corners, a vertex of each block
+/// touches the other's face at the same point, along opposite normals (`World::find_contacts`
+/// keeps both, which the penalty springs need). For rigid contacts they are the same
+/// constraint twice, the Delassus operator twice singular at every joint end, so one row is
+/// kept: the deeper one, with the two impulses summed (`n' = -n`, `t' = -t` and the bodies
+/// swapped, so the components of the impulse on either body add as they are).
+fn merge_corners(rows: &mut Vec<Row>, from: usize, reach: f64) {
+    let mut i = from;
+    while i < rows.len() {
+        let mut j = i + 1;
+        while j < rows.len() {
+            let (x, y) = (&rows[i], &rows[j]);
+            if x.a == y.b
+                && x.b == y.a
+                && (x.point - y.point).norm() <= reach
+                && x.n.dot(&y.n) < -0.99
+            {
+                let y = rows.remove(j);
+                let (pn, pt) = (rows[i].pn + y.pn, rows[i].pt + y.pt);
+                if y.depth > rows[i].depth {
+                    rows[i] = y;
+                }
+                rows[i].pn = pn;
+                rows[i].pt = pt;
+            } else {
+                j += 1;
+            }
+        }
+        i += 1;
+    }
 }
 
 /// Stage 3: projected Gauss-Seidel until the contact laws hold to `tolerance` (m/s, see
@@ -264,7 +331,7 @@ fn solve(rows: &mut [Row], state: &mut State, tolerance: f64) -> bool {
 /// `|p_t| < mu p_n`; a slip against `p_t` where sliding). Measured on the velocities, not on
 /// the impulses: two contacts at one corner (a vertex of each block on the other's face) are
 /// redundant, and their impulses may trade between them without changing any velocity.
-fn residual(rows: &[Row], state: &State) -> f64 {
+pub(super) fn residual(rows: &[Row], state: &State) -> f64 {
     let mut worst: f64 = 0.0;
     for row in rows {
         let u = state.relative(row);

@@ -149,7 +149,8 @@ pub(crate) struct World {
     /// speed of any block point (m/s), from the last `integrate`.
     pub unbalanced: f64,
     pub max_speed: f64,
-    /// Moreau-Jean steps whose contact solve stopped at `moreau::MAX_SWEEPS` short of its
+    /// Moreau-Jean steps whose contact solve (the active set, then projected Gauss-Seidel)
+    /// stopped at `moreau::MAX_SWEEPS` short of its
     /// tolerance (0 with the explicit stepping).
     pub unconverged: u64,
 }

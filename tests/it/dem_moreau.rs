@@ -246,6 +246,10 @@ fn collapse_brackets_contain_the_static_multiplier() {
             "semicircle t = 0.15, n = 12",
             common::model_of(&common::semicircle(0.15, 12)),
         ),
+        (
+            "semicircle t = 0.15, n = 20",
+            common::model_of(&common::semicircle(0.15, 20)),
+        ),
     ];
     for (name, model) in cases {
         let ls = voussoir::statics::analyse(&model, &voussoir::statics::StaticSettings::default())
@@ -352,4 +356,90 @@ fn integrator_key_and_refusals() {
     let too_long = moreau(&m).time_step(Some(1.0));
     let e = Simulation::new(&m, &too_long).expect_err("a 1 s step");
     assert!(e.to_string().contains("dem.time_step"), "{e}");
+}
+
+/// The 20-voussoir semicircle at rest under its own weight with rigid contacts: a statically
+/// indeterminate chain (two contact points at each end of 21 joints, 84 constraints on 60
+/// degrees of freedom), whose contact problem projected Gauss-Seidel did not solve in 400
+/// sweeps and the active set solves directly (`dem::active_set`). Nothing moves (rigid
+/// blocks below their threshold: no block point faster than the solve's tolerance, 1e-3 of
+/// `rest_velocity`), and the contact
+/// forces are an equilibrium: each block's weight balanced by its contact forces to 1e-9 of
+/// the weight in force and moment (about its centroid, over its radius), every force
+/// compressive and inside Coulomb's cone (mu = 0.8, the benchmark's), and the two springings carrying the whole weight
+/// with equal and opposite thrusts.
+#[test]
+fn arch_at_rest_is_in_equilibrium() {
+    let mu = 0.8;
+    let model = common::model_of(&common::scene(&format!(
+        "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 20\nvoussoir_shape = \"polygon\"\n[material]\nfriction = {mu}\n"
+    )));
+    let params = moreau(&model);
+    let mut s = Simulation::new(&model, &params).expect("simulation");
+    s.set_load(1.0, 0.0);
+    let mut fastest: f64 = 0.0;
+    for _ in 0..200 {
+        s.step();
+        fastest = fastest.max(s.max_speed());
+    }
+    let blocks = &model.assembly.blocks;
+    let total: f64 = blocks.iter().map(|b| b.weight).sum();
+    let mut force = vec![(Vec2::zeros(), 0.0); blocks.len()];
+    let mut ground = Vec2::zeros();
+    let mut thrusts = Vec::new();
+    for c in s.contacts() {
+        let f = c.normal_force * c.normal + c.shear_force * Vec2::new(-c.normal.y, c.normal.x);
+        assert!(c.normal_force >= 0.0, "{}", c.normal_force);
+        assert!(
+            c.shear_force.abs() <= mu * c.normal_force * (1.0 + 1e-9),
+            "{} vs {}",
+            c.shear_force,
+            c.normal_force
+        );
+        // +f on the vertex's block, -f on the edge's.
+        for (block, sign) in [(c.vertex_block, 1.0), (c.edge_block, -1.0)] {
+            match block {
+                Some(i) => {
+                    let r = c.point - s.blocks()[i].0;
+                    force[i].0 += sign * f;
+                    force[i].1 += sign * (r.x * f.y - r.y * f.x);
+                }
+                None => {
+                    // The ground's reaction on the arch.
+                    ground -= sign * f;
+                    thrusts.push((c.point.x, -sign * f.x));
+                }
+            }
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for (i, (f, m)) in force.iter().enumerate() {
+        let w = blocks[i].weight;
+        let radius = blocks[i]
+            .polygon
+            .iter()
+            .map(|p| (p - s.blocks()[i].0).norm())
+            .fold(0.0, f64::max);
+        let net = (f + Vec2::new(0.0, -w)).norm().max(m.abs() / radius) / w;
+        worst = worst.max(net);
+    }
+    let left: f64 = thrusts.iter().filter(|t| t.0 < 0.0).map(|t| t.1).sum();
+    let right: f64 = thrusts.iter().filter(|t| t.0 > 0.0).map(|t| t.1).sum();
+    eprintln!(
+        "fastest point {fastest:.2e} m/s, worst block out of balance {worst:.2e} of its weight, ground reaction {:.6} x {:.6} of the weight, thrusts {left:.4} and {right:.4} N",
+        ground.x / total,
+        ground.y / total
+    );
+    assert!(fastest < 1e-3 * params.rest_velocity, "{fastest}");
+    assert!(worst < 1e-9, "{worst}");
+    assert!(
+        (ground.y / total - 1.0).abs() < 1e-9,
+        "{}",
+        ground.y / total
+    );
+    assert!(left > 0.0 && right < 0.0, "thrusts {left} and {right}");
+    assert!(
+        (left + right).abs() < 1e-9 * total,
+        "thrusts {left} and {right}"
+    );
 }

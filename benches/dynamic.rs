@@ -11,9 +11,10 @@
 //! test. `--quick` (or `VOUSSOIR_BENCH_QUICK=1`) leaves out the runs without the test.
 //!
 //! Issue 28's rigid-contact stepping (`dem.integrator = "moreau"`, `dem::moreau`): the record
-//! scaled to 1.6 (the arch rocks from 7.3 s and survives) and to 2.1 (the explicit stepping collapses, the rigid one survives: docs/dem.md), integrated
-//! over the whole 30 s (rest test off) and with the rest test, by the explicit and the
-//! Moreau-Jean stepping; the target is the 30 s record that rocks in under 1 s.
+//! scaled to 1.6 (the arch rocks from 7.3 s and survives) and to 2.1 (the explicit stepping
+//! collapses, the rigid one survives: docs/dem.md), integrated over the whole 30 s (rest test
+//! off) and with the rest test, by the explicit and the Moreau-Jean stepping; the target is
+//! the 30 s record that rocks in under 1 s.
 //! `VOUSSOIR_BENCH_MOREAU=1` runs only this part.
 //!
 //! The record is synthetic (no network, no bundled data): a sum of sines of 1-8 Hz under a

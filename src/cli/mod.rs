@@ -95,17 +95,17 @@ pub struct SceneArgs {
     /// Override a scene value, e.g. --set arch.thickness=0.2 (repeatable)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Most user blocks ([blocks]) a scene may have; up to 100000 (larger structures take
-    /// minutes and gigabytes: a 30,000-block wall took 214 s and 0.6 GB to analyse)
+    /// Most user blocks ([blocks]) a scene may have; up to 100000 (the cost grows faster than
+    /// the blocks: a 10,050-block wall takes about 24 s of CPU for its static bound)
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_BLOCKS)]
     pub max_blocks: usize,
 }
 
 /// How many user blocks a command takes unless `--max-blocks` says more. Analysing a wall of
-/// blocks (the full conic program) grows faster than the number of blocks: 3,000 blocks took
-/// 3.8 s, 10,000 took 33 s and 30,000 took 214 s (0.6 GB), on two busy cores
-/// (docs/geometry.md). The readers' own bound, [`voussoir::blocks::MAX_BLOCKS`], stays the
-/// ceiling.
+/// blocks (the full conic program) grows faster than the number of blocks: a 10,050-block
+/// running-bond wall takes about 24 s of CPU and 210 MiB for the static bound
+/// (docs/performance.md, "Large assemblies (issue 28)"). The readers' own bound,
+/// [`voussoir::blocks::MAX_BLOCKS`], stays the ceiling.
 pub const DEFAULT_MAX_BLOCKS: usize = 10_000;
 
 impl SceneArgs {

@@ -18,7 +18,7 @@
 //! | `ramp_time`             | `0.3 T`                     | the permanent loads (settling) and the seismic ones are applied over a linear ramp, so there is no dynamic overshoot of a step load |
 //! | `max_time`              | `40 T`                      | longest run after the ramp before a run is declared undecided |
 //! | `collapse_displacement` | `0.01 L`                    | a run collapses when a block point has moved by more than this since the start of the run: 300 times the elastic overlaps, and the arch mechanisms soften geometrically, so a mechanism that has moved this far does not come back |
-//! | `rest_velocity`         | `1e-5 sqrt(g L)`            | a run is at rest when no block point moves faster than this ... |
+//! | `rest_velocity`         | `1e-5 sqrt(g L)`            | a run is at rest when, the load held for one ramp time, no block point moves faster than this ... |
 //! | `rest_force`            | `1e-5`                      | ... and no block has an unbalanced force (or moment / its radius) above this fraction of its load scale (its weight plus the magnitudes of the other loads it carries) |
 //! | `infinite_friction`     | 1000                        | the Coulomb coefficient used for `friction = inf` |
 //! | `contact_tolerance`     | `1e-3 t`                    | corner rounding: a vertex pressing into an edge still touches it this far beyond the edge's end; also the window for choosing the edge near a corner. Several times the elastic overlaps, and small against any joint |

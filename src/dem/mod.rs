@@ -31,8 +31,8 @@
 //!   stability limit of the stiffest block.
 //!
 //! Protocol ([`collapse_multiplier`]): settle under the permanent loads ramped from 0; then,
-//! from the settled state, runs at constant `lambda` (ramped in, then held) that end at rest,
-//! in collapse (a block point moved by the collapse displacement) or creeping (the
+//! from the settled state, runs at constant `lambda` (ramped in, then held) that end at rest
+//! (tested once the load has been held for one ramp time), in collapse (a block point moved by the collapse displacement) or creeping (the
 //! displacement kept growing at a non-decreasing rate for five windows); a bracket
 //! `[lambda_stands, lambda_collapses]` is searched from a first guess (the static lower bound
 //! of the same model by default) and narrowed by bisection until its width is below

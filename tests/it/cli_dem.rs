@@ -62,6 +62,25 @@ fn num(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("`{key}` is not a number in {v}"))
 }
 
+/// A rectangular pulse at p t1 = 1 of a quarter of a_min: its amplitude (m/s^2) and the
+/// `--pulse rect` arguments that give it.
+fn quarter_pulse() -> (f64, [String; 8]) {
+    let amplitude = 0.25 * a_min(1.0);
+    let t1 = 1.0 / housner().1;
+    let args = [
+        "--pulse",
+        "rect",
+        "--units",
+        "m/s2",
+        "--amplitude",
+        &amplitude.to_string(),
+        "--period",
+        &t1.to_string(),
+    ]
+    .map(String::from);
+    (amplitude, args)
+}
+
 /// `--ida` on a rectangular pulse at p t1 = 1 of a quarter of a_min: the JSON says the bracket
 /// (its tolerance, width, collapse scale and PGA, every run), the bracket holds up when each
 /// end is run on its own (the low scale survives, the high one collapses), and the collapse
@@ -70,21 +89,9 @@ fn num(v: &Value, key: &str) -> f64 {
 fn ida_brackets_the_collapse_scale() {
     let dir = tempfile::tempdir().expect("tempdir");
     let scene = block_scene(dir.path());
-    let (_, p) = housner();
-    let t1 = 1.0 / p;
-    let amplitude = 0.25 * a_min(1.0);
-    let (a, t) = (format!("{amplitude}"), format!("{t1}"));
-    let pulse = [
-        "--pulse",
-        "rect",
-        "--units",
-        "m/s2",
-        "--amplitude",
-        a.as_str(),
-        "--period",
-        t.as_str(),
-    ];
-    let mut args = pulse.to_vec();
+    let (amplitude, pulse) = quarter_pulse();
+    let pulse: Vec<&str> = pulse.iter().map(String::as_str).collect();
+    let mut args = pulse.clone();
     args.extend(["--ida", "--tolerance", "0.02"]);
     let v = dem_json(&scene, &args);
     eprintln!("{v}");
@@ -162,26 +169,13 @@ fn ida_brackets_the_collapse_scale() {
 fn ida_with_the_moreau_stepping_says_so_and_finds_housners_threshold() {
     let dir = tempfile::tempdir().expect("tempdir");
     let scene = block_scene(dir.path());
-    let (_, p) = housner();
-    let amplitude = 0.25 * a_min(1.0);
-    let (a, t) = (format!("{amplitude}"), format!("{}", 1.0 / p));
-    let args = [
-        "--pulse",
-        "rect",
-        "--units",
-        "m/s2",
-        "--amplitude",
-        a.as_str(),
-        "--period",
-        t.as_str(),
-        "--ida",
-        "--tolerance",
-        "0.02",
-    ];
+    let (amplitude, pulse) = quarter_pulse();
+    let mut args: Vec<&str> = pulse.iter().map(String::as_str).collect();
+    args.extend(["--ida", "--tolerance", "0.02"]);
     let explicit = dem_json(&scene, &args);
     assert_eq!(explicit["integrator"], "explicit", "{explicit}");
     let mut moreau_args = vec!["--set", "dem.integrator=moreau"];
-    moreau_args.extend(args);
+    moreau_args.extend(&args);
     let v = dem_json(&scene, &moreau_args);
     assert_eq!(v["integrator"], "moreau", "{v}");
     let (lo, hi) = (num(&v, "scale_survives"), num(&v, "scale_collapses"));

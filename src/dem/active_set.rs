@@ -101,17 +101,19 @@ struct Entry {
 }
 
 /// Statuses from the last step's impulses: closed where the contact pushed, sticking inside
-/// the cone; a new row (no impulse) starts sticking if the free motion closes it.
-fn initial_statuses(rows: &[Row], state: &State) -> Vec<Status> {
+/// the cone; a new row (no impulse) starts sticking if the free motion closes it (`b`: the
+/// free contact velocities less the targets, normal and tangent per row).
+fn initial_statuses(rows: &[Row], b: &[f64]) -> Vec<Status> {
     rows.iter()
-        .map(|row| {
+        .zip(b.chunks_exact(2))
+        .map(|(row, bk)| {
             if row.pn > 0.0 {
                 if row.pt.abs() < row.mu * row.pn * (1.0 - 1e-9) {
                     Status::Stick
                 } else {
                     Status::Slip(row.pt.signum())
                 }
-            } else if state.relative(row).dot(&row.n) < row.target {
+            } else if bk[0] < 0.0 {
                 Status::Stick
             } else {
                 Status::Open
@@ -162,7 +164,7 @@ pub(super) fn solve(
             [u.dot(&row.n) - row.target, u.dot(&row.t)]
         })
         .collect();
-    let mut status = initial_statuses(rows, state);
+    let mut status = initial_statuses(rows, &b);
     let mut p = vec![0.0; 2 * m];
     for (k, row) in rows.iter().enumerate() {
         p[2 * k] = row.pn.max(0.0);

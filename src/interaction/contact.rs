@@ -81,8 +81,7 @@ pub fn static_rows(
                         );
                     }
                     ShearLimit::Fixed(capacity) => {
-                        let s = capacity.get(j).copied().unwrap_or(0.0);
-                        let s = if s.is_finite() { s.max(0.0) } else { 0.0 };
+                        let s = fixed_capacity(capacity, j);
                         rows.nonnegative(vec![(col(j, 2), sv)], s / rows.force_scale, true);
                     }
                 }
@@ -91,4 +90,15 @@ pub fn static_rows(
         }
     }
     (first, friction)
+}
+
+/// Joint `k`'s fixed shear capacity in `capacity` (N) of [`ShearLimit::Fixed`]: missing,
+/// negative or not finite is 0 (the full program and the chain's read it alike).
+pub(crate) fn fixed_capacity(capacity: &[f64], k: usize) -> f64 {
+    let s = capacity.get(k).copied().unwrap_or(0.0);
+    if s.is_finite() {
+        s.max(0.0)
+    } else {
+        0.0
+    }
 }

@@ -40,6 +40,7 @@ use super::{check_almost_solved, solve_conic, ModelSize, StaticResult, StaticSet
 use crate::assembly::{Assembly, JointForce};
 use crate::error::AnalysisError;
 use crate::geometry::{cross, Vec2};
+use crate::interaction::contact::fixed_capacity;
 use crate::model::{LoadCase, Model};
 use crate::outcome::{Status, LAMBDA_CAP};
 use clarabel::algebra::CscMatrix;
@@ -222,17 +223,6 @@ fn friction_direction(mu: f64, n: Vec2, u: Vec2, sv: f64, fixed: bool) -> Vec2 {
         -sv * u
     } else {
         mu * n - sv * u
-    }
-}
-
-/// Joint `k`'s fixed shear capacity in `capacity` (N), read as the full program reads
-/// `ShearLimit::Fixed`: missing, negative or not finite is 0.
-fn fixed_capacity(capacity: &[f64], k: usize) -> f64 {
-    let s = capacity.get(k).copied().unwrap_or(0.0);
-    if s.is_finite() {
-        s.max(0.0)
-    } else {
-        0.0
     }
 }
 

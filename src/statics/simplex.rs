@@ -59,6 +59,7 @@
 //! becomes `centre_k + p_k - q_k`, `p, q >= 0` (docs/friction.md).
 
 use super::problem::StaticProblem;
+use crate::sampling::SplitMix64;
 use clarabel::solver::SupportedConeT;
 
 /// The most equality rows the dense basis takes (an inverse of 2000 x 2000 is 32 MB).
@@ -365,8 +366,8 @@ pub struct DualSimplex {
     weight: Vec<f64>,
     /// Pivots since the inverse was computed.
     since_refactor: u32,
-    /// Seed of the perturbation (advanced at every solve).
-    seed: u64,
+    /// The perturbation's random numbers (advanced at every solve).
+    rng: SplitMix64,
 }
 
 impl DualSimplex {
@@ -392,7 +393,7 @@ impl DualSimplex {
             binv,
             weight: vec![1.0; m],
             since_refactor: 0,
-            seed: 0x9e37_79b9_7f4a_7c15,
+            rng: SplitMix64(0x9e37_79b9_7f4a_7c15),
             lp,
         };
         // The slack basis: y = 0, d = c; every nonbasic column on the bound its cost asks for.
@@ -664,17 +665,6 @@ impl DualSimplex {
         true
     }
 
-    /// The next pseudo-random number in [0, 1) (SplitMix64: deterministic, so a solve is
-    /// reproducible).
-    fn random(&mut self) -> f64 {
-        self.seed = self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.seed;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
     /// Perturb the costs of the nonbasic columns away from zero, on the side their bound
     /// allows (their reduced costs move the same way, so the basis stays dual feasible).
     fn perturb(&mut self) {
@@ -685,7 +675,8 @@ impl DualSimplex {
                 State::Upper if l < u => -1.0,
                 _ => continue,
             };
-            let e = dir * PERTURBATION * (0.5 + 0.5 * self.random()) * (1.0 + self.lp.c[j].abs());
+            let e =
+                dir * PERTURBATION * (0.5 + 0.5 * self.rng.uniform()) * (1.0 + self.lp.c[j].abs());
             self.cost[j] += e;
             self.d[j] += e;
         }

@@ -48,8 +48,10 @@ pub struct Options {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FrictionMode {
     /// The non-associative multiplier ([`statics::analyse_non_associative`]) whenever the
-    /// associative one is not exact (`friction_exact` false); when it is exact, the two are
-    /// the same number and nothing is iterated. `min-thickness` gives the associative value
+    /// associative one is not exact (`friction_exact` false); when it is exact, the
+    /// associative collapse state is a non-associative one too and nothing is iterated
+    /// (lower non-associative collapse states may still exist: [`FrictionMode::NonAssociative`]
+    /// searches for them, docs/friction.md). `min-thickness` gives the associative value
     /// alone in this mode (its search is many analyses).
     #[default]
     Auto,

@@ -585,11 +585,9 @@ fn run_motion(
     }
     result.extended = (world.time - end).max(0.0);
     if world.unconverged > 0 {
-        result.warnings.push(format!(
-            "the Moreau-Jean contact solve stopped short of its tolerance in {} of {} time steps (the active set did not settle, and projected Gauss-Seidel stopped at {} sweeps): the contact laws hold only approximately there; compare with dem.integrator = \"explicit\"",
+        result.warnings.push(super::moreau::unconverged_warning(
             world.unconverged,
             world.steps,
-            super::moreau::MAX_SWEEPS
         ));
     }
     if result.end_state == EndState::Moving {

@@ -323,6 +323,16 @@ pub fn plan(
     }
 }
 
+/// Say so when some Moreau-Jean steps of the search ended with the contact laws broken
+/// beyond the solve's tolerance (`World::unconverged`).
+fn push_unconverged(result: &mut DemResult, unconverged: u64) {
+    if unconverged > 0 {
+        result
+            .warnings
+            .push(moreau::unconverged_warning(unconverged, result.steps));
+    }
+}
+
 /// The longest a settling or constant-lambda run can last (s).
 fn longest_run(params: &IntegrationParameters) -> f64 {
     params.ramp_time + params.max_time
@@ -627,7 +637,11 @@ pub fn collapse_multiplier(
     let settled_ok = settle.outcome == Outcome::Stands;
     result.steps += settle.steps;
     result.runs.push(settle);
+    // Moreau-Jean steps whose contact solve did not settle, over every run of the search
+    // (each run starts from a copy of the settled world and its count).
+    let mut unconverged = world.unconverged;
     if !settled_ok {
+        push_unconverged(&mut result, unconverged);
         result.cannot_stand = true;
         result.wall_time_s = clock.elapsed().as_secs_f64();
         progress(1.0);
@@ -683,6 +697,7 @@ pub fn collapse_multiplier(
         check_interrupt(result.steps + r.steps)?;
         check_finite(&r)?;
         result.steps += r.steps;
+        unconverged += w.unconverged - settled.unconverged;
         match r.outcome {
             Outcome::Stands => lo = lo.max(x),
             Outcome::Collapses | Outcome::Creeps | Outcome::Undecided => {
@@ -706,6 +721,7 @@ pub fn collapse_multiplier(
         result.runs.push(r);
         report(done + 1.0, expected, progress);
     }
+    push_unconverged(&mut result, unconverged);
     result.lambda_stands = Some(lo);
     result.lambda_collapses = hi;
     if let Some(hi) = hi {

@@ -162,6 +162,14 @@ pub(crate) fn step(world: &mut World) {
     advance(world, &state, &rows);
 }
 
+/// The warning of a run (or a collapse search) in which `unconverged` of `steps` time steps
+/// ended with the contact laws broken beyond the solve's tolerance.
+pub(crate) fn unconverged_warning(unconverged: u64, steps: u64) -> String {
+    format!(
+        "the Moreau-Jean contact solve stopped short of its tolerance in {unconverged} of {steps} time steps (the active set did not settle, and projected Gauss-Seidel stopped at {MAX_SWEEPS} sweeps): the contact laws hold only approximately there; compare with dem.integrator = \"explicit\""
+    )
+}
+
 /// Stage 1: velocities under the loads alone, and the inverse masses (0 for fixed bodies).
 fn free_velocities(world: &World) -> State {
     let h = world.dt;

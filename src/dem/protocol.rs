@@ -215,14 +215,11 @@ fn onset(world: &World, assembly: &Assembly, moved: f64) -> Onset {
     let size = assembly.size();
     let d = moved;
     let mut out = Onset::default();
-    // Ground bodies follow the blocks, one per support joint in joint order; they never move.
-    let nb = assembly.blocks.len();
-    let mut ground = nb;
+    // The ground bodies follow the blocks (`World::new`); they never move, so any of them
+    // carries a support joint's points where they were.
+    let ground = world.bodies.iter().position(|b| b.fixed);
     for (j, jt) in assembly.joints.iter().enumerate() {
-        let ground_here = jt.is_support().then(|| {
-            ground += 1;
-            ground - 1
-        });
+        let ground_here = if jt.is_support() { ground } else { None };
         let body = |b: Option<usize>| b.or(ground_here).map(|i| &world.bodies[i]);
         let (Some(from), Some(to)) = (body(jt.from), body(jt.to)) else {
             continue;

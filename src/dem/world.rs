@@ -158,9 +158,10 @@ pub(crate) struct World {
 impl World {
     /// Bodies from the blocks of the model's assembly (their polygons, with the polygon's
     /// mass and centroid: for curved voussoirs the DEM simulates the chord polygon) carrying
-    /// the model's loads (see [`BodyLoads`]), plus one fixed ground body under every support
-    /// joint. The seismic forces act along `loads.seismic_direction(+1)`: ground motion
-    /// toward +x, as the static program's default direction.
+    /// the model's loads (see [`BodyLoads`]), plus the fixed ground under the support joints
+    /// ([`ground_rectangles`]: one body per line of neighbouring supports). The seismic
+    /// forces act along `loads.seismic_direction(+1)`: ground motion toward +x, as the static
+    /// program's default direction.
     pub fn new(model: &Model, params: &IntegrationParameters) -> World {
         let assembly = &model.assembly;
         let g = params.gravity;
@@ -204,21 +205,7 @@ impl World {
             l.scale += load.force.norm().max(load.seismic_weight);
             body.add_mass(load.seismic_weight / g);
         }
-        for j in assembly.joints.iter().filter(|j| j.is_support()) {
-            // The ground is a fixed rectangle on the far side of the support joint, three
-            // joint lengths wide, so a block can rock or slide on it without falling off.
-            let l = j.length();
-            let u = j.tangent();
-            // Normal pointing out of the block into the ground.
-            let into_ground = if j.to.is_none() {
-                j.normal()
-            } else {
-                -j.normal()
-            };
-            let a = j.p1 - l * u;
-            let b = j.p2 + l * u;
-            let depth = l.max(0.1 * size);
-            let poly = [a, b, b + depth * into_ground, a + depth * into_ground];
+        for poly in ground_rectangles(assembly, size) {
             bodies.push(Body::new(&poly, 0.0, true, None));
         }
         let mu_scene = assembly
@@ -668,6 +655,65 @@ pub(crate) fn add_loads(body: &Body, load: Load, d: Vec2, f0: Vec2, m0: f64) -> 
             + lambda * e.live_moment(sin, cos);
     }
     (f, m)
+}
+
+/// The fixed ground: a rectangle on the far side of every support joint, three joint lengths
+/// wide, so that a block can rock or slide on it without falling off. Supports on one line
+/// whose rectangles overlap (the courses of a wall standing side by side on the ground) share
+/// one rectangle over all of them: two overlapping grounds would give a block's corner two
+/// contacts at one point, twice the contact stiffness under the explicit stepping and the
+/// same rigid constraint twice (a singular Delassus operator) under the Moreau-Jean one.
+fn ground_rectangles(assembly: &crate::assembly::Assembly, size: f64) -> Vec<[Vec2; 4]> {
+    // Each ground: its normal into the ground, the line's offset along it, the span along the
+    // joint's tangent `u` (extended by a joint length each side), and its rectangle.
+    struct Ground {
+        n: Vec2,
+        u: Vec2,
+        offset: f64,
+        span: (f64, f64),
+        depth: f64,
+        poly: [Vec2; 4],
+    }
+    let same_line = 1e-9 * size.max(f64::MIN_POSITIVE);
+    let mut grounds: Vec<Ground> = Vec::new();
+    for j in assembly.joints.iter().filter(|j| j.is_support()) {
+        let l = j.length();
+        let u = j.tangent();
+        let n = if j.to.is_none() {
+            j.normal()
+        } else {
+            -j.normal()
+        };
+        let (a, b) = (j.p1 - l * u, j.p2 + l * u);
+        let depth = l.max(0.1 * size);
+        let mut g = Ground {
+            n,
+            u,
+            offset: j.p1.dot(&n),
+            span: (a.dot(&u), b.dot(&u)),
+            depth,
+            poly: [a, b, b + depth * n, a + depth * n],
+        };
+        // Fold in every ground already made on the same line that overlaps this one (and
+        // again, since the wider span may now reach others).
+        while let Some(k) = grounds.iter().position(|o| {
+            o.n.dot(&g.n) > 1.0 - 1e-12 && (o.offset - g.offset).abs() <= same_line && {
+                // The other's span along this tangent (the two tangents may be opposite).
+                let (p, q) = (o.poly[0].dot(&g.u), o.poly[1].dot(&g.u));
+                p.min(q) <= g.span.1 && g.span.0 <= p.max(q)
+            }
+        }) {
+            let o = grounds.swap_remove(k);
+            let (p, q) = (o.poly[0].dot(&g.u), o.poly[1].dot(&g.u));
+            g.span = (g.span.0.min(p.min(q)), g.span.1.max(p.max(q)));
+            g.depth = g.depth.max(o.depth);
+            let base = g.offset * g.n;
+            let (a, b) = (base + g.span.0 * g.u, base + g.span.1 * g.u);
+            g.poly = [a, b, b + g.depth * g.n, a + g.depth * g.n];
+        }
+        grounds.push(g);
+    }
+    grounds.into_iter().map(|g| g.poly).collect()
 }
 
 /// Whether vertex `p` (whose own body's edges meeting at it have outward normals `adj`)

@@ -306,7 +306,7 @@ fn wall() -> Scene {
 }
 
 #[test]
-fn a_running_bond_wall_is_no_chain_and_static_and_dem_agree() {
+fn a_running_bond_wall_is_no_chain_and_the_dem_slides_its_head_joints_below_the_static_value() {
     let s = wall();
     let b = s.blocks.as_ref().expect("blocks");
     assert!(matches!(
@@ -333,38 +333,61 @@ fn a_running_bond_wall_is_no_chain_and_static_and_dem_agree() {
     );
     // Without sliding the wall rocks as one body about its right toe: b/h = 1.2/1.2.
     assert!((lower - 1.0).abs() < 1e-9, "{lower}");
-    let dem = |s: &Scene| {
-        let r = analysis::dem(
-            s,
-            &analysis::DemOptions {
-                tolerance: 0.005,
-                ..Default::default()
-            },
-            &mut |_| {},
-        )
-        .expect("DEM");
-        let mid = r.result.lambda_dem.expect("DEM multiplier");
-        (mid, mid / lower - 1.0)
-    };
-    // docs/dem.md: the penalty contacts let the DEM sit below the rigid-block value by an
-    // offset that shrinks as the contacts stiffen; on this wall it is -2.2% at the default
-    // stiffness (the head joints make the bonded wall more flexible than a stack of
-    // full-width blocks, which the DEM finds exactly), -0.45% at 1e11 N/m.
-    let (mid, diff) = dem(&s);
-    println!(
-        "wall: static {lower:.5}, DEM {mid:.5} ({:+.2}%)",
-        100.0 * diff
+    // The DEM is not the same joint law. With `friction = inf` the static program lets no
+    // joint slide, not even a head joint that carries no compression; the DEM's contacts are
+    // Coulomb's (infinite friction is simulated as `dem.infinite_friction` = 1000) and slide
+    // without opening, so a joint without compression slides freely: the DEM solves the
+    // non-associative problem (docs/friction.md). Its collapse is at most the associative
+    // one (Radenkovic), and here well below it: the courses part along head joints.
+    let r = analysis::dem(
+        &s,
+        &analysis::DemOptions {
+            tolerance: 0.005,
+            ..Default::default()
+        },
+        &mut |_| {},
+    )
+    .expect("DEM");
+    let (lo, hi) = (
+        r.result.lambda_stands.expect("stands"),
+        r.result.lambda_collapses.expect("collapses"),
     );
-    assert!(diff < 0.0 && diff > -0.025, "DEM {mid} vs static {lower}");
-    let stiff = s
-        .with_overrides(&["dem.normal_stiffness=1e11", "dem.shear_stiffness=1e11"])
-        .expect("stiffer contacts");
-    let (mid_stiff, diff_stiff) = dem(&stiff);
-    println!(
-        "wall, stiffer contacts: DEM {mid_stiff:.5} ({:+.2}%)",
-        100.0 * diff_stiff
+    println!("wall: static {lower:.5}, DEM [{lo:.5}, {hi:.5}]");
+    assert!(hi < 0.95 * lower, "DEM [{lo}, {hi}] vs static {lower}");
+    let joints = &r.model.assembly.joints;
+    assert!(!r.result.sliding.is_empty());
+    assert!(
+        r.result
+            .sliding
+            .iter()
+            .all(|&j| joints[j].normal().y.abs() < 1e-9),
+        "only head joints slide: {:?}",
+        r.result.sliding
     );
-    assert!(diff_stiff.abs() < diff.abs() && diff_stiff.abs() < 0.006);
+    // The static program finds a non-associative collapse of the same law (mu = 1000, zero
+    // dilatancy) lower still: non-associative problems have several solutions, and the
+    // DEM's elastic start reaches another (measured, not a theorem: docs/dem.md).
+    let coulomb = s
+        .with_overrides(&["material.friction=1000"])
+        .expect("friction 1000");
+    let a = analysis::analyse(
+        &coulomb,
+        &Options {
+            friction: analysis::FrictionMode::NonAssociative,
+            ..options(Direction::Right)
+        },
+    )
+    .expect("analysis");
+    // No joint slides in the associative mechanism (the wall rocks as one body): the
+    // associative collapse state is also a non-associative one, "exact" in the literature's
+    // word, and still not the only one (docs/friction.md).
+    assert!(a.friction().exact);
+    assert!((a.lower.lambda.expect("collapse") - 1.0).abs() < 1e-9);
+    let na = a.non_associative.as_ref().expect("forced");
+    assert!(na.converged);
+    let n = na.lambda.expect("converged");
+    println!("wall, mu = 1000: non-associative {n:.5}");
+    assert!(n < lo, "non-associative {n} vs DEM [{lo}, {hi}]");
 }
 
 /// A scene refused: the error's text.

@@ -520,3 +520,46 @@ fn single_block_with_a_point_load_rocks_at_the_hand_value() {
         assert_eq!(r.hinges[0].end, JointEnd::P2);
     }
 }
+
+/// The courses of a wall stand side by side on one ground: each corner of the bottom course
+/// touches it once. Before the supports on one line shared their ground, every support had
+/// its own rectangle, three joint lengths wide, and neighbouring rectangles overlapped: each
+/// base corner of the wall touched two grounds at one point, twice the contact stiffness
+/// (explicit stepping) and one rigid constraint twice (Moreau-Jean). The weight still reaches
+/// the ground whole, equally in both integrators.
+#[test]
+fn a_wall_stands_on_one_ground_touched_once_at_each_corner() {
+    let s = crate::common::scene(&format!(
+        "[blocks]\nground_y = 0.0\npolygons = {}\n",
+        crate::common::rect_polygons(&crate::common::running_bond_wall_rects())
+    ));
+    let m = build(&s);
+    let weight: f64 = m.assembly.blocks.iter().map(|b| b.weight).sum();
+    for integrator in ["explicit", "moreau"] {
+        let s = s
+            .with_overrides(&[format!("dem.integrator={integrator}")])
+            .expect("integrator");
+        let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
+        let mut sim = dem::Simulation::new(&m, &p).expect("sim");
+        assert_eq!(sim.settle(&m.assembly).outcome, Outcome::Stands);
+        let ground: Vec<_> = sim
+            .contacts()
+            .into_iter()
+            .filter(|c| c.vertex_block.is_none() || c.edge_block.is_none())
+            .collect();
+        // The bottom course: blocks [0, 0.6] and [0.6, 1.2]; their base corners at x = 0,
+        // 0.6 (twice: one corner of each block) and 1.2, each seen once from its block.
+        let mut xs: Vec<f64> = ground.iter().map(|c| c.point.x).collect();
+        xs.sort_by(f64::total_cmp);
+        assert_eq!(xs.len(), 4, "{integrator}: ground contacts at {xs:?}");
+        for (x, want) in xs.iter().zip([0.0, 0.6, 0.6, 1.2]) {
+            assert!((x - want).abs() < 1e-6, "{integrator}: {xs:?}");
+        }
+        assert!(ground.iter().all(|c| c.vertex_block.is_some()));
+        let carried: f64 = ground.iter().map(|c| c.normal_force).sum();
+        assert!(
+            (carried / weight - 1.0).abs() < 1e-3,
+            "{integrator}: the ground carries {carried} N of {weight} N"
+        );
+    }
+}

@@ -13,6 +13,7 @@
 //! blocks, i.e. the collapse mechanism.
 
 mod chain;
+pub(crate) mod conic;
 pub mod design;
 mod friction;
 mod mirror;
@@ -34,7 +35,7 @@ pub use settings::{Program, Refinement, StaticSettings, LARGE_KKT};
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
 use crate::model::{Model, PassiveForce, Strength, StripForce, TieForce};
-use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
+use clarabel::solver::SolverStatus;
 use std::time::Instant;
 
 /// Size of the conic program that was solved.
@@ -435,12 +436,7 @@ fn problem_size(p: &StaticProblem) -> ModelSize {
     }
 }
 
-struct RawSolution {
-    status: SolverStatus,
-    x: Vec<f64>,
-    z: Vec<f64>,
-    iterations: u32,
-}
+use conic::Solution as RawSolution;
 
 fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, AnalysisError> {
     solve_conic(
@@ -453,10 +449,9 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
     )
 }
 
-/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`. A large
-/// program is first solved without iterative refinement ([`Refinement::Auto`]); when that
-/// solve does not end solved or infeasible it is repeated with the refinement, and the
-/// iterations of both are counted.
+/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`
+/// ([`conic::solve`]: a large program is first solved without iterative refinement under
+/// [`Refinement::Auto`], and again with it when that solve does not end solved or infeasible).
 fn solve_conic(
     p: &clarabel::algebra::CscMatrix<f64>,
     q: &[f64],
@@ -465,40 +460,15 @@ fn solve_conic(
     cones: &[clarabel::solver::SupportedConeT<f64>],
     s: &StaticSettings,
 ) -> Result<RawSolution, AnalysisError> {
-    let solve = |refine: bool| -> Result<RawSolution, AnalysisError> {
-        let settings = DefaultSettingsBuilder::default()
-            .iterative_refinement_enable(refine)
-            .verbose(false)
-            .tol_gap_abs(s.tol_gap)
-            .tol_gap_rel(s.tol_gap)
-            .tol_feas(s.tol_feas)
-            .max_iter(s.max_iter)
-            .direct_solve_method(s.linear_solver.clone())
-            .build()
-            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-        let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
-            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-        solver.solve();
-        let sol = &solver.solution;
-        Ok(RawSolution {
-            status: sol.status,
-            x: sol.x.clone(),
-            z: sol.z.clone(),
-            iterations: sol.iterations,
-        })
+    let program = conic::Conic { p, q, a, b, cones };
+    let knobs = conic::Knobs {
+        tol_gap: s.tol_gap,
+        tol_feas: s.tol_feas,
+        max_iter: s.max_iter,
+        linear_solver: Some(&s.linear_solver),
+        refinement: s.refinement,
     };
-    let plain = s.refinement == Refinement::Auto && a.n + a.m >= LARGE_KKT;
-    let first = solve(!plain)?;
-    let settled = matches!(
-        first.status,
-        SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
-    );
-    if !plain || settled {
-        return Ok(first);
-    }
-    let mut sol = solve(true)?;
-    sol.iterations += first.iterations;
-    Ok(sol)
+    conic::solve(&program, &knobs).map_err(AnalysisError::SolverSetup)
 }
 
 fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointForce> {

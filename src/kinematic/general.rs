@@ -755,3 +755,53 @@ fn cannot_stand(
         note: Some("general: the kinematic program is unbounded below: an admissible mechanism on which the action does no work is driven by the permanent loads alone, so the structure cannot stand".to_string()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{build, Scene};
+    use crate::statics::conic::STALL_UNREFINED;
+    use crate::statics::{analyse, StaticSettings};
+
+    /// The general program's retry of a solve that does not end solved without Clarabel's
+    /// iterative refinement (the hook stops it after 4 iterations): the mechanism is the
+    /// refined solve's, bit for bit, its iterations those of both solves, and it is certified
+    /// by virtual work at the static multiplier (associative friction: the two bounds meet).
+    #[test]
+    fn a_stalled_unrefined_solve_is_repeated_with_the_refinement() {
+        let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 24\n[material]\nfriction = 0.6\n[[loads]]\ntype = \"line\"\nfrom_x = 0.2\nto_x = 0.6\nintensity = 3000.0\n";
+        let model = build(&Scene::from_toml_str(text, "test").expect("scene")).expect("model");
+        let optimum = |solved: Result<Solved, KinematicError>| match solved.expect("solved") {
+            Solved::Optimal {
+                twists,
+                iterations,
+                stopped,
+            } => (twists, iterations, stopped),
+            _ => panic!("the general program has an optimum"),
+        };
+        let program = Program::new(&model, 1.0, 1.0);
+        let (twists, iterations, stopped) = optimum(program.solve(&model, Refinement::Always));
+        assert!(
+            stopped.is_none() && iterations > 4,
+            "{iterations} {stopped:?}"
+        );
+        STALL_UNREFINED.set(Some(4));
+        let retried = program.solve(&model, Refinement::Auto);
+        STALL_UNREFINED.set(None);
+        let (retried, retried_iterations, stopped) = optimum(retried);
+        assert!(stopped.is_none(), "{stopped:?}");
+        assert_eq!(retried, twists);
+        assert_eq!(retried_iterations, 4 + iterations);
+        let c = check(&model, retried, 1.0).expect("an admissible mechanism");
+        let (a, g, d) = c.work;
+        let upper = (g + d) / a;
+        let lower = analyse(&model, &StaticSettings::default())
+            .expect("static program")
+            .lambda
+            .expect("a collapse");
+        assert!(
+            lower <= upper + 1e-9 * upper.abs() && upper - lower <= 1e-6 * upper.abs(),
+            "static {lower}, kinematic {upper}"
+        );
+    }
+}

@@ -117,3 +117,95 @@ thread_local! {
     pub(crate) static STALL_UNREFINED: std::cell::Cell<Option<u32>> =
         const { std::cell::Cell::new(None) };
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{build, Scene};
+    use crate::statics::{
+        analyse, Objective, Program, StaticProblem, StaticSettings, Status, LAMBDA_CAP,
+    };
+
+    /// A semicircular arch with a line load on one haunch (no mirror symmetry), its joints
+    /// frictional: the full static program.
+    fn arch() -> crate::model::Model {
+        let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 24\n[material]\nfriction = 0.6\n[[loads]]\ntype = \"line\"\nfrom_x = 0.2\nto_x = 0.6\nintensity = 3000.0\n";
+        build(&Scene::from_toml_str(text, "test").expect("scene")).expect("model")
+    }
+
+    /// The retry: a program that does not end solved without the refinement (the hook stops
+    /// that solve after 4 iterations, where the refined one needs more) is solved again with
+    /// it. The answer is the refined solve's, bit for bit (the same program, the same
+    /// settings), in equilibrium, and its iterations are those of both solves.
+    #[test]
+    fn a_stalled_unrefined_solve_is_repeated_with_the_refinement() {
+        let model = arch();
+        let refined = StaticSettings {
+            program: Program::Full,
+            refinement: Refinement::Always,
+            ..StaticSettings::default()
+        };
+        let auto = StaticSettings {
+            refinement: Refinement::Auto,
+            ..refined.clone()
+        };
+        let always = analyse(&model, &refined).expect("refined solve");
+        assert_eq!(always.status, Status::Collapse);
+        const STALL: u32 = 4;
+        assert!(
+            always.iterations > STALL,
+            "{} iterations",
+            always.iterations
+        );
+        STALL_UNREFINED.set(Some(STALL));
+        // The first solve alone: stopped short, not solved or infeasible.
+        let problem = StaticProblem::of_model(
+            &model,
+            crate::interaction::contact::ShearLimit::Coulomb,
+            Objective::MaxLambda {
+                sign: 1.0,
+                cap: None,
+            },
+        );
+        let program = Conic {
+            p: &problem.p,
+            q: &problem.q,
+            a: &problem.a,
+            b: &problem.b,
+            cones: &problem.cones,
+        };
+        let knobs = Knobs {
+            tol_gap: auto.tol_gap,
+            tol_feas: auto.tol_feas,
+            max_iter: auto.max_iter,
+            linear_solver: Some(&auto.linear_solver),
+            refinement: auto.refinement,
+        };
+        let first = once(&program, &knobs, false).expect("unrefined solve");
+        assert_eq!(first.status, SolverStatus::MaxIterations);
+        assert_eq!(first.iterations, STALL);
+        let retried = analyse(&model, &auto);
+        STALL_UNREFINED.set(None);
+        let retried = retried.expect("retried solve");
+        assert_eq!(retried.status, Status::Collapse);
+        let (lambda, expected) = (
+            retried.lambda.expect("lambda"),
+            always.lambda.expect("lambda"),
+        );
+        assert_eq!(
+            lambda.to_bits(),
+            expected.to_bits(),
+            "{lambda} vs {expected}"
+        );
+        assert!(lambda > 0.0 && lambda < LAMBDA_CAP, "{lambda}");
+        assert_eq!(retried.iterations, STALL + always.iterations);
+        // Equilibrium of every block, to the solver's accuracy on the total weight.
+        let weight = model.loads.force_scale();
+        assert!(
+            retried.equilibrium_residual <= 1e-8 * weight,
+            "residual {} N of {weight} N",
+            retried.equilibrium_residual
+        );
+        assert_eq!(retried.hinges.len(), always.hinges.len());
+    }
+}

@@ -759,8 +759,7 @@ fn cannot_stand(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{build, Scene};
-    use crate::statics::conic::STALL_UNREFINED;
+    use crate::statics::conic::{tests::arch, STALL_UNREFINED};
     use crate::statics::{analyse, StaticSettings};
 
     /// The general program's retry of a solve that does not end solved without Clarabel's
@@ -769,8 +768,7 @@ mod tests {
     /// by virtual work at the static multiplier (associative friction: the two bounds meet).
     #[test]
     fn a_stalled_unrefined_solve_is_repeated_with_the_refinement() {
-        let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 24\n[material]\nfriction = 0.6\n[[loads]]\ntype = \"line\"\nfrom_x = 0.2\nto_x = 0.6\nintensity = 3000.0\n";
-        let model = build(&Scene::from_toml_str(text, "test").expect("scene")).expect("model");
+        let model = arch();
         let optimum = |solved: Result<Solved, KinematicError>| match solved.expect("solved") {
             Solved::Optimal {
                 twists,

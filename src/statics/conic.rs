@@ -119,7 +119,7 @@ thread_local! {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::scene::{build, Scene};
     use crate::statics::{
@@ -127,8 +127,8 @@ mod tests {
     };
 
     /// A semicircular arch with a line load on one haunch (no mirror symmetry), its joints
-    /// frictional: the full static program.
-    fn arch() -> crate::model::Model {
+    /// frictional (also the general kinematic program's test of the retry).
+    pub(crate) fn arch() -> crate::model::Model {
         let text = "[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 24\n[material]\nfriction = 0.6\n[[loads]]\ntype = \"line\"\nfrom_x = 0.2\nto_x = 0.6\nintensity = 3000.0\n";
         build(&Scene::from_toml_str(text, "test").expect("scene")).expect("model")
     }

@@ -91,7 +91,7 @@ fn once(program: &Conic<'_>, knobs: &Knobs<'_>, refine: bool) -> Result<Solution
 }
 
 /// Whether a program of `kkt` KKT rows is large enough to be solved without the refinement
-/// first (every program, under the test hook [`STALL_UNREFINED`]).
+/// first (every program, under the test hook `STALL_UNREFINED`).
 fn large(kkt: usize) -> bool {
     #[cfg(test)]
     if STALL_UNREFINED.get().is_some() {

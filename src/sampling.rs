@@ -208,6 +208,18 @@ pub fn pearson_of_rank(rho: f64) -> f64 {
     2.0 * (std::f64::consts::PI * rho / 6.0).sin()
 }
 
+/// The lower Cholesky factor of the Pearson form of the rank correlation matrix `rank`
+/// ([`pearson_of_rank`] of each entry: the correlation of the normal scores that
+/// [`impose_rank_correlation`] imposes), None when that is not positive definite (the
+/// correlations cannot hold together).
+pub fn rank_correlation_factor(rank: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let pearson: Vec<Vec<f64>> = rank
+        .iter()
+        .map(|row| row.iter().map(|&r| pearson_of_rank(r)).collect())
+        .collect();
+    cholesky(&pearson)
+}
+
 /// The lower Cholesky factor `L` of the symmetric matrix `a` (`a = L L^T`), None when `a` is
 /// not positive definite (a pivot at or below `1e-12` times the diagonal's largest entry).
 pub fn cholesky(a: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
@@ -250,7 +262,7 @@ fn ranks(x: impl Iterator<Item = f64>) -> Vec<usize> {
 /// Conover's method (module docs). Each column keeps its values; only their order across the
 /// samples changes, and no random number is drawn (the columns' own order is the random
 /// pairing the method starts from). The Pearson form of `target` must be positive definite
-/// (the scene checks it: [`cholesky`] of `pearson_of_rank` of each entry); when the
+/// (the scene checks it: [`rank_correlation_factor`]); when the
 /// samples' own score correlation is not (fewer samples than variables), it is taken as
 /// the identity.
 pub fn impose_rank_correlation(u: &mut [Vec<f64>], target: &[Vec<f64>]) {
@@ -258,11 +270,7 @@ pub fn impose_rank_correlation(u: &mut [Vec<f64>], target: &[Vec<f64>]) {
     if n < 2 || k < 2 {
         return;
     }
-    let pearson: Vec<Vec<f64>> = target
-        .iter()
-        .map(|row| row.iter().map(|&r| pearson_of_rank(r)).collect())
-        .collect();
-    let Some(p) = cholesky(&pearson) else {
+    let Some(p) = rank_correlation_factor(target) else {
         return;
     };
     let scores: Vec<f64> = (1..=n)

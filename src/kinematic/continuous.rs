@@ -635,8 +635,9 @@ impl Structure {
         out
     }
 
-    /// `(A, G)` of the mechanism with active sections `pos` doing `acts`, if admissible.
-    fn evaluate(&self, pos: &[Pos], acts: &[Act]) -> Option<(f64, f64)> {
+    /// The active sections at the positions `pos` (at most four) doing `acts`, in the first
+    /// `pos.len()` places.
+    fn actives(&self, pos: &[Pos], acts: &[Act]) -> [Active; 4] {
         let mut actives = [Active {
             p1: Vec2::zeros(),
             p2: Vec2::zeros(),
@@ -646,6 +647,12 @@ impl Structure {
             let (p1, p2) = self.section(*p);
             actives[k] = Active { p1, p2, act: *a };
         }
+        actives
+    }
+
+    /// `(A, G)` of the mechanism with active sections `pos` doing `acts`, if admissible.
+    fn evaluate(&self, pos: &[Pos], acts: &[Act]) -> Option<(f64, f64)> {
+        let actives = self.actives(pos, acts);
         let m = solve_motion(&actives[..pos.len()], true)?;
         let mut bodies = [Sums::default(); 3];
         for k in 0..pos.len() - 1 {
@@ -872,15 +879,8 @@ pub fn continuous(
     let mut family = None;
     if let Some((_, pos, acts)) = &best {
         // Drop idle hinges (zero relative rotation), as the discrete search does.
-        let actives: Vec<Active> = pos
-            .iter()
-            .zip(acts)
-            .map(|(p, a)| {
-                let (p1, p2) = st.section(*p);
-                Active { p1, p2, act: *a }
-            })
-            .collect();
-        let motion = solve_motion(&actives, true);
+        let actives = st.actives(pos, acts);
+        let motion = solve_motion(&actives[..pos.len()], true);
         let n_open = acts.iter().filter(|a| **a == Act::Open).count();
         family = Some(match n_open {
             0 => Family::FourHinges,
@@ -1004,15 +1004,7 @@ fn refine(
             // computed once per coordinate (the same functions of the same positions as
             // `Structure::evaluate`, so every value is bit for bit the same).
             let mut trial = pos.clone();
-            let mut actives = [Active {
-                p1: Vec2::zeros(),
-                p2: Vec2::zeros(),
-                act: Act::Open,
-            }; 4];
-            for (j, (p, a)) in trial.iter().zip(acts).enumerate() {
-                let (p1, p2) = st.section(*p);
-                actives[j] = Active { p1, p2, act: *a };
-            }
+            let mut actives = st.actives(&trial, acts);
             let mut bodies = [Sums::default(); 3];
             for j in 0..n - 1 {
                 bodies[j] = st.between(trial[j], trial[j + 1]);

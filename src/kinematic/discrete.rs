@@ -545,6 +545,20 @@ pub fn analyse_local(
     ))
 }
 
+/// What both certificates ([`certify`], [`certify_crushing`]) ask first: a static collapse,
+/// on a chain between two supports (a one-support chain has no four-hinge mechanism).
+fn four_hinge_chain(model: &Model, around: &StaticResult) -> Result<(), KinematicError> {
+    if around.status != Status::Collapse {
+        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
+    }
+    if !chain_kind(model)? {
+        return Err(KinematicError::NotCertified(
+            "a one-support chain has no four-hinge mechanism".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// The upper bound certified by the static solution `around` at collapse (issue: both bounds
 /// at the physical limit): at a non-degenerate optimum the static solution has four tight
 /// no-tension rows: four hinges, or two hinges and a joint that carries nothing (it opens), or
@@ -566,14 +580,7 @@ pub fn certify(
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, KinematicError> {
     let start = Instant::now();
-    if around.status != Status::Collapse {
-        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
-    }
-    if !chain_kind(model)? {
-        return Err(KinematicError::NotCertified(
-            "a one-support chain has no four-hinge mechanism".into(),
-        ));
-    }
+    four_hinge_chain(model, around)?;
     if !around.sliding.is_empty() || around.open.len() > 2 {
         return Err(KinematicError::NotCertified(format!(
             "the static solution has {} open and {} sliding joints",
@@ -1651,14 +1658,7 @@ pub fn certify_crushing(
     settings: &KinematicSettings,
 ) -> Result<KinematicResult, KinematicError> {
     let start = Instant::now();
-    if around.status != Status::Collapse {
-        return Err(KinematicError::LocalNeedsCollapse(around.status.as_str()));
-    }
-    if !chain_kind(model)? {
-        return Err(KinematicError::NotCertified(
-            "a one-support chain has no four-hinge mechanism".into(),
-        ));
-    }
+    four_hinge_chain(model, around)?;
     if !around.sliding.is_empty() || !around.open.is_empty() {
         return Err(KinematicError::NotCertified(format!(
             "the crushing check takes four-hinge mechanisms only; the static solution has {} open and {} sliding joints",

@@ -83,11 +83,9 @@ use super::{Mechanism, Search, Status, Sums, Twist};
 use crate::assembly::{Assembly, JointEnd};
 use crate::geometry::{cross, Vec2};
 use crate::model::Model;
-use crate::statics::{Refinement, LARGE_KKT};
+use crate::statics::{conic, Refinement};
 use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolution, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
-};
+use clarabel::solver::{SolverStatus, SupportedConeT};
 use std::time::Instant;
 
 /// Relative tolerance of the certificate's admissibility check: an opening rate (or a flow
@@ -326,25 +324,27 @@ impl Program {
         }
     }
 
-    /// Solve; the twists `[omega, vx0, vy0]` about the origin of each block. A large program
-    /// is solved without Clarabel's iterative refinement first, as the static one
-    /// (`statics::Refinement`), and again with it when that solve does not end solved or
-    /// infeasible (the iterations of both counted).
+    /// Solve; the twists `[omega, vx0, vy0]` about the origin of each block. Clarabel solves
+    /// it under `refinement` as it does the static programs ([`crate::statics::conic::solve`]: a
+    /// large program without iterative refinement first, and again with it when that solve
+    /// does not end solved or infeasible, the iterations of both counted).
     fn solve(&self, model: &Model, refinement: Refinement) -> Result<Solved, KinematicError> {
-        let plain = refinement == Refinement::Auto && self.a.n + self.a.m >= LARGE_KKT;
-        let mut sol = self.clarabel(!plain)?;
-        if plain
-            && !matches!(
-                sol.status,
-                SolverStatus::Solved
-                    | SolverStatus::PrimalInfeasible
-                    | SolverStatus::DualInfeasible
-            )
-        {
-            let first = sol.iterations;
-            sol = self.clarabel(true)?;
-            sol.iterations += first;
-        }
+        let n = self.q.len();
+        let program = conic::Conic {
+            p: &CscMatrix::zeros((n, n)),
+            q: &self.q,
+            a: &self.a,
+            b: &self.b,
+            cones: &self.cones,
+        };
+        let knobs = conic::Knobs {
+            tol_gap: SOLVER_TOL,
+            tol_feas: SOLVER_TOL,
+            max_iter: 200,
+            linear_solver: None,
+            refinement,
+        };
+        let sol = conic::solve(&program, &knobs).map_err(KinematicError::General)?;
         let twists = |x: &[f64]| -> Vec<Twist> {
             (0..model.assembly.blocks.len())
                 .map(|i| {
@@ -385,25 +385,6 @@ impl Program {
                 sol.iterations
             ))),
         }
-    }
-
-    /// One Clarabel solve of the program, with or without iterative refinement (`refine`).
-    fn clarabel(&self, refine: bool) -> Result<DefaultSolution<f64>, KinematicError> {
-        let settings = DefaultSettingsBuilder::default()
-            .iterative_refinement_enable(refine)
-            .verbose(false)
-            .tol_gap_abs(SOLVER_TOL)
-            .tol_gap_rel(SOLVER_TOL)
-            .tol_feas(SOLVER_TOL)
-            .max_iter(200)
-            .build()
-            .map_err(|e| KinematicError::General(e.to_string()))?;
-        let n = self.q.len();
-        let p = CscMatrix::zeros((n, n));
-        let mut solver = DefaultSolver::new(&p, &self.q, &self.a, &self.b, &self.cones, settings)
-            .map_err(|e| KinematicError::General(e.to_string()))?;
-        solver.solve();
-        Ok(solver.solution)
     }
 }
 
@@ -772,5 +753,53 @@ fn cannot_stand(
         search: Search::General,
         searched_joints: model.assembly.joints.len(),
         note: Some("general: the kinematic program is unbounded below: an admissible mechanism on which the action does no work is driven by the permanent loads alone, so the structure cannot stand".to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::statics::conic::{tests::arch, STALL_UNREFINED};
+    use crate::statics::{analyse, StaticSettings};
+
+    /// The general program's retry of a solve that does not end solved without Clarabel's
+    /// iterative refinement (the hook stops it after 4 iterations): the mechanism is the
+    /// refined solve's, bit for bit, its iterations those of both solves, and it is certified
+    /// by virtual work at the static multiplier (associative friction: the two bounds meet).
+    #[test]
+    fn a_stalled_unrefined_solve_is_repeated_with_the_refinement() {
+        let model = arch();
+        let optimum = |solved: Result<Solved, KinematicError>| match solved.expect("solved") {
+            Solved::Optimal {
+                twists,
+                iterations,
+                stopped,
+            } => (twists, iterations, stopped),
+            _ => panic!("the general program has an optimum"),
+        };
+        let program = Program::new(&model, 1.0, 1.0);
+        let (twists, iterations, stopped) = optimum(program.solve(&model, Refinement::Always));
+        assert!(
+            stopped.is_none() && iterations > 4,
+            "{iterations} {stopped:?}"
+        );
+        STALL_UNREFINED.set(Some(4));
+        let retried = program.solve(&model, Refinement::Auto);
+        STALL_UNREFINED.set(None);
+        let (retried, retried_iterations, stopped) = optimum(retried);
+        assert!(stopped.is_none(), "{stopped:?}");
+        assert_eq!(retried, twists);
+        assert_eq!(retried_iterations, 4 + iterations);
+        let c = check(&model, retried, 1.0).expect("an admissible mechanism");
+        let (a, g, d) = c.work;
+        let upper = (g + d) / a;
+        let lower = analyse(&model, &StaticSettings::default())
+            .expect("static program")
+            .lambda
+            .expect("a collapse");
+        assert!(
+            lower <= upper + 1e-9 * upper.abs() && upper - lower <= 1e-6 * upper.abs(),
+            "static {lower}, kinematic {upper}"
+        );
     }
 }

@@ -323,15 +323,7 @@ pub fn parse_correlation(
         });
     }
     let matrix = correlation_matrix(inputs, &out);
-    let pearson: Vec<Vec<f64>> = matrix
-        .iter()
-        .map(|row| {
-            row.iter()
-                .map(|&r| crate::sampling::pearson_of_rank(r))
-                .collect()
-        })
-        .collect();
-    if crate::sampling::cholesky(&pearson).is_none() {
+    if crate::sampling::rank_correlation_factor(&matrix).is_none() {
         return Err(SceneError::OutOfRange {
             origin: origin.into(),
             key: "uncertain.correlation".into(),

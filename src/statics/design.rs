@@ -14,7 +14,7 @@
 //! multiplier that capacities without bound reach in every direction.
 
 use super::problem::{program_rows, DesignColumns, StaticProblem};
-use super::{solve_conic, StaticSettings, LAMBDA_CAP};
+use super::{run, StaticSettings, LAMBDA_CAP};
 use crate::error::AnalysisError;
 use crate::interaction::Rows;
 use crate::model::Model;
@@ -129,7 +129,7 @@ pub fn smallest_capacities(
 ) -> Result<Design, AnalysisError> {
     model.validate()?;
     let (p, d) = program(model, designed, signs, Some(target));
-    let sol = solve_conic(&p.p, &p.q, &p.a, &p.b, &p.cones, settings)?;
+    let sol = run(&p, settings)?;
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Design::Capacities(
             (0..d)
@@ -157,7 +157,7 @@ pub fn best_reachable(
 ) -> Result<Option<f64>, AnalysisError> {
     model.validate()?;
     let (p, _) = program(model, designed, signs, None);
-    let sol = solve_conic(&p.p, &p.q, &p.a, &p.b, &p.cones, settings)?;
+    let sol = run(&p, settings)?;
     match sol.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Some(sol.x[0])),
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(None),

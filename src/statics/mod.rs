@@ -13,6 +13,7 @@
 //! blocks, i.e. the collapse mechanism.
 
 mod chain;
+pub(crate) mod conic;
 pub mod design;
 mod friction;
 mod mirror;
@@ -33,8 +34,9 @@ pub use settings::{Program, Refinement, StaticSettings, LARGE_KKT};
 
 use crate::assembly::{Assembly, Hinge, JointEnd, JointForce};
 use crate::error::AnalysisError;
+use crate::interaction::contact::ShearLimit;
 use crate::model::{Model, PassiveForce, Strength, StripForce, TieForce};
-use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus};
+use clarabel::solver::SolverStatus;
 use std::time::Instant;
 
 /// Size of the conic program that was solved.
@@ -117,17 +119,13 @@ pub fn analyse_full(
     settings: &StaticSettings,
 ) -> Result<StaticResult, AnalysisError> {
     let start = Instant::now();
-    let (assembly, loads) = (&model.assembly, &model.loads);
+    let assembly = &model.assembly;
     model.validate()?;
     let sign = settings.direction.sign();
     let strength = model.strength;
-    let problem = StaticProblem::with_interactions(
-        assembly,
-        loads,
-        strength,
-        &model.ties,
-        &model.strips,
-        &model.passive,
+    let problem = StaticProblem::of_model(
+        model,
+        ShearLimit::Coulomb,
         Objective::MaxLambda { sign, cap: None },
     );
     let mut sol = run(&problem, settings)?;
@@ -138,13 +136,9 @@ pub fn analyse_full(
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible
     ) {
         // Unbounded above, or both infeasible: a capped program tells which.
-        let capped = StaticProblem::with_interactions(
-            assembly,
-            loads,
-            strength,
-            &model.ties,
-            &model.strips,
-            &model.passive,
+        let capped = StaticProblem::of_model(
+            model,
+            ShearLimit::Coulomb,
             Objective::MaxLambda {
                 sign,
                 cap: Some(LAMBDA_CAP),
@@ -160,17 +154,8 @@ pub fn analyse_full(
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let lambda = sol.x[0];
             let forces = read_forces(assembly, &problem, &sol.x);
-            let tension = read_ties(&problem, &sol.x);
-            let strip_tension = read_strips(&problem, &sol.x);
-            let passive = read_passive(&problem, &sol.x);
-            let residual = model.residual_with_passive(
-                &forces,
-                &tension,
-                &strip_tension,
-                &passive,
-                lambda,
-                sign,
-            );
+            let tensions = Tensions::read(&problem, &sol.x);
+            let residual = tensions.residual(model, &forces, lambda, sign);
             check_almost_solved(sol.status, residual, problem.force_scale, sol.iterations)?;
             result = result.read_solution(
                 assembly,
@@ -182,7 +167,7 @@ pub fn analyse_full(
                 lambda_capped,
                 || read_mechanism(assembly, &problem, &sol.z),
             );
-            result.read_interactions(model, &tension, &strip_tension, &passive);
+            result.read_interactions(model, &tensions.ties, &tensions.strips, &tensions.passive);
         }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             result.status = Status::CannotStand;
@@ -435,12 +420,7 @@ fn problem_size(p: &StaticProblem) -> ModelSize {
     }
 }
 
-struct RawSolution {
-    status: SolverStatus,
-    x: Vec<f64>,
-    z: Vec<f64>,
-    iterations: u32,
-}
+use conic::Solution as RawSolution;
 
 fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, AnalysisError> {
     solve_conic(
@@ -453,10 +433,9 @@ fn run(problem: &StaticProblem, s: &StaticSettings) -> Result<RawSolution, Analy
     )
 }
 
-/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`. A large
-/// program is first solved without iterative refinement ([`Refinement::Auto`]); when that
-/// solve does not end solved or infeasible it is repeated with the refinement, and the
-/// iterations of both are counted.
+/// Solve `min q'x + x'Px/2  s.t.  A x + s = b, s in cones` with Clarabel under `s`
+/// ([`conic::solve`]: a large program is first solved without iterative refinement under
+/// [`Refinement::Auto`], and again with it when that solve does not end solved or infeasible).
 fn solve_conic(
     p: &clarabel::algebra::CscMatrix<f64>,
     q: &[f64],
@@ -465,40 +444,15 @@ fn solve_conic(
     cones: &[clarabel::solver::SupportedConeT<f64>],
     s: &StaticSettings,
 ) -> Result<RawSolution, AnalysisError> {
-    let solve = |refine: bool| -> Result<RawSolution, AnalysisError> {
-        let settings = DefaultSettingsBuilder::default()
-            .iterative_refinement_enable(refine)
-            .verbose(false)
-            .tol_gap_abs(s.tol_gap)
-            .tol_gap_rel(s.tol_gap)
-            .tol_feas(s.tol_feas)
-            .max_iter(s.max_iter)
-            .direct_solve_method(s.linear_solver.clone())
-            .build()
-            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-        let mut solver = DefaultSolver::new(p, q, a, b, cones, settings)
-            .map_err(|e| AnalysisError::SolverSetup(e.to_string()))?;
-        solver.solve();
-        let sol = &solver.solution;
-        Ok(RawSolution {
-            status: sol.status,
-            x: sol.x.clone(),
-            z: sol.z.clone(),
-            iterations: sol.iterations,
-        })
+    let program = conic::Conic { p, q, a, b, cones };
+    let knobs = conic::Knobs {
+        tol_gap: s.tol_gap,
+        tol_feas: s.tol_feas,
+        max_iter: s.max_iter,
+        linear_solver: Some(&s.linear_solver),
+        refinement: s.refinement,
     };
-    let plain = s.refinement == Refinement::Auto && a.n + a.m >= LARGE_KKT;
-    let first = solve(!plain)?;
-    let settled = matches!(
-        first.status,
-        SolverStatus::Solved | SolverStatus::PrimalInfeasible | SolverStatus::DualInfeasible
-    );
-    if !plain || settled {
-        return Ok(first);
-    }
-    let mut sol = solve(true)?;
-    sol.iterations += first.iterations;
-    Ok(sol)
+    conic::solve(&program, &knobs).map_err(AnalysisError::SolverSetup)
 }
 
 fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointForce> {
@@ -521,28 +475,36 @@ fn read_forces(assembly: &Assembly, p: &StaticProblem, x: &[f64]) -> Vec<JointFo
         .collect()
 }
 
-/// The passive reactions (N), in face order.
-fn read_passive(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
-    p.passive_columns
-        .iter()
-        .map(|&c| x[c] * p.force_scale)
-        .collect()
+/// The tensions of the interactions beside the contacts read from a solution `x` (N): the
+/// ties', the strips' and the passive reactions', each in its own order.
+struct Tensions {
+    ties: Vec<f64>,
+    strips: Vec<f64>,
+    passive: Vec<f64>,
 }
 
-/// The strips' tensions (N), in strip order.
-fn read_strips(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
-    p.strip_columns
-        .iter()
-        .map(|&c| x[c] * p.force_scale)
-        .collect()
-}
+impl Tensions {
+    fn read(p: &StaticProblem, x: &[f64]) -> Tensions {
+        let read = |columns: &[usize]| columns.iter().map(|&c| x[c] * p.force_scale).collect();
+        Tensions {
+            ties: read(&p.tie_columns),
+            strips: read(&p.strip_columns),
+            passive: read(&p.passive_columns),
+        }
+    }
 
-/// The ties' tensions (N), in tie order.
-fn read_ties(p: &StaticProblem, x: &[f64]) -> Vec<f64> {
-    p.tie_columns
-        .iter()
-        .map(|&c| x[c] * p.force_scale)
-        .collect()
+    /// The largest out-of-balance force of any block of `model` (N) with the joint forces
+    /// `forces` and these tensions at the multiplier `lambda` toward `sign`.
+    fn residual(&self, model: &Model, forces: &[JointForce], lambda: f64, sign: f64) -> f64 {
+        model.residual_with_passive(
+            forces,
+            &self.ties,
+            &self.strips,
+            &self.passive,
+            lambda,
+            sign,
+        )
+    }
 }
 
 /// What the joint forces say about each joint: hinges, sliding joints, open joints.
@@ -682,17 +644,9 @@ pub fn stands_at_rest(model: &Model, settings: &StaticSettings) -> Result<bool, 
 
 /// The phase-one program on the full program (any assembly).
 fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, AnalysisError> {
-    let (assembly, loads) = (&model.assembly, &model.loads);
+    let assembly = &model.assembly;
     model.validate()?;
-    let problem = StaticProblem::with_interactions(
-        assembly,
-        loads,
-        model.strength,
-        &model.ties,
-        &model.strips,
-        &model.passive,
-        Objective::MinTension,
-    );
+    let problem = StaticProblem::of_model(model, ShearLimit::Coulomb, Objective::MinTension);
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,
@@ -706,14 +660,7 @@ fn stands_full(model: &Model, settings: &StaticSettings) -> Result<StandResult, 
     let tau = sol.x[0];
     // Undo the relaxation so the forces are those of a real (tau <= 0) thrust line.
     let forces = read_forces(assembly, &problem, &sol.x);
-    let residual = model.residual_with_passive(
-        &forces,
-        &read_ties(&problem, &sol.x),
-        &read_strips(&problem, &sol.x),
-        &read_passive(&problem, &sol.x),
-        0.0,
-        1.0,
-    );
+    let residual = Tensions::read(&problem, &sol.x).residual(model, &forces, 0.0, 1.0);
     let stands = tau <= 0.0;
     let hinges = if stands {
         classify_joints(assembly, model.strength, &forces, settings.hinge_tolerance).hinges

@@ -53,8 +53,8 @@ use super::problem::column;
 use super::problem::{Objective, StaticProblem};
 use super::simplex::{BoundedLp, DualSimplex, LpOutcome};
 use super::{
-    check_almost_solved, problem_size, read_forces, read_mechanism, read_passive, read_strips,
-    read_ties, run, slipping_joints, Program, StaticResult, StaticSettings, Status, LAMBDA_CAP,
+    check_almost_solved, problem_size, read_forces, read_mechanism, run, slipping_joints, Program,
+    StaticResult, StaticSettings, Status, Tensions, LAMBDA_CAP,
 };
 use crate::assembly::JointForce;
 use crate::error::AnalysisError;
@@ -294,32 +294,22 @@ fn fixed_program(model: &Model, settings: &StaticSettings, capacity: &[f64]) -> 
 
 /// The static program of `model` with the shear capacities `capacity` (N) and `objective`.
 fn program_with(model: &Model, capacity: &[f64], objective: Objective) -> StaticProblem {
-    StaticProblem::with_shear_limit(
-        &model.assembly,
-        &model.loads,
-        model.strength,
-        &model.ties,
-        &model.strips,
-        &model.passive,
-        ShearLimit::Fixed(capacity),
-        objective,
-    )
+    StaticProblem::of_model(model, ShearLimit::Fixed(capacity), objective)
 }
 
-/// One iterate by the simplex path: the largest multiplier, then the optimum nearest the
-/// last iterate (or, with `least_friction`, the least-friction optimum, nearest it among
-/// those). `Some(None)`: no equilibrium with these capacities; None: the simplex did not
-/// decide, and Clarabel should.
+/// One iterate by the simplex path on `problem` (the largest-multiplier program with the
+/// iteration's capacities): the largest multiplier, then the optimum nearest the last
+/// iterate (or, with `least_friction`, the least-friction optimum, nearest it among those).
+/// `Some(None)`: no equilibrium with these capacities; None: the simplex did not decide, and
+/// Clarabel should (on the same `problem`).
 fn solve_fixed_lp(
     model: &Model,
     settings: &StaticSettings,
     lp: &mut FixedShearLp,
-    capacity: &[f64],
+    problem: &StaticProblem,
     least_friction: bool,
 ) -> Result<Option<Option<Iterate>>, AnalysisError> {
-    let start = Instant::now();
-    let problem = fixed_program(model, settings, capacity);
-    let Ok(first) = BoundedLp::from_problem(&problem) else {
+    let Ok(first) = BoundedLp::from_problem(problem) else {
         return Ok(None);
     };
     let sol = match solve_in(&mut lp.main, first.clone()) {
@@ -358,7 +348,7 @@ fn solve_fixed_lp(
     let iterate = read_fixed(
         model,
         settings,
-        &problem,
+        problem,
         &x,
         &sol.z,
         (lambda, SolverStatus::Solved, sol.pivots),
@@ -366,8 +356,6 @@ fn solve_fixed_lp(
         2,
     )?;
     lp.centre = columns.iter().map(|&k| x[k]).collect();
-    let mut iterate = iterate;
-    iterate.result.solve_time_s = start.elapsed().as_secs_f64();
     Ok(Some(Some(iterate)))
 }
 
@@ -387,17 +375,14 @@ fn read_fixed(
     let (lambda, status, iterations) = solved;
     let sign = settings.direction.sign();
     let forces = read_forces(&model.assembly, problem, x);
-    let tension = read_ties(problem, x);
-    let strip_tension = read_strips(problem, x);
-    let passive = read_passive(problem, x);
-    let residual =
-        model.residual_with_passive(&forces, &tension, &strip_tension, &passive, lambda, sign);
+    let tensions = Tensions::read(problem, x);
+    let residual = tensions.residual(model, &forces, lambda, sign);
     check_almost_solved(status, residual, problem.force_scale, iterations)?;
     let mut result = StaticResult::unsolved(settings, iterations, words, problem_size(problem));
     result = result.read_iterate(model, settings, lambda, forces.clone(), residual, || {
         read_mechanism(&model.assembly, problem, z)
     });
-    result.set_tensions(model, &tension, &strip_tension, &passive);
+    result.set_tensions(model, &tensions.ties, &tensions.strips, &tensions.passive);
     Ok(Iterate {
         lambda,
         forces,
@@ -426,15 +411,19 @@ fn solve_fixed(
             programs: 1 + u32::from(least_friction),
         }));
     }
-    // Any other linear program by the warm-started simplex, likewise.
+    // Any other program is built once: the warm-started simplex solves it when it is linear
+    // and the simplex decides, Clarabel otherwise. The iterate's time counts from the build.
+    let start = Instant::now();
+    let problem = fixed_program(model, settings, capacity);
     if let Some(lp) = lp {
-        if let Some(found) = solve_fixed_lp(model, settings, lp, capacity, least_friction)? {
-            return Ok(found);
+        if let Some(found) = solve_fixed_lp(model, settings, lp, &problem, least_friction)? {
+            return Ok(found.map(|mut iterate| {
+                iterate.result.solve_time_s = start.elapsed().as_secs_f64();
+                iterate
+            }));
         }
     }
-    let start = Instant::now();
     let sign = settings.direction.sign();
-    let problem = fixed_program(model, settings, capacity);
     let sol = run(&problem, settings)?;
     if !matches!(
         sol.status,

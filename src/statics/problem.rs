@@ -35,7 +35,7 @@
 use crate::assembly::Assembly;
 use crate::interaction::contact::{self, ShearLimit};
 use crate::interaction::{crushing, Passive, Rows, Strip, Tie};
-use crate::model::{LoadCase, Strength};
+use crate::model::{LoadCase, Model, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::SupportedConeT;
 
@@ -126,6 +126,21 @@ impl StaticProblem {
             strips,
             passive,
             ShearLimit::Coulomb,
+            objective,
+        )
+    }
+
+    /// The program of `model`: its assembly, loads, strength and interactions, the contacts'
+    /// shear bounded by `shear`.
+    pub fn of_model(model: &Model, shear: ShearLimit<'_>, objective: Objective) -> StaticProblem {
+        Self::with_shear_limit(
+            &model.assembly,
+            &model.loads,
+            model.strength,
+            &model.ties,
+            &model.strips,
+            &model.passive,
+            shear,
             objective,
         )
     }

@@ -60,18 +60,13 @@ pub(in crate::statics) struct FixedShearChain {
 /// The dual active set maximising `objective lambda + gradient . (H', V', M0')` on `p` (no
 /// ties), from `warm` when given and from the artificial box when that does not finish.
 fn solve_warm(p: &ChainProgram, cap: f64, gradient: [f64; 3], warm: &mut Option<Warm>) -> Outcome {
-    if let Some(w) = warm.as_ref() {
-        if let found @ (Outcome::Optimal(_) | Outcome::Infeasible { .. }) =
-            p.gradient_active_set(1.0, cap, 0.0, gradient, Some(w))
-        {
-            *warm = match &found {
-                Outcome::Optimal(a) => Some(a.warm.clone()),
-                _ => None,
-            };
-            return found;
-        }
-    }
-    let found = p.gradient_active_set(1.0, cap, 0.0, gradient, None);
+    let solve = |from: Option<&Warm>| p.gradient_active_set(1.0, cap, 0.0, gradient, from);
+    // A warm solve that decides stands; one that fails is done again from the box.
+    let found = warm
+        .as_ref()
+        .map(|w| solve(Some(w)))
+        .filter(|found| matches!(found, Outcome::Optimal(_) | Outcome::Infeasible { .. }))
+        .unwrap_or_else(|| solve(None));
     *warm = match &found {
         Outcome::Optimal(a) => Some(a.warm.clone()),
         _ => None,

@@ -296,9 +296,12 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
     };
     let live = model.loads.action() == crate::model::Action::Live;
     let friction = r.friction(assembly);
-    // Without sliding in the mechanism the static multiplier is exact; with it, the
-    // associative one, an upper bound of the real collapse (docs/friction.md).
-    let bound = if friction.exact {
+    // Without sliding in the mechanism the static multiplier is exact (a lower bound unless
+    // real joints may have lower collapse states, in a wall); with it, the associative one, an
+    // upper bound of the real collapse (docs/friction.md).
+    let bound = if friction.lower_states_possible {
+        "Static (associative friction)"
+    } else if friction.exact {
         "Static (lower bound)"
     } else {
         "Static (associative friction)"
@@ -335,6 +338,9 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                     ));
             }
             if let Some(words) = friction_words(&friction, r.status) {
+                sec.line(words);
+            }
+            if let Some(words) = super::words::exact_friction_words(&friction) {
                 sec.line(words);
             }
             sec.line("hinges of the thrust line:");

@@ -289,6 +289,11 @@ pub struct AnalysisReport {
     /// `lambda_lower` is the associative multiplier, an upper bound of the real
     /// (non-associative) collapse multiplier, not a safe lower bound (docs/friction.md).
     pub friction_exact: bool,
+    /// Exact with finite friction in an assembly that is not a chain (a wall, a stack): the
+    /// static collapse state is one of real joints, but joints with little or no compression
+    /// (a wall's head joints) can give real joints lower ones, so `lambda_lower` is not called
+    /// a lower bound there (docs/friction.md). False otherwise.
+    pub friction_lower_states_possible: bool,
     /// The multiplier of the associative friction joint: `lambda_lower` whenever there is one
     /// (exact or not), null otherwise.
     pub lambda_associative: Option<f64>,
@@ -761,6 +766,7 @@ impl AnalysisReport {
             hinges: r.hinges.clone(),
             sliding: r.sliding.clone(),
             friction_exact: friction.exact,
+            friction_lower_states_possible: friction.lower_states_possible,
             lambda_associative: friction.lambda_associative,
             friction_note: super::words::friction_words(&friction, r.status),
             slipping_joints: friction.slipping,

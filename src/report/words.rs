@@ -470,10 +470,20 @@ pub fn friction_words(f: &FrictionCheck, status: Status) -> Option<String> {
     })
 }
 
+/// What an exact multiplier with finite friction is where lower collapse states of real
+/// joints are possible ([`FrictionCheck::lower_states_possible`]); `None` elsewhere.
+pub fn exact_friction_words(f: &FrictionCheck) -> Option<String> {
+    f.lower_states_possible.then(|| {
+        "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; --friction non-associative searches for them)".to_string()
+    })
+}
+
 /// The static multiplier's name in a drawing's title: the static lower bound, or with sliding
 /// joints the associative multiplier, an upper bound of the real one (docs/friction.md).
 pub fn static_bound_name(f: &FrictionCheck) -> String {
-    if f.exact {
+    if f.lower_states_possible {
+        "associative friction, exact, not proved the lowest".to_string()
+    } else if f.exact {
         "static lower bound".to_string()
     } else {
         format!(

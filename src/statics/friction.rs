@@ -6,7 +6,10 @@
 //! associative joint is then an upper bound of the real (non-associative) collapse multiplier,
 //! not a safe lower bound. When no joint in contact slips in the associative mechanism, that
 //! mechanism is also one of the non-associative joint (hinges and separations only, no
-//! dilatancy) and the two multipliers are equal: the multiplier is exact.
+//! dilatancy): the associative collapse state is a collapse state of real joints too, and the
+//! multiplier is exact in that sense. It does not exclude lower collapse states of real
+//! joints, which need not be unique (docs/friction.md: a running-bond wall whose head joints
+//! carry no compression collapses at 0.536 with real joints, 1.0 rocking as one body).
 
 use super::StaticResult;
 use crate::assembly::Assembly;
@@ -35,6 +38,12 @@ pub struct FrictionCheck {
     /// The multiplier of the associative joint: the static multiplier, whenever there is one
     /// (exact or not, so that it can always be compared with `lambda_lower`).
     pub lambda_associative: Option<f64>,
+    /// Exact at collapse with finite friction, in an assembly that is not a chain (a wall, a
+    /// stack): the collapse state is one of real joints, but joints that may carry little or
+    /// no compression (a wall's head joints) can give real joints lower ones, so the
+    /// multiplier is not called a lower bound (docs/friction.md). False otherwise; on a chain
+    /// every joint carries the thrust.
+    pub lower_states_possible: bool,
 }
 
 impl StaticResult {
@@ -53,11 +62,13 @@ impl StaticResult {
                 Status::CannotStand => true,
                 Status::NoCollapse => false,
             };
+        let chain = assembly.is_chain() || assembly.blocks.len() < 2;
         FrictionCheck {
             finite,
             exact,
             slipping,
             lambda_associative: self.lambda,
+            lower_states_possible: finite && exact && self.status == Status::Collapse && !chain,
         }
     }
 }

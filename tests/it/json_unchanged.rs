@@ -32,6 +32,7 @@ const ADDED: &[&str] = &[
     "ties",
     "reinforcements",
     "friction_exact",
+    "friction_lower_states_possible",
     "lambda_associative",
     "slipping_joints",
     "friction_note",

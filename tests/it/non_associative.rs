@@ -466,3 +466,41 @@ fn the_chain_path_gives_the_full_programs_multiplier() {
     println!("{cases} cases, {compared} with a multiplier; largest difference {worst:.1e}");
     assert!(compared >= cases / 2, "{compared} of {cases}");
 }
+
+/// An exact answer is not called a lower bound where real joints can collapse lower: the
+/// running-bond wall with mu = 1000 rocks as one body at 1.0 with no joint slipping
+/// (`friction_exact`), and its head joints, which carry no compression, let real joints
+/// collapse at 0.536 (`--friction non-associative`, docs/friction.md). A chain (the bundled
+/// semicircle, whose every joint carries the thrust) keeps the name.
+#[test]
+fn an_exact_wall_answer_is_not_called_a_lower_bound() {
+    let text = format!(
+        "[blocks]\npolygons = {}\n[material]\nfriction = 1000\n",
+        crate::common::rect_polygons(&running_bond_wall_rects())
+    );
+    let v = json_of(&["analyze", "--json"], &text);
+    assert_eq!(v["friction_exact"], true);
+    assert_eq!(v["friction_lower_states_possible"], true);
+    assert!((f64_of(&v, "lambda_lower") - 1.0).abs() < 1e-9);
+    let forced = json_of(
+        &["analyze", "--json", "--friction", "non-associative"],
+        &text,
+    );
+    assert_eq!(forced["non_associative_converged"], true);
+    let na = f64_of(&forced, "lambda_non_associative");
+    assert!(na < 0.6, "a real collapse well below the exact 1.0: {na}");
+    let (_dir, path) = scene_file(&text);
+    let out = voussoir().arg("analyze").arg(&path).output().expect("runs");
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        summary.contains("Static (associative friction): collapse multiplier lambda = 1.000000")
+            && summary.contains("not proved the lowest"),
+        "{summary}"
+    );
+    let arch = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/semicircular.toml"),
+    )
+    .expect("bundled scene");
+    let v = json_of(&["analyze", "--json"], &arch);
+    assert_eq!(v["friction_lower_states_possible"], false);
+}

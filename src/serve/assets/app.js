@@ -775,14 +775,19 @@
     // mechanism; otherwise it is the associative one, an upper bound of the real collapse
     // (friction_exact false, friction_note in words).
     const associative = r.friction_exact === false;
+    // Exact in a wall: a collapse state of real joints, not proved the lowest
+    // (friction_lower_states_possible, docs/friction.md).
+    const notLowest = !associative && r.friction_lower_states_possible === true;
     $('v-lambda-relation').textContent = associative ? '≤' : (apart ? '≥' : '=');
-    $('v-lower-name').textContent = associative ? 'upper bound' : 'lower bound';
+    $('v-lower-name').textContent = associative ? 'upper bound'
+      : (notLowest ? 'exact, not proved the lowest' : 'lower bound');
     const lowerHow = $('v-lower-how');
     lowerHow.textContent = associative ? 'associative friction' : 'static';
     lowerHow.title = associative ? (r.friction_note || '') : '';
     const caveat = $('v-friction');
-    caveat.textContent = associative ? (r.friction_note || '') : '';
-    caveat.hidden = !associative;
+    caveat.textContent = associative ? (r.friction_note || '')
+      : (notLowest ? 'No joint slips in the collapse mechanism, so real joints can collapse here too; where joints carry little or no compression (a wall\'s head joints) they can collapse lower (voussoir analyze --friction non-associative).' : '');
+    caveat.hidden = !(associative || notLowest);
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);
     // An upper bound from rigid hinges on a structure that crushes is the rigid structure's.

@@ -363,20 +363,16 @@ fn finish(
     tolerance: f64,
     settled: bool,
 ) -> bool {
-    let mut q = p.to_vec();
     for (k, row) in rows.iter_mut().enumerate() {
-        let pn = q[2 * k].max(0.0);
-        let pt = if status[k] == Status::Open {
+        let pn = p[2 * k].max(0.0);
+        row.pn = pn;
+        row.pt = if status[k] == Status::Open {
             0.0
         } else {
-            q[2 * k + 1].max(-row.mu * pn).min(row.mu * pn)
+            p[2 * k + 1].max(-row.mu * pn).min(row.mu * pn)
         };
-        q[2 * k] = pn;
-        q[2 * k + 1] = pt;
-        row.pn = pn;
-        row.pt = pt;
     }
-    set_velocities(rows, state, free, &q);
+    state.impulses_from(free, rows);
     let r = super::moreau::residual(rows, state);
     settled && (r.is_nan() || r <= tolerance)
 }

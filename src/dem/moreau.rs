@@ -123,6 +123,14 @@ impl State {
         self.point_velocity(row.a, row.ra) - self.point_velocity(row.b, row.rb)
     }
 
+    /// The velocities `free + M^-1 J^T p` of the rows' impulses `p` from the free velocities.
+    pub(super) fn impulses_from(&mut self, free: &[(Vec2, f64)], rows: &[Row]) {
+        self.vel.copy_from_slice(free);
+        for row in rows {
+            self.apply(row, row.pn * row.n + row.pt * row.t);
+        }
+    }
+
     /// Apply the impulse `p` at the row's point, `+p` on the vertex body, `-p` on the other.
     pub(super) fn apply(&mut self, row: &Row, p: Vec2) {
         let (ma, ia) = self.inv[row.a];
@@ -148,12 +156,11 @@ pub(crate) fn step(world: &mut World) {
     // If the active set gives up, the Gauss-Seidel sweeps start from the last step's
     // impulses (warm start), as they would alone.
     let ok = direct || {
-        state.vel.copy_from_slice(&free);
         for (row, &(pn, pt)) in rows.iter_mut().zip(&warm) {
             row.pn = pn;
             row.pt = pt;
-            state.apply(row, pn * row.n + pt * row.t);
         }
+        state.impulses_from(&free, &rows);
         solve(&mut rows, &mut state, tolerance)
     };
     if !ok {

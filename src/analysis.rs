@@ -708,7 +708,11 @@ pub fn dem_plan(
     }
     let (dt, steps) = crate::dem::plan(&model, &params, motion)
         .map_err(|e| AnalysisError::Other(e.to_string()))?;
-    Ok((dt, steps, params.integrator))
+    let purpose = match motion {
+        None => crate::dem::Purpose::CollapseSearch,
+        Some(_) => crate::dem::Purpose::GroundMotion,
+    };
+    Ok((dt, steps, params.resolved(&model, purpose).integrator))
 }
 
 /// The static lower bound of the shapes the DEM simulates for `model`, whose own static bound

@@ -49,9 +49,17 @@ pub const MAX_STIFFNESS: f64 = 1e16;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Integrator {
+    /// The default: [`Integrator::Moreau`] for the collapse search of a chain (an arch, a
+    /// portal of voussoirs between two supports) without ties, strips or passive fill and with
+    /// none of the explicit stepping's own knobs set, where the rigid stepping brackets the
+    /// exact threshold 10 to 30 times faster (docs/dem.md); [`Integrator::Explicit`] for
+    /// everything else: other assemblies (walls, where the two differ and the rigid contact
+    /// solve may not settle), records and pulses (where the two differ near collapse), and
+    /// the direct [`crate::dem::Simulation`]. [`IntegrationParameters::resolved`] decides.
+    #[default]
+    Auto,
     /// Penalty springs and dashpots at the contacts, symplectic Euler at a step under the
     /// stability limit of the stiffest contact (about 1e-5 s).
-    #[default]
     Explicit,
     /// Rigid contacts: Moreau-Jean non-smooth contact dynamics, velocity-level impulses with
     /// Signorini, Coulomb and Newton's impact law, solved by projected Gauss-Seidel at each
@@ -61,11 +69,12 @@ pub enum Integrator {
 
 impl Integrator {
     /// Every integrator, as the scene and the command line name them.
-    pub const NAMES: &'static [&'static str] = &["explicit", "moreau"];
+    pub const NAMES: &'static [&'static str] = &["auto", "explicit", "moreau"];
 
-    /// `explicit` or `moreau`.
+    /// `auto`, `explicit` or `moreau`.
     pub fn name(self) -> &'static str {
         match self {
+            Integrator::Auto => "auto",
             Integrator::Explicit => "explicit",
             Integrator::Moreau => "moreau",
         }
@@ -74,6 +83,7 @@ impl Integrator {
     /// The integrator named `name` (case-insensitive), if any.
     pub fn parse(name: &str) -> Option<Integrator> {
         match name.trim().to_ascii_lowercase().as_str() {
+            "auto" => Some(Integrator::Auto),
             "explicit" => Some(Integrator::Explicit),
             "moreau" => Some(Integrator::Moreau),
             _ => None,
@@ -206,8 +216,28 @@ pub struct IntegrationParameters {
     /// step); a run planning more is refused before it starts. Default
     /// [`DEFAULT_MAX_STEPS`]; not a `[dem]` key (the CLI's `--max-steps` sets it).
     pub max_steps: u64,
-    /// How the blocks are advanced in time. Default [`Integrator::Explicit`].
+    /// How the blocks are advanced in time. Default [`Integrator::Auto`], which
+    /// [`IntegrationParameters::resolved`] turns into one of the other two.
     pub integrator: Integrator,
+}
+
+/// What a DEM run is for, which decides [`Integrator::Auto`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Purpose {
+    /// The bracket search of the collapse multiplier (`voussoir dem`, `analyze --dem`).
+    CollapseSearch,
+    /// A record, a pulse or an incremental dynamic analysis (`dem --record`, `--pulse`, `ida`).
+    GroundMotion,
+}
+
+/// Whether the rigid stepping is validated for `model`'s collapse search: a chain of blocks
+/// between two supports (an arch, a portal of voussoirs and pier courses) with no ties,
+/// strips or passive fill (elastic bars the rigid stepping refuses).
+fn rigid_suits(model: &Model) -> bool {
+    model.assembly.is_chain()
+        && model.ties.is_empty()
+        && model.strips.is_empty()
+        && model.passive.is_empty()
 }
 
 /// Every key the `[dem]` table accepts.
@@ -277,8 +307,38 @@ impl IntegrationParameters {
             initial_guess: None,
             snapshot_interval: None,
             max_steps: DEFAULT_MAX_STEPS,
-            integrator: Integrator::Explicit,
+            integrator: Integrator::Auto,
         }
+    }
+
+    /// These parameters with [`Integrator::Auto`] decided for a run on `model` for
+    /// `purpose` (the rule is [`Integrator::Auto`]'s); any other integrator is kept.
+    pub fn resolved(&self, model: &Model, purpose: Purpose) -> IntegrationParameters {
+        let mut p = self.clone();
+        if p.integrator == Integrator::Auto {
+            p.integrator = if purpose == Purpose::CollapseSearch
+                && rigid_suits(model)
+                && !self.explicit_knobs_set(model)
+            {
+                Integrator::Moreau
+            } else {
+                Integrator::Explicit
+            };
+        }
+        p
+    }
+
+    /// Whether a knob only the explicit stepping reads (the contacts' stiffness and damping,
+    /// Cundall's damping, the share of the stability limit) differs from its default for
+    /// `model`: set by the scene or the caller, which asks for the explicit stepping.
+    fn explicit_knobs_set(&self, model: &Model) -> bool {
+        let d = IntegrationParameters::for_model(model);
+        self.normal_stiffness != d.normal_stiffness
+            || self.shear_stiffness != d.shear_stiffness
+            || self.contact_damping != d.contact_damping
+            || self.local_damping != d.local_damping
+            || self.hold_damping != d.hold_damping
+            || self.time_step_factor != d.time_step_factor
     }
 
     /// Every knob within [`allowed_range`], and the start of the search at most

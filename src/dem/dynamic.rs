@@ -27,7 +27,7 @@ use super::rest::{self, RestPlan, RestTest};
 use super::world::{Load, World};
 use super::{
     check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
-    settled_warnings, DemError, IntegrationParameters,
+    settled_warnings, DemError, IntegrationParameters, Purpose,
 };
 use crate::geometry::Vec2;
 use crate::model::Model;
@@ -430,7 +430,7 @@ fn run_motion(
         extended: 0.0,
         planned_steps: settle_steps.saturating_add(motion_steps),
         warnings: settled_warnings(&world, model),
-        integrator: params.integrator,
+        integrator: world.params.integrator,
     };
     if result.cannot_stand {
         result.wall_time_s = clock.elapsed().as_secs_f64();
@@ -791,7 +791,7 @@ pub fn ida_xy(
     let clock = Instant::now();
     ida_runs(
         clock,
-        params.integrator,
+        params.resolved(model, Purpose::GroundMotion).integrator,
         settings,
         tolerance,
         max_scale,
@@ -822,7 +822,7 @@ pub fn ida_input(
     };
     ida_runs(
         clock,
-        params.integrator,
+        params.resolved(model, Purpose::GroundMotion).integrator,
         settings,
         tolerance,
         max_scale,

@@ -51,7 +51,8 @@ pub mod rest;
 mod world;
 
 pub use crate::dem_settings::{
-    allowed_range, show_value, IntegrationParameters, Integrator, DEFAULT_MAX_STEPS, DEM_KEYS,
+    allowed_range, show_value, IntegrationParameters, Integrator, Purpose, DEFAULT_MAX_STEPS,
+    DEM_KEYS,
 };
 pub use protocol::{Onset, Outcome, Run, Snapshot};
 
@@ -299,6 +300,11 @@ pub fn plan(
     params: &IntegrationParameters,
     motion: Option<f64>,
 ) -> Result<(f64, u64), DemError> {
+    let purpose = match motion {
+        None => Purpose::CollapseSearch,
+        Some(_) => Purpose::GroundMotion,
+    };
+    let params = &params.resolved(model, purpose);
     check_model(model)?;
     check_params(params, model)?;
     let world = World::new(model, params);
@@ -573,6 +579,7 @@ pub fn collapse_multiplier(
     progress: &mut dyn FnMut(f64),
 ) -> Result<DemResult, DemError> {
     let clock = Instant::now();
+    let params = &params.resolved(model, Purpose::CollapseSearch);
     let assembly = &model.assembly;
     check_model(model)?;
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {

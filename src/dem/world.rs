@@ -163,6 +163,13 @@ impl World {
     /// forces act along `loads.seismic_direction(+1)`: ground motion toward +x, as the static
     /// program's default direction.
     pub fn new(model: &Model, params: &IntegrationParameters) -> World {
+        // `Auto` is decided by the caller for its purpose (`IntegrationParameters::resolved`);
+        // a world built directly (`Simulation`) steps explicitly.
+        let mut params = params.clone();
+        if params.integrator == Integrator::Auto {
+            params.integrator = Integrator::Explicit;
+        }
+        let params = &params;
         let assembly = &model.assembly;
         let g = params.gravity;
         let size = assembly.size();
@@ -220,7 +227,7 @@ impl World {
         };
         let stability_limit = critical_time_step(&bodies, params);
         let dt = params.time_step.unwrap_or(match params.integrator {
-            Integrator::Explicit => stability_limit * params.time_step_factor,
+            Integrator::Auto | Integrator::Explicit => stability_limit * params.time_step_factor,
             // Rigid contacts have no stability limit: the step resolves the blocks' motion.
             Integrator::Moreau => MOREAU_STEP_SHARE * (size / params.gravity).sqrt(),
         });
@@ -319,7 +326,7 @@ impl World {
     pub fn step(&mut self) {
         self.find_contacts();
         match self.params.integrator {
-            Integrator::Explicit => {
+            Integrator::Auto | Integrator::Explicit => {
                 self.contact_forces();
                 self.tie_forces();
                 self.integrate();

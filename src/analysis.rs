@@ -48,10 +48,10 @@ pub struct Options {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FrictionMode {
     /// The non-associative multiplier ([`statics::analyse_non_associative`]) whenever the
-    /// associative one is not exact (`friction_exact` false); when it is exact, the
-    /// associative collapse state is a non-associative one too and nothing is iterated
-    /// (lower non-associative collapse states may still exist: [`FrictionMode::NonAssociative`]
-    /// searches for them, docs/friction.md). `min-thickness` gives the associative value
+    /// associative one is not exact (`friction_exact` false), or is exact where real joints
+    /// may have lower collapse states (a wall: `friction_lower_states_possible`); otherwise
+    /// (exact in a chain) the associative collapse state is a non-associative one too and
+    /// nothing is iterated (docs/friction.md). `min-thickness` gives the associative value
     /// alone in this mode (its search is many analyses).
     #[default]
     Auto,
@@ -335,7 +335,8 @@ pub fn analyse_model(
 
 /// The non-associative multiplier of `model`, whose static result is `lower`, as
 /// `options.friction` asks (see [`FrictionMode`]): the associative value as it is when that is
-/// exact (unless forced), the iteration of [`statics::analyse_non_associative`] otherwise;
+/// exact in a chain (unless forced), the iteration of [`statics::analyse_non_associative`]
+/// otherwise;
 /// None when not asked for, with infinite friction, or with no collapse.
 fn non_associative_of(
     model: &Model,
@@ -349,7 +350,9 @@ fn non_associative_of(
     {
         return Ok(None);
     }
-    if check.exact && options.friction == FrictionMode::Auto {
+    // An exact value is the non-associative one too, unless real joints may have lower
+    // collapse states (a wall: `lower_states_possible`), which the iteration searches for.
+    if check.exact && !check.lower_states_possible && options.friction == FrictionMode::Auto {
         return Ok(Some(statics::NonAssociative::exact(lower)));
     }
     statics::analyse_non_associative(

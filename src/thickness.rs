@@ -212,8 +212,10 @@ pub fn stands_non_associative(
             Status::NoCollapse => continue,
             Status::Collapse => {}
         }
-        if r.friction(&model.assembly).exact {
-            // No joint slips in the mechanism: the associative multiplier is the real one.
+        let friction = r.friction(&model.assembly);
+        if friction.exact && !friction.lower_states_possible {
+            // No joint slips in the mechanism of a chain: the associative collapse state is a
+            // real one, taken as the real multiplier (docs/friction.md).
             if r.lambda.is_some_and(|l| l >= 0.0) {
                 continue;
             }

@@ -148,6 +148,9 @@ class Report:
                       "friction_exact")
             if k in self._data
         )
+        # Exact in a wall: a collapse state of real joints, not proved the lowest.
+        if self._data.get("friction_lower_states_possible"):
+            shown += ", friction_lower_states_possible=True"
         # With joints that slip at collapse, lambda_lower is the associative multiplier, an
         # upper bound of the real collapse multiplier: say so in words (docs/friction.md).
         note = self._data.get("friction_note")
@@ -183,7 +186,9 @@ class Result(Report):
     slip in the static mechanism it is False, and ``lambda_lower`` (= ``lambda_associative``) is
     the multiplier of associative friction, an upper bound of the real (non-associative)
     collapse multiplier, not a safe lower bound; ``friction_note`` says so in words, and so
-    does ``repr(result)`` (docs/friction.md).
+    does ``repr(result)``. ``friction_lower_states_possible`` is True when it is exact in an
+    assembly that is not a chain (a wall), where real joints may still collapse lower: the
+    non-associative iteration then runs by default (docs/friction.md).
     """
 
     __slots__ = ()

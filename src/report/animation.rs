@@ -55,7 +55,8 @@ pub fn html(d: &DynamicAnalysis, title: &str) -> Option<String> {
         }
     }
     // The ground the DEM puts under each support: the joint extended by its length on both
-    // sides (`dem::world`).
+    // sides (`dem::world`, which joins the overlapping ones of supports on one line; drawn
+    // apart here, they cover the same span).
     let supports: Vec<(Vec2, Vec2)> = d
         .model
         .assembly

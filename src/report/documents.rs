@@ -640,6 +640,8 @@ pub fn dem(scene: &Scene, model: &Model, rep: DemReport) -> Document {
             // contacts (no dilatancy) may well fall below.
             let bound = if rep.friction_exact == Some(false) {
                 "the static multiplier (associative friction, an upper bound of the real collapse)"
+            } else if rep.friction_lower_states_possible == Some(true) {
+                "the static multiplier (associative friction, exact, not proved the lowest)"
             } else {
                 "the static lower bound"
             };

@@ -1003,6 +1003,9 @@ pub struct DemReport {
     /// `analyze --json`'s `friction_exact` (docs/friction.md); null when no static result was
     /// compared.
     pub friction_exact: Option<bool>,
+    /// `analyze --json`'s `friction_lower_states_possible` (docs/friction.md); null when no
+    /// static result was compared.
+    pub friction_lower_states_possible: Option<bool>,
     /// `(lambda_dem - lambda_lower_simulated) / lambda_lower_simulated`: the DEM against the
     /// static bound of the shapes it simulated.
     pub relative_difference: Option<f64>,
@@ -1060,7 +1063,9 @@ impl DemReport {
     pub fn of(scene: &Scene, d: &crate::analysis::DemAnalysis) -> Self {
         let mut rep = DemReport::new(scene, &d.model, &d.result, d.lower.lambda);
         rep.compare_with(d.lower_simulated, d.chord_polygons);
-        rep.friction_exact = Some(d.lower.friction(&d.model.assembly).exact);
+        let friction = d.lower.friction(&d.model.assembly);
+        rep.friction_exact = Some(friction.exact);
+        rep.friction_lower_states_possible = Some(friction.lower_states_possible);
         rep
     }
 
@@ -1107,6 +1112,7 @@ impl DemReport {
             lambda_dem: r.lambda_dem,
             lambda_lower,
             friction_exact: None,
+            friction_lower_states_possible: None,
             relative_difference: match (r.lambda_dem, lambda_lower) {
                 (Some(d), Some(l)) if l > 0.0 => Some((d - l) / l),
                 _ => None,

@@ -474,7 +474,7 @@ pub fn friction_words(f: &FrictionCheck, status: Status) -> Option<String> {
 /// joints are possible ([`FrictionCheck::lower_states_possible`]); `None` elsewhere.
 pub fn exact_friction_words(f: &FrictionCheck) -> Option<String> {
     f.lower_states_possible.then(|| {
-        "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; --friction non-associative searches for them)".to_string()
+        "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; the non-associative iteration, on by default here, searches for them)".to_string()
     })
 }
 

@@ -164,8 +164,8 @@ pub struct NonAssociative {
 }
 
 impl NonAssociative {
-    /// The associative solution taken as it is, when it is exact (no joint slips in its
-    /// mechanism): the non-associative multiplier equals it.
+    /// The associative solution taken as it is, when it is exact in a chain (no joint slips
+    /// in its mechanism, and no lower collapse state is looked for: docs/friction.md).
     pub fn exact(associative: &StaticResult) -> NonAssociative {
         NonAssociative {
             lambda: associative.lambda,

@@ -711,7 +711,8 @@
       $('v-timing').textContent = 'updated in ' + ms.toFixed(0) + ' ms' + server;
     }
     drawChart();
-    const nonAssociative = result.friction_exact === false && typeof result.lambda_non_associative === 'number';
+    const nonAssociative = (result.friction_exact === false || result.friction_lower_states_possible === true)
+      && typeof result.lambda_non_associative === 'number';
     announce((STATUS_WORDS[result.status] || String(result.status || '')) + ', lambda '
       + fmt(governing(result), 4)
       + (nonAssociative ? ', non-associative friction'
@@ -764,7 +765,8 @@
       group.hidden = live;
     }
     const naRow = $('v-na-row');
-    const na = r.friction_exact === false && typeof r.lambda_non_associative === 'number';
+    const na = (r.friction_exact === false || r.friction_lower_states_possible === true)
+      && typeof r.lambda_non_associative === 'number';
     naRow.hidden = !na;
     $('v-na').textContent = na ? fmt(r.lambda_non_associative, 6) : '';
     naRow.title = na ? (r.non_associative_note || '') : '';
@@ -778,7 +780,7 @@
     // Exact in a wall: a collapse state of real joints, not proved the lowest
     // (friction_lower_states_possible, docs/friction.md).
     const notLowest = !associative && r.friction_lower_states_possible === true;
-    $('v-lambda-relation').textContent = associative ? '≤' : (apart ? '≥' : '=');
+    $('v-lambda-relation').textContent = (associative || notLowest) ? '≤' : (apart ? '≥' : '=');
     $('v-lower-name').textContent = associative ? 'upper bound'
       : (notLowest ? 'exact, not proved the lowest' : 'lower bound');
     const lowerHow = $('v-lower-how');
@@ -786,7 +788,7 @@
     lowerHow.title = associative ? (r.friction_note || '') : '';
     const caveat = $('v-friction');
     caveat.textContent = associative ? (r.friction_note || '')
-      : (notLowest ? 'No joint slips in the collapse mechanism, so real joints can collapse here too; where joints carry little or no compression (a wall\'s head joints) they can collapse lower (voussoir analyze --friction non-associative).' : '');
+      : (notLowest ? 'No joint slips in the collapse mechanism, so real joints can collapse here too; where joints carry little or no compression (a wall\'s head joints) they can collapse lower: the non-associative value is the lowest the iteration found.' : '');
     caveat.hidden = !(associative || notLowest);
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);

@@ -16,10 +16,12 @@ from conftest import REPO
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="SIGINT to a child process")
 
 # Each call runs for minutes on its own (a sweep of 400 DEM cases; an arch rocking through a
-# long free tail).
+# long free tail), with the explicit stepping (the default rigid stepping of a chain's
+# collapse search is 10 to 30 times faster, docs/dem.md).
 CALLS = {
     "sweep": """
         scene = voussoir.Scene.from_toml(str(REPO / "data" / "semicircular.toml"))
+        scene = scene.with_values({"dem.integrator": "explicit"})
         voussoir.sweep(scene, {"arch.thickness": list(np.linspace(0.12, 0.3, 400))}, dem=True)
     """,
     # Above the arch's static threshold (0.149 g), so the DEM's rest test (issue 28) does not
@@ -30,7 +32,7 @@ CALLS = {
     """,
     "dem": """
         scene = voussoir.Scene.from_toml(str(REPO / "data" / "semicircular.toml"))
-        scene = scene.with_values({"arch.voussoirs": 200})
+        scene = scene.with_values({"arch.voussoirs": 200, "dem.integrator": "explicit"})
         voussoir.dem(scene, tolerance=1e-6)
     """,
 }

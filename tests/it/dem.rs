@@ -1,6 +1,7 @@
-//! DEM check of the collapse multiplier: hand-derived single-block values, agreement with the
-//! static lower bound on arches and a portal, the sliding case against the associative bound,
-//! energy conservation of the integrator, the `[dem]` table's validation and snapshots.
+//! DEM check of the collapse multiplier with the explicit stepping: hand-derived single-block
+//! values, agreement with the static lower bound on arches and a portal, the sliding case
+//! against the associative bound, energy conservation of the integrator, the `[dem]` table's
+//! validation and snapshots.
 
 use voussoir::assembly::{Assembly, JointEnd};
 use voussoir::dem::{self, DemResult, IntegrationParameters, Outcome};
@@ -28,6 +29,16 @@ fn arch(n: usize, t: f64, mu: f64) -> Scene {
             "\"inf\"".to_string()
         }
     ))
+}
+
+/// The scene's DEM parameters with the explicit stepping: this file validates it (the
+/// default `auto` takes the rigid stepping for a chain's collapse search, validated in
+/// `tests/it/dem_moreau.rs`).
+fn explicit_parameters(
+    s: &Scene,
+    m: &Model,
+) -> Result<IntegrationParameters, voussoir::error::SceneError> {
+    voussoir::analysis::dem_parameters(s, m).map(|p| p.integrator(dem::Integrator::Explicit))
 }
 
 fn build(s: &Scene) -> Model {
@@ -106,7 +117,7 @@ fn compare_with_static(name: &str, s: &Scene, tol: f64) -> (f64, f64) {
     let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::Collapse);
     let lower = st.lambda.expect("lambda");
-    let p = voussoir::analysis::dem_parameters(s, &m).expect("params");
+    let p = explicit_parameters(s, &m).expect("params");
     let r = run(&m, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     let diff = mid / lower - 1.0;
@@ -196,7 +207,7 @@ fn sliding_case_against_the_associative_bound() {
         let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
         let assoc = st.lambda.expect("collapse");
         assert!(!st.sliding.is_empty());
-        let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
+        let p = explicit_parameters(&s, &m).expect("params");
         let tol = 0.005;
         let r = run(&m, &p, tol);
         let (lo, hi, mid) = check_bracket(&r, tol);
@@ -227,7 +238,7 @@ fn an_arch_that_cannot_stand_says_so() {
     let m = build(&s);
     let st = statics::analyse(&m, &statics::StaticSettings::default()).expect("static");
     assert_eq!(st.status, Status::CannotStand);
-    let p = voussoir::analysis::dem_parameters(&s, &m).expect("params");
+    let p = explicit_parameters(&s, &m).expect("params");
     let r = run(&m, &p, 0.01);
     assert!(r.cannot_stand);
     assert!(r.lambda_dem.is_none());
@@ -241,7 +252,7 @@ fn energy_error(time_step_factor: f64, duration: f64) -> (f64, f64, f64) {
     let s = arch(16, 0.25, f64::INFINITY);
     let m = build(&s);
     let a = &m.assembly;
-    let p = voussoir::analysis::dem_parameters(&s, &m)
+    let p = explicit_parameters(&s, &m)
         .expect("params")
         .contact_damping(0.0)
         .time_step_factor(time_step_factor);
@@ -295,7 +306,7 @@ fn dem_table_is_validated_and_applied() {
     let s = scene(&format!("{base}[dem]\nlocal_damping = 0.3\nmax_time = 5\n"));
     let m = build(&s);
     let a = m.assembly.clone();
-    let p = voussoir::analysis::dem_parameters(&s, &m).expect("valid");
+    let p = explicit_parameters(&s, &m).expect("valid");
     assert_eq!(p.local_damping, 0.3);
     assert_eq!(p.max_time, 5.0);
     for (text, key) in [
@@ -319,7 +330,7 @@ fn dem_table_is_validated_and_applied() {
         scene("[arch]\nshape = \"circular\"\nradius = 2.0\nthickness = 0.3\nvoussoirs = 16\n");
     let mb = build(&big);
     let ab = mb.assembly.clone();
-    let pb = voussoir::analysis::dem_parameters(&big, &mb).expect("valid");
+    let pb = explicit_parameters(&big, &mb).expect("valid");
     let p0 = IntegrationParameters::for_assembly(&a);
     let w = ab.total_weight() / a.total_weight();
     assert!((pb.normal_stiffness / p0.normal_stiffness - w / 2.0).abs() < 1e-9 * w);
@@ -332,7 +343,7 @@ fn snapshots_are_written_as_csv() {
     let s = arch(16, 0.25, 0.8);
     let m = build(&s);
     let a = &m.assembly;
-    let p = voussoir::analysis::dem_parameters(&s, &m)
+    let p = explicit_parameters(&s, &m)
         .expect("params")
         .snapshot_interval(Some(0.05));
     let r = run(&m, &p, 0.02);
@@ -370,9 +381,9 @@ fn snapshots_are_written_as_csv() {
 
 #[test]
 fn a_time_step_above_the_stability_limit_is_refused() {
-    let s = scene("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[dem]\ntime_step = 1e-3\n");
+    let s = scene("[arch]\nshape = \"circular\"\nradius = 1.0\nthickness = 0.15\nvoussoirs = 16\n[dem]\ntime_step = 1e-3\nintegrator = \"explicit\"\n");
     let m = build(&s);
-    let p = voussoir::analysis::dem_parameters(&s, &m).expect("valid table");
+    let p = explicit_parameters(&s, &m).expect("valid table");
     let e =
         voussoir::dem::collapse_multiplier(&m, &p, 0.01, &mut |_| {}).expect_err("unstable step");
     assert!(e.to_string().contains("stability limit"), "{e}");
@@ -400,7 +411,7 @@ fn loaded_bracket_contains_static(
         .expect("static")
         .lambda
         .expect("lambda");
-    let p = voussoir::analysis::dem_parameters(loaded, &m).expect("params");
+    let p = explicit_parameters(loaded, &m).expect("params");
     let r = run(&m, &p, tol);
     let (lo, hi, mid) = check_bracket(&r, tol);
     println!(

@@ -526,3 +526,57 @@ fn an_unsettled_contact_solve_is_said() {
         said[0]
     );
 }
+
+/// `dem.integrator = "auto"` (the default) takes the rigid stepping for the collapse search
+/// of a chain without ties, strips or fill and with none of the explicit stepping's knobs set,
+/// and the explicit stepping everywhere else: ground motions, walls, tied structures, and a
+/// scene that sets a contact stiffness or damping. On the bundled semicircle the rigid search
+/// brackets the static multiplier (the exact threshold, with infinite friction).
+#[test]
+fn auto_takes_the_rigid_stepping_for_a_chains_collapse_search_only() {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let bundled = |file: &str| {
+        let text = std::fs::read_to_string(data.join(file)).expect("bundled scene");
+        voussoir::scene::Scene::from_toml_str(&text, file).expect("scene")
+    };
+    let chosen = |s: &voussoir::scene::Scene, motion: Option<f64>| {
+        voussoir::analysis::dem_plan(s, motion, None)
+            .expect("plan")
+            .2
+    };
+    let arch = bundled("semicircular.toml");
+    assert_eq!(chosen(&arch, None), Integrator::Moreau);
+    assert_eq!(chosen(&arch, Some(10.0)), Integrator::Explicit);
+    let damped = arch
+        .with_overrides(&["dem.contact_damping=0.2"])
+        .expect("override");
+    assert_eq!(chosen(&damped, None), Integrator::Explicit);
+    let forced = arch
+        .with_overrides(&["dem.integrator=explicit"])
+        .expect("override");
+    assert_eq!(chosen(&forced, None), Integrator::Explicit);
+    assert_eq!(
+        chosen(&bundled("tied_portal.toml"), None),
+        Integrator::Explicit
+    );
+    assert_eq!(chosen(&bundled("portal.toml"), None), Integrator::Moreau);
+    let wall = common::scene(&format!(
+        "[blocks]\nground_y = 0.0\npolygons = {}\n",
+        common::rect_polygons(&common::running_bond_wall_rects())
+    ));
+    assert_eq!(chosen(&wall, None), Integrator::Explicit);
+
+    let r = voussoir::analysis::dem(
+        &arch,
+        &voussoir::analysis::DemOptions::default(),
+        &mut |_| {},
+    )
+    .expect("DEM");
+    assert_eq!(r.result.params.integrator, Integrator::Moreau);
+    let (lo, hi) = (
+        r.result.lambda_stands.expect("stands"),
+        r.result.lambda_collapses.expect("collapses"),
+    );
+    let ls = r.lower.lambda.expect("static");
+    assert!(lo <= ls && ls <= hi, "[{lo}, {hi}] against {ls}");
+}

@@ -265,7 +265,7 @@ pub fn designed_scene(scene: &Scene, r: &Retrofit) -> Scene {
 ///
 /// The verdict is not a linear function of the capacities (the governing mechanism, its
 /// participating mass and its capacity curve change with them), so the design searches the
-/// least target multiplier lambda* whose least-capacity design ([`design`]) passes `assess`:
+/// least target multiplier lambda* whose least-capacity design ([`fn@design`]) passes `assess`:
 /// first lambda* = its least value (the structure as it is), then a growing target until one
 /// passes (or no capacities reach it), then bisection to [`SITE_TARGET_TOLERANCE`]. A stiffer
 /// design passing at a lower target than a weaker one would escape the bisection: the

@@ -22,9 +22,9 @@
 //!    `du* >= SDe(Ts)` (and the amplified demands of a mechanism at height `Z`); the largest
 //!    `ag` passing each check, by bisection. The mechanism passes when either check is
 //!    satisfied (C8.7.1 lets the engineer verify it with either analysis, [`RULE`]).
-//! 4. **Both directions** ([`assess_directions`]): the seismic action is reversible, so the
+//! 4. **Both directions** ([`crate::analysis::assess_directions`]): the seismic action is reversible, so the
 //!    scene is assessed with the load toward the right and toward the left (each its own
-//!    governing mechanism) and the worse direction governs ([`Assessment::governing`]).
+//!    governing mechanism) and the worse direction governs ([`crate::analysis::Assessment::governing`]).
 //!
 //! Tie rods move with their blocks: at each configuration a tie that has lengthened carries its
 //! capacity (rigid-plastic, as in the limit analyses, so `alpha0` is the kinematic multiplier

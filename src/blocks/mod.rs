@@ -1,5 +1,5 @@
 //! The user's own blocks: polygons read from a file (JSON, CSV, DXF) or given inline, checked,
-//! and joined into an [`Assembly`] by finding their joints automatically ([`joints`]); some of
+//! and joined into an [`crate::assembly::Assembly`] by finding their joints automatically ([`joints`]); some of
 //! them may be fixed (a base, an abutment, rock: [`detect_with_fixed`], [`blocks_at`]).
 //!
 //! A scene's `[blocks]` table (read by the scene module) names the source; this module knows the

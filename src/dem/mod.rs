@@ -6,7 +6,7 @@
 //! structures", Int. J. Archit. Herit. 1:190-213; DeJong, De Lorenzis, Adams & Ochsendorf
 //! 2008).
 //!
-//! Model (see [`world`] for the equations):
+//! Model (see `world` for the equations):
 //! - every assembly block is a rigid convex polygon with the mass and polar moment of the
 //!   uniform polygon (`unit_weight depth / g` per unit area). Curved voussoirs are simulated
 //!   by their chord polygon (the DEM does not model circular faces): their weight and centroid
@@ -520,7 +520,7 @@ impl DemResult {
 
 /// The model the DEM actually simulates, when it differs from `model`: every block as its
 /// polygon (curved voussoirs as their chord polygons) with the polygon's area, centroid and
-/// weight (the unit weight of the block times the polygon's area, as [`World::new`] does),
+/// weight (the unit weight of the block times the polygon's area, as `World::new` does),
 /// and the same other loads, seismic masses and vertical ratio. `None` when every block
 /// already is its polygon (relative area and centroid differences below 1e-12), so the static
 /// bound of `model` is the one to compare a DEM bracket with.

@@ -20,7 +20,7 @@
 //!   inside this keystone that cross the crown joint; such voussoirs are not proper blocks.
 //!   The last radial sections on both sides and the crown joint all have the intrados apex
 //!   as their p1: three hinges there leave the closure matrix of rank 2 (every minor is
-//!   round-off), which [`super::solve_motion`] rejects; before it did, such a noise
+//!   round-off), which `kinematic::solve_motion` rejects; before it did, such a noise
 //!   "mechanism" made sound pointed arches "cannot stand".
 //! - Loads ([`crate::model::LoadCase`]): loads spread along the extrados (line loads, fill)
 //!   are integrated exactly between any two sections (a strip `dx` of the extrados at `(x, y)`

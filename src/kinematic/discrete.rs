@@ -17,7 +17,7 @@
 //! (collinear hinge points, e.g. along a pier face) the quadruple falls back to the direct
 //! evaluation of all 16 patterns with a tolerance. Only the survivors (typically the two
 //! alternating intrados/extrados patterns) get their virtual work evaluated, in O(1) from
-//! prefix sums of the load resultants ([`super::Sums`]) along the chain.
+//! prefix sums of the load resultants (`kinematic::Sums`) along the chain.
 //!
 //! The two-hinges-one-open family (N C(N-1,2) joint choices times 4 end patterns) uses the
 //! closed forms of its cofactors: with the open joint's line through p with unit normal n and

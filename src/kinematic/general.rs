@@ -32,9 +32,9 @@
 //! The fill's passive faces (`crate::interaction::passive`) dissipate `P max(v_in, 0)` at the
 //! rate `v_in` their point moves into the fill: `t_k >= P v_in`, `t_k >= 0`.
 //!
-//! The action's power `A` (the power of what lambda multiplies, [`LoadCase::variable`]) is
+//! The action's power `A` (the power of what lambda multiplies, [`crate::model::LoadCase::variable`]) is
 //! normalised, `A = 1`, and the work balance `G + D` (`G = -` the power of the permanent loads
-//! [`LoadCase::permanent`], `D` the dissipation of ties and strips) is minimised:
+//! [`crate::model::LoadCase::permanent`], `D` the dissipation of ties and strips) is minimised:
 //!
 //! `lambda_upper = min { G(w) + D(w) : w admissible, A(w) = 1 }`.
 //!
@@ -68,7 +68,7 @@
 //! stays closed and every slip obeys the flow rule, to [`ADMISSIBLE_REL_TOL`] of the largest
 //! relative velocity (the interior point stops a hair outside its cones). Then
 //! `lambda = (G + D)/A` is recomputed by virtual work from the twists and the load case
-//! ([`super::work`]), and that is the `lambda_upper` reported. A mechanism that fails the check
+//! (`kinematic::work`), and that is the `lambda_upper` reported. A mechanism that fails the check
 //! gives no bound (an error saying which joint fails).
 //!
 //! # Limits

@@ -32,7 +32,7 @@
 //! power of the seismic forces per unit lambda and `G` minus the power of the permanent
 //! forces (the load's power equals the rate of increase of potential energy; hinges dissipate
 //! nothing), gives `lambda = G / A`. Both come from the [`crate::model::LoadCase`] through
-//! per-body resultants ([`Sums`]); with self-weight alone, `G = sum(W vy)` and
+//! per-body resultants (`Sums`); with self-weight alone, `G = sum(W vy)` and
 //! `A = d sum(W vx)` (d = +-1 the load direction), the seed paper's equation.
 //! Equilibrium at lambda is possible iff `lambda A <= G` for every admissible mechanism, so
 //! the static set of multipliers is `[max_{A<0} G/A, min_{A>0} G/A]` (LP duality with the
@@ -65,7 +65,7 @@
 //! mechanism that gravity alone drives) is a proof wherever it was found and is reported.
 //!
 //! The discrete search is in [`discrete`], the continuous model of the arch (hinges anywhere)
-//! in [`continuous`].
+//! in [`mod@continuous`].
 
 pub mod continuous;
 pub mod discrete;

@@ -112,7 +112,7 @@ pub struct Material {
 pub const DEFAULT_TIE_DESIGN_STRENGTH: f64 = 391e6;
 
 /// A load of the scene's `[[loads]]` list, as the user wrote it (placed on blocks by
-/// [`crate::scene::build`]).
+/// [`fn@crate::scene::build`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum LoadSpec {
@@ -236,7 +236,7 @@ pub struct Scene {
     pub uncertain: Vec<uncertain::UncertainInput>,
     /// `[uncertain] correlation`: rank correlations between those inputs (empty: independent).
     pub uncertain_correlation: Vec<uncertain::RankCorrelation>,
-    /// Where the scene came from (file path or "<string>"), for messages.
+    /// Where the scene came from (file path or `"<string>"`), for messages.
     pub origin: String,
     /// The TOML the scene was built from, with overrides applied.
     table: Table,
@@ -464,7 +464,7 @@ impl Scene {
         }
     }
 
-    /// The assembly and load case of this scene ([`build`]).
+    /// The assembly and load case of this scene ([`fn@build`]).
     pub fn model(&self) -> Result<crate::model::Model, SceneError> {
         build(self)
     }

@@ -1,7 +1,7 @@
 //! The spread of a load through the fill (`[fill] surface`, `spread_deg`, `spread`): a
 //! vertical point load that stands on the road surface (or anywhere in the fill) reaches the
 //! extrados below it over a width that grows with the depth of fill, and the voussoirs under
-//! that width carry it. [`super::placement`] asks this file how a load of `F` newtons at
+//! that width carry it. `scene::placement` asks this file how a load of `F` newtons at
 //! depth `d` is shared along x, and places the shares on the roof as it places a line load.
 //!
 //! Two laws, both of a load per unit depth of the model (a plane problem):

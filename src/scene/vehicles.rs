@@ -1,6 +1,6 @@
 //! `[[vehicles]]`: trains of axles, each a vertical point load standing on the top of the
 //! structure (on the fill's road surface when there is a fill, spread through it by
-//! [`super::spread`]; on the extrados otherwise), placed by [`super::placement`].
+//! [`super::spread`]; on the extrados otherwise), placed by `scene::placement`.
 //!
 //! ```toml
 //! [[vehicles]]

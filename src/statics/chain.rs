@@ -1244,7 +1244,7 @@ pub enum Declined {
     /// redundants alone.
     Ties,
     /// Bonded strips with crushing: without it a strip may be taken at its capacity (see
-    /// [`ChainProgram::new`]), but a crushing cone bounds the contact force the strip adds
+    /// `ChainProgram::new`), but a crushing cone bounds the contact force the strip adds
     /// to.
     Strips,
     /// The fill's passive reactions are forces from the ground on single blocks, unknowns

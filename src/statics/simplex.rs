@@ -30,7 +30,7 @@
 //! - *basis*: the explicit inverse `B^-1` (dense storage, row-major), updated by the product
 //!   form of each pivot over the nonzeros of the new pivot row (Bixby 1992, Maros 2003 §8;
 //!   the inverse of a wall's basis is about a quarter full) and recomputed from scratch
-//!   (Gauss-Jordan with partial pivoting) every [`REFACTOR`] pivots and whenever the
+//!   (Gauss-Jordan with partial pivoting) every `REFACTOR` pivots and whenever the
 //!   residuals of the basic solution grow. Dense storage: the path is for programs up to
 //!   [`MAX_ROWS`] rows (the 205-block wall has 615, the 3-bay arcade 942); larger ones stay
 //!   with Clarabel. It still costs `O(m^2)`-ish per pivot, more than a sparse LU with
@@ -46,7 +46,7 @@
 //! the wrong sign is cleaned up by primal simplex pivots on the real costs (Koberstein
 //! §6.2.2.3: "the primal simplex method is used to remove the remaining dual
 //! infeasibilities"). The answer is returned only when, with the real costs, the basis is
-//! primal feasible, dual feasible and the equilibrium residual small (all to [`TOL`]): an
+//! primal feasible, dual feasible and the equilibrium residual small (all to `TOL`): an
 //! optimal vertex of the real program. Anything else (the iterations running out, a
 //! singular basis, a Farkas row the bounds do not confirm, a program unbounded above) is
 //! [`LpOutcome::Undecided`], and the caller solves the program with Clarabel: never a wrong

@@ -2,7 +2,7 @@
 //! structure or which chart a result gets, its title in the engineer's words, and its SVG
 //! ([`Figure`]). The commands ask for a figure by what it shows; no command, front end or
 //! analysis module assembles its own. The chart data of an assessment and of a sweep or a
-//! study are in [`assess`] and [`sweep`].
+//! study are in [`assess`] and [`mod@sweep`].
 
 pub mod assess;
 pub mod sweep;

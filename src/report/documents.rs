@@ -232,8 +232,16 @@ pub fn roll(scene: &Scene, r: &crate::roll::Roll) -> Document {
 /// The non-associative multiplier and the DEM check, when they ran: where the associative,
 /// the non-associative and the DEM's values sit (docs/friction.md).
 fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
-    if let Some(na) = a.non_associative.as_ref().filter(|n| !n.from_exact) {
+    if let Some(na) = a
+        .non_associative
+        .as_ref()
+        .filter(|n| !n.from_exact || n.unsearched)
+    {
         let head = match na.lambda {
+            _ if na.unsearched => {
+                "Non-associative friction: not iterated (lower collapse states not searched for)"
+                    .to_string()
+            }
             Some(l) => {
                 format!("Non-associative friction (joints slide without opening): lambda = {l:.6}")
             }

@@ -474,7 +474,10 @@ pub fn friction_words(f: &FrictionCheck, status: Status) -> Option<String> {
 /// joints are possible ([`FrictionCheck::lower_states_possible`]); `None` elsewhere.
 pub fn exact_friction_words(f: &FrictionCheck) -> Option<String> {
     f.lower_states_possible.then(|| {
-        "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; the non-associative iteration, on by default here, searches for them)".to_string()
+        format!(
+            "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; the non-associative iteration searches for them, by default up to {} blocks, else with --friction non-associative)",
+            crate::analysis::AUTO_SEARCH_MAX_BLOCKS
+        )
     })
 }
 
@@ -602,8 +605,14 @@ pub fn tie_on_curve_words(t: &crate::assess::TieOnCurve) -> String {
 
 /// What the non-associative multiplier `na` is, in words (docs/friction.md).
 pub fn non_associative_words(na: &crate::statics::NonAssociative) -> String {
+    if na.unsearched {
+        return format!(
+            "non-associative friction: not iterated: no joint slips in the associative mechanism, so its collapse state is a real one too, but lower ones are possible in this assembly and were not searched for above {} blocks (about 200 s at 984 blocks); --friction non-associative searches for them",
+            crate::analysis::AUTO_SEARCH_MAX_BLOCKS
+        );
+    }
     if na.from_exact {
-        return "non-associative friction: no joint slips in the associative mechanism, so the real multiplier is the associative one (not iterated)".to_string();
+        return "non-associative friction: no joint slips in the associative mechanism, so its collapse state is a real one too, taken as the real multiplier (not iterated)".to_string();
     }
     let tried: Vec<&str> = na.starts.iter().map(|s| s.start.as_str()).collect();
     match na.lambda {

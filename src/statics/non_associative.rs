@@ -159,6 +159,10 @@ pub struct NonAssociative {
     /// Whether the associative multiplier was taken as it is (friction exact), with no
     /// iteration.
     pub from_exact: bool,
+    /// Taken as it is although lower collapse states of real joints are possible (exact in an
+    /// assembly that is not a chain), because the assembly has more blocks than
+    /// `analysis::AUTO_SEARCH_MAX_BLOCKS`: those states were not searched for.
+    pub unsearched: bool,
     /// Wall time of all the iterations (s).
     pub solve_time_s: f64,
 }
@@ -175,6 +179,7 @@ impl NonAssociative {
             starts: Vec::new(),
             result: None,
             from_exact: true,
+            unsearched: false,
             solve_time_s: 0.0,
         }
     }
@@ -621,6 +626,7 @@ pub fn analyse_non_associative(
         starts: Vec::new(),
         result: None,
         from_exact: false,
+        unsearched: false,
         solve_time_s: 0.0,
     };
     let Some(forces) = associative

@@ -517,3 +517,45 @@ fn an_exact_wall_answer_is_not_called_a_lower_bound() {
         f64_of(&v, "lambda_lower")
     );
 }
+
+/// Above `analysis::AUTO_SEARCH_MAX_BLOCKS` blocks `auto` keeps an exact wall's value without
+/// searching for lower collapse states (each program of the search is the whole wall's: 200 s
+/// at 984 blocks), and says so in `non_associative_note` and the summary.
+#[test]
+fn a_large_exact_wall_is_not_searched_by_default_and_says_so() {
+    // A running-bond wall of 21 courses of 20 units (0.4 x 0.2 m, half units at the ends of
+    // every other course): 430 blocks.
+    let mut rects = Vec::new();
+    for c in 0..21 {
+        let (y0, y1) = (0.2 * c as f64, 0.2 * (c + 1) as f64);
+        let mut xs: Vec<f64> = (0..=20).map(|i| 0.4 * i as f64).collect();
+        if c % 2 == 1 {
+            xs = std::iter::once(0.0)
+                .chain((0..20).map(|i| 0.2 + 0.4 * i as f64))
+                .chain(std::iter::once(8.0))
+                .collect();
+        }
+        for w in xs.windows(2) {
+            rects.push([w[0], y0, w[1], y1]);
+        }
+    }
+    assert!(rects.len() > voussoir::analysis::AUTO_SEARCH_MAX_BLOCKS);
+    let text = format!(
+        "[blocks]\npolygons = {}\n[material]\nfriction = 1000\n",
+        crate::common::rect_polygons(&rects)
+    );
+    let v = json_of(&["analyze", "--json"], &text);
+    assert_eq!(v["friction_exact"], true);
+    assert_eq!(v["friction_lower_states_possible"], true);
+    assert_eq!(v["non_associative_iterations"], 0);
+    assert_eq!(
+        f64_of(&v, "lambda_non_associative"),
+        f64_of(&v, "lambda_lower")
+    );
+    let note = v["non_associative_note"].as_str().unwrap_or("");
+    assert!(
+        note.contains("were not searched for above 400 blocks")
+            && note.contains("--friction non-associative"),
+        "{note}"
+    );
+}

@@ -723,13 +723,7 @@ pub fn dem_plan(
     if let Some(n) = max_steps {
         params.max_steps = n;
     }
-    let (dt, steps) = crate::dem::plan(&model, &params, motion)
-        .map_err(|e| AnalysisError::Other(e.to_string()))?;
-    let purpose = match motion {
-        None => crate::dem::Purpose::CollapseSearch,
-        Some(_) => crate::dem::Purpose::GroundMotion,
-    };
-    Ok((dt, steps, params.resolved(&model, purpose).integrator))
+    crate::dem::plan(&model, &params, motion).map_err(|e| AnalysisError::Other(e.to_string()))
 }
 
 /// The static lower bound of the shapes the DEM simulates for `model`, whose own static bound

@@ -205,6 +205,14 @@ impl Assembly {
             })
     }
 
+    /// Whether every joint carries the one thrust of the structure: a chain between two
+    /// supports, or a single block. Elsewhere (a wall, a stack) a joint may carry little or no
+    /// compression, and real (non-associative) joints may have collapse states below an exact
+    /// associative one (`statics::FrictionCheck::lower_states_possible`, docs/friction.md).
+    pub fn is_single_thrust_path(&self) -> bool {
+        self.is_chain() || self.blocks.len() < 2
+    }
+
     /// The same assembly mirrored about x = 0 (block and joint order reversed, so a chain
     /// stays a chain from left to right; p1/p2 keep their meaning).
     pub fn mirrored(&self) -> Assembly {

@@ -293,13 +293,14 @@ fn check_steps(world: &World, seconds: f64, what: &str) -> Result<u64, DemError>
 /// The time step of `model` under `params` (s) and the most time steps one run may take: a
 /// settling or constant-lambda run of the collapse search (`motion = None`), or the settling
 /// plus a dynamic run of `motion` seconds (ground motion and tail) and its longest extension
-/// to decide its end (`max_time`). Refused, before anything runs, above `params.max_steps`
-/// ([`DemError::TooManySteps`]), or with a knob out of range.
+/// to decide its end (`max_time`), and the time stepping those runs use (`params`'
+/// integrator, [`Integrator::Auto`] decided for that purpose). Refused, before anything runs,
+/// above `params.max_steps` ([`DemError::TooManySteps`]), or with a knob out of range.
 pub fn plan(
     model: &Model,
     params: &IntegrationParameters,
     motion: Option<f64>,
-) -> Result<(f64, u64), DemError> {
+) -> Result<(f64, u64, Integrator), DemError> {
     let purpose = match motion {
         None => Purpose::CollapseSearch,
         Some(_) => Purpose::GroundMotion,
@@ -309,10 +310,12 @@ pub fn plan(
     check_params(params, model)?;
     let world = World::new(model, params);
     check_time_step(&world)?;
+    let integrator = params.integrator;
     match motion {
         None => Ok((
             world.dt,
             check_steps(&world, longest_run(params), "each run of the search")?,
+            integrator,
         )),
         Some(m) => {
             let settle = check_steps(&world, longest_run(params), "settling")?;
@@ -324,7 +327,7 @@ pub fn plan(
                     params.max_time
                 ),
             )?;
-            Ok((world.dt, settle.saturating_add(run)))
+            Ok((world.dt, settle.saturating_add(run), integrator))
         }
     }
 }

@@ -168,13 +168,12 @@ pub fn rest_test(model: &Model, params: &IntegrationParameters) -> RestTest {
             }
         };
         let friction = r.friction(&m.assembly);
-        let chainlike = m.assembly.is_chain() || m.assembly.blocks.len() < 2;
         lambdas[k] = match (r.status, r.lambda) {
             // Not a chain: joints that may carry no compression (a wall's head joints) slide
             // under the DEM's Coulomb contacts, infinite friction included (simulated as
             // `dem.infinite_friction`), so real joints may collapse below the exact value
             // (`FrictionCheck::lower_states_possible`, docs/friction.md).
-            (Status::Collapse | Status::NoCollapse, _) if !chainlike => {
+            (Status::Collapse | Status::NoCollapse, _) if !m.assembly.is_single_thrust_path() => {
                 return RestTest::NotApplicable(format!(
                     "toward {side} no joint slides in the static mechanism, but real joints may collapse lower in an assembly that is not a chain (joints without compression slide under the DEM's Coulomb contacts, docs/friction.md), so rest below the static multiplier is not certain"
                 ))

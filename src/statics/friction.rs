@@ -62,13 +62,15 @@ impl StaticResult {
                 Status::CannotStand => true,
                 Status::NoCollapse => false,
             };
-        let chain = assembly.is_chain() || assembly.blocks.len() < 2;
         FrictionCheck {
             finite,
             exact,
             slipping,
             lambda_associative: self.lambda,
-            lower_states_possible: finite && exact && self.status == Status::Collapse && !chain,
+            lower_states_possible: finite
+                && exact
+                && self.status == Status::Collapse
+                && !assembly.is_single_thrust_path(),
         }
     }
 }

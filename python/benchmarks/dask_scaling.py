@@ -2,7 +2,9 @@
 processes (one thread each, one core each: ``RAYON_NUM_THREADS=1``), against the local sweep
 on one core; the figures of docs/performance.md ("Sweeps on Dask").
 
-    python python/benchmarks/dask_scaling.py [MAX_WORKERS]
+    python python/benchmarks/dask_scaling.py [MAX_WORKERS | COUNT,COUNT,...]
+
+(``8``: every count from 1 to 8; ``1,2,4,8,16``: those counts.)
 
 Prints, per worker count, the best of three wall times, the chunk plan (measured per-task
 overhead, per-case cost, cases per chunk) and the speed-up over the local sweep, with the
@@ -35,7 +37,11 @@ def best_of(n, f):
 def main():
     from distributed import Client, LocalCluster
 
-    max_workers = int(sys.argv[1]) if len(sys.argv) > 1 else os.cpu_count() or 1
+    arg = sys.argv[1] if len(sys.argv) > 1 else str(os.cpu_count() or 1)
+    if "," in arg:
+        worker_counts = [int(x) for x in arg.split(",") if x]
+    else:
+        worker_counts = list(range(1, int(arg) + 1))
     scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
     vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": "0.08:0.2:0.0002"}
     options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
@@ -43,7 +49,7 @@ def main():
     strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
     print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
     print(f"local sweep, one core: {len(local)} cases in {local_s:.2f} s")
-    for workers in range(1, max_workers + 1):
+    for workers in worker_counts:
         with LocalCluster(
             n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
         ) as cluster, Client(cluster) as client:

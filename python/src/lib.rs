@@ -766,6 +766,11 @@ fn fragility_settings(samples: usize, seed: u64) -> voussoir::fragility::Setting
     }
 }
 
+/// A chunk's results as JSON text (a library error if they do not serialise).
+fn json_text<T: serde::Serialize>(x: &T) -> Result<String, LibAnalysisError> {
+    serde_json::to_string(x).map_err(|e| LibAnalysisError::Other(e.to_string()))
+}
+
 /// The samples of chunks (JSON texts of [`fragility_samples_json`]) joined in order.
 fn joined<T: serde::de::DeserializeOwned>(chunks: &[String]) -> Result<Vec<T>, LibAnalysisError> {
     let mut all = Vec::new();
@@ -799,9 +804,9 @@ fn fragility_samples_json(
     let settings = fragility_settings(samples, seed);
     let out = interruptible(py, Arc::default(), move || {
         let out = match (records, stripes) {
-            (None, None) => fr::capacity_samples(&lib_scene, &settings, lo..hi).and_then(|s| {
-                serde_json::to_string(&s).map_err(|e| LibAnalysisError::Other(e.to_string()))
-            }),
+            (None, None) => {
+                fr::capacity_samples(&lib_scene, &settings, lo..hi).and_then(|s| json_text(&s))
+            }
             (Some(dir), Some(stripes)) => fr::read_records(&dir).and_then(|records| {
                 fr::dynamic_samples(
                     &lib_scene,
@@ -811,9 +816,7 @@ fn fragility_samples_json(
                     &voussoir::dem::dynamic::DynamicSettings::default(),
                     lo..hi,
                 )
-                .and_then(|s| {
-                    serde_json::to_string(&s).map_err(|e| LibAnalysisError::Other(e.to_string()))
-                })
+                .and_then(|s| json_text(&s))
             }),
             _ => Err(LibAnalysisError::Other(
                 "records and stripes go together: the dynamic route needs both".into(),
@@ -822,6 +825,80 @@ fn fragility_samples_json(
         (lib_scene, out)
     })?;
     out.1.map_err(|e| analysis_error(py, &e))
+}
+
+/// The number of DEM runs of a dynamic-route fragility (samples x stripes x the records of
+/// the directory `records`), after the same checks as [`fragility_runs_json`].
+#[pyfunction]
+fn fragility_run_count(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    records: std::path::PathBuf,
+    stripes: Vec<f64>,
+) -> PyResult<usize> {
+    use voussoir::fragility as fr;
+    let settings = fragility_settings(samples, 1);
+    fr::read_records(&records)
+        .and_then(|r| fr::dynamic_run_count(&scene.inner, &settings, &r, &stripes))
+        .map_err(|e| analysis_error(py, &e))
+}
+
+/// Runs `lo..hi` of a dynamic-route fragility (numbered sample, then stripe, then record:
+/// `voussoir::fragility::dynamic_runs`), whether each collapsed, as JSON text: the chunk a
+/// cluster's worker computes for Python's `fragility(..., records=, client=)`.
+#[pyfunction]
+#[pyo3(signature = (scene, samples, seed, records, stripes, lo, hi))]
+#[allow(clippy::too_many_arguments)]
+fn fragility_runs_json(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    seed: u64,
+    records: std::path::PathBuf,
+    stripes: Vec<f64>,
+    lo: usize,
+    hi: usize,
+) -> PyResult<String> {
+    use voussoir::fragility as fr;
+    let lib_scene = scene.inner.clone();
+    let settings = fragility_settings(samples, seed);
+    let out = interruptible(py, Arc::default(), move || {
+        let out = fr::read_records(&records).and_then(|records| {
+            fr::dynamic_runs(
+                &lib_scene,
+                &settings,
+                &records,
+                &stripes,
+                &voussoir::dem::dynamic::DynamicSettings::default(),
+                lo..hi,
+            )
+            .and_then(|f| json_text(&f))
+        });
+        (lib_scene, out)
+    })?;
+    out.1.map_err(|e| analysis_error(py, &e))
+}
+
+/// The samples of a dynamic-route fragility from the outcomes of all its runs (those of
+/// [`fragility_runs_json`] joined in order), as the JSON text of [`fragility_samples_json`]
+/// over all samples: a chunk for [`fragility_json_svg`].
+#[pyfunction]
+fn fragility_samples_from_runs_json(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: usize,
+    seed: u64,
+    records: std::path::PathBuf,
+    stripes: Vec<f64>,
+    runs: Vec<bool>,
+) -> PyResult<String> {
+    use voussoir::fragility as fr;
+    let settings = fragility_settings(samples, seed);
+    let r = fr::read_records(&records)
+        .and_then(|r| fr::dynamic_samples_from_runs(&scene.inner, &settings, &r, &stripes, &runs))
+        .and_then(|s| json_text(&s));
+    r.map_err(|e| analysis_error(py, &e))
 }
 
 /// `voussoir report` of a scene: the hand-in report's HTML and its JSON (docs/report.md).
@@ -1325,6 +1402,9 @@ fn _voussoir(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(retrofit_json, m)?)?;
     m.add_function(wrap_pyfunction!(fragility_json_svg, m)?)?;
     m.add_function(wrap_pyfunction!(fragility_samples_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_run_count, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_runs_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility_samples_from_runs_json, m)?)?;
     m.add_function(wrap_pyfunction!(dem_json, m)?)?;
     m.add_function(wrap_pyfunction!(report_html_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis_svg, m)?)?;

@@ -107,3 +107,24 @@ def test_fragility_with_a_client_gives_the_local_samples_and_curve():
     assert chunked.to_dict() == local.to_dict()
     assert sized.to_dict() == local.to_dict()
     assert chunked.svg == local.svg
+
+
+def test_the_dynamic_route_with_a_client_maps_its_runs_and_gives_the_local_document():
+    # `fragility(..., records=, stripes=, client=)`: one DEM run per case (a sample under one
+    # record at one stripe), the samples made from all runs here: the local document.
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "fragility_portal.toml"))
+    records = REPO / "data" / "records"
+    kwargs = dict(samples=3, seed=2, records=records, stripes=[0.1, 0.6])
+    local = voussoir.fragility(scene, **kwargs)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        one = voussoir.fragility(scene, client=client, chunk=1, progress=False, **kwargs)
+        sized = voussoir.fragility(scene, client=client, progress=False, **kwargs)
+    assert one.to_dict() == local.to_dict()
+    assert sized.to_dict() == local.to_dict()
+    assert one.svg == local.svg
+    # 3 samples x 2 stripes x 1 record: the runs numbered sample, stripe, record.
+    assert voussoir._voussoir.fragility_run_count(scene, 3, str(records), [0.1, 0.6]) == 6
+    with pytest.raises(voussoir.AnalysisError, match="run range"):
+        voussoir._voussoir.fragility_runs_json(scene, 3, 2, str(records), [0.1, 0.6], 5, 7)

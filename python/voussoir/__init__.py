@@ -511,12 +511,14 @@ def fragility(
     refused, not truncated), a capacity route without a site, or only one of ``records``
     and ``stripes``.
 
-    With ``client`` (a ``dask.distributed.Client``) the samples run on its cluster in chunks,
-    as :func:`sweep`'s cases do (the first ones locally to measure a sample's cost, the rest
-    in chunks sized so the per-task overhead stays under 10 %, or of ``chunk`` samples; a
+    With ``client`` (a ``dask.distributed.Client``) the work runs on its cluster in chunks,
+    as :func:`sweep`'s cases do (the first ones locally to measure their cost, the rest in
+    chunks sized so the per-task overhead stays under 10 %, or of ``chunk`` cases; a
     progress bar unless ``progress=False``), and the fit is made here from all of them: the
-    same samples, curve and fit as the local run. ``records`` must then be a directory the
-    workers can read at the same path."""
+    same samples, curve and fit as the local run. A case is a sample in the capacity route
+    and one DEM run (a sample under one record at one stripe) in the dynamic route, whose
+    samples cost tens of runs each and would balance poorly over the workers. ``records``
+    must then be a directory the workers can read at the same path."""
     if site:
         scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
     records_dir = None if records is None else str(records)

@@ -284,6 +284,27 @@ def fragility_range(
     return json.loads(text)
 
 
+def fragility_runs(
+    lo: int,
+    hi: int,
+    *,
+    scene: Any,
+    samples: int,
+    seed: int,
+    records: str,
+    stripes: List[float],
+) -> List[bool]:
+    """Runs ``lo`` to ``hi - 1`` of a dynamic-route fragility (numbered sample, then stripe,
+    then record), whether each collapsed (runs on a worker; the records directory must be
+    readable there)."""
+    import json
+
+    from . import _voussoir
+
+    text = _voussoir.fragility_runs_json(scene, samples, seed, records, stripes, lo, hi)
+    return json.loads(text)
+
+
 def fragility(
     client: Any,
     scene: Any,
@@ -293,12 +314,41 @@ def fragility(
     stripes: Optional[List[float]],
     **map_options: Any,
 ) -> Tuple[List[Any], Plan]:
-    """The samples of a fragility on ``client``, in sample order: those of the local run."""
-    return map_chunked(
+    """The samples of a fragility on ``client``, in sample order: those of the local run.
+
+    The capacity route maps its samples (a millisecond each). The dynamic route maps its
+    DEM runs, one per sample, stripe and record (seconds each): chunks of whole samples
+    (tens of runs) would leave workers idle at the end of a study, as 50 samples over 16
+    workers take four rounds, the last a third full."""
+    if records is None or stripes is None:
+        return map_chunked(
+            client,
+            samples,
+            fragility_range,
+            {
+                "scene": scene,
+                "samples": samples,
+                "seed": seed,
+                "records": records,
+                "stripes": stripes,
+            },
+            desc="fragility",
+            **map_options,
+        )
+    import json
+
+    from . import _voussoir
+
+    runs = _voussoir.fragility_run_count(scene, samples, records, stripes)
+    flags, plan = map_chunked(
         client,
-        samples,
-        fragility_range,
+        runs,
+        fragility_runs,
         {"scene": scene, "samples": samples, "seed": seed, "records": records, "stripes": stripes},
-        desc="fragility",
+        desc="fragility runs",
         **map_options,
     )
+    text = _voussoir.fragility_samples_from_runs_json(
+        scene, samples, seed, records, stripes, flags
+    )
+    return json.loads(text), plan

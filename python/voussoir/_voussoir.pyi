@@ -109,6 +109,34 @@ def fragility_samples_json(
 ) -> str:
     """Samples ``lo..hi`` of a fragility with their outcomes, as JSON text (a cluster's chunk)."""
 
+def fragility_run_count(
+    scene: Scene, samples: int, records: str, stripes: List[float]
+) -> int:
+    """The DEM runs of a dynamic-route fragility: samples x stripes x records."""
+
+def fragility_runs_json(
+    scene: Scene,
+    samples: int,
+    seed: int,
+    records: str,
+    stripes: List[float],
+    lo: int,
+    hi: int,
+) -> str:
+    """Runs ``lo..hi`` of a dynamic-route fragility (sample, then stripe, then record),
+    whether each collapsed, as JSON text (a cluster's chunk)."""
+
+def fragility_samples_from_runs_json(
+    scene: Scene,
+    samples: int,
+    seed: int,
+    records: str,
+    stripes: List[float],
+    runs: List[bool],
+) -> str:
+    """The samples of a dynamic-route fragility from all its runs' outcomes, as the JSON text
+    of :func:`fragility_samples_json` over every sample."""
+
 def report_html_json(scene: Scene, dem: bool = False) -> Tuple[str, str]:
     """``voussoir report`` of a scene: the report's HTML and its JSON text."""
 

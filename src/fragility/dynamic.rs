@@ -10,7 +10,7 @@
 //! analysis of a population of structures does.
 
 use super::fit::{self, FitError, LognormalFit, Observation};
-use super::{check, check_range, sample_scenes, sample_values, Settings};
+use super::{check, check_range, sample_scenes, values_of, Settings};
 use crate::analysis;
 use crate::dem::dynamic::DynamicSettings;
 use crate::dem::record::{GroundInput, GroundMotion, STANDARD_GRAVITY};
@@ -150,58 +150,135 @@ pub fn dynamic_samples(
 ) -> Result<Vec<DynamicSample>, AnalysisError> {
     check_dynamic(scene, settings, records, stripes)?;
     check_range(&range, settings.samples)?;
-    let mut values = sample_values(
-        &scene.uncertain,
-        &scene.uncertain_correlation,
-        settings.samples,
-        settings.seed,
-    );
-    let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
-    let scenes = sample_scenes(scene, &values, range.start)?;
-    let (ns, nj, nr) = (scenes.len(), stripes.len(), records.len());
+    let per_sample = stripes.len() * records.len();
+    let runs = range.start * per_sample..range.end * per_sample;
+    let flags = dynamic_runs(scene, settings, records, stripes, dynamic, runs)?;
+    let values = values_of(scene, settings);
+    Ok(samples_of(
+        &values[range],
+        &flags,
+        stripes.len(),
+        records.len(),
+    ))
+}
+
+/// The number of DEM runs of a dynamic route, after its checks: one per sample, stripe and
+/// record. Run `k` is sample `k / (stripes records)`, stripe `(k / records) % stripes`,
+/// record `k % records` (the order of [`dynamic_runs`]).
+pub fn dynamic_run_count(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+) -> Result<usize, AnalysisError> {
+    check_dynamic(scene, settings, records, stripes)?;
+    Ok(settings.samples * stripes.len() * records.len())
+}
+
+/// The runs `range` (a chunk of `0..`[`dynamic_run_count`], numbered as there) of the
+/// dynamic route: whether the structure collapsed (or could not stand) in each. The unit a
+/// cluster's worker computes: a sample's runs cost seconds each, so a chunk of whole samples
+/// (tens of runs) would leave workers idle at the end of a study (50 samples over 16
+/// workers: four rounds, the last a third full). [`dynamic_samples_from_runs`] makes the
+/// samples of all of them.
+pub fn dynamic_runs(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<bool>, AnalysisError> {
+    let total = dynamic_run_count(scene, settings, records, stripes)?;
+    let (nj, nr) = (stripes.len(), records.len());
+    if range.start >= range.end || range.end > total {
+        return Err(AnalysisError::Settings {
+            setting: "run range".into(),
+            value: format!("{}..{}", range.start, range.end),
+            allowed: format!(
+                "a non-empty range within 0..{total} ({} samples x {nj} stripes x {nr} records)",
+                settings.samples
+            ),
+        });
+    }
+    // The scenes of the samples the runs touch, and only those.
+    let first = range.start / (nj * nr);
+    let last = (range.end - 1) / (nj * nr);
+    let mut values = values_of(scene, settings);
+    let values: Vec<Vec<f64>> = values.drain(first..=last).collect();
+    let scenes = sample_scenes(scene, &values, first)?;
     let dynamic = DynamicSettings {
         history_every: None,
         frames_every: None,
         ..dynamic.clone()
     };
-    let runs: Vec<Result<bool, AnalysisError>> = (0..ns * nj * nr)
+    let where_ = |k: usize| (k / (nj * nr), (k / nr) % nj, k % nr);
+    let runs: Vec<Result<bool, AnalysisError>> = range
+        .clone()
         .into_par_iter()
         .map(|k| {
-            let (i, j, r) = (k / (nj * nr), (k / nr) % nj, k % nr);
+            let (i, j, r) = where_(k);
             let record = &records[r];
             let scale = stripes[j] * STANDARD_GRAVITY / record.pga();
             let ground: GroundInput =
                 crate::dem::record::Excitation::Record(record.scaled(scale)).into();
-            let run = analysis::dem_dynamic(&scenes[i], &ground, &dynamic)?;
+            let run = analysis::dem_dynamic(&scenes[i - first], &ground, &dynamic)?;
             Ok(run.result.collapsed || run.result.cannot_stand)
         })
         .collect();
     let mut flags = Vec::with_capacity(runs.len());
-    for (k, run) in runs.into_iter().enumerate() {
+    for (k, run) in range.zip(runs) {
         match run {
             Ok(c) => flags.push(c),
             Err(e) => {
-                let (i, j, r) = (k / (nj * nr), (k / nr) % nj, k % nr);
+                let (i, j, r) = where_(k);
                 return Err(AnalysisError::Other(format!(
-                    "sample {} under {} at PGA {} g: {e}",
-                    range.start + i,
-                    records[r].source,
-                    stripes[j]
+                    "sample {i} under {} at PGA {} g: {e}",
+                    records[r].source, stripes[j]
                 )));
             }
         }
     }
-    let samples: Vec<DynamicSample> = values
-        .into_iter()
+    Ok(flags)
+}
+
+/// All samples of the dynamic route from the outcomes of all its runs (those of
+/// [`dynamic_runs`] over `0..`[`dynamic_run_count`], in order, as a cluster's chunks
+/// joined): the samples [`dynamic_samples`] gives, for [`dynamic_fragility`].
+pub fn dynamic_samples_from_runs(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    flags: &[bool],
+) -> Result<Vec<DynamicSample>, AnalysisError> {
+    let total = dynamic_run_count(scene, settings, records, stripes)?;
+    let (nj, nr) = (stripes.len(), records.len());
+    if flags.len() != total {
+        return Err(AnalysisError::Other(format!(
+            "{}: {} run outcomes given for a fragility of {total} runs ({} samples x {nj} stripes x {nr} records)",
+            scene.origin,
+            flags.len(),
+            settings.samples
+        )));
+    }
+    let values = values_of(scene, settings);
+    Ok(samples_of(&values, flags, nj, nr))
+}
+
+/// The samples with these `values`, their runs' outcomes `flags` in the order of
+/// [`dynamic_runs`] (starting at the first of them).
+fn samples_of(values: &[Vec<f64>], flags: &[bool], nj: usize, nr: usize) -> Vec<DynamicSample> {
+    values
+        .iter()
         .enumerate()
         .map(|(i, v)| DynamicSample {
-            values: v,
+            values: v.clone(),
             collapsed: (0..nj)
                 .map(|j| (0..nr).map(|r| flags[(i * nj + j) * nr + r]).collect())
                 .collect(),
         })
-        .collect();
-    Ok(samples)
+        .collect()
 }
 
 /// The dynamic-route fragility from all `settings.samples` samples of [`dynamic_samples`],

@@ -38,8 +38,8 @@ use rayon::prelude::*;
 use toml::Value;
 
 pub use dynamic::{
-    dynamic_fragility, dynamic_route, dynamic_samples, read_records, DynamicFragility,
-    DynamicSample, Stripe,
+    dynamic_fragility, dynamic_route, dynamic_run_count, dynamic_runs, dynamic_samples,
+    dynamic_samples_from_runs, read_records, DynamicFragility, DynamicSample, Stripe,
 };
 pub use fit::{FitError, LognormalFit, Observation};
 
@@ -184,6 +184,17 @@ pub fn sample_values(
         .collect()
 }
 
+/// The values of every sample of `scene`'s `[uncertain]` inputs under `settings` (its
+/// samples and seed): [`sample_values`] of the scene's inputs and correlations.
+fn values_of(scene: &Scene, settings: &Settings) -> Vec<Vec<f64>> {
+    sample_values(
+        &scene.uncertain,
+        &scene.uncertain_correlation,
+        settings.samples,
+        settings.seed,
+    )
+}
+
 /// The scenes of the samples, each validated; the first sample the scene refuses is an
 /// error naming it, its values and the scene's reason (samples are refused, never truncated:
 /// module docs).
@@ -296,12 +307,7 @@ pub fn capacity_samples(
     check(scene, settings)?;
     site_of(scene)?;
     check_range(&range, settings.samples)?;
-    let mut values = sample_values(
-        &scene.uncertain,
-        &scene.uncertain_correlation,
-        settings.samples,
-        settings.seed,
-    );
+    let mut values = values_of(scene, settings);
     let values: Vec<Vec<f64>> = values.drain(range.clone()).collect();
     let scenes = sample_scenes(scene, &values, range.start)?;
     let capacities: Vec<Result<Capacity, AnalysisError>> = scenes

@@ -487,6 +487,97 @@ fn the_dynamic_route_counts_the_dem_runs_of_each_sample() {
 }
 
 #[test]
+fn the_runs_of_the_dynamic_route_are_numbered_sample_stripe_record_and_join_to_its_samples() {
+    // What Python's `fragility(..., records=, client=)` does: one DEM run per case on the
+    // workers, carried as JSON, joined in order into the samples and fitted here.
+    let scene = Scene::from_file(&data("fragility_portal.toml")).expect("scene");
+    let full = voussoir::dem::record::read(
+        &data("records/synthetic_10s.AT2"),
+        voussoir::dem::record::AccelUnit::G,
+        None,
+    )
+    .expect("record");
+    // A second record that differs: a 20 ms triangle, far too short an impulse to bring
+    // the portal down at any stripe.
+    let short = voussoir::dem::record::GroundMotion {
+        time: vec![0.0, 0.01, 0.02],
+        accel: vec![0.0, 1.0, 0.0],
+        source: "a 20 ms triangle".into(),
+    };
+    let records = [full, short];
+    let stripes = [0.1, 0.6];
+    let s = settings(2, 7);
+    let dynamic = voussoir::dem::dynamic::DynamicSettings::default();
+    let total = fragility::dynamic_run_count(&scene, &s, &records, &stripes).expect("count");
+    assert_eq!(total, 2 * 2 * 2);
+    let whole = fragility::dynamic_route(&scene, &s, &records, &stripes, &dynamic).expect("route");
+    // Each run alone, through JSON: run k is sample k / 4, stripe (k / 2) % 2, record k % 2,
+    // the DEM of that sample's own scene under that record scaled to that stripe.
+    let mut flags: Vec<bool> = Vec::new();
+    for k in 0..total {
+        let part = fragility::dynamic_runs(&scene, &s, &records, &stripes, &dynamic, k..k + 1)
+            .expect("run");
+        let text = serde_json::to_string(&part).expect("json");
+        flags.extend(serde_json::from_str::<Vec<bool>>(&text).expect("json"));
+        let (i, j, r) = (k / 4, (k / 2) % 2, k % 2);
+        assert_eq!(flags[k], whole.samples[i].collapsed[j][r], "run {k}");
+        let pairs: Vec<(&str, toml::Value)> = scene
+            .uncertain
+            .iter()
+            .zip(&whole.samples[i].values)
+            .map(|(u, &x)| (u.key.as_str(), toml::Value::Float(x)))
+            .collect();
+        let one = scene.with_values(&pairs).expect("sample scene");
+        let g = voussoir::dem::record::STANDARD_GRAVITY;
+        let ground: voussoir::dem::record::GroundInput = voussoir::dem::record::Excitation::Record(
+            records[r].scaled(stripes[j] * g / records[r].pga()),
+        )
+        .into();
+        let run = analysis::dem_dynamic(&one, &ground, &dynamic).expect("dem");
+        assert_eq!(
+            flags[k],
+            run.result.collapsed || run.result.cannot_stand,
+            "run {k}"
+        );
+    }
+    // The numbering is seen: the records give different outcomes at the strong stripe.
+    assert_ne!(
+        flags[2], flags[3],
+        "the two records should differ at 0.6 g: {flags:?}"
+    );
+    // Chunks across samples join to the same samples and fit.
+    let mut chunked: Vec<bool> = Vec::new();
+    for range in [0..3, 3..8] {
+        chunked.extend(
+            fragility::dynamic_runs(&scene, &s, &records, &stripes, &dynamic, range)
+                .expect("chunk"),
+        );
+    }
+    assert_eq!(chunked, flags);
+    let samples =
+        fragility::dynamic_samples_from_runs(&scene, &s, &records, &stripes, &flags).expect("join");
+    assert_eq!(samples, whole.samples);
+    let joined =
+        fragility::dynamic_fragility(&scene, &s, &records, &stripes, samples).expect("fit");
+    assert_eq!(joined.stripes, whole.stripes);
+    assert_eq!(joined.fit, whole.fit);
+    // A range outside the runs, an empty one, or too few outcomes: refused, saying what.
+    for range in [6..9, 4..4] {
+        let e = fragility::dynamic_runs(&scene, &s, &records, &stripes, &dynamic, range)
+            .expect_err("refused")
+            .to_string();
+        assert!(e.contains("run range") && e.contains("0..8"), "{e}");
+    }
+    let e = fragility::dynamic_samples_from_runs(&scene, &s, &records, &stripes, &flags[..7])
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        e.contains("7 run outcomes given for a fragility of 8 runs"),
+        "{e}"
+    );
+}
+
+#[test]
 fn chunks_computed_apart_give_the_local_samples_and_fit() {
     // What Python's `fragility(..., client=)` does: the samples in chunks (on a cluster's
     // workers), carried as JSON, joined in order and fitted here.

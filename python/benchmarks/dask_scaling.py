@@ -2,9 +2,11 @@
 processes (one thread each, one core each: ``RAYON_NUM_THREADS=1``), against the local sweep
 on one core; the figures of docs/performance.md ("Sweeps on Dask").
 
-    python python/benchmarks/dask_scaling.py [MAX_WORKERS | COUNT,COUNT,...]
+    python python/benchmarks/dask_scaling.py [MAX_WORKERS | COUNT,COUNT,...] [THICKNESS_STEP]
 
-(``8``: every count from 1 to 8; ``1,2,4,8,16``: those counts.)
+(``8``: every count from 1 to 8; ``1,2,4,8,16``: those counts. ``THICKNESS_STEP``, default
+0.0002, the step of the thickness: 0.0000625 gives 97,971 cases, enough chunks for 16
+workers. ``REPS`` in the environment, default 3, the runs of which the best is kept.)
 
 Prints, per worker count, the best of three wall times, the chunk plan (measured per-task
 overhead, per-case cost, cases per chunk) and the speed-up over the local sweep, with the
@@ -43,19 +45,22 @@ def main():
     else:
         worker_counts = list(range(1, int(arg) + 1))
     scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
-    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": "0.08:0.2:0.0002"}
+    step = sys.argv[2] if len(sys.argv) > 2 else "0.0002"
+    reps = int(os.environ.get("REPS", "3"))
+    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": f"0.08:0.2:{step}"}
     options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
-    local_s, local = best_of(3, lambda: voussoir.sweep(scene, vary))
+    local_s, local = best_of(reps, lambda: voussoir.sweep(scene, vary))
     strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
     print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
-    print(f"local sweep, one core: {len(local)} cases in {local_s:.2f} s")
+    print(f"local sweep, one core: {len(local)} cases in {local_s:.2f} s (best of {reps})")
     for workers in worker_counts:
         with LocalCluster(
             n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
         ) as cluster, Client(cluster) as client:
             run = lambda: _dask.sweep(client, scene, vary, options, progress=False)
-            best_of(1, run)  # warm the workers (import, first task)
-            t, (rows, plan) = best_of(3, run)
+            # Warm the workers (import voussoir) outside the timing.
+            client.run(lambda: __import__("voussoir") and None)
+            t, (rows, plan) = best_of(reps, run)
         assert strip(rows) == strip(local)
         print(
             f"{workers} worker(s): {t:.2f} s, speed-up {local_s / t:.2f}; "

@@ -4,6 +4,7 @@ rows of the local sweep."""
 import pytest
 
 import voussoir
+from voussoir import _dask
 from conftest import REPO
 
 distributed = pytest.importorskip("distributed")
@@ -124,6 +125,18 @@ def test_the_dynamic_route_with_a_client_maps_its_runs_and_gives_the_local_docum
     assert one.to_dict() == local.to_dict()
     assert sized.to_dict() == local.to_dict()
     assert one.svg == local.svg
+    # No run on the client: no pilot, one run a chunk.
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        samples, plan = _dask.fragility(
+            client, scene, 3, 2, str(records), [0.1, 0.6], progress=False
+        )
+    assert (plan.cases, plan.pilot_cases, plan.chunk_cases, plan.chunks) == (6, 0, 1, 6)
+    table = local.to_dict()["samples"]
+    assert [s["values"] for s in samples] == [s["values"] for s in table]
+    # The document counts each sample's collapses at each stripe over the records.
+    assert [[sum(c) for c in s["collapsed"]] for s in samples] == [s["collapses"] for s in table]
     # 3 samples x 2 stripes x 1 record: the runs numbered sample, stripe, record.
     assert voussoir._voussoir.fragility_run_count(scene, 3, str(records), [0.1, 0.6]) == 6
     with pytest.raises(voussoir.AnalysisError, match="run range"):

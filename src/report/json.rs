@@ -302,6 +302,9 @@ pub struct AnalysisReport {
     pub slipping_joints: Vec<usize>,
     /// `friction_exact` in words when it is false, null otherwise.
     pub friction_note: Option<String>,
+    /// `friction_lower_states_possible` in words when it is true (what the exact value is and
+    /// is not), null otherwise.
+    pub friction_lower_states_note: Option<String>,
     /// The non-associative collapse multiplier (joints that slide without opening; docs/
     /// friction.md): the lowest converged value of the starts tried, equal to
     /// `lambda_associative` when `friction_exact` is true (not iterated); null when not
@@ -769,6 +772,7 @@ impl AnalysisReport {
             friction_lower_states_possible: friction.lower_states_possible,
             lambda_associative: friction.lambda_associative,
             friction_note: super::words::friction_words(&friction, r.status),
+            friction_lower_states_note: super::words::exact_friction_words(&friction),
             slipping_joints: friction.slipping,
             lambda_non_associative: None,
             non_associative_converged: None,

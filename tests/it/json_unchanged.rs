@@ -33,6 +33,7 @@ const ADDED: &[&str] = &[
     "reinforcements",
     "friction_exact",
     "friction_lower_states_possible",
+    "friction_lower_states_note",
     "lambda_associative",
     "slipping_joints",
     "friction_note",

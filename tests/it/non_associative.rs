@@ -484,15 +484,33 @@ fn an_exact_wall_answer_is_not_called_a_lower_bound() {
     let v = json_of(&["analyze", "--json"], &text);
     assert_eq!(v["friction_exact"], true);
     assert_eq!(v["friction_lower_states_possible"], true);
+    // Said in words for scripts and the page (which shows the server's words).
+    let note = v["friction_lower_states_note"].as_str().unwrap_or("");
+    assert!(note.contains("not proved the lowest"), "{note}");
     assert!((f64_of(&v, "lambda_lower") - 1.0).abs() < 1e-9);
     assert_eq!(v["non_associative_converged"], true);
     assert!(v["non_associative_iterations"].as_u64().unwrap_or(0) > 0);
     let na = f64_of(&v, "lambda_non_associative");
     assert!(na < 0.6, "a real collapse well below the exact 1.0: {na}");
     assert_eq!(f64_of(&v, "lambda_governing"), na);
-    let (_dir, path) = scene_file(&text);
+    let (dir, path) = scene_file(&text);
     let out = voussoir().arg("analyze").arg(&path).output().expect("runs");
     let summary = String::from_utf8_lossy(&out.stdout);
+    // The drawing's title gives the governing value first, then the static one.
+    let svg_path = dir.path().join("wall.svg");
+    let svg_run = voussoir()
+        .arg("analyze")
+        .arg(&path)
+        .arg("--svg")
+        .arg(&svg_path)
+        .output()
+        .expect("runs");
+    assert!(svg_run.status.success());
+    let svg = std::fs::read_to_string(&svg_path).expect("svg written");
+    assert!(
+        svg.contains(&format!("λ (non-associative, real joints) = {na:.4}; λ (associative friction, exact, not proved the lowest) = 1.0000")),
+        "{svg}"
+    );
     assert!(
         summary.contains("Static (associative friction): collapse multiplier lambda = 1.000000")
             && summary.contains("not proved the lowest"),
@@ -511,6 +529,7 @@ fn an_exact_wall_answer_is_not_called_a_lower_bound() {
         .as_array()
         .is_some_and(|s| s.is_empty()));
     assert_eq!(v["friction_lower_states_possible"], false);
+    assert!(v["friction_lower_states_note"].is_null(), "{v}");
     assert_eq!(v["non_associative_iterations"], 0);
     assert_eq!(
         f64_of(&v, "lambda_non_associative"),

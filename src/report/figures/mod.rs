@@ -474,6 +474,13 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
         Some(u) => format!("{lower}, {u}"),
         None => lower,
     };
+    // The real joints' multiplier where the iteration found it apart from the static one
+    // (sliding joints, or a wall's head joints): the value that governs (docs/friction.md).
+    if let (Some(na), Some(l)) = (a.lambda_non_associative(), a.lower.lambda) {
+        if (na - l).abs() > 1e-9 * l.abs().max(1.0) {
+            second = format!("λ (non-associative, real joints) = {na:.4}; {second}");
+        }
+    }
     if a.model.loads.action() == crate::model::Action::Live {
         // λ multiplies the live loads: say so where a reader expects an acceleration.
         second = format!("adequacy factor of the live loads: {second}");

@@ -787,8 +787,9 @@
     lowerHow.textContent = associative ? 'associative friction' : 'static';
     lowerHow.title = associative ? (r.friction_note || '') : '';
     const caveat = $('v-friction');
+    // The words are the server's (friction_note, friction_lower_states_note).
     caveat.textContent = associative ? (r.friction_note || '')
-      : (notLowest ? 'No joint slips in the collapse mechanism, so real joints can collapse here too; where joints carry little or no compression (a wall\'s head joints) they can collapse lower: the non-associative value is the lowest the iteration found.' : '');
+      : (notLowest ? (r.friction_lower_states_note || '') : '');
     caveat.hidden = !(associative || notLowest);
     $('v-lower').textContent = fmt(r.lambda_lower, 6);
     $('v-upper').textContent = fmt(r.lambda_upper, 6);

@@ -71,13 +71,19 @@ pub fn run(args: Args) -> Result<String, Error> {
     };
     if let Some(dir) = &args.records {
         let records = fragility::read_records(dir)?;
-        let f = fragility::dynamic_route(
+        // Seconds a run and thousands of runs in a study: a progress bar on a terminal.
+        let runs = fragility::dynamic_run_count(&scene, &settings, &records, &args.stripes)?;
+        let bar = super::progress_bar(runs as u64, "DEM runs");
+        let f = fragility::dynamic_route_with_progress(
             &scene,
             &settings,
             &records,
             &args.stripes,
             &voussoir::dem::dynamic::DynamicSettings::default(),
-        )?;
+            &|| bar.inc(1),
+        );
+        bar.finish_and_clear();
+        let f = f?;
         if let Some(path) = &args.csv {
             let table = report::fragility::dynamic_table(&f);
             write_atomically(path, |b| {

@@ -126,14 +126,30 @@ pub fn dynamic_route(
     stripes: &[f64],
     dynamic: &DynamicSettings,
 ) -> Result<DynamicFragility, AnalysisError> {
-    let samples = dynamic_samples(
+    dynamic_route_with_progress(scene, settings, records, stripes, dynamic, &|| {})
+}
+
+/// [`dynamic_route`], calling `progress` after each DEM run (from worker threads): the
+/// CLI's progress bar over [`dynamic_run_count`] runs, which take hours in a large study.
+pub fn dynamic_route_with_progress(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+    progress: &(dyn Fn() + Sync),
+) -> Result<DynamicFragility, AnalysisError> {
+    let total = dynamic_run_count(scene, settings, records, stripes)?;
+    let flags = runs_of(
         scene,
         settings,
         records,
         stripes,
         dynamic,
-        0..settings.samples,
+        0..total,
+        progress,
     )?;
+    let samples = dynamic_samples_from_runs(scene, settings, records, stripes, &flags)?;
     dynamic_fragility(scene, settings, records, stripes, samples)
 }
 
@@ -189,6 +205,19 @@ pub fn dynamic_runs(
     dynamic: &DynamicSettings,
     range: std::ops::Range<usize>,
 ) -> Result<Vec<bool>, AnalysisError> {
+    runs_of(scene, settings, records, stripes, dynamic, range, &|| {})
+}
+
+/// [`dynamic_runs`], calling `progress` after each run.
+fn runs_of(
+    scene: &Scene,
+    settings: &Settings,
+    records: &[GroundMotion],
+    stripes: &[f64],
+    dynamic: &DynamicSettings,
+    range: std::ops::Range<usize>,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<bool>, AnalysisError> {
     let total = dynamic_run_count(scene, settings, records, stripes)?;
     let (nj, nr) = (stripes.len(), records.len());
     if range.start >= range.end || range.end > total {
@@ -222,7 +251,9 @@ pub fn dynamic_runs(
             let scale = stripes[j] * STANDARD_GRAVITY / record.pga();
             let ground: GroundInput =
                 crate::dem::record::Excitation::Record(record.scaled(scale)).into();
-            let run = analysis::dem_dynamic(&scenes[i - first], &ground, &dynamic)?;
+            let run = analysis::dem_dynamic(&scenes[i - first], &ground, &dynamic);
+            progress();
+            let run = run?;
             Ok(run.result.collapsed || run.result.cannot_stand)
         })
         .collect();

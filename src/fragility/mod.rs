@@ -38,8 +38,9 @@ use rayon::prelude::*;
 use toml::Value;
 
 pub use dynamic::{
-    dynamic_fragility, dynamic_route, dynamic_run_count, dynamic_runs, dynamic_samples,
-    dynamic_samples_from_runs, read_records, DynamicFragility, DynamicSample, Stripe,
+    dynamic_fragility, dynamic_route, dynamic_route_with_progress, dynamic_run_count, dynamic_runs,
+    dynamic_samples, dynamic_samples_from_runs, read_records, DynamicFragility, DynamicSample,
+    Stripe,
 };
 pub use fit::{FitError, LognormalFit, Observation};
 

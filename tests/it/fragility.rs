@@ -510,7 +510,20 @@ fn the_runs_of_the_dynamic_route_are_numbered_sample_stripe_record_and_join_to_i
     let dynamic = voussoir::dem::dynamic::DynamicSettings::default();
     let total = fragility::dynamic_run_count(&scene, &s, &records, &stripes).expect("count");
     assert_eq!(total, 2 * 2 * 2);
-    let whole = fragility::dynamic_route(&scene, &s, &records, &stripes, &dynamic).expect("route");
+    // The whole route, counting its runs as the CLI's progress bar does.
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let whole =
+        fragility::dynamic_route_with_progress(&scene, &s, &records, &stripes, &dynamic, &|| {
+            done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        })
+        .expect("route");
+    assert_eq!(done.into_inner(), total);
+    assert_eq!(
+        whole.samples,
+        fragility::dynamic_route(&scene, &s, &records, &stripes, &dynamic)
+            .expect("route")
+            .samples
+    );
     // Each run alone, through JSON: run k is sample k / 4, stripe (k / 2) % 2, record k % 2,
     // the DEM of that sample's own scene under that record scaled to that stripe.
     let mut flags: Vec<bool> = Vec::new();

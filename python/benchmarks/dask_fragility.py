@@ -12,7 +12,10 @@ With ``--samples-per-worker K`` each worker count ``w`` runs ``K w`` samples (we
 a one-worker run of the whole study would take the hours this measures); with ``--samples
 N`` every count runs ``N``. For each count it prints the wall time, the runs and runs/s, the
 chunk plan, and the parallel efficiency: the compute time of every run (on the workers, from
-Dask's task stream, plus the client's pilot) over ``w`` times the wall time. The runs' own
+Dask's task stream, plus the client's pilot, which the dynamic route no longer runs) over
+``w`` times the wall time. The records: ``voussoir records --site ag=0.25 --site soil=B
+--site F0=2.4 --site Tc_star=0.3 --count 7 --duration 5 --seed 3 --out RECORDS`` (or
+``--duration 20`` for the benchmark's own). The runs' own
 times (shortest, median, longest) show how unevenly they weigh: a run skipped by the rest
 test costs milliseconds, one that rocks through a 20 s record seconds.
 """
@@ -87,7 +90,7 @@ def main():
         compute = sum(durations) + pilot
         per_run = sorted(durations)
         spread = (
-            f"{per_run[0]:.3f} / {statistics.median(per_run):.2f} / {per_run[-1]:.2f}"
+            f"{per_run[0]:.2f} / {statistics.median(per_run):.2f} / {per_run[-1]:.2f}"
             if per_run
             else "-"
         )

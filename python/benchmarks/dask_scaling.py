@@ -8,7 +8,7 @@ on one core; the figures of docs/performance.md ("Sweeps on Dask").
 0.0002, the step of the thickness: 0.0000625 gives 97,971 cases, enough chunks for 16
 workers. ``REPS`` in the environment, default 3, the runs of which the best is kept.)
 
-Prints, per worker count, the best of three wall times, the chunk plan (measured per-task
+Prints, per worker count, the best of ``REPS`` (default three) wall times, the chunk plan (measured per-task
 overhead, per-case cost, cases per chunk) and the speed-up over the local sweep, with the
 load average of the machine (other jobs share it).
 """

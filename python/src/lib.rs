@@ -828,19 +828,22 @@ fn fragility_samples_json(
 }
 
 /// The number of DEM runs of a dynamic-route fragility (samples x stripes x the records of
-/// the directory `records`), after the same checks as [`fragility_runs_json`].
+/// the directory `records`), after the same checks as [`fragility_runs_json`] and a check of
+/// every sample's scene (`seed` draws them), so a refused sample is said before any run.
 #[pyfunction]
 fn fragility_run_count(
     py: Python<'_>,
     scene: &Scene,
     samples: usize,
+    seed: u64,
     records: std::path::PathBuf,
     stripes: Vec<f64>,
 ) -> PyResult<usize> {
     use voussoir::fragility as fr;
-    let settings = fragility_settings(samples, 1);
+    let settings = fragility_settings(samples, seed);
     fr::read_records(&records)
         .and_then(|r| fr::dynamic_run_count(&scene.inner, &settings, &r, &stripes))
+        .and_then(|n| fr::check_samples(&scene.inner, &settings).map(|()| n))
         .map_err(|e| analysis_error(py, &e))
 }
 

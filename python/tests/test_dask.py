@@ -121,7 +121,8 @@ def test_the_dynamic_route_with_a_client_maps_its_runs_and_gives_the_local_docum
         n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
     ) as cluster, distributed.Client(cluster) as client:
         one = voussoir.fragility(scene, client=client, chunk=1, progress=False, **kwargs)
-        sized = voussoir.fragility(scene, client=client, progress=False, **kwargs)
+        # Chunks of 3 runs: each spans two samples (2 runs a sample).
+        sized = voussoir.fragility(scene, client=client, chunk=3, progress=False, **kwargs)
     assert one.to_dict() == local.to_dict()
     assert sized.to_dict() == local.to_dict()
     assert one.svg == local.svg
@@ -138,6 +139,27 @@ def test_the_dynamic_route_with_a_client_maps_its_runs_and_gives_the_local_docum
     # The document counts each sample's collapses at each stripe over the records.
     assert [[sum(c) for c in s["collapsed"]] for s in samples] == [s["collapses"] for s in table]
     # 3 samples x 2 stripes x 1 record: the runs numbered sample, stripe, record.
-    assert voussoir._voussoir.fragility_run_count(scene, 3, str(records), [0.1, 0.6]) == 6
+    assert voussoir._voussoir.fragility_run_count(scene, 3, 2, str(records), [0.1, 0.6]) == 6
     with pytest.raises(voussoir.AnalysisError, match="run range"):
         voussoir._voussoir.fragility_runs_json(scene, 3, 2, str(records), [0.1, 0.6], 5, 7)
+
+
+def test_a_refused_sample_is_said_on_the_client_before_any_run_goes_out():
+    # Samples are refused, never truncated: with a coefficient of variation of 2 some
+    # thicknesses are negative, and the dynamic route on a cluster says so before it maps
+    # its runs (the local route checks every sample before its runs too).
+    text = (REPO / "data" / "fragility_portal.toml").read_text()
+    head = text.split("[uncertain]")[0]
+    wide = head + '[uncertain]\n"arch.thickness" = { dist = "normal", mean = 0.2, cov = 2.0 }\n'
+    scene = voussoir.Scene.from_toml_str(wide, "wide")
+    records = str(REPO / "data" / "records")
+    with pytest.raises(voussoir.AnalysisError, match="refused, not truncated"):
+        voussoir._voussoir.fragility_run_count(scene, 20, 1, records, [0.1, 0.6])
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        with pytest.raises(voussoir.AnalysisError, match="arch.thickness = -"):
+            voussoir.fragility(
+                scene, samples=20, records=records, stripes=[0.1, 0.6], client=client,
+                progress=False,
+            )

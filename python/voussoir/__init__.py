@@ -517,8 +517,11 @@ def fragility(
     progress bar unless ``progress=False``), and the fit is made here from all of them: the
     same samples, curve and fit as the local run. A case is a sample in the capacity route
     and one DEM run (a sample under one record at one stripe) in the dynamic route, whose
-    samples cost tens of runs each and would balance poorly over the workers. ``records``
-    must then be a directory the workers can read at the same path."""
+    samples cost tens of runs each and would balance poorly over the workers; there the
+    client runs no pilot, a chunk is one run, and ``chunk`` counts runs, not samples (it
+    counted samples before issue 30's run chunks). Every sample's scene is checked on the
+    client first. ``records`` must then be a directory the workers can read at the same
+    path."""
     if site:
         scene = scene.with_values({f"site.{k}": v for k, v in site.items()})
     records_dir = None if records is None else str(records)

@@ -43,6 +43,7 @@ PROBES = 7
 class Plan:
     """What a chunked map measured and decided (``plan`` of :func:`map_chunked`)."""
 
+    #: Cases mapped (samples, sweep cases, or a fragility's DEM runs on its dynamic route).
     cases: int
     #: Median round trip of an empty task on the client (s).
     overhead_s: float
@@ -56,9 +57,13 @@ class Plan:
 
     @property
     def overhead_share(self) -> float:
-        """The overhead as a share of a full chunk's time, by the measured costs."""
+        """The overhead as a share of a full chunk's time, by the measured costs (NaN when
+        no pilot measured a case's cost)."""
+        if self.case_s <= 0.0:
+            # No pilot ran (the case's cost was not measured).
+            return float("nan")
         work = self.chunk_cases * self.case_s
-        return self.overhead_s / (self.overhead_s + work) if work > 0 else 1.0
+        return self.overhead_s / (self.overhead_s + work)
 
 
 def _noop() -> None:
@@ -350,9 +355,9 @@ def fragility(
 
     from . import _voussoir
 
-    # The checks a pilot would make (settings, records, stripes) are made here; a sample's
-    # scene is checked by its runs, and its error cancels the rest.
-    runs = _voussoir.fragility_run_count(scene, samples, records, stripes)
+    # The checks a pilot would make are made here: the settings, records and stripes, and
+    # every sample's scene (milliseconds), so a refused sample is said before any run.
+    runs = _voussoir.fragility_run_count(scene, samples, seed, records, stripes)
     # No pilot, one run a chunk unless told: a run costs seconds (milliseconds when the rest
     # test skips it), against a per-task overhead of about 10 ms, and a run computed on
     # the client first would keep every worker waiting for it (12 % of a 16-worker study

@@ -110,9 +110,10 @@ def fragility_samples_json(
     """Samples ``lo..hi`` of a fragility with their outcomes, as JSON text (a cluster's chunk)."""
 
 def fragility_run_count(
-    scene: Scene, samples: int, records: str, stripes: List[float]
+    scene: Scene, samples: int, seed: int, records: str, stripes: List[float]
 ) -> int:
-    """The DEM runs of a dynamic-route fragility: samples x stripes x records."""
+    """The DEM runs of a dynamic-route fragility: samples x stripes x records, after checking
+    every sample's scene."""
 
 def fragility_runs_json(
     scene: Scene,

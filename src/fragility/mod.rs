@@ -196,6 +196,14 @@ fn values_of(scene: &Scene, settings: &Settings) -> Vec<Vec<f64>> {
     )
 }
 
+/// Every sample's scene of `scene` under `settings` built and checked, nothing run: what a
+/// cluster's client checks before it sends out work that would meet a refused sample hours
+/// later (samples are refused, never truncated: module docs).
+pub fn check_samples(scene: &Scene, settings: &Settings) -> Result<(), AnalysisError> {
+    check(scene, settings)?;
+    sample_scenes(scene, &values_of(scene, settings), 0).map(|_| ())
+}
+
 /// The scenes of the samples, each validated; the first sample the scene refuses is an
 /// error naming it, its values and the scene's reason (samples are refused, never truncated:
 /// module docs).

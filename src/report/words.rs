@@ -475,7 +475,7 @@ pub fn friction_words(f: &FrictionCheck, status: Status) -> Option<String> {
 pub fn exact_friction_words(f: &FrictionCheck) -> Option<String> {
     f.lower_states_possible.then(|| {
         format!(
-            "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md; the non-associative iteration searches for them, by default up to {} blocks, else with --friction non-associative)",
+            "friction: no joint slips in the collapse mechanism, so this is a collapse state of real joints (which slide without opening) too, but not proved the lowest: where joints carry little or no compression, as the head joints of a wall may, real joints can have lower ones (docs/friction.md): the non-associative iteration searches for them, by default in assemblies of up to {} blocks",
             crate::analysis::AUTO_SEARCH_MAX_BLOCKS
         )
     })

@@ -496,7 +496,7 @@ fn an_exact_wall_answer_is_not_called_a_lower_bound() {
     let (dir, path) = scene_file(&text);
     let out = voussoir().arg("analyze").arg(&path).output().expect("runs");
     let summary = String::from_utf8_lossy(&out.stdout);
-    // The drawing's title gives the governing value first, then the static one.
+    // The drawing's title gives the governing value on a line of its own above the static one.
     let svg_path = dir.path().join("wall.svg");
     let svg_run = voussoir()
         .arg("analyze")
@@ -508,7 +508,9 @@ fn an_exact_wall_answer_is_not_called_a_lower_bound() {
     assert!(svg_run.status.success());
     let svg = std::fs::read_to_string(&svg_path).expect("svg written");
     assert!(
-        svg.contains(&format!("λ (non-associative, real joints) = {na:.4}; λ (associative friction, exact, not proved the lowest) = 1.0000")),
+        svg.contains(&format!(
+            "\nλ (non-associative, real joints) = {na:.4}\nλ (associative friction, exact, not proved the lowest) = 1.0000"
+        )),
         "{svg}"
     );
     assert!(

@@ -478,7 +478,7 @@ pub fn drawing_title(scene: &Scene, a: &SceneAnalysis) -> String {
     // (sliding joints, or a wall's head joints): the value that governs (docs/friction.md).
     if let (Some(na), Some(l)) = (a.lambda_non_associative(), a.lower.lambda) {
         if (na - l).abs() > 1e-9 * l.abs().max(1.0) {
-            second = format!("λ (non-associative, real joints) = {na:.4}; {second}");
+            second = format!("λ (non-associative, real joints) = {na:.4}\n{second}");
         }
     }
     if a.model.loads.action() == crate::model::Action::Live {

@@ -22,10 +22,9 @@
 //! until the half-cycle in which the ground first reaches it, and nothing is integrated when it
 //! never does.
 
-use super::body::Body;
 use super::record::{Component, GroundInput};
 use super::rest::{self, RestPlan, RestTest};
-use super::world::{surely_within, Load, World};
+use super::world::{Load, World};
 use super::{
     check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
     settled_warnings, DemError, IntegrationParameters, Purpose,
@@ -460,7 +459,7 @@ fn run_motion(
     let mut window_end = end + window;
     let mut window_ref: Vec<(Vec2, f64)> = Vec::new();
     let mut window_motion: f64 = 0.0;
-    let mut moved = Farthest::new(nb);
+    let mut moved = vec![0.0_f64; nb];
     let mut next_sample = 0.0;
     let mut next_frame = 0.0;
     let steps0 = world.steps;
@@ -556,27 +555,24 @@ fn run_motion(
         }
         if let Some(every) = settings.history_every {
             if t >= next_sample {
-                let c = settings.control_block.unwrap_or(moved.block);
+                let c = settings.control_block.unwrap_or_else(|| argmax(&moved));
                 result.history.push(sample(&world, c, t, a));
                 next_sample += every;
             }
         }
         world.step();
-        // The largest displacement of this step that may matter: one that cannot exceed its
-        // block's farthest so far (`Farthest::step`) is below the threshold (else the run
-        // would have ended) and finite, so it changes neither test below.
         let mut largest: f64 = 0.0;
         for (i, b) in world.bodies.iter().enumerate().take(nb) {
-            if let Some(d) = moved.step(i, b, start[i]) {
-                largest = largest.max(d);
-            }
+            let d = (b.pos - start[i].0).norm() + (b.angle - start[i].1).abs() * b.radius;
+            moved[i] = moved[i].max(d);
+            largest = largest.max(d);
         }
         if !largest.is_finite() {
             return Err(DemError::Settings(
                 "the simulation diverged (non-finite block positions): reduce dem.time_step_factor or the contact stiffness".to_string(),
             ));
         }
-        let c = settings.control_block.unwrap_or(moved.block);
+        let c = settings.control_block.unwrap_or_else(|| argmax(&moved));
         let b = &world.bodies[c];
         result.peak_displacement = result.peak_displacement.max((b.pos.x - start[c].0.x).abs());
         result.peak_rotation = result.peak_rotation.max((b.angle - start[c].1).abs());
@@ -600,7 +596,7 @@ fn run_motion(
             result.extended, world.max_speed()
         ));
     }
-    let c = settings.control_block.unwrap_or(moved.block);
+    let c = settings.control_block.unwrap_or_else(|| argmax(&moved));
     result.control_block = c;
     let last = sample(&world, c, world.time, ground(world.time));
     result.residual_displacement = last.displacement;
@@ -724,48 +720,14 @@ fn tipping_barrier(model: &Model, world: &World, centroid: Vec2) -> Option<f64> 
     Some(body.loads.weight * rise)
 }
 
-/// The farthest each block has moved from its settled place (a point of it, by translation
-/// plus rotation times its radius) so far in a run, and the block that has moved farthest
-/// (the first of equals): the run's control block unless one is named. Both are kept as the
-/// displacements grow, rather than the largest sought every step.
-struct Farthest {
-    moved: Vec<f64>,
-    /// The first block with the largest `moved` (0 while none has moved), and that value.
-    block: usize,
-    largest: f64,
-}
-
-impl Farthest {
-    fn new(blocks: usize) -> Farthest {
-        Farthest {
-            moved: vec![0.0; blocks],
-            block: 0,
-            largest: if blocks > 0 { 0.0 } else { f64::NEG_INFINITY },
-        }
-    }
-
-    /// Take block `i`'s displacement now (body `b`, settled at `start`): the displacement,
-    /// or `None` when a cheap bound shows it is no larger than the farthest so far
-    /// (`world::surely_within`; its square root is then not taken).
-    #[inline]
-    fn step(&mut self, i: usize, b: &Body, start: (Vec2, f64)) -> Option<f64> {
-        let dp = b.pos - start.0;
-        let turn = (b.angle - start.1).abs() * b.radius;
-        if surely_within(dp, turn, self.moved[i]) {
-            return None;
-        }
-        let d = dp.norm() + turn;
-        // `d > moved` is `moved.max(d)` changing it (a NaN changes nothing); the values only
-        // grow, so the first largest changes only to this block.
-        if d > self.moved[i] {
-            self.moved[i] = d;
-            if d > self.largest || (d == self.largest && i < self.block) {
-                self.block = i;
-                self.largest = d;
-            }
-        }
-        Some(d)
-    }
+fn argmax(v: &[f64]) -> usize {
+    v.iter()
+        .enumerate()
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |(k, m), (i, &x)| if x > m { (i, x) } else { (k, m) },
+        )
+        .0
 }
 
 /// An incremental dynamic analysis: the scale factor of a ground motion that brings down

@@ -6,7 +6,10 @@
 //! 2. [`World::narrow_phase`]: vertex-to-edge contacts of each candidate pair (every vertex
 //!    of one body inside the other, in both directions), matched to last step's contacts so
 //!    the shear spring keeps its history while a contact persists (Cundall & Strack 1979;
-//!    Cundall 1988, "Formulation of a three-dimensional distinct element model").
+//!    Cundall 1988, "Formulation of a three-dimensional distinct element model"). One pass
+//!    over the bodies decides whether the broad phase or the search is due; between searches
+//!    the explicit stepping leaves the known contacts' depths to stage 3, which measures them
+//!    by the search's own expression as it reads them.
 //! 3. [`World::contact_forces`]: penalty springs and dashpots at each contact: normal force
 //!    `N = max(0, kn d - cn vn)` (no tension, no cohesion; released as soon as the vertex
 //!    leaves the edge), incremental shear force `S <- S - ks vt dt` capped by Coulomb

@@ -24,7 +24,7 @@
 
 use super::record::{Component, GroundInput};
 use super::rest::{self, RestPlan, RestTest};
-use super::world::{Load, World};
+use super::world::{surely_within, Load, World};
 use super::{
     check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
     settled_warnings, DemError, IntegrationParameters, Purpose,
@@ -563,7 +563,16 @@ fn run_motion(
         world.step();
         let mut largest: f64 = 0.0;
         for (i, b) in world.bodies.iter().enumerate().take(nb) {
-            let d = (b.pos - start[i].0).norm() + (b.angle - start[i].1).abs() * b.radius;
+            let dp = b.pos - start[i].0;
+            let turn = (b.angle - start[i].1).abs() * b.radius;
+            // A displacement that cannot exceed its block's farthest so far changes nothing
+            // here: not `moved`, and not the tests of `largest` below (the farthest is finite
+            // and not beyond the threshold, or the run would have ended). Its square root is
+            // not taken.
+            if surely_within(dp, turn, moved[i]) {
+                continue;
+            }
+            let d = dp.norm() + turn;
             moved[i] = moved[i].max(d);
             largest = largest.max(d);
         }

@@ -865,10 +865,23 @@ fn touch(p: Vec2, adj: [Vec2; 2], e: &Body, window: f64) -> Option<(usize, f64)>
 }
 
 /// Whether body `b` has moved (a point of it, by translation plus rotation times its radius)
-/// by more than `limit` since the position and rotation `since`.
+/// by more than `limit` since the position and rotation `since`. The square root is taken
+/// only when [`surely_within`] cannot decide, so the answer is always the exact test's.
 #[inline]
 fn beyond(b: &Body, since: (Vec2, f64), limit: f64) -> bool {
-    (b.pos - since.0).norm() + (b.angle - since.1).abs() * b.radius > limit
+    let d = b.pos - since.0;
+    let turn = (b.angle - since.1).abs() * b.radius;
+    !surely_within(d, turn, limit) && d.norm() + turn > limit
+}
+
+/// Whether a cheap bound proves that the computed `d.norm() + turn` is at most `limit`,
+/// without the square root. `|d| <= |d_x| + |d_y|`, and the rounding of either side is a few
+/// units in the last place (relative; plus the underflow of a square, below 1e-161
+/// absolute), so a bound below the limit by a relative 1e-14 and an absolute 1e-150 proves
+/// it. False when it cannot tell (a NaN or an infinity included).
+#[inline]
+pub(super) fn surely_within(d: Vec2, turn: f64, limit: f64) -> bool {
+    (d.x.abs() + d.y.abs() + turn) * (1.0 + 1e-14) + 1e-150 <= limit
 }
 
 /// The mass a block shows at its farthest corner, `1 / (1/m + r^2/I)`: a corner contact

@@ -117,7 +117,8 @@ pub(crate) struct Body {
     pub normals: Vec<Vec2>,
     /// Outward unit edge normals at rotation 0.
     local_normals: Vec<Vec2>,
-    /// Axis-aligned bounding box of `world`.
+    /// Axis-aligned bounding box of `world`, as of the last [`Body::bound`]: only the contact
+    /// search reads it, so it is not kept up to date every step.
     pub lo: Vec2,
     pub hi: Vec2,
     /// Index of the assembly block (None for ground bodies).
@@ -178,6 +179,7 @@ impl Body {
             loads: BodyLoads::default(),
         };
         body.refresh();
+        body.bound();
         body
     }
 
@@ -191,19 +193,27 @@ impl Body {
         }
     }
 
-    /// Recompute world vertices, normals and bounding box from the position and rotation.
+    /// Recompute world vertices and normals from the position and rotation (every step; the
+    /// bounding box waits for [`Body::bound`]).
     pub fn refresh(&mut self) {
         let (s, c) = self.angle.sin_cos();
         let rot = |l: &Vec2| Vec2::new(c * l.x - s * l.y, s * l.x + c * l.y);
-        let mut lo = Vec2::repeat(f64::INFINITY);
-        let mut hi = Vec2::repeat(f64::NEG_INFINITY);
         for (w, l) in self.world.iter_mut().zip(&self.local) {
             *w = self.pos + rot(l);
-            lo = lo.inf(w);
-            hi = hi.sup(w);
         }
         for (n, l) in self.normals.iter_mut().zip(&self.local_normals) {
             *n = rot(l);
+        }
+    }
+
+    /// Recompute the bounding box from the world vertices (before a broad phase or a
+    /// contact search, the only readers of it).
+    pub fn bound(&mut self) {
+        let mut lo = Vec2::repeat(f64::INFINITY);
+        let mut hi = Vec2::repeat(f64::NEG_INFINITY);
+        for w in &self.world {
+            lo = lo.inf(w);
+            hi = hi.sup(w);
         }
         self.lo = lo;
         self.hi = hi;

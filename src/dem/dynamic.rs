@@ -24,7 +24,7 @@
 
 use super::record::{Component, GroundInput};
 use super::rest::{self, RestPlan, RestTest};
-use super::world::{Load, World};
+use super::world::{surely_within, Load, World};
 use super::{
     check_interrupt, check_model, check_params, check_steps, check_time_step, longest_run,
     settled_warnings, DemError, IntegrationParameters, Purpose,
@@ -495,8 +495,8 @@ fn run_motion(
         let t = world.time;
         if t >= end {
             let at_rest = world.steps > steps0
-                && world.max_speed < params.rest_velocity
-                && world.unbalanced < params.rest_force;
+                && world.max_speed() < params.rest_velocity
+                && world.unbalanced() < params.rest_force;
             if at_rest {
                 result.end_state = EndState::AtRest;
                 break;
@@ -563,7 +563,16 @@ fn run_motion(
         world.step();
         let mut largest: f64 = 0.0;
         for (i, b) in world.bodies.iter().enumerate().take(nb) {
-            let d = (b.pos - start[i].0).norm() + (b.angle - start[i].1).abs() * b.radius;
+            let dp = b.pos - start[i].0;
+            let turn = (b.angle - start[i].1).abs() * b.radius;
+            // A displacement that cannot exceed its block's farthest so far changes nothing
+            // here: not `moved`, and not the tests of `largest` below (the farthest is finite
+            // and not beyond the threshold, or the run would have ended). Its square root is
+            // not taken.
+            if surely_within(dp, turn, moved[i]) {
+                continue;
+            }
+            let d = dp.norm() + turn;
             moved[i] = moved[i].max(d);
             largest = largest.max(d);
         }
@@ -593,7 +602,7 @@ fn run_motion(
     if result.end_state == EndState::Moving {
         result.warnings.push(format!(
             "still moving {:.3} s after the ground motion and its tail ended (speed {:.3e} m/s): neither at rest nor collapsed, the run is undecided",
-            result.extended, world.max_speed
+            result.extended, world.max_speed()
         ));
     }
     let c = settings.control_block.unwrap_or_else(|| argmax(&moved));

@@ -965,9 +965,9 @@ impl Simulation {
     /// load scale (its weight plus the magnitudes of the other loads it carries), from the
     /// last step.
     pub fn max_speed(&self) -> f64 {
-        self.world.max_speed
+        self.world.max_speed()
     }
     pub fn unbalanced(&self) -> f64 {
-        self.world.unbalanced
+        self.world.unbalanced()
     }
 }

@@ -392,23 +392,23 @@ fn advance(world: &mut World, state: &State, rows: &[Row]) {
         c.sliding =
             row.pn > 0.0 && row.pt.abs() >= row.mu * row.pn * (1.0 - 1e-9) && ut.abs() > slip;
     }
-    let mut unbalanced: f64 = 0.0;
-    let mut max_speed: f64 = 0.0;
-    for (body, &(v, w)) in world.bodies.iter_mut().zip(&state.vel) {
+    for ((body, &(v, w)), net) in world
+        .bodies
+        .iter_mut()
+        .zip(&state.vel)
+        .zip(&mut world.force)
+    {
         if body.fixed {
             continue;
         }
-        let force = body.mass * (v - body.vel) / h;
-        let moment = body.inertia * (w - body.omega) / h;
-        unbalanced =
-            unbalanced.max(force.norm().max(moment.abs() / body.radius) / body.loads.scale);
+        *net = (
+            body.mass * (v - body.vel) / h,
+            body.inertia * (w - body.omega) / h,
+        );
         body.vel = v;
         body.omega = w;
         body.pos += v * h;
         body.angle += w * h;
         body.refresh();
-        max_speed = max_speed.max(v.norm() + w.abs() * body.radius);
     }
-    world.unbalanced = unbalanced;
-    world.max_speed = max_speed;
 }

@@ -152,8 +152,8 @@ pub(crate) fn run(
         // speed. Tested at the ramp's end, the rigid stepping stood up to 1 % above the
         // threshold (the load's increment per step; docs/dem.md).
         if t > 2.0 * p.ramp_time
-            && world.max_speed < p.rest_velocity
-            && world.unbalanced < p.rest_force
+            && world.max_speed() < p.rest_velocity
+            && world.unbalanced() < p.rest_force
         {
             break Outcome::Stands;
         }

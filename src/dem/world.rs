@@ -6,7 +6,10 @@
 //! 2. [`World::narrow_phase`]: vertex-to-edge contacts of each candidate pair (every vertex
 //!    of one body inside the other, in both directions), matched to last step's contacts so
 //!    the shear spring keeps its history while a contact persists (Cundall & Strack 1979;
-//!    Cundall 1988, "Formulation of a three-dimensional distinct element model").
+//!    Cundall 1988, "Formulation of a three-dimensional distinct element model"). One pass
+//!    over the bodies decides whether the broad phase or the search is due; between searches
+//!    the explicit stepping leaves the known contacts' depths to stage 3, which measures them
+//!    by the search's own expression as it reads them.
 //! 3. [`World::contact_forces`]: penalty springs and dashpots at each contact: normal force
 //!    `N = max(0, kn d - cn vn)` (no tension, no cohesion; released as soon as the vertex
 //!    leaves the edge), incremental shear force `S <- S - ks vt dt` capped by Coulomb
@@ -141,14 +144,12 @@ pub(crate) struct World {
     broad_pos: Vec<(Vec2, f64)>,
     /// Positions at the last contact search.
     search_pos: Vec<(Vec2, f64)>,
-    /// Contact force and moment on each body from the last `contact_forces`.
-    force: Vec<(Vec2, f64)>,
+    /// Force and moment on each body: while a step runs, those of the contacts and ties;
+    /// after it, the net force of the step (with the loads, before the local damping; the
+    /// Moreau-Jean step writes its `m (v_{k+1} - v_k) / h`), read by [`World::unbalanced`].
+    pub(super) force: Vec<(Vec2, f64)>,
     /// Tie rods.
     pub bars: Vec<Bar>,
-    /// Largest unbalanced force of any free block, as a fraction of its weight, and largest
-    /// speed of any block point (m/s), from the last `integrate`.
-    pub unbalanced: f64,
-    pub max_speed: f64,
     /// Moreau-Jean steps whose contact solve (the active set, then projected Gauss-Seidel)
     /// stopped at `moreau::MAX_SWEEPS` short of its
     /// tolerance (0 with the explicit stepping).
@@ -312,8 +313,6 @@ impl World {
                     }
                 }))
                 .collect(),
-            unbalanced: 0.0,
-            max_speed: 0.0,
             unconverged: 0,
         };
         w.broad_phase();
@@ -324,14 +323,18 @@ impl World {
     /// One time step: the five stages of the pipeline, or with `dem.integrator = "moreau"`
     /// the contact search followed by the Moreau-Jean stages ([`super::moreau`]).
     pub fn step(&mut self) {
-        self.find_contacts();
         match self.params.integrator {
             Integrator::Auto | Integrator::Explicit => {
+                // `contact_forces` measures the depths of the known contacts itself.
+                self.update_contacts(false);
                 self.contact_forces();
                 self.tie_forces();
                 self.integrate();
             }
-            Integrator::Moreau => super::moreau::step(self),
+            Integrator::Moreau => {
+                self.find_contacts();
+                super::moreau::step(self);
+            }
         }
         self.time += self.dt;
         self.steps += 1;
@@ -340,17 +343,40 @@ impl World {
     /// Stages 1 and 2: the broad phase when some body has moved by half the margin, else the
     /// narrow phase.
     pub fn find_contacts(&mut self) {
-        if moved(&self.bodies, &self.broad_pos, 0.5 * self.margin) {
+        self.update_contacts(true);
+    }
+
+    /// [`World::find_contacts`], measuring the depths of the known contacts between searches
+    /// only if `depths` (the explicit stepping measures them in `contact_forces`). One pass
+    /// over the bodies decides both tests, the broad phase's and the search's.
+    fn update_contacts(&mut self, depths: bool) {
+        let n = self.bodies.len();
+        let (broad, near) = (0.5 * self.margin, 0.25 * self.params.contact_tolerance);
+        let mut search = self.search_pos.len() != n;
+        let broad_moved = self.broad_pos.len() != n
+            || self.bodies.iter().enumerate().any(|(i, b)| {
+                if beyond(b, self.broad_pos[i], broad) {
+                    return true;
+                }
+                if !search && beyond(b, self.search_pos[i], near) {
+                    search = true;
+                }
+                false
+            });
+        if broad_moved {
             self.broad_phase();
             self.search_contacts();
-        } else {
-            self.narrow_phase();
+        } else if search {
+            self.search_contacts();
+        } else if depths {
+            self.update_depths();
         }
     }
 
     /// Stage 1: candidate pairs by sort-and-sweep of the grown bounding boxes along x. The
     /// contacts of pairs that stay candidates are kept.
     pub fn broad_phase(&mut self) {
+        self.bound();
         let m = self.margin;
         let mut order: Vec<usize> = (0..self.bodies.len()).collect();
         order.sort_by(|&i, &j| self.bodies[i].lo.x.total_cmp(&self.bodies[j].lo.x));
@@ -390,7 +416,16 @@ impl World {
             });
         }
         self.pairs = pairs;
-        self.broad_pos = self.bodies.iter().map(|b| (b.pos, b.angle)).collect();
+        self.broad_pos.clear();
+        self.broad_pos
+            .extend(self.bodies.iter().map(|b| (b.pos, b.angle)));
+    }
+
+    /// The bounding boxes of the free bodies, for the broad phase and the contact search.
+    fn bound(&mut self) {
+        for b in self.bodies.iter_mut().filter(|b| !b.fixed) {
+            b.bound();
+        }
     }
 
     /// Stage 2: vertex-to-edge contacts. A full search of every candidate pair runs only
@@ -399,14 +434,23 @@ impl World {
     /// contacts with a gap. Between searches no vertex can reach an edge it was farther than
     /// the tolerance from, so updating the depth of the known contacts is exact.
     pub fn narrow_phase(&mut self) {
-        if moved(
-            &self.bodies,
-            &self.search_pos,
-            0.25 * self.params.contact_tolerance,
-        ) {
+        let near = 0.25 * self.params.contact_tolerance;
+        if self.search_pos.len() != self.bodies.len()
+            || self
+                .bodies
+                .iter()
+                .zip(&self.search_pos)
+                .any(|(b, &since)| beyond(b, since, near))
+        {
             self.search_contacts();
             return;
         }
+        self.update_depths();
+    }
+
+    /// The depths of the known contacts at the bodies' current positions (the contact
+    /// search's expression, so a depth is the same whichever measured it).
+    fn update_depths(&mut self) {
         for pair in &mut self.pairs {
             for c in &mut pair.contacts {
                 let (vi, ei) = c.bodies(pair.a, pair.b);
@@ -419,6 +463,7 @@ impl World {
     /// The full vertex-to-edge search of every candidate pair, keeping the shear history of
     /// contacts that persist (same vertex on the same edge).
     fn search_contacts(&mut self) {
+        self.bound();
         let window = self.params.contact_tolerance;
         for pair in &mut self.pairs {
             let (a, b) = (&self.bodies[pair.a], &self.bodies[pair.b]);
@@ -451,7 +496,9 @@ impl World {
             }
             pair.contacts = found;
         }
-        self.search_pos = self.bodies.iter().map(|b| (b.pos, b.angle)).collect();
+        self.search_pos.clear();
+        self.search_pos
+            .extend(self.bodies.iter().map(|b| (b.pos, b.angle)));
     }
 
     /// Stage 3: contact forces (normal and shear springs with dashpots, no tension, Coulomb).
@@ -461,20 +508,31 @@ impl World {
         }
         let p = &self.params;
         let dt = self.dt;
+        let shear_ratio = (p.shear_stiffness / p.normal_stiffness).sqrt();
         for pair in &mut self.pairs {
             let cn = 2.0 * p.contact_damping * pair.sqrt_km;
-            let cs = cn * (p.shear_stiffness / p.normal_stiffness).sqrt();
+            let cs = cn * shear_ratio;
             for c in &mut pair.contacts {
                 let (vi, ei) = c.bodies(pair.a, pair.b);
                 let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
                 let point = vb.world[c.vertex];
                 // Outward normal of the touched edge: it pushes the vertex's body away.
                 let n = eb.normals[c.edge];
+                // The depth now (`update_depths`' expression; the explicit step leaves it to
+                // this loop).
+                c.depth = -(point - eb.world[c.edge]).dot(&n);
+                if c.depth <= 0.0 {
+                    // A gap: the contact carries nothing and forgets its shear.
+                    c.normal_force = 0.0;
+                    c.shear = 0.0;
+                    c.sliding = false;
+                    continue;
+                }
                 let t = Vec2::new(-n.y, n.x);
                 let vrel = vb.point_velocity(point) - eb.point_velocity(point);
                 let (vn, vt) = (vrel.dot(&n), vrel.dot(&t));
                 let normal = p.normal_stiffness * c.depth - cn * vn;
-                if c.depth <= 0.0 || normal <= 0.0 {
+                if normal <= 0.0 {
                     // No tension: the contact carries nothing and forgets its shear.
                     c.normal_force = 0.0;
                     c.shear = 0.0;
@@ -556,15 +614,13 @@ impl World {
         let alpha = self.local_damping;
         let dt = self.dt;
         let d = self.seismic_direction;
-        let mut unbalanced: f64 = 0.0;
-        let mut max_speed: f64 = 0.0;
-        for (body, (fc, mc)) in self.bodies.iter_mut().zip(&self.force) {
+        for (body, net) in self.bodies.iter_mut().zip(&mut self.force) {
             if body.fixed {
                 continue;
             }
-            let (f, m) = add_loads(body, self.load, d, *fc, *mc);
-            let l = &body.loads;
-            unbalanced = unbalanced.max(f.norm().max(m.abs() / body.radius) / l.scale);
+            let (f, m) = add_loads(body, self.load, d, net.0, net.1);
+            // Kept for `unbalanced`, which the rest tests read far less often than every step.
+            *net = (f, m);
             // Cundall's local damping opposes the motion of each degree of freedom with a
             // force proportional to the unbalanced force, never larger than it.
             let damp = |force: f64, v: f64| {
@@ -582,10 +638,30 @@ impl World {
             body.pos += body.vel * dt;
             body.angle += body.omega * dt;
             body.refresh();
-            max_speed = max_speed.max(body.vel.norm() + body.omega.abs() * body.radius);
         }
-        self.unbalanced = unbalanced;
-        self.max_speed = max_speed;
+    }
+
+    /// Largest unbalanced force of any free block in the last step, as a fraction of its
+    /// load scale (its weight plus the magnitudes of the other loads it carries): computed
+    /// when asked, from the net forces the step keeps.
+    pub fn unbalanced(&self) -> f64 {
+        self.bodies
+            .iter()
+            .zip(&self.force)
+            .filter(|(b, _)| !b.fixed)
+            .fold(0.0, |u: f64, (b, (f, m))| {
+                u.max(f.norm().max(m.abs() / b.radius) / b.loads.scale)
+            })
+    }
+
+    /// Largest speed of any point of a free block (m/s), `|v| + |omega| r`.
+    pub fn max_speed(&self) -> f64 {
+        self.bodies
+            .iter()
+            .filter(|b| !b.fixed)
+            .fold(0.0, |s: f64, b| {
+                s.max(b.vel.norm() + b.omega.abs() * b.radius)
+            })
     }
 
     /// The deepest overlap of a contact carrying a force (m).
@@ -788,14 +864,24 @@ fn touch(p: Vec2, adj: [Vec2; 2], e: &Body, window: f64) -> Option<(usize, f64)>
     best.map(|(k, s, _)| (k, -s))
 }
 
-/// Whether some free body has moved (a point of it, by translation plus rotation times its
-/// radius) by more than `limit` since the positions `since`.
-fn moved(bodies: &[Body], since: &[(Vec2, f64)], limit: f64) -> bool {
-    since.len() != bodies.len()
-        || bodies
-            .iter()
-            .zip(since)
-            .any(|(b, (p, a))| (b.pos - p).norm() + (b.angle - a).abs() * b.radius > limit)
+/// Whether body `b` has moved (a point of it, by translation plus rotation times its radius)
+/// by more than `limit` since the position and rotation `since`. The square root is taken
+/// only when [`surely_within`] cannot decide, so the answer is always the exact test's.
+#[inline]
+fn beyond(b: &Body, since: (Vec2, f64), limit: f64) -> bool {
+    let d = b.pos - since.0;
+    let turn = (b.angle - since.1).abs() * b.radius;
+    !surely_within(d, turn, limit) && d.norm() + turn > limit
+}
+
+/// Whether a cheap bound proves that the computed `d.norm() + turn` is at most `limit`,
+/// without the square root. `|d| <= |d_x| + |d_y|`, and the rounding of either side is a few
+/// units in the last place (relative; plus the underflow of a square, below 1e-161
+/// absolute), so a bound below the limit by a relative 1e-14 and an absolute 1e-150 proves
+/// it. False when it cannot tell (a NaN or an infinity included).
+#[inline]
+pub(super) fn surely_within(d: Vec2, turn: f64, limit: f64) -> bool {
+    (d.x.abs() + d.y.abs() + turn) * (1.0 + 1e-14) + 1e-150 <= limit
 }
 
 /// The mass a block shows at its farthest corner, `1 / (1/m + r^2/I)`: a corner contact

@@ -727,18 +727,22 @@ fn fragility_json_svg(
                     })
             }
             (Some(dir), Some(stripes)) => fr::read_records(&dir).and_then(|records| {
-                let all = match &chunks {
-                    Some(c) => joined(c),
-                    None => fr::dynamic_samples(
+                let f = match &chunks {
+                    Some(c) => fr::dynamic_fragility(
+                        &lib_scene,
+                        &settings,
+                        &records,
+                        &stripes,
+                        joined(c)?,
+                    )?,
+                    None => fr::dynamic_route(
                         &lib_scene,
                         &settings,
                         &records,
                         &stripes,
                         &voussoir::dem::dynamic::DynamicSettings::default(),
-                        0..settings.samples,
-                    ),
+                    )?,
                 };
-                let f = fr::dynamic_fragility(&lib_scene, &settings, &records, &stripes, all?)?;
                 let svg = report::figures::dynamic_fragility(&lib_scene, &f)
                     .map_err(|e| LibAnalysisError::Other(e.to_string()))?
                     .svg;
@@ -807,17 +811,10 @@ fn fragility_samples_json(
             (None, None) => {
                 fr::capacity_samples(&lib_scene, &settings, lo..hi).and_then(|s| json_text(&s))
             }
-            (Some(dir), Some(stripes)) => fr::read_records(&dir).and_then(|records| {
-                fr::dynamic_samples(
-                    &lib_scene,
-                    &settings,
-                    &records,
-                    &stripes,
-                    &voussoir::dem::dynamic::DynamicSettings::default(),
-                    lo..hi,
-                )
-                .and_then(|s| json_text(&s))
-            }),
+            // The dynamic route's chunks are its runs (`fragility_runs_json`).
+            (Some(_), Some(_)) => Err(LibAnalysisError::Other(
+                "the dynamic route is mapped by its runs: fragility_runs_json".into(),
+            )),
             _ => Err(LibAnalysisError::Other(
                 "records and stripes go together: the dynamic route needs both".into(),
             )),

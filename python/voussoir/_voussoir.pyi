@@ -107,7 +107,8 @@ def fragility_samples_json(
     lo: int,
     hi: int,
 ) -> str:
-    """Samples ``lo..hi`` of a fragility with their outcomes, as JSON text (a cluster's chunk)."""
+    """Samples ``lo..hi`` of a capacity-route fragility with their outcomes, as JSON text (a
+    cluster's chunk; the dynamic route's chunks are its runs, :func:`fragility_runs_json`)."""
 
 def fragility_run_count(
     scene: Scene, samples: int, seed: int, records: str, stripes: List[float]

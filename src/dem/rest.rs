@@ -135,6 +135,16 @@ pub fn rest_test(model: &Model, params: &IntegrationParameters) -> RestTest {
     if model.loads.action() != Action::Seismic {
         return RestTest::NotApplicable("the action is not seismic".into());
     }
+    // Not a chain: joints that may carry no compression (a wall's head joints) slide under
+    // the DEM's Coulomb contacts, infinite friction included (simulated as
+    // `dem.infinite_friction`), so real joints may collapse below the static value
+    // (`FrictionCheck::lower_states_possible`, docs/friction.md). Decided by the topology
+    // alone, before any static solve.
+    if !model.assembly.is_single_thrust_path() {
+        return RestTest::NotApplicable(
+            "real joints may collapse lower than the static multiplier in an assembly that is not a chain (joints without compression slide under the DEM's Coulomb contacts, docs/friction.md), so rest below it is not certain".into(),
+        );
+    }
     let mut m = simulated_model(model).unwrap_or_else(|| model.clone());
     m.loads = m.loads.clone().with_vertical_ratio(0.0);
     // The DEM gives every contact one Coulomb coefficient, the largest of the joints'
@@ -169,15 +179,6 @@ pub fn rest_test(model: &Model, params: &IntegrationParameters) -> RestTest {
         };
         let friction = r.friction(&m.assembly);
         lambdas[k] = match (r.status, r.lambda) {
-            // Not a chain: joints that may carry no compression (a wall's head joints) slide
-            // under the DEM's Coulomb contacts, infinite friction included (simulated as
-            // `dem.infinite_friction`), so real joints may collapse below the exact value
-            // (`FrictionCheck::lower_states_possible`, docs/friction.md).
-            (Status::Collapse | Status::NoCollapse, _) if !m.assembly.is_single_thrust_path() => {
-                return RestTest::NotApplicable(format!(
-                    "toward {side} no joint slides in the static mechanism, but real joints may collapse lower in an assembly that is not a chain (joints without compression slide under the DEM's Coulomb contacts, docs/friction.md), so rest below the static multiplier is not certain"
-                ))
-            }
             (Status::Collapse, Some(l)) if l > 0.0 && friction.exact => l,
             (Status::Collapse, Some(l)) if l > 0.0 => {
                 return RestTest::NotApplicable(format!(

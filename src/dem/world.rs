@@ -67,6 +67,15 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
+    /// The depth of the vertex behind the edge at the bodies' current positions (m; negative:
+    /// a gap), `vb` the vertex's body and `eb` the edge's: the one expression of the contact
+    /// search, the depth updates and the force loop, so a depth is the same whichever
+    /// measured it.
+    #[inline]
+    fn depth_in(&self, vb: &Body, eb: &Body) -> f64 {
+        -(vb.world[self.vertex] - eb.world[self.edge]).dot(&eb.normals[self.edge])
+    }
+
     /// `(vertex body, edge body)` of this contact in `pair`.
     fn bodies(&self, pair_a: usize, pair_b: usize) -> (usize, usize) {
         if self.flipped {
@@ -455,7 +464,7 @@ impl World {
             for c in &mut pair.contacts {
                 let (vi, ei) = c.bodies(pair.a, pair.b);
                 let (vb, eb) = (&self.bodies[vi], &self.bodies[ei]);
-                c.depth = -(vb.world[c.vertex] - eb.world[c.edge]).dot(&eb.normals[c.edge]);
+                c.depth = c.depth_in(vb, eb);
             }
         }
     }
@@ -518,9 +527,8 @@ impl World {
                 let point = vb.world[c.vertex];
                 // Outward normal of the touched edge: it pushes the vertex's body away.
                 let n = eb.normals[c.edge];
-                // The depth now (`update_depths`' expression; the explicit step leaves it to
-                // this loop).
-                c.depth = -(point - eb.world[c.edge]).dot(&n);
+                // The depth now (the explicit step leaves it to this loop).
+                c.depth = c.depth_in(vb, eb);
                 if c.depth <= 0.0 {
                     // A gap: the contact carries nothing and forgets its shear.
                     c.normal_force = 0.0;

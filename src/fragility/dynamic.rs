@@ -233,9 +233,8 @@ fn runs_of(
     // The scenes of the samples the runs touch, and only those.
     let first = range.start / (nj * nr);
     let last = (range.end - 1) / (nj * nr);
-    let mut values = values_of(scene, settings);
-    let values: Vec<Vec<f64>> = values.drain(first..=last).collect();
-    let scenes = sample_scenes(scene, &values, first)?;
+    let values = values_of(scene, settings);
+    let scenes = sample_scenes(scene, &values[first..=last], first)?;
     let dynamic = DynamicSettings {
         history_every: None,
         frames_every: None,

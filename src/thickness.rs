@@ -213,7 +213,7 @@ pub fn stands_non_associative(
             Status::Collapse => {}
         }
         let friction = r.friction(&model.assembly);
-        if friction.exact && !friction.lower_states_possible {
+        if friction.is_lower_bound() {
             // No joint slips in the mechanism of a chain: the associative collapse state is a
             // real one, taken as the real multiplier (docs/friction.md).
             if r.lambda.is_some_and(|l| l >= 0.0) {

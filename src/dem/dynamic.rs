@@ -358,9 +358,11 @@ fn run_motion(
         )));
     }
     check_params(params, model)?;
+    // `auto` resolved here by the rule the plan and the IDA's label read
+    // (`IntegrationParameters::resolved`), not left to `World::new`'s fallback.
     let params = &IntegrationParameters {
         max_steps: settings.max_steps.unwrap_or(params.max_steps),
-        ..params.clone()
+        ..params.resolved(model, Purpose::GroundMotion)
     };
     let mut world = World::new(model, params);
     check_time_step(&world)?;

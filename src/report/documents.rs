@@ -307,9 +307,7 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
     // Without sliding in the mechanism the static multiplier is exact (a lower bound unless
     // real joints may have lower collapse states, in a wall); with it, the associative one, an
     // upper bound of the real collapse (docs/friction.md).
-    let bound = if friction.lower_states_possible {
-        "Static (associative friction)"
-    } else if friction.exact {
+    let bound = if friction.is_lower_bound() {
         "Static (lower bound)"
     } else {
         "Static (associative friction)"

@@ -46,6 +46,15 @@ pub struct FrictionCheck {
     pub lower_states_possible: bool,
 }
 
+impl FrictionCheck {
+    /// Whether the static multiplier is the real one's safe side: exact, and no lower
+    /// collapse state of real joints possible (docs/friction.md). False: the associative
+    /// multiplier (joints slide), or an exact one in a wall, neither proved a lower bound.
+    pub fn is_lower_bound(&self) -> bool {
+        self.exact && !self.lower_states_possible
+    }
+}
+
 impl StaticResult {
     /// Whether this result is exact with finite friction ([`FrictionCheck`]): every front end
     /// asks this.

@@ -711,8 +711,7 @@
       $('v-timing').textContent = 'updated in ' + ms.toFixed(0) + ' ms' + server;
     }
     drawChart();
-    const nonAssociative = (result.friction_exact === false || result.friction_lower_states_possible === true)
-      && typeof result.lambda_non_associative === 'number';
+    const nonAssociative = showsNonAssociative(result);
     announce((STATUS_WORDS[result.status] || String(result.status || '')) + ', lambda '
       + fmt(governing(result), 4)
       + (nonAssociative ? ', non-associative friction'
@@ -723,6 +722,13 @@
   // older server).
   function governing(r) {
     return typeof r.lambda_governing === 'number' ? r.lambda_governing : r.lambda_lower;
+  }
+
+  // Whether the answer has a non-associative multiplier worth its own row: joints slide in
+  // the static mechanism, or an exact value in a wall (friction_lower_states_possible).
+  function showsNonAssociative(r) {
+    return (r.friction_exact === false || r.friction_lower_states_possible === true)
+      && typeof r.lambda_non_associative === 'number';
   }
 
   function parseSvg(text) {
@@ -765,8 +771,7 @@
       group.hidden = live;
     }
     const naRow = $('v-na-row');
-    const na = (r.friction_exact === false || r.friction_lower_states_possible === true)
-      && typeof r.lambda_non_associative === 'number';
+    const na = showsNonAssociative(r);
     naRow.hidden = !na;
     $('v-na').textContent = na ? fmt(r.lambda_non_associative, 6) : '';
     naRow.title = na ? (r.non_associative_note || '') : '';

@@ -140,8 +140,32 @@ fn main() {
             na.iterations,
             t_na / t_assoc
         );
-        if !name.starts_with("semicircle") {
-            // The warm-started dual simplex path (`NonAssociativeSettings::simplex`), one run.
+        print_starts("    ", &na.starts);
+        // The relaxation alone (`NonAssociativeSettings::mechanism_step` off), one run.
+        let plain = NonAssociativeSettings {
+            mechanism_step: false,
+            ..na_settings.clone()
+        };
+        let (t_plain, relaxed) = timed(1, || {
+            statics::analyse_non_associative(&m, &settings, &a, &plain)
+        });
+        let relaxed = match relaxed {
+            Ok(n) => n,
+            Err(e) => panic!("{name}: {e}"),
+        };
+        println!(
+            "    relaxation only: {:.3} ms, lambda {}, {} programs, {:.1} x assoc",
+            1e3 * t_plain,
+            relaxed
+                .lambda
+                .map_or("none".to_string(), |l| format!("{l:.6}")),
+            relaxed.iterations,
+            t_plain / t_assoc
+        );
+        print_starts("        ", &relaxed.starts);
+        if !name.starts_with("semicircle") && std::env::var_os("VOUSSOIR_BENCH_SIMPLEX").is_some() {
+            // The warm-started dual simplex path (`NonAssociativeSettings::simplex`), one run
+            // (minutes on the arcade: only with VOUSSOIR_BENCH_SIMPLEX set).
             let lp_settings = NonAssociativeSettings {
                 simplex: true,
                 ..na_settings.clone()
@@ -162,6 +186,5 @@ fn main() {
             );
             print_starts("        ", &lp.starts);
         }
-        print_starts("    ", &na.starts);
     }
 }

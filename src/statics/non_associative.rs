@@ -82,6 +82,12 @@ pub struct NonAssociativeSettings {
     /// vertex solutions settle on other solutions of the non-associative problem than the
     /// interior point's (docs/friction.md).
     pub simplex: bool,
+    /// After a program solved by Clarabel, go straight to the fixed point of its mechanism
+    /// (the joints' normal forces of least multiplier that the mechanism leaves in force,
+    /// one more program, [`propose`]) instead of relaxing toward the new normal forces; the
+    /// next program, with the capacities of that fixed point, verifies it. Default true
+    /// (docs/friction.md, "The mechanism's fixed point").
+    pub mechanism_step: bool,
 }
 
 impl Default for NonAssociativeSettings {
@@ -91,9 +97,21 @@ impl Default for NonAssociativeSettings {
             tolerance: 1e-6,
             relaxation: 1.0,
             simplex: false,
+            mechanism_step: true,
         }
     }
 }
+
+/// The first iteration after which a start proposes the fixed point of its program's
+/// mechanism: the first two relax, so that the iteration leaves its start before it is drawn
+/// to the nearest fixed point (on the running-bond wall with mu = 1000 a proposal from the
+/// first program verifies the start itself, 1.0, where the relaxation finds 0.536;
+/// docs/friction.md).
+const FIRST_PROPOSAL: u32 = 3;
+
+/// Proposals from one start that found no fixed point or were not verified, after which that
+/// start only relaxes (on the 3-bay arcade every proposal fails: docs/performance.md).
+const MAX_FAILED_PROPOSALS: u32 = 5;
 
 /// The smallest relaxation factor the oscillation damping goes down to.
 const MIN_RELAXATION: f64 = 1.0 / 64.0;
@@ -192,6 +210,16 @@ struct Iterate {
     result: StaticResult,
     /// Programs solved for it.
     programs: u32,
+    /// The largest-multiplier program and its interior-point solution, when Clarabel solved
+    /// it (the mechanism [`propose`] starts from, and the duals a verified proposal reads).
+    dual: Option<Dual>,
+}
+
+/// A program solved by Clarabel: the program, its primal `x` and its cone duals `z`.
+struct Dual {
+    problem: StaticProblem,
+    x: Vec<f64>,
+    z: Vec<f64>,
 }
 
 /// The fixed-shear programs of a model that is not a chain but a linear program (rigid
@@ -393,6 +421,7 @@ fn read_fixed(
         forces,
         result,
         programs,
+        dual: None,
     })
 }
 
@@ -414,6 +443,7 @@ fn solve_fixed(
             forces: s.forces,
             result: s.result,
             programs: 1 + u32::from(least_friction),
+            dual: None,
         }));
     }
     // Any other program is built once: the warm-started simplex solves it when it is linear
@@ -466,6 +496,11 @@ fn solve_fixed(
         1 + u32::from(least_friction),
     )?;
     iterate.result.solve_time_s = start.elapsed().as_secs_f64();
+    iterate.dual = Some(Dual {
+        problem,
+        x: sol.x,
+        z: sol.z,
+    });
     Ok(Some(iterate))
 }
 
@@ -522,6 +557,122 @@ fn fixed_point(model: &Model, nbar: &[f64], it: &Iterate, tol: f64) -> bool {
         })
 }
 
+/// The inequality rows of `dual`'s program that its mechanism holds tight: those whose dual
+/// exceeds their slack, each measured against its largest (an interior point ends close to a
+/// strictly complementary pair, one of the two about zero on every row). None when the
+/// program has second-order cones.
+fn tight_rows(dual: &Dual) -> Option<Vec<bool>> {
+    let p = &dual.problem;
+    if p.cone_rows > 0 {
+        return None;
+    }
+    let eq = p.equality_rows;
+    let mut slack = p.b.clone();
+    for col in 0..p.a.n {
+        for k in p.a.colptr[col]..p.a.colptr[col + 1] {
+            slack[p.a.rowval[k]] -= p.a.nzval[k] * dual.x[col];
+        }
+    }
+    let rows = eq..eq + p.inequality_rows;
+    let biggest = |v: &[f64]| v[rows.clone()].iter().fold(0.0_f64, |a, &b| a.max(b));
+    let (smax, zmax) = (biggest(&slack), biggest(&dual.z));
+    if !(smax > 0.0 && zmax > 0.0) {
+        return None;
+    }
+    Some(
+        rows.map(|r| dual.z[r].max(0.0) / zmax > slack[r].max(0.0) / smax)
+            .collect(),
+    )
+}
+
+/// A fixed point proposed from a mechanism ([`propose`]): its multiplier, its forces and the
+/// program's primal solution (the columns of the static program of `model`).
+struct Proposal {
+    lambda: f64,
+    forces: Vec<JointForce>,
+    x: Vec<f64>,
+}
+
+/// The fixed point of the mechanism of `dual` (a program with fixed capacities, solved by
+/// Clarabel), or None when there is none. With `y` the program's duals, every equilibrium
+/// `x` that keeps `y`'s tight rows tight (complementary slackness) with the capacities of its
+/// own normal forces, `S_j = mu_j N_j`, and meets Coulomb's law everywhere is optimal for the
+/// program with those capacities (`y` stays dual feasible: the capacities are right-hand
+/// sides) and reproduces them: a fixed point of the iteration. These `x` are the solutions of
+/// one linear program, the associative program with the tight rows as equalities (a tight
+/// shear row `S -+ V >= 0` becomes `mu N -+ V = 0`, a tight `c >= 0` becomes `c = 0`); of them
+/// it takes the least multiplier. `y` is an interior point's and its tight rows are read to
+/// a tolerance, so the caller verifies the answer by the program with its capacities.
+fn propose(
+    model: &Model,
+    settings: &StaticSettings,
+    dual: &Dual,
+) -> Result<Option<Proposal>, AnalysisError> {
+    let Some(tight) = tight_rows(dual) else {
+        return Ok(None);
+    };
+    let sign = settings.direction.sign();
+    let cap = Some(LAMBDA_CAP);
+    let associative = StaticProblem::of_model(
+        model,
+        ShearLimit::Coulomb,
+        Objective::MaxLambda { sign, cap },
+    );
+    // The associative program has the fixed one's rows in the same order (the shear law
+    // changes a row's entries, not the rows), so the tight flags carry over.
+    if associative.inequality_rows != dual.problem.inequality_rows
+        || associative.equality_rows != dual.problem.equality_rows
+    {
+        return Ok(None);
+    }
+    let mut q = vec![0.0; associative.variables()];
+    q[0] = 1.0;
+    let Some(problem) = associative.with_tight_rows(&tight, q) else {
+        return Ok(None);
+    };
+    let sol = run(&problem, settings)?;
+    if sol.status != SolverStatus::Solved {
+        return Ok(None);
+    }
+    let forces = read_forces(&model.assembly, &problem, &sol.x);
+    Ok(Some(Proposal {
+        lambda: sol.x[0],
+        forces,
+        x: sol.x,
+    }))
+}
+
+/// The proposal `p` as an iterate of the program `verify` was solved from (the capacities of
+/// `p`'s normal forces), when `verify` confirms it: the same multiplier to `tol`, and `p` a
+/// fixed point of those capacities. `p`'s forces are then an optimum of that program, and
+/// `verify`'s duals its mechanism.
+fn verified(
+    model: &Model,
+    settings: &StaticSettings,
+    nbar: &[f64],
+    p: &Proposal,
+    verify: &Iterate,
+    tol: f64,
+) -> Result<Option<Iterate>, AnalysisError> {
+    let Some(dual) = verify.dual.as_ref() else {
+        return Ok(None);
+    };
+    if (verify.lambda - p.lambda).abs() > tol * verify.lambda.abs().max(1.0) {
+        return Ok(None);
+    }
+    let iterate = read_fixed(
+        model,
+        settings,
+        &dual.problem,
+        &p.x,
+        &dual.z,
+        (p.lambda, SolverStatus::Solved, verify.result.iterations),
+        "fixed point of the mechanism, verified by the program of its capacities".to_string(),
+        0,
+    )?;
+    Ok(fixed_point(model, nbar, &iterate, tol).then_some(iterate))
+}
+
 /// Iterate from the normal forces `n0` (N, joint order).
 fn iterate_from(
     model: &Model,
@@ -541,6 +692,10 @@ fn iterate_from(
     let mut programs = 0;
     let mut last: Option<StaticResult> = None;
     let mut stopped = format!("no fixed point in {} iterations", na.max_iterations);
+    // A proposal whose capacities the next program solves (and so verifies), and the
+    // proposals that failed.
+    let mut pending: Option<Proposal> = None;
+    let mut failed = 0;
     while iterations < na.max_iterations {
         iterations += 1;
         let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
@@ -561,6 +716,21 @@ fn iterate_from(
             break;
         };
         programs += it.programs;
+        if let Some(p) = pending.take() {
+            if let Some(found) = verified(model, settings, &nbar, &p, &it, na.tolerance)? {
+                return Ok((
+                    StartOutcome {
+                        start,
+                        lambda: Some(found.lambda),
+                        iterations: programs,
+                        converged: true,
+                        stopped: None,
+                    },
+                    Some(found.result),
+                ));
+            }
+            failed += 1;
+        }
         let settled = lambdas.last().is_some_and(|&prev| {
             (it.lambda - prev).abs() <= na.tolerance * it.lambda.abs().max(1.0)
         }) && fixed_point(model, &nbar, &it, na.tolerance);
@@ -589,6 +759,23 @@ fn iterate_from(
             } else {
                 turns = 0;
             }
+        }
+        // Straight to the fixed point of this program's mechanism, when there is one; the
+        // relaxation otherwise.
+        if let (true, Some(dual)) = (
+            na.mechanism_step && iterations >= FIRST_PROPOSAL && failed < MAX_FAILED_PROPOSALS,
+            &it.dual,
+        ) {
+            programs += 1;
+            if let Some(p) = propose(model, settings, dual)? {
+                for (nb, f) in nbar.iter_mut().zip(&p.forces) {
+                    *nb = f.n;
+                }
+                pending = Some(p);
+                last = Some(it.result);
+                continue;
+            }
+            failed += 1;
         }
         for (nb, f) in nbar.iter_mut().zip(&it.forces) {
             *nb += beta * (f.n - *nb);

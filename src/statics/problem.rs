@@ -358,6 +358,61 @@ impl StaticProblem {
     pub fn variables(&self) -> usize {
         self.q.len()
     }
+
+    /// The same rows with the inequality rows `k` where `tight[k]` (k counts the rows of the
+    /// nonnegative cone, in order) held as equalities (moved into the zero cone, after the
+    /// equilibrium rows, in their order) and the objective `q`. None when the program has
+    /// second-order cones (its rows are not all linear) or `tight` is not one flag per
+    /// inequality row.
+    pub(crate) fn with_tight_rows(&self, tight: &[bool], q: Vec<f64>) -> Option<StaticProblem> {
+        if self.cone_rows > 0 || tight.len() != self.inequality_rows || q.len() != self.q.len() {
+            return None;
+        }
+        let eq = self.equality_rows;
+        let moved = tight.iter().filter(|&&t| t).count();
+        // The new position of every row.
+        let mut place = Vec::with_capacity(eq + tight.len());
+        place.extend(0..eq);
+        let (mut to_zero, mut to_nonneg) = (eq, eq + moved);
+        for &t in tight {
+            let slot = if t { &mut to_zero } else { &mut to_nonneg };
+            place.push(*slot);
+            *slot += 1;
+        }
+        let a = &self.a;
+        let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+        for col in 0..a.n {
+            for k in a.colptr[col]..a.colptr[col + 1] {
+                r.push(place[a.rowval[k]]);
+                c.push(col);
+                v.push(a.nzval[k]);
+            }
+        }
+        let mut b = vec![0.0; self.b.len()];
+        for (row, &value) in self.b.iter().enumerate() {
+            b[place[row]] = value;
+        }
+        let mut cones = vec![SupportedConeT::ZeroConeT(eq + moved)];
+        if moved < tight.len() {
+            cones.push(SupportedConeT::NonnegativeConeT(tight.len() - moved));
+        }
+        Some(StaticProblem {
+            p: CscMatrix::zeros((a.n, a.n)),
+            q,
+            a: csc_from_triplets(a.m, a.n, &r, &c, &v),
+            b,
+            cones,
+            length_scale: self.length_scale,
+            force_scale: self.force_scale,
+            friction_joints: self.friction_joints.clone(),
+            tie_columns: self.tie_columns.clone(),
+            strip_columns: self.strip_columns.clone(),
+            passive_columns: self.passive_columns.clone(),
+            equality_rows: eq + moved,
+            inequality_rows: tight.len() - moved,
+            cone_rows: 0,
+        })
+    }
 }
 
 /// The same matrix as `CscMatrix::new_from_triplets` (entries sorted by row within each

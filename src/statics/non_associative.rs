@@ -25,6 +25,15 @@
 //! converged value of the starts tried is kept. Nothing guarantees that it is the lowest of
 //! all: the true collapse multiplier is at most that value.
 //!
+//! **The mechanism's fixed point** ([`NonAssociativeSettings::mechanism_step`], from a
+//! start's third program on): a program's duals `y` stay dual feasible whatever the
+//! capacities, so an equilibrium that keeps `y`'s tight rows tight with the capacities of its
+//! own normal forces, and obeys Coulomb's law, is an optimum of the program with those
+//! capacities and reproduces them: a fixed point. Such equilibria are the feasible set of one
+//! linear program (the associative program with `y`'s tight rows as equalities, [`propose`]);
+//! the step takes its least multiplier and the next program verifies it. Where the proposal
+//! has no solution or does not verify, the iteration relaxes as below (docs/friction.md).
+//!
 //! What is implemented (the relaxation is ours: only the paper's abstract was at hand when
 //! this was written, so its exact relaxation rule is not reproduced): `beta` starts at
 //! [`NonAssociativeSettings::relaxation`] (1: each capacity from the last normal forces) and

@@ -481,6 +481,81 @@ fn csc_from_triplets(
 mod tests {
     use super::*;
 
+    /// A program of 2 equality and 3 inequality rows over 3 columns, row r holding
+    /// `10 r + c` in column c (every entry distinct) and `b_r = 100 + r`.
+    fn small() -> StaticProblem {
+        let (m, n) = (5, 3);
+        let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+        for row in 0..m {
+            for col in 0..n {
+                r.push(row);
+                c.push(col);
+                v.push((10 * row + col) as f64);
+            }
+        }
+        StaticProblem {
+            p: CscMatrix::zeros((n, n)),
+            q: vec![-1.0, 0.0, 0.0],
+            a: csc_from_triplets(m, n, &r, &c, &v),
+            b: (0..m).map(|row| 100.0 + row as f64).collect(),
+            cones: vec![
+                SupportedConeT::ZeroConeT(2),
+                SupportedConeT::NonnegativeConeT(3),
+            ],
+            length_scale: 1.0,
+            force_scale: 1.0,
+            friction_joints: Vec::new(),
+            tie_columns: Vec::new(),
+            strip_columns: Vec::new(),
+            passive_columns: Vec::new(),
+            equality_rows: 2,
+            inequality_rows: 3,
+            cone_rows: 0,
+        }
+    }
+
+    /// The entry of row `row`, column `col` of `a` (0 when absent).
+    fn entry(a: &CscMatrix<f64>, row: usize, col: usize) -> f64 {
+        (a.colptr[col]..a.colptr[col + 1])
+            .find(|&k| a.rowval[k] == row)
+            .map_or(0.0, |k| a.nzval[k])
+    }
+
+    /// Tight rows move, in their order, into the zero cone after the equilibrium rows; the
+    /// others keep theirs in the nonnegative cone; entries and right-hand sides travel with
+    /// their rows; the objective is the one given. Programs with second-order cones, or flags
+    /// of the wrong length, are declined.
+    #[test]
+    fn tight_rows_become_equalities_in_order() {
+        let p = small();
+        let t = p
+            .with_tight_rows(&[false, true, true], vec![1.0, 0.0, 0.0])
+            .expect("linear program");
+        // New order: eq 0, eq 1, inequality 1, inequality 2, inequality 0.
+        let from = [0, 1, 3, 4, 2];
+        for (new, &old) in from.iter().enumerate() {
+            for col in 0..3 {
+                assert_eq!(entry(&t.a, new, col), (10 * old + col) as f64);
+            }
+            assert_eq!(t.b[new], 100.0 + old as f64);
+        }
+        assert_eq!(
+            t.cones,
+            vec![
+                SupportedConeT::ZeroConeT(4),
+                SupportedConeT::NonnegativeConeT(1)
+            ]
+        );
+        assert_eq!((t.equality_rows, t.inequality_rows), (4, 1));
+        assert_eq!(t.q, vec![1.0, 0.0, 0.0]);
+        let all = p.with_tight_rows(&[true; 3], vec![0.0; 3]).expect("linear");
+        assert_eq!(all.cones, vec![SupportedConeT::ZeroConeT(5)]);
+        assert!(p.with_tight_rows(&[true; 2], vec![0.0; 3]).is_none());
+        let mut conic = small();
+        conic.cone_rows = 3;
+        assert!(conic.with_tight_rows(&[false; 3], vec![0.0; 3]).is_none());
+    }
+
     /// The O(nnz) builder gives exactly Clarabel's matrix, repeated and zero entries included.
     #[test]
     fn csc_matches_clarabel_triplets() {

@@ -91,7 +91,8 @@ pub struct NonAssociativeSettings {
     /// vertex solutions settle on other solutions of the non-associative problem than the
     /// interior point's (docs/friction.md).
     pub simplex: bool,
-    /// After a program solved by Clarabel, go straight to the fixed point of its mechanism
+    /// From a start's third iteration on, after a program solved by Clarabel (linear: no
+    /// crushing cones), go straight to the fixed point of its mechanism
     /// (the joints' normal forces of least multiplier that the mechanism leaves in force,
     /// one more program, [`propose`]) instead of relaxing toward the new normal forces; the
     /// next program, with the capacities of that fixed point, verifies it. Default true
@@ -111,7 +112,7 @@ impl Default for NonAssociativeSettings {
     }
 }
 
-/// The first iteration after which a start proposes the fixed point of its program's
+/// The first iteration from which a start proposes the fixed point of its program's
 /// mechanism: the first two relax, so that the iteration leaves its start before it is drawn
 /// to the nearest fixed point (on the running-bond wall with mu = 1000 a proposal from the
 /// first program verifies the start itself, 1.0, where the relaxation finds 0.536;
@@ -616,9 +617,9 @@ fn propose(
     model: &Model,
     settings: &StaticSettings,
     dual: &Dual,
-) -> Result<Option<Proposal>, AnalysisError> {
+) -> Result<Proposed, AnalysisError> {
     let Some(tight) = tight_rows(dual) else {
-        return Ok(None);
+        return Ok(Proposed::NotTried);
     };
     let sign = settings.direction.sign();
     let cap = Some(LAMBDA_CAP);
@@ -632,23 +633,34 @@ fn propose(
     if associative.inequality_rows != dual.problem.inequality_rows
         || associative.equality_rows != dual.problem.equality_rows
     {
-        return Ok(None);
+        return Ok(Proposed::NotTried);
     }
     let mut q = vec![0.0; associative.variables()];
     q[0] = 1.0;
     let Some(problem) = associative.with_tight_rows(&tight, q) else {
-        return Ok(None);
+        return Ok(Proposed::NotTried);
     };
     let sol = run(&problem, settings)?;
     if sol.status != SolverStatus::Solved {
-        return Ok(None);
+        return Ok(Proposed::None);
     }
     let forces = read_forces(&model.assembly, &problem, &sol.x);
-    Ok(Some(Proposal {
+    Ok(Proposed::Found(Proposal {
         lambda: sol.x[0],
         forces,
         x: sol.x,
     }))
+}
+
+/// What [`propose`] gave.
+enum Proposed {
+    /// Nothing solved: the program has second-order cones (crushing), or the mechanism's
+    /// tight rows could not be read.
+    NotTried,
+    /// The program of the mechanism's fixed points was solved and has none (or did not end
+    /// solved).
+    None,
+    Found(Proposal),
 }
 
 /// The proposal `p` as an iterate of the program `verify` was solved from (the capacities of
@@ -775,16 +787,23 @@ fn iterate_from(
             na.mechanism_step && iterations >= FIRST_PROPOSAL && failed < MAX_FAILED_PROPOSALS,
             &it.dual,
         ) {
-            programs += 1;
-            if let Some(p) = propose(model, settings, dual)? {
-                for (nb, f) in nbar.iter_mut().zip(&p.forces) {
-                    *nb = f.n;
+            match propose(model, settings, dual)? {
+                Proposed::Found(p) => {
+                    programs += 1;
+                    for (nb, f) in nbar.iter_mut().zip(&p.forces) {
+                        *nb = f.n;
+                    }
+                    pending = Some(p);
+                    last = Some(it.result);
+                    continue;
                 }
-                pending = Some(p);
-                last = Some(it.result);
-                continue;
+                Proposed::None => {
+                    programs += 1;
+                    failed += 1;
+                }
+                // Nothing to propose from, now or later (a conic program).
+                Proposed::NotTried => failed = MAX_FAILED_PROPOSALS,
             }
-            failed += 1;
         }
         for (nb, f) in nbar.iter_mut().zip(&it.forces) {
             *nb += beta * (f.n - *nb);

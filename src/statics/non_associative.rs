@@ -26,13 +26,13 @@
 //! all: the true collapse multiplier is at most that value.
 //!
 //! **The mechanism's fixed point** ([`NonAssociativeSettings::mechanism_step`], from a
-//! start's third program on): a program's duals `y` stay dual feasible whatever the
-//! capacities, so an equilibrium that keeps `y`'s tight rows tight with the capacities of its
-//! own normal forces, and obeys Coulomb's law, is an optimum of the program with those
-//! capacities and reproduces them: a fixed point. Such equilibria are the feasible set of one
-//! linear program (the associative program with `y`'s tight rows as equalities, [`propose`]);
-//! the step takes its least multiplier and the next program verifies it. Where the proposal
-//! has no solution or does not verify, the iteration relaxes as below (docs/friction.md).
+//! start's third iteration on): a program's duals `y` stay dual feasible whatever the
+//! capacities, so an equilibrium that obeys Coulomb's law and has no duality gap with `y` in
+//! the program of its own capacities (`S_j = mu_j N_j`) is an optimum of that program and
+//! reproduces them: a fixed point. The gap is linear in the equilibrium, so the step solves
+//! one linear program, the associative program minimising it ([`propose`]), and the next
+//! program verifies the answer. Where it does not verify, the iteration relaxes as below
+//! (docs/friction.md).
 //!
 //! What is implemented (the relaxation is ours: only the paper's abstract was at hand when
 //! this was written, so its exact relaxation rule is not reproduced): `beta` starts at
@@ -225,10 +225,9 @@ struct Iterate {
     dual: Option<Dual>,
 }
 
-/// A program solved by Clarabel: the program, its primal `x` and its cone duals `z`.
+/// A program solved by Clarabel: the program and its cone duals `z`.
 struct Dual {
     problem: StaticProblem,
-    x: Vec<f64>,
     z: Vec<f64>,
 }
 
@@ -506,11 +505,7 @@ fn solve_fixed(
         1 + u32::from(least_friction),
     )?;
     iterate.result.solve_time_s = start.elapsed().as_secs_f64();
-    iterate.dual = Some(Dual {
-        problem,
-        x: sol.x,
-        z: sol.z,
-    });
+    iterate.dual = Some(Dual { problem, z: sol.z });
     Ok(Some(iterate))
 }
 
@@ -567,34 +562,6 @@ fn fixed_point(model: &Model, nbar: &[f64], it: &Iterate, tol: f64) -> bool {
         })
 }
 
-/// The inequality rows of `dual`'s program that its mechanism holds tight: those whose dual
-/// exceeds their slack, each measured against its largest (an interior point ends close to a
-/// strictly complementary pair, one of the two about zero on every row). None when the
-/// program has second-order cones.
-fn tight_rows(dual: &Dual) -> Option<Vec<bool>> {
-    let p = &dual.problem;
-    if p.cone_rows > 0 {
-        return None;
-    }
-    let eq = p.equality_rows;
-    let mut slack = p.b.clone();
-    for col in 0..p.a.n {
-        for k in p.a.colptr[col]..p.a.colptr[col + 1] {
-            slack[p.a.rowval[k]] -= p.a.nzval[k] * dual.x[col];
-        }
-    }
-    let rows = eq..eq + p.inequality_rows;
-    let biggest = |v: &[f64]| v[rows.clone()].iter().fold(0.0_f64, |a, &b| a.max(b));
-    let (smax, zmax) = (biggest(&slack), biggest(&dual.z));
-    if !(smax > 0.0 && zmax > 0.0) {
-        return None;
-    }
-    Some(
-        rows.map(|r| dual.z[r].max(0.0) / zmax > slack[r].max(0.0) / smax)
-            .collect(),
-    )
-}
-
 /// A fixed point proposed from a mechanism ([`propose`]): its multiplier, its forces and the
 /// program's primal solution (the columns of the static program of `model`).
 struct Proposal {
@@ -603,48 +570,70 @@ struct Proposal {
     x: Vec<f64>,
 }
 
+/// The weight of the multiplier beside the duality gap in [`propose`]'s objective (the duals
+/// scaled to a largest of 1): a tie-break toward the least multiplier among the equilibria
+/// of (nearly) no gap.
+const PROPOSAL_LAMBDA_WEIGHT: f64 = 1e-6;
+
 /// The fixed point of the mechanism of `dual` (a program with fixed capacities, solved by
-/// Clarabel), or None when there is none. With `y` the program's duals, every equilibrium
-/// `x` that keeps `y`'s tight rows tight (complementary slackness) with the capacities of its
-/// own normal forces, `S_j = mu_j N_j`, and meets Coulomb's law everywhere is optimal for the
-/// program with those capacities (`y` stays dual feasible: the capacities are right-hand
-/// sides) and reproduces them: a fixed point of the iteration. These `x` are the solutions of
-/// one linear program, the associative program with the tight rows as equalities (a tight
-/// shear row `S -+ V >= 0` becomes `mu N -+ V = 0`, a tight `c >= 0` becomes `c = 0`); of them
-/// it takes the least multiplier. `y` is an interior point's and its tight rows are read to
-/// a tolerance, so the caller verifies the answer by the program with its capacities.
+/// Clarabel), or the equilibrium nearest one. With `y` the program's duals, which stay dual
+/// feasible whatever the capacities (they are right-hand sides), an equilibrium `x` that
+/// obeys Coulomb's law is feasible for the program with the capacities of its own normal
+/// forces, `S_j = mu_j N_j`, and on every inequality row that program's slack is the
+/// associative program's `s_i(x)` (`mu N -+ V`, `c`, ...). The duality gap of `x` and `y` in
+/// that program is `sum_i y_i s_i(x) >= 0`: where it is 0, `x` is an optimum of the program
+/// of its own capacities, and reproduces them: a fixed point of the iteration. So the step
+/// solves one linear program, the associative program (Coulomb's law, the multiplier free up
+/// to its cap) minimising `sum_i y_i s_i(x)` (`y` over its largest), plus
+/// [`PROPOSAL_LAMBDA_WEIGHT`] times the multiplier. No row is classified as tight or loose:
+/// a row weighs by its dual, so the rows an interior point leaves ambiguous (dual and slack
+/// both near 0) weigh next to nothing. `y` is an interior point's, so the caller verifies
+/// the answer by the program with its capacities.
 fn propose(
     model: &Model,
     settings: &StaticSettings,
     dual: &Dual,
 ) -> Result<Proposed, AnalysisError> {
-    let Some(tight) = tight_rows(dual) else {
-        return Ok(Proposed::NotTried);
-    };
     let sign = settings.direction.sign();
     let cap = Some(LAMBDA_CAP);
-    let associative = StaticProblem::of_model(
+    let mut associative = StaticProblem::of_model(
         model,
         ShearLimit::Coulomb,
         Objective::MaxLambda { sign, cap },
     );
+    let (eq, ineq) = (dual.problem.equality_rows, dual.problem.inequality_rows);
     // The associative program has the fixed one's rows in the same order (the shear law
-    // changes a row's entries, not the rows), so the tight flags carry over.
-    if associative.inequality_rows != dual.problem.inequality_rows
-        || associative.equality_rows != dual.problem.equality_rows
+    // changes a row's entries, not the rows), so the duals carry over; second-order cones
+    // (crushing) are left out.
+    if dual.problem.cone_rows > 0
+        || associative.cone_rows > 0
+        || associative.inequality_rows != ineq
+        || associative.equality_rows != eq
     {
         return Ok(Proposed::NotTried);
     }
-    let mut q = vec![0.0; associative.variables()];
-    q[0] = 1.0;
-    let Some(problem) = associative.with_tight_rows(&tight, q) else {
+    let rows = eq..eq + ineq;
+    let ymax = dual.z[rows.clone()].iter().fold(0.0_f64, |m, &y| m.max(y));
+    if !(ymax > 0.0 && ymax.is_finite()) {
         return Ok(Proposed::NotTried);
-    };
-    let sol = run(&problem, settings)?;
+    }
+    // sum_i y_i s_i(x) = sum_i y_i (b_i - A_i x): the constant dropped, -A' y on the columns.
+    let a = &associative.a;
+    let mut q = vec![0.0; associative.variables()];
+    q[0] = PROPOSAL_LAMBDA_WEIGHT;
+    for (col, qc) in q.iter_mut().enumerate() {
+        for k in a.colptr[col]..a.colptr[col + 1] {
+            if rows.contains(&a.rowval[k]) {
+                *qc -= dual.z[a.rowval[k]].max(0.0) / ymax * a.nzval[k];
+            }
+        }
+    }
+    associative.q = q;
+    let sol = run(&associative, settings)?;
     if sol.status != SolverStatus::Solved {
         return Ok(Proposed::None);
     }
-    let forces = read_forces(&model.assembly, &problem, &sol.x);
+    let forces = read_forces(&model.assembly, &associative, &sol.x);
     Ok(Proposed::Found(Proposal {
         lambda: sol.x[0],
         forces,
@@ -654,44 +643,62 @@ fn propose(
 
 /// What [`propose`] gave.
 enum Proposed {
-    /// Nothing solved: the program has second-order cones (crushing), or the mechanism's
-    /// tight rows could not be read.
+    /// Nothing solved: the program has second-order cones (crushing), or no dual weighs.
     NotTried,
-    /// The program of the mechanism's fixed points was solved and has none (or did not end
-    /// solved).
+    /// The proposal's program did not end solved.
     None,
     Found(Proposal),
 }
 
-/// The proposal `p` as an iterate of the program `verify` was solved from (the capacities of
-/// `p`'s normal forces), when `verify` confirms it: the same multiplier to `tol`, and `p` a
-/// fixed point of those capacities. `p`'s forces are then an optimum of that program, and
-/// `verify`'s duals its mechanism.
-fn verified(
+/// One mechanism step from the program whose Clarabel solution is `dual`: the proposal
+/// ([`propose`]), then the program with the capacities of its normal forces, which verifies
+/// it. Returns the programs solved (0: nothing to propose from) and the verified fixed point:
+/// the proposal's forces, an optimum of the verifying program (its multiplier the proposal's
+/// to `tol`, and the proposal a fixed point of its capacities), with that program's duals as
+/// the mechanism.
+fn mechanism_step(
     model: &Model,
     settings: &StaticSettings,
-    nbar: &[f64],
-    p: &Proposal,
-    verify: &Iterate,
+    dual: &Dual,
     tol: f64,
-) -> Result<Option<Iterate>, AnalysisError> {
-    let Some(dual) = verify.dual.as_ref() else {
-        return Ok(None);
+) -> Result<(u32, Option<Iterate>), AnalysisError> {
+    let p = match propose(model, settings, dual)? {
+        Proposed::NotTried => return Ok((0, None)),
+        Proposed::None => return Ok((1, None)),
+        Proposed::Found(p) => p,
+    };
+    let nbar: Vec<f64> = p.forces.iter().map(|f| f.n).collect();
+    let capacity: Vec<f64> = model
+        .assembly
+        .joints
+        .iter()
+        .zip(&nbar)
+        .map(|(j, n)| j.friction * n.max(0.0))
+        .collect();
+    // By Clarabel (no chain, no simplex): the check reads its duals.
+    let Some(verify) = solve_fixed(model, settings, None, None, &capacity, false)? else {
+        return Ok((2, None));
+    };
+    let Some(verifying) = verify.dual.as_ref() else {
+        return Ok((2, None));
     };
     if (verify.lambda - p.lambda).abs() > tol * verify.lambda.abs().max(1.0) {
-        return Ok(None);
+        return Ok((2, None));
     }
     let iterate = read_fixed(
         model,
         settings,
-        &dual.problem,
+        &verifying.problem,
         &p.x,
-        &dual.z,
+        &verifying.z,
         (p.lambda, SolverStatus::Solved, verify.result.iterations),
         "fixed point of the mechanism, verified by the program of its capacities".to_string(),
         0,
     )?;
-    Ok(fixed_point(model, nbar, &iterate, tol).then_some(iterate))
+    Ok((
+        2,
+        fixed_point(model, &nbar, &iterate, tol).then_some(iterate),
+    ))
 }
 
 /// Iterate from the normal forces `n0` (N, joint order).
@@ -713,9 +720,7 @@ fn iterate_from(
     let mut programs = 0;
     let mut last: Option<StaticResult> = None;
     let mut stopped = format!("no fixed point in {} iterations", na.max_iterations);
-    // A proposal whose capacities the next program solves (and so verifies), and the
-    // proposals that failed.
-    let mut pending: Option<Proposal> = None;
+    // Proposals that were not verified.
     let mut failed = 0;
     while iterations < na.max_iterations {
         iterations += 1;
@@ -737,21 +742,6 @@ fn iterate_from(
             break;
         };
         programs += it.programs;
-        if let Some(p) = pending.take() {
-            if let Some(found) = verified(model, settings, &nbar, &p, &it, na.tolerance)? {
-                return Ok((
-                    StartOutcome {
-                        start,
-                        lambda: Some(found.lambda),
-                        iterations: programs,
-                        converged: true,
-                        stopped: None,
-                    },
-                    Some(found.result),
-                ));
-            }
-            failed += 1;
-        }
         let settled = lambdas.last().is_some_and(|&prev| {
             (it.lambda - prev).abs() <= na.tolerance * it.lambda.abs().max(1.0)
         }) && fixed_point(model, &nbar, &it, na.tolerance);
@@ -781,28 +771,29 @@ fn iterate_from(
                 turns = 0;
             }
         }
-        // Straight to the fixed point of this program's mechanism, when there is one; the
-        // relaxation otherwise.
-        if let (true, Some(dual)) = (
-            na.mechanism_step && iterations >= FIRST_PROPOSAL && failed < MAX_FAILED_PROPOSALS,
-            &it.dual,
-        ) {
-            match propose(model, settings, dual)? {
-                Proposed::Found(p) => {
-                    programs += 1;
-                    for (nb, f) in nbar.iter_mut().zip(&p.forces) {
-                        *nb = f.n;
-                    }
-                    pending = Some(p);
-                    last = Some(it.result);
-                    continue;
-                }
-                Proposed::None => {
-                    programs += 1;
-                    failed += 1;
+        // The fixed point of this program's mechanism, tried aside: verified, it is the
+        // answer; otherwise the relaxation goes on as if it had not been tried.
+        let proposing =
+            na.mechanism_step && iterations >= FIRST_PROPOSAL && failed < MAX_FAILED_PROPOSALS;
+        if let (true, Some(dual)) = (proposing, &it.dual) {
+            let (tried, found) = mechanism_step(model, settings, dual, na.tolerance)?;
+            programs += tried;
+            match found {
+                Some(found) => {
+                    return Ok((
+                        StartOutcome {
+                            start,
+                            lambda: Some(found.lambda),
+                            iterations: programs,
+                            converged: true,
+                            stopped: None,
+                        },
+                        Some(found.result),
+                    ));
                 }
                 // Nothing to propose from, now or later (a conic program).
-                Proposed::NotTried => failed = MAX_FAILED_PROPOSALS,
+                None if tried == 0 => failed = MAX_FAILED_PROPOSALS,
+                None => failed += 1,
             }
         }
         for (nb, f) in nbar.iter_mut().zip(&it.forces) {

@@ -92,10 +92,9 @@ pub struct NonAssociativeSettings {
     /// interior point's (docs/friction.md).
     pub simplex: bool,
     /// From a start's third iteration on, after a program solved by Clarabel (linear: no
-    /// crushing cones), go straight to the fixed point of its mechanism
-    /// (the joints' normal forces of least multiplier that the mechanism leaves in force,
-    /// one more program, [`propose`]) instead of relaxing toward the new normal forces; the
-    /// next program, with the capacities of that fixed point, verifies it. Default true
+    /// crushing cones), try the fixed point of its mechanism ([`propose`], one more program)
+    /// and verify it by the program of its capacities (another): verified, it is the start's
+    /// answer; otherwise the relaxation goes on as if it had not been tried. Default true
     /// (docs/friction.md, "The mechanism's fixed point").
     pub mechanism_step: bool,
 }
@@ -119,8 +118,9 @@ impl Default for NonAssociativeSettings {
 /// docs/friction.md).
 const FIRST_PROPOSAL: u32 = 3;
 
-/// Proposals from one start that found no fixed point or were not verified, after which that
-/// start only relaxes (on the 3-bay arcade every proposal fails: docs/performance.md).
+/// Mechanism steps from one start that were not verified (two programs each), after which
+/// that start only relaxes (the 3-bay arcade's starts verify at their second to fourth:
+/// docs/friction.md).
 const MAX_FAILED_PROPOSALS: u32 = 5;
 
 /// The smallest relaxation factor the oscillation damping goes down to.

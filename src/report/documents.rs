@@ -258,7 +258,9 @@ fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
         }
         sec.items(na.starts.iter().map(|s| {
             let l = s.lambda.map_or("none".to_string(), |l| format!("{l:.6}"));
-            let how = if s.converged {
+            let how = if let Some(by) = s.settled_by {
+                format!("converged ({})", by.as_str().replace('_', " "))
+            } else if s.converged {
                 "converged".to_string()
             } else {
                 format!(

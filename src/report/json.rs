@@ -839,6 +839,9 @@ pub struct NonAssociativeStartReport {
     pub lambda: Option<f64>,
     pub iterations: u32,
     pub converged: bool,
+    /// Added: how it settled, `relaxation` or `mechanism_step` (docs/friction.md, "The
+    /// mechanism's fixed point"); null when it did not.
+    pub settled_by: Option<&'static str>,
 }
 
 impl AnalysisReport {
@@ -876,6 +879,7 @@ impl AnalysisReport {
                 lambda: s.lambda,
                 iterations: s.iterations,
                 converged: s.converged,
+                settled_by: s.settled_by.map(|b| b.as_str()),
             })
             .collect();
         self.non_associative_note = Some(super::words::non_associative_words(na));

@@ -25,7 +25,7 @@ pub mod simplex;
 pub use chain::{analyse_chain, declines, Declined};
 pub use friction::{slipping_joints, FrictionCheck, SLIP_TOL};
 pub use non_associative::{
-    analyse_non_associative, NonAssociative, NonAssociativeSettings, Start, StartOutcome,
+    analyse_non_associative, NonAssociative, NonAssociativeSettings, SettledBy, Start, StartOutcome,
 };
 
 pub use crate::outcome::{Direction, Status, LAMBDA_CAP};

@@ -153,6 +153,26 @@ impl Start {
     }
 }
 
+/// How a start settled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SettledBy {
+    /// Two programs in a row with the same multiplier, the second a fixed point of the
+    /// capacities of the first.
+    Relaxation,
+    /// A verified mechanism step ([`NonAssociativeSettings::mechanism_step`]).
+    MechanismStep,
+}
+
+impl SettledBy {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SettledBy::Relaxation => "relaxation",
+            SettledBy::MechanismStep => "mechanism_step",
+        }
+    }
+}
+
 /// One start's iteration.
 #[derive(Debug, Clone)]
 pub struct StartOutcome {
@@ -163,6 +183,8 @@ pub struct StartOutcome {
     pub iterations: u32,
     /// Whether it settled (a fixed point, to the tolerance).
     pub converged: bool,
+    /// How it settled (None when it did not).
+    pub settled_by: Option<SettledBy>,
     /// Why it stopped, when it did not converge.
     pub stopped: Option<String>,
 }
@@ -754,6 +776,7 @@ fn iterate_from(
                     lambda: Some(lambda),
                     iterations: programs,
                     converged: true,
+                    settled_by: Some(SettledBy::Relaxation),
                     stopped: None,
                 },
                 Some(it.result),
@@ -786,6 +809,7 @@ fn iterate_from(
                             lambda: Some(found.lambda),
                             iterations: programs,
                             converged: true,
+                            settled_by: Some(SettledBy::MechanismStep),
                             stopped: None,
                         },
                         Some(found.result),
@@ -807,6 +831,7 @@ fn iterate_from(
             lambda: last.as_ref().and_then(|r| r.lambda),
             iterations: programs,
             converged: false,
+            settled_by: None,
             stopped: Some(stopped),
         },
         None,

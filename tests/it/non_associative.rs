@@ -10,7 +10,9 @@ use voussoir::assembly::{Assembly, Joint, JointKind};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
 use voussoir::scene::Scene;
-use voussoir::statics::{self, Direction, NonAssociativeSettings, StaticSettings, Status};
+use voussoir::statics::{
+    self, Direction, NonAssociativeSettings, SettledBy, StaticSettings, Status,
+};
 
 /// The associative static result and the non-associative multiplier of `model`.
 fn both(model: &Model, direction: Direction) -> (statics::StaticResult, statics::NonAssociative) {
@@ -361,6 +363,14 @@ fn the_command_line_says_where_the_three_values_sit() {
         .filter_map(|s| s["start"].as_str())
         .collect();
     assert_eq!(starts, ["associative", "least_friction", "at_rest"]);
+    // How each start settled: a converged start says how, one that did not says null.
+    for s in v["non_associative_starts"].as_array().expect("starts") {
+        match (s["converged"].as_bool(), s["settled_by"].as_str()) {
+            (Some(true), Some("relaxation" | "mechanism_step")) => {}
+            (Some(false), None) => assert!(s["settled_by"].is_null()),
+            other => panic!("start {s}: {other:?}"),
+        }
+    }
     assert!(v["non_associative_sliding_joints"].is_array());
     assert!(v["non_associative_note"]
         .as_str()
@@ -739,11 +749,25 @@ fn the_mechanisms_fixed_point_is_a_complete_non_associative_solution() {
             "{name}"
         );
         assert!(step.iterations < relaxed.iterations, "{name}");
+        // Each start says how it settled; the relaxation alone never by a step.
+        for st in step.starts.iter().chain(&relaxed.starts) {
+            assert_eq!(st.converged, st.settled_by.is_some(), "{name}");
+        }
+        assert!(relaxed
+            .starts
+            .iter()
+            .all(|st| st.settled_by != Some(SettledBy::MechanismStep)));
         let r = step.result.as_ref().expect("retained solution");
         assert!(
             r.solver_status.contains("fixed point of the mechanism"),
             "{name}: a proposal is what was retained here: {}",
             r.solver_status
+        );
+        assert!(
+            step.starts
+                .iter()
+                .any(|st| st.settled_by == Some(SettledBy::MechanismStep)
+                    && st.lambda == Some(lambda))
         );
         assert!(
             check_complete_solution(&model, r, lambda) > 0,

@@ -71,11 +71,12 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 fn print_starts(indent: &str, starts: &[statics::StartOutcome]) {
     for st in starts {
         println!(
-            "{indent}start {:<15} lambda {:>10} programs {:>4} converged {}",
+            "{indent}start {:<15} lambda {:>10} programs {:>4} settled by {}",
             st.start.as_str(),
             st.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
             st.iterations,
-            st.converged
+            st.settled_by
+                .map_or("nothing (not converged)", |b| b.as_str())
         );
     }
 }

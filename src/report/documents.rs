@@ -260,8 +260,6 @@ fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
             let l = s.lambda.map_or("none".to_string(), |l| format!("{l:.6}"));
             let how = if let Some(by) = s.settled_by {
                 format!("converged ({})", by.as_str().replace('_', " "))
-            } else if s.converged {
-                "converged".to_string()
             } else {
                 format!(
                     "not converged ({})",

@@ -30,7 +30,7 @@
 //! capacities, so an equilibrium that obeys Coulomb's law and has no duality gap with `y` in
 //! the program of its own capacities (`S_j = mu_j N_j`) is an optimum of that program and
 //! reproduces them: a fixed point. The gap is linear in the equilibrium, so the step solves
-//! one linear program, the associative program minimising it ([`propose`]), and the next
+//! one linear program, the associative program minimising it (`propose`), and the next
 //! program verifies the answer. Where it does not verify, the iteration relaxes as below
 //! (docs/friction.md).
 //!
@@ -77,7 +77,8 @@ use std::time::Instant;
 #[derive(Debug, Clone, PartialEq)]
 pub struct NonAssociativeSettings {
     /// The most iterations from one start (one program each, two for
-    /// [`Start::LeastFriction`]). Default 100.
+    /// [`Start::LeastFriction`], and two more for each mechanism step tried, at most
+    /// `MAX_FAILED_PROPOSALS` = 10 of them that fail). Default 100.
     pub max_iterations: u32,
     /// Relative change of the multiplier, and mismatch of the normal forces (over the largest
     /// one), below which the iteration has settled. Default 1e-6.
@@ -92,7 +93,7 @@ pub struct NonAssociativeSettings {
     /// interior point's (docs/friction.md).
     pub simplex: bool,
     /// From a start's third iteration on, after a program solved by Clarabel (linear: no
-    /// crushing cones), try the fixed point of its mechanism ([`propose`], one more program)
+    /// crushing cones), try the fixed point of its mechanism (`propose`, one more program)
     /// and verify it by the program of its capacities (another): verified, it is the start's
     /// answer; otherwise the relaxation goes on as if it had not been tried. Default true
     /// (docs/friction.md, "The mechanism's fixed point").
@@ -119,9 +120,10 @@ impl Default for NonAssociativeSettings {
 const FIRST_PROPOSAL: u32 = 3;
 
 /// Mechanism steps from one start that were not verified (two programs each), after which
-/// that start only relaxes (the 3-bay arcade's starts verify at their second to fourth:
-/// docs/friction.md).
-const MAX_FAILED_PROPOSALS: u32 = 5;
+/// that start only relaxes. The 3-bay arcade's starts verify at their third, fifth and fifth
+/// step (docs/friction.md); the budget leaves room beyond that, at a cost of at most 20
+/// programs to a start where no step verifies.
+const MAX_FAILED_PROPOSALS: u32 = 10;
 
 /// The smallest relaxation factor the oscillation damping goes down to.
 const MIN_RELAXATION: f64 = 1.0 / 64.0;
@@ -179,7 +181,8 @@ pub struct StartOutcome {
     pub start: Start,
     /// The multiplier of the last program solved (None when none was solved).
     pub lambda: Option<f64>,
-    /// Programs solved from this start (two per iteration for [`Start::LeastFriction`]).
+    /// Programs solved from this start (two per iteration for [`Start::LeastFriction`], two
+    /// per mechanism step tried).
     pub iterations: u32,
     /// Whether it settled (a fixed point, to the tolerance).
     pub converged: bool,
@@ -242,14 +245,15 @@ struct Iterate {
     result: StaticResult,
     /// Programs solved for it.
     programs: u32,
-    /// The largest-multiplier program and its interior-point solution, when Clarabel solved
-    /// it (the mechanism [`propose`] starts from, and the duals a verified proposal reads).
+    /// The largest-multiplier program and its duals, when Clarabel solved it (the mechanism
+    /// a step starts from, and the duals a verified proposal reads).
     dual: Option<Dual>,
 }
 
-/// A program solved by Clarabel: the program and its cone duals `z`.
+/// A program solved by Clarabel: the program, how Clarabel ended, and its cone duals `z`.
 struct Dual {
     problem: StaticProblem,
+    status: SolverStatus,
     z: Vec<f64>,
 }
 
@@ -527,7 +531,11 @@ fn solve_fixed(
         1 + u32::from(least_friction),
     )?;
     iterate.result.solve_time_s = start.elapsed().as_secs_f64();
-    iterate.dual = Some(Dual { problem, z: sol.z });
+    iterate.dual = Some(Dual {
+        problem,
+        status: sol.status,
+        z: sol.z,
+    });
     Ok(Some(iterate))
 }
 
@@ -584,7 +592,7 @@ fn fixed_point(model: &Model, nbar: &[f64], it: &Iterate, tol: f64) -> bool {
         })
 }
 
-/// A fixed point proposed from a mechanism ([`propose`]): its multiplier, its forces and the
+/// A fixed point proposed from a mechanism (`propose`): its multiplier, its forces and the
 /// program's primal solution (the columns of the static program of `model`).
 struct Proposal {
     lambda: f64,
@@ -592,7 +600,7 @@ struct Proposal {
     x: Vec<f64>,
 }
 
-/// The weight of the multiplier beside the duality gap in [`propose`]'s objective (the duals
+/// The weight of the multiplier beside the duality gap in `propose`'s objective (the duals
 /// scaled to a largest of 1): a tie-break toward the least multiplier among the equilibria
 /// of (nearly) no gap.
 const PROPOSAL_LAMBDA_WEIGHT: f64 = 1e-6;
@@ -604,7 +612,8 @@ const PROPOSAL_LAMBDA_WEIGHT: f64 = 1e-6;
 /// forces, `S_j = mu_j N_j`, and on every inequality row that program's slack is the
 /// associative program's `s_i(x)` (`mu N -+ V`, `c`, ...). The duality gap of `x` and `y` in
 /// that program is `sum_i y_i s_i(x) >= 0`: where it is 0, `x` is an optimum of the program
-/// of its own capacities, and reproduces them: a fixed point of the iteration. So the step
+/// of its own capacities (with `y` its mechanism): a complete solution of the
+/// non-associative problem. So the step
 /// solves one linear program, the associative program (Coulomb's law, the multiplier free up
 /// to its cap) minimising `sum_i y_i s_i(x)` (`y` over its largest), plus
 /// [`PROPOSAL_LAMBDA_WEIGHT`] times the multiplier. No row is classified as tight or loose:
@@ -628,7 +637,6 @@ fn propose(
     // changes a row's entries, not the rows), so the duals carry over; second-order cones
     // (crushing) are left out.
     if dual.problem.cone_rows > 0
-        || associative.cone_rows > 0
         || associative.inequality_rows != ineq
         || associative.equality_rows != eq
     {
@@ -653,7 +661,7 @@ fn propose(
     associative.q = q;
     let sol = run(&associative, settings)?;
     if sol.status != SolverStatus::Solved {
-        return Ok(Proposed::None);
+        return Ok(Proposed::Unsolved);
     }
     let forces = read_forces(&model.assembly, &associative, &sol.x);
     Ok(Proposed::Found(Proposal {
@@ -663,31 +671,33 @@ fn propose(
     }))
 }
 
-/// What [`propose`] gave.
+/// What `propose` gave.
 enum Proposed {
-    /// Nothing solved: the program has second-order cones (crushing), or no dual weighs.
+    /// Nothing solved: the program has second-order cones (crushing), its rows do not match
+    /// the associative program's, or no dual weighs.
     NotTried,
     /// The proposal's program did not end solved.
-    None,
+    Unsolved,
     Found(Proposal),
 }
 
 /// One mechanism step from the program whose Clarabel solution is `dual`: the proposal
-/// ([`propose`]), then the program with the capacities of its normal forces, which verifies
-/// it. Returns the programs solved (0: nothing to propose from) and the verified fixed point:
-/// the proposal's forces, an optimum of the verifying program (its multiplier the proposal's
-/// to `tol`, and the proposal a fixed point of its capacities), with that program's duals as
-/// the mechanism.
+/// (`propose`), then the program with the capacities of its normal forces, which verifies
+/// it. Returns the programs solved (0: nothing to propose from) and the verified solution:
+/// the proposal's forces, an optimum of the verifying program (which ended solved with the
+/// proposal's multiplier to `tol`; the proposal obeys Coulomb's law, so it is feasible
+/// there), with that program's duals as the mechanism. The step is tried aside: a solver
+/// error in either program is a step that did not verify, not an error of the analysis.
 fn mechanism_step(
     model: &Model,
     settings: &StaticSettings,
     dual: &Dual,
     tol: f64,
 ) -> Result<(u32, Option<Iterate>), AnalysisError> {
-    let p = match propose(model, settings, dual)? {
-        Proposed::NotTried => return Ok((0, None)),
-        Proposed::None => return Ok((1, None)),
-        Proposed::Found(p) => p,
+    let p = match propose(model, settings, dual) {
+        Ok(Proposed::NotTried) => return Ok((0, None)),
+        Ok(Proposed::Unsolved) | Err(_) => return Ok((1, None)),
+        Ok(Proposed::Found(p)) => p,
     };
     let nbar: Vec<f64> = p.forces.iter().map(|f| f.n).collect();
     let capacity: Vec<f64> = model
@@ -698,13 +708,15 @@ fn mechanism_step(
         .map(|(j, n)| j.friction * n.max(0.0))
         .collect();
     // By Clarabel (no chain, no simplex): the check reads its duals.
-    let Some(verify) = solve_fixed(model, settings, None, None, &capacity, false)? else {
+    let Ok(Some(verify)) = solve_fixed(model, settings, None, None, &capacity, false) else {
         return Ok((2, None));
     };
     let Some(verifying) = verify.dual.as_ref() else {
         return Ok((2, None));
     };
-    if (verify.lambda - p.lambda).abs() > tol * verify.lambda.abs().max(1.0) {
+    if verifying.status != SolverStatus::Solved
+        || (verify.lambda - p.lambda).abs() > tol * verify.lambda.abs().max(1.0)
+    {
         return Ok((2, None));
     }
     let iterate = read_fixed(
@@ -796,8 +808,13 @@ fn iterate_from(
         }
         // The fixed point of this program's mechanism, tried aside: verified, it is the
         // answer; otherwise the relaxation goes on as if it had not been tried.
-        let proposing =
-            na.mechanism_step && iterations >= FIRST_PROPOSAL && failed < MAX_FAILED_PROPOSALS;
+        // Not on the active set's or the simplex's path, even for a program either hands to
+        // Clarabel: those paths relax (docs/friction.md).
+        let proposing = na.mechanism_step
+            && chain.is_none()
+            && lp.is_none()
+            && iterations >= FIRST_PROPOSAL
+            && failed < MAX_FAILED_PROPOSALS;
         if let (true, Some(dual)) = (proposing, &it.dual) {
             let (tried, found) = mechanism_step(model, settings, dual, na.tolerance)?;
             programs += tried;
@@ -815,7 +832,8 @@ fn iterate_from(
                         Some(found.result),
                     ));
                 }
-                // Nothing to propose from, now or later (a conic program).
+                // Nothing to propose from, now or later (a conic program, rows that do not
+                // match, or no dual to weigh them).
                 None if tried == 0 => failed = MAX_FAILED_PROPOSALS,
                 None => failed += 1,
             }

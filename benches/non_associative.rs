@@ -142,50 +142,42 @@ fn main() {
             t_na / t_assoc
         );
         print_starts("    ", &na.starts);
-        // The relaxation alone (`NonAssociativeSettings::mechanism_step` off), one run.
-        let plain = NonAssociativeSettings {
-            mechanism_step: false,
-            ..na_settings.clone()
-        };
-        let (t_plain, relaxed) = timed(1, || {
-            statics::analyse_non_associative(&m, &settings, &a, &plain)
-        });
-        let relaxed = match relaxed {
-            Ok(n) => n,
-            Err(e) => panic!("{name}: {e}"),
-        };
-        println!(
-            "    relaxation only: {:.3} ms, lambda {}, {} programs, {:.1} x assoc",
-            1e3 * t_plain,
-            relaxed
-                .lambda
-                .map_or("none".to_string(), |l| format!("{l:.6}")),
-            relaxed.iterations,
-            t_plain / t_assoc
-        );
-        print_starts("        ", &relaxed.starts);
-        if !name.starts_with("semicircle") && std::env::var_os("VOUSSOIR_BENCH_SIMPLEX").is_some() {
-            // The warm-started dual simplex path (`NonAssociativeSettings::simplex`), one run
-            // (minutes on the arcade: only with VOUSSOIR_BENCH_SIMPLEX set).
-            let lp_settings = NonAssociativeSettings {
-                simplex: true,
-                ..na_settings.clone()
-            };
-            let (t_lp, lp) = timed(1, || {
-                statics::analyse_non_associative(&m, &settings, &a, &lp_settings)
+        // One run of a variant of the iteration, printed against the associative solve.
+        let variant = |label: &str, na: NonAssociativeSettings| {
+            let (t, out) = timed(1, || {
+                statics::analyse_non_associative(&m, &settings, &a, &na)
             });
-            let lp = match lp {
+            let out = match out {
                 Ok(n) => n,
-                Err(e) => panic!("{name}: {e}"),
+                Err(e) => panic!("{name}, {label}: {e}"),
             };
             println!(
-                "    simplex path: {:.3} ms, lambda {}, {} programs, {:.1} x assoc",
-                1e3 * t_lp,
-                lp.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
-                lp.iterations,
-                t_lp / t_assoc
+                "    {label}: {:.3} ms, lambda {}, {} programs, {:.1} x assoc",
+                1e3 * t,
+                out.lambda.map_or("none".to_string(), |l| format!("{l:.6}")),
+                out.iterations,
+                t / t_assoc
             );
-            print_starts("        ", &lp.starts);
+            print_starts("        ", &out.starts);
+        };
+        // The relaxation alone (`NonAssociativeSettings::mechanism_step` off).
+        variant(
+            "relaxation only",
+            NonAssociativeSettings {
+                mechanism_step: false,
+                ..na_settings.clone()
+            },
+        );
+        if !name.starts_with("semicircle") && std::env::var_os("VOUSSOIR_BENCH_SIMPLEX").is_some() {
+            // The warm-started dual simplex path (`NonAssociativeSettings::simplex`; minutes
+            // on the arcade: only with VOUSSOIR_BENCH_SIMPLEX set).
+            variant(
+                "simplex path",
+                NonAssociativeSettings {
+                    simplex: true,
+                    ..na_settings.clone()
+                },
+            );
         }
     }
 }

@@ -878,7 +878,7 @@ impl AnalysisReport {
                 start: s.start.as_str(),
                 lambda: s.lambda,
                 iterations: s.iterations,
-                converged: s.converged,
+                converged: s.converged(),
                 settled_by: s.settled_by.map(|b| b.as_str()),
             })
             .collect();

@@ -184,12 +184,34 @@ pub struct StartOutcome {
     /// Programs solved from this start (two per iteration for [`Start::LeastFriction`], two
     /// per mechanism step tried).
     pub iterations: u32,
-    /// Whether it settled (a fixed point, to the tolerance).
-    pub converged: bool,
     /// How it settled (None when it did not).
     pub settled_by: Option<SettledBy>,
     /// Why it stopped, when it did not converge.
     pub stopped: Option<String>,
+}
+
+impl StartOutcome {
+    /// Whether it settled (a fixed point, to the tolerance).
+    pub fn converged(&self) -> bool {
+        self.settled_by.is_some()
+    }
+
+    /// A start that settled `by` on `result` after `programs` programs.
+    fn settled(
+        start: Start,
+        result: StaticResult,
+        programs: u32,
+        by: SettledBy,
+    ) -> (StartOutcome, Option<StaticResult>) {
+        let outcome = StartOutcome {
+            start,
+            lambda: result.lambda,
+            iterations: programs,
+            settled_by: Some(by),
+            stopped: None,
+        };
+        (outcome, Some(result))
+    }
 }
 
 /// The non-associative multiplier of a model.
@@ -568,6 +590,18 @@ impl StaticResult {
     }
 }
 
+/// The shear capacities `S_j = mu_j N_j` (N) of the normal forces `n` (N, joint order; a
+/// negative one counts as 0).
+fn capacities(model: &Model, n: &[f64]) -> Vec<f64> {
+    model
+        .assembly
+        .joints
+        .iter()
+        .zip(n)
+        .map(|(j, n)| j.friction * n.max(0.0))
+        .collect()
+}
+
 /// Whether `it`, solved with the capacities of normal forces `nbar`, is a fixed point to
 /// `tol`: Coulomb's law holds with its own normal forces, and every joint whose shear reaches
 /// its capacity carries the normal force the capacity was set from.
@@ -700,13 +734,7 @@ fn mechanism_step(
         Ok(Proposed::Found(p)) => p,
     };
     let nbar: Vec<f64> = p.forces.iter().map(|f| f.n).collect();
-    let capacity: Vec<f64> = model
-        .assembly
-        .joints
-        .iter()
-        .zip(&nbar)
-        .map(|(j, n)| j.friction * n.max(0.0))
-        .collect();
+    let capacity = capacities(model, &nbar);
     // By Clarabel (no chain, no simplex): the check reads its duals.
     let Ok(Some(verify)) = solve_fixed(model, settings, None, None, &capacity, false) else {
         return Ok((2, None));
@@ -745,7 +773,6 @@ fn iterate_from(
     start: Start,
     n0: Vec<f64>,
 ) -> Result<(StartOutcome, Option<StaticResult>), AnalysisError> {
-    let mu: Vec<f64> = model.assembly.joints.iter().map(|j| j.friction).collect();
     let mut nbar = n0;
     let mut beta = na.relaxation;
     let mut lambdas: Vec<f64> = Vec::new();
@@ -758,7 +785,7 @@ fn iterate_from(
     let mut failed = 0;
     while iterations < na.max_iterations {
         iterations += 1;
-        let capacity: Vec<f64> = nbar.iter().zip(&mu).map(|(n, m)| m * n.max(0.0)).collect();
+        let capacity = capacities(model, &nbar);
         let least = start == Start::LeastFriction;
         let Some(it) = solve_fixed(
             model,
@@ -781,17 +808,11 @@ fn iterate_from(
         }) && fixed_point(model, &nbar, &it, na.tolerance);
         lambdas.push(it.lambda);
         if settled {
-            let lambda = it.lambda;
-            return Ok((
-                StartOutcome {
-                    start,
-                    lambda: Some(lambda),
-                    iterations: programs,
-                    converged: true,
-                    settled_by: Some(SettledBy::Relaxation),
-                    stopped: None,
-                },
-                Some(it.result),
+            return Ok(StartOutcome::settled(
+                start,
+                it.result,
+                programs,
+                SettledBy::Relaxation,
             ));
         }
         // Damp an oscillation: successive increments of opposite signs, twice in a row.
@@ -820,16 +841,11 @@ fn iterate_from(
             programs += tried;
             match found {
                 Some(found) => {
-                    return Ok((
-                        StartOutcome {
-                            start,
-                            lambda: Some(found.lambda),
-                            iterations: programs,
-                            converged: true,
-                            settled_by: Some(SettledBy::MechanismStep),
-                            stopped: None,
-                        },
-                        Some(found.result),
+                    return Ok(StartOutcome::settled(
+                        start,
+                        found.result,
+                        programs,
+                        SettledBy::MechanismStep,
                     ));
                 }
                 // Nothing to propose from, now or later (a conic program, rows that do not
@@ -848,7 +864,6 @@ fn iterate_from(
             start,
             lambda: last.as_ref().and_then(|r| r.lambda),
             iterations: programs,
-            converged: false,
             settled_by: None,
             stopped: Some(stopped),
         },
@@ -887,13 +902,7 @@ pub fn analyse_non_associative(
     };
     let n_associative: Vec<f64> = forces.iter().map(|f| f.n).collect();
     let chain = FixedShearChain::new(model, settings);
-    let capacity: Vec<f64> = model
-        .assembly
-        .joints
-        .iter()
-        .zip(&n_associative)
-        .map(|(j, n)| j.friction * n.max(0.0))
-        .collect();
+    let capacity = capacities(model, &n_associative);
     let lp = na
         .simplex
         .then(|| FixedShearLp::new(model, settings, chain.is_some(), &capacity))
@@ -931,7 +940,7 @@ pub fn analyse_non_associative(
     for found in outcomes {
         let (outcome, result) = found?;
         out.iterations += outcome.iterations;
-        if let (true, Some(r)) = (outcome.converged, result) {
+        if let (true, Some(r)) = (outcome.converged(), result) {
             let value = |x: &StaticResult| x.lambda.unwrap_or(f64::INFINITY);
             if best.as_ref().is_none_or(|b| value(&r) < value(b)) {
                 best = Some(r);

@@ -146,7 +146,7 @@ fn two_blocks_side_by_side_rock_at_b_over_h_but_the_associative_joint_reaches_hi
                 .find(|s| s.start == statics::Start::LeastFriction)
                 .expect("the least-friction start ran");
             assert!(
-                least.converged && least.lambda == na.lambda,
+                least.converged() && least.lambda == na.lambda,
                 "{:?}",
                 na.starts
             );
@@ -330,7 +330,7 @@ fn an_iteration_that_does_not_settle_gives_no_multiplier() {
     assert!(na
         .starts
         .iter()
-        .all(|s| !s.converged && s.stopped.is_some()));
+        .all(|s| !s.converged() && s.stopped.is_some()));
     assert!(
         na.starts.iter().all(|s| s.lambda.is_some()),
         "the last iterates are kept"
@@ -460,8 +460,8 @@ fn the_chain_path_gives_the_full_programs_multiplier() {
                         assert_eq!(chain.converged, full.converged, "{text} {d:?}");
                         for (c, f) in chain.starts.iter().zip(&full.starts) {
                             assert_eq!(
-                                (c.start, c.converged, c.iterations),
-                                (f.start, f.converged, f.iterations),
+                                (c.start, c.converged(), c.iterations),
+                                (f.start, f.converged(), f.iterations),
                                 "{text} {d:?}"
                             );
                         }
@@ -754,10 +754,7 @@ fn the_mechanisms_fixed_point_is_a_complete_non_associative_solution() {
             "{name}"
         );
         assert!(step.iterations < relaxed.iterations, "{name}");
-        // Each start says how it settled; the relaxation alone never by a step.
-        for st in step.starts.iter().chain(&relaxed.starts) {
-            assert_eq!(st.converged, st.settled_by.is_some(), "{name}");
-        }
+        // The relaxation alone never settles by a step.
         assert!(relaxed
             .starts
             .iter()

@@ -412,10 +412,10 @@ fn the_simplex_path_converges_on_a_solution_near_the_full_programs() {
                 c.start.as_str(),
                 c.lambda,
                 c.iterations,
-                c.converged,
+                c.converged(),
                 f.lambda,
                 f.iterations,
-                f.converged
+                f.converged()
             );
         }
         let l = lp

@@ -82,7 +82,8 @@ def main():
         durations = [
             ss["stop"] - ss["start"]
             for task in ts.data
-            if str(task.get("key", "")).startswith("fragility_runs")
+            # map_chunked's chunks run as `_packed` (before: as the run function itself).
+            if str(task.get("key", "")).startswith(("fragility_runs", "_packed"))
             for ss in task["startstops"]
             if ss["action"] == "compute"
         ]

@@ -14,8 +14,9 @@ latency a chunk pays, an upper bound of its share of a pipelined stream of tasks
 measured here: the first cases run locally, in chunks of 1, 4, 16, ... cases until
 ``pilot_s`` seconds have passed (one case at least), and are kept as the first rows (no case runs twice). The
 rest is cut into chunks of ``m`` cases (the last one shorter), and each chunk's rows come
-back as soon as it is done; the rows are returned in case order, so the answer is the local
-one row for row.
+back as soon as it is done, as one pickle (``_packed``: a list returned as it is would be
+serialised element by element and decoded one element at a time by the client); the rows are
+returned in case order, so the answer is the local one row for row.
 
 dask is imported only when a client is given: it is no dependency of the package (the
 ``dask`` extra installs it); the progress bar is tqdm's when tqdm is installed, a line of
@@ -25,6 +26,7 @@ text on stderr otherwise.
 from __future__ import annotations
 
 import math
+import pickle
 import statistics
 import sys
 import time
@@ -126,6 +128,18 @@ def _bar(total: int, desc: str, progress: bool):
     return tqdm(total=total, desc=desc, unit="case")
 
 
+def _packed(lo: int, hi: int, *, _run: Callable[..., List[Any]], **kwargs: Any) -> bytes:
+    """``_run(lo, hi, **kwargs)`` on a worker, its list of results returned as one pickle.
+
+    Why: a list returned as it is travels element by element through Dask's serialisation,
+    and the client decodes it in its one communication thread: about 30 us a row for a
+    sweep's rows (dicts of a dozen fields), which made the client the bottleneck of every
+    cluster (a 97,971-case sweep took 6 s on 1 and on 16 workers; docs/performance.md,
+    "Sweeps on Dask"). One pickle is one frame, unpickled on the client in a fraction of
+    that."""
+    return pickle.dumps(_run(lo, hi, **kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+
+
 def map_chunked(
     client: Any,
     cases: int,
@@ -184,12 +198,17 @@ def map_chunked(
         parts: Dict[int, List[Any]] = {}
         if bounds:
             futures = client.map(
-                run, [b[0] for b in bounds], [b[1] for b in bounds], pure=False, **kwargs
+                _packed,
+                [b[0] for b in bounds],
+                [b[1] for b in bounds],
+                pure=False,
+                _run=run,
+                **kwargs,
             )
             index = {f.key: k for k, f in enumerate(futures)}
             for future in as_completed(futures):
                 k = index[future.key]
-                part = future.result()
+                part = pickle.loads(future.result())
                 lo, hi = bounds[k]
                 if len(part) != hi - lo:
                     raise RuntimeError(

@@ -6,6 +6,9 @@
 //!   crosses each joint (`drawing::thrust_points`), joined in joint order;
 //! - hinges as circles at the joint end where the resultant (or the rotation centre) sits,
 //!   numbered 1, 2, ... in the order given (chain order, the order of the text summary);
+//!   a number with no free place beside its circle (clear of the loads, the other circles
+//!   and the other numbers) is left out, and the legend counts those (an arcade or a wall
+//!   with a hundred hinges);
 //! - sliding joints as thick orange segments;
 //! - supports: ground hatching on the ground side of every joint to the ground;
 //! - fixed blocks (`[blocks] fixed`: a base, an abutment) shaded grey and hatched, behind the
@@ -325,6 +328,14 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     let bar_y = top + plot_h + 2.0 * pad + 12.0;
     let bar_right = (frame.cx + 0.5 * plot_w).min(width as f64 - margin);
 
+    // The loads' marks and the hinges' numbers are placed before the legend, which counts
+    // the numbers left out.
+    let marks_svg = marks.as_ref().map(|mk| marks_svg(mk, scale, &frame));
+    let load_boxes: Vec<Vec<Px>> = marks_svg
+        .as_ref()
+        .map_or_else(Vec::new, |m| m.boxes.clone());
+    let (numbers, unnumbered) = hinge_numbers(assembly, drawing.hinges, &frame, &load_boxes);
+
     let mut legend = Vec::new();
     let blocks_label = if drawing.moved.is_some() {
         "initial positions (to scale)"
@@ -360,7 +371,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     if !drawing.hinges.is_empty() {
         legend.push((
             Glyph::Hinge,
-            format!("hinge ({}), numbered along the chain", drawing.hinges.len()),
+            hinge_words(drawing.hinges.len(), joined, unnumbered),
         ));
         if drawing.hinges.iter().any(|h| h.compressed_zone > 0.0) {
             legend.push((
@@ -632,63 +643,12 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
         }
     }
 
-    // Where the loads are drawn: hinge numbers keep clear of them.
-    let mut load_boxes: Vec<Vec<Px>> = Vec::new();
-    if let Some(mk) = &marks {
-        let labels = mk.labels(scale);
-        let mut text = String::new();
-        for (line, label) in mk.lines.iter().zip(&labels[mk.points.len()..]) {
-            let tails: Vec<String> = line
-                .tails
-                .iter()
-                .map(|p| {
-                    let (x, y) = frame.pxf(*p);
-                    format!("{x:.1},{y:.1}")
-                })
-                .collect();
-            text.push_str(&format!(
-                "<g class=\"line-load\">\n<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" \
-                 stroke-linejoin=\"round\" points=\"{}\"/>\n",
-                hex(LOAD),
-                tails.join(" ")
-            ));
-            for (tail, tip) in &line.arrows {
-                text.push_str(&arrow_svg(
-                    frame.pxf(*tail),
-                    frame.pxf(*tip),
-                    LOAD,
-                    1.5,
-                    7.0,
-                ));
-            }
-            let (x, y) = frame.pxf(label.centre);
-            text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
-            text.push_str("</g>\n");
-            for (tail, tip) in &line.arrows {
-                load_boxes.push(
-                    Rect::around(&[frame.pxf(*tip), frame.pxf(*tail)])
-                        .grown(4.0)
-                        .corners(),
-                );
-            }
-            load_boxes.push(label.rect(&frame).corners());
+    if let Some(marks) = &marks_svg {
+        if !marks.lines.is_empty() {
+            svg.raw("line-loads", &marks.lines);
         }
-        if !text.is_empty() {
-            svg.raw("line-loads", &text);
-        }
-        let mut text = String::new();
-        for (p, label) in mk.points.iter().zip(&labels) {
-            let (tail, tip) = (frame.pxf(p.tail), frame.pxf(p.tip));
-            text.push_str("<g class=\"point-load\">\n");
-            text.push_str(&arrow_svg(tail, tip, LOAD, 2.5, 12.0));
-            let (x, y) = frame.pxf(label.centre);
-            text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
-            text.push_str("</g>\n");
-            load_boxes.push(Rect::around(&[tail, tip]).grown(7.0).corners());
-            load_boxes.push(label.rect(&frame).corners());
-        }
-        if !text.is_empty() {
-            svg.raw("point-loads", &text);
+        if !marks.points.is_empty() {
+            svg.raw("point-loads", &marks.points);
         }
     }
     obstacles.extend(load_boxes.iter().cloned());
@@ -716,51 +676,26 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             }
             Ok(())
         })?;
-        // Numbers beside the circles, away from the joint's middle (outside the extrados,
-        // inside the intrados) unless a load or another number is there, in the order
-        // given: the order of the text summary.
         let mut text = String::new();
-        let half = 0.5 * HINGE_FONT + 1.0;
-        for (i, h) in drawing.hinges.iter().enumerate() {
-            let at = frame.pxf(Vec2::new(h.x, h.y));
-            let m = frame.pxf(assembly.joints[h.joint].midpoint());
-            let (dx, dy) = (at.0 - m.0, at.1 - m.1);
-            let n = dx.hypot(dy);
-            let (ux, uy) = if n > 1e-9 {
-                (dx / n, dy / n)
-            } else {
-                (0.0, -1.0)
-            };
-            let label = (i + 1).to_string();
-            let place = |deg: f64| {
-                let (s, c) = deg.to_radians().sin_cos();
-                (
-                    at.0 + 17.0 * (c * ux - s * uy),
-                    at.1 + 17.0 * (s * ux + c * uy),
-                )
-            };
-            let (x, y) = [0.0, 45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0]
-                .into_iter()
-                .map(place)
-                .find(|&p| {
-                    let r = Rect::around(&[p]).grown(half);
-                    !load_boxes.iter().any(|o| r.overlaps(o))
-                })
-                .unwrap_or_else(|| place(0.0));
-            load_boxes.push(Rect::around(&[(x, y)]).grown(half).corners());
+        for &(i, (x, y)) in &numbers {
             text.push_str(&format!(
                 "<text class=\"hinge-number\" x=\"{x:.1}\" y=\"{y:.1}\" dy=\"0.35em\" \
                  text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"{HINGE_FONT}\" \
                  font-weight=\"bold\" fill=\"{}\" stroke=\"white\" stroke-width=\"3\" \
-                 stroke-linejoin=\"round\" paint-order=\"stroke\">{label}</text>\n",
-                hex(HINGE)
+                 stroke-linejoin=\"round\" paint-order=\"stroke\">{}</text>\n",
+                hex(HINGE),
+                i + 1
             ));
-            obstacles.push(Rect::around(&[at]).grown(9.0).corners());
+        }
+        for h in drawing.hinges {
             obstacles.push(
-                Rect::around(&[(x, y)])
-                    .grown(0.5 * HINGE_FONT + 2.0)
+                Rect::around(&[frame.pxf(Vec2::new(h.x, h.y))])
+                    .grown(9.0)
                     .corners(),
             );
+        }
+        for &(_, at) in &numbers {
+            obstacles.push(Rect::around(&[at]).grown(0.5 * HINGE_FONT + 2.0).corners());
         }
         svg.raw("hinge-numbers", &text);
     }
@@ -810,6 +745,148 @@ fn factor_words(a: f64) -> String {
         format!("amplified x{}", sig(a))
     } else {
         format!("scaled x{}", sig(a))
+    }
+}
+
+/// The loads' marks as SVG (the line loads' and the point loads' groups) and the boxes, in
+/// pixels, that their arrows and labels cover: hinge numbers and the seismic glyph keep
+/// clear of them.
+struct MarksSvg {
+    lines: String,
+    points: String,
+    boxes: Vec<Vec<Px>>,
+}
+
+fn marks_svg(mk: &LoadMarks, scale: f64, frame: &Frame) -> MarksSvg {
+    let mut load_boxes: Vec<Vec<Px>> = Vec::new();
+    let labels = mk.labels(scale);
+    let mut text = String::new();
+    for (line, label) in mk.lines.iter().zip(&labels[mk.points.len()..]) {
+        let tails: Vec<String> = line
+            .tails
+            .iter()
+            .map(|p| {
+                let (x, y) = frame.pxf(*p);
+                format!("{x:.1},{y:.1}")
+            })
+            .collect();
+        text.push_str(&format!(
+            "<g class=\"line-load\">\n<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" \
+             stroke-linejoin=\"round\" points=\"{}\"/>\n",
+            hex(LOAD),
+            tails.join(" ")
+        ));
+        for (tail, tip) in &line.arrows {
+            text.push_str(&arrow_svg(
+                frame.pxf(*tail),
+                frame.pxf(*tip),
+                LOAD,
+                1.5,
+                7.0,
+            ));
+        }
+        let (x, y) = frame.pxf(label.centre);
+        text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
+        text.push_str("</g>\n");
+        for (tail, tip) in &line.arrows {
+            load_boxes.push(
+                Rect::around(&[frame.pxf(*tip), frame.pxf(*tail)])
+                    .grown(4.0)
+                    .corners(),
+            );
+        }
+        load_boxes.push(label.rect(frame).corners());
+    }
+    let lines = text;
+    let mut text = String::new();
+    for (p, label) in mk.points.iter().zip(&labels) {
+        let (tail, tip) = (frame.pxf(p.tail), frame.pxf(p.tip));
+        text.push_str("<g class=\"point-load\">\n");
+        text.push_str(&arrow_svg(tail, tip, LOAD, 2.5, 12.0));
+        let (x, y) = frame.pxf(label.centre);
+        text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
+        text.push_str("</g>\n");
+        load_boxes.push(Rect::around(&[tail, tip]).grown(7.0).corners());
+        load_boxes.push(label.rect(frame).corners());
+    }
+    MarksSvg {
+        lines,
+        points: text,
+        boxes: load_boxes,
+    }
+}
+
+/// Where the hinges' numbers go: beside each circle, away from the joint's middle (outside
+/// the extrados, inside the intrados) unless a box of `keep_clear`, another hinge's circle or
+/// another number is there, in the order given (the text summary's). Returns each placed
+/// number's hinge (index into `hinges`) and centre, and how many found no free place: those
+/// are left out, since on a wall or an arcade with a hundred hinges numbers on top of each
+/// other read as nothing.
+fn hinge_numbers(
+    assembly: &Assembly,
+    hinges: &[Hinge],
+    frame: &Frame,
+    keep_clear: &[Vec<Px>],
+) -> (Vec<(usize, Px)>, usize) {
+    let half = 0.5 * HINGE_FONT + 1.0;
+    let circles: Vec<Rect> = hinges
+        .iter()
+        .map(|h| Rect::around(&[frame.pxf(Vec2::new(h.x, h.y))]).grown(HINGE_RADIUS))
+        .collect();
+    let mut taken: Vec<Vec<Px>> = keep_clear.to_vec();
+    let mut placed = Vec::new();
+    let mut left_out = 0;
+    for (i, h) in hinges.iter().enumerate() {
+        let at = frame.pxf(Vec2::new(h.x, h.y));
+        let m = frame.pxf(assembly.joints[h.joint].midpoint());
+        let (dx, dy) = (at.0 - m.0, at.1 - m.1);
+        let n = dx.hypot(dy);
+        let (ux, uy) = if n > 1e-9 {
+            (dx / n, dy / n)
+        } else {
+            (0.0, -1.0)
+        };
+        let place = |deg: f64| {
+            let (s, c) = deg.to_radians().sin_cos();
+            (
+                at.0 + 17.0 * (c * ux - s * uy),
+                at.1 + 17.0 * (s * ux + c * uy),
+            )
+        };
+        let free = [0.0, 45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0]
+            .into_iter()
+            .map(place)
+            .find(|&p| {
+                let r = Rect::around(&[p]).grown(half);
+                !taken.iter().any(|o| r.overlaps(o))
+                    && !circles
+                        .iter()
+                        .enumerate()
+                        .any(|(k, c)| k != i && r.overlaps(&c.corners()))
+            });
+        match free {
+            Some(p) => {
+                taken.push(Rect::around(&[p]).grown(half).corners());
+                placed.push((i, p));
+            }
+            None => left_out += 1,
+        }
+    }
+    (placed, left_out)
+}
+
+/// The legend's words for `count` hinges: numbered along the chain (`joined`) or in the
+/// summary's order, and how many numbers found no room.
+fn hinge_words(count: usize, joined: bool, unnumbered: usize) -> String {
+    let order = if joined {
+        "numbered along the chain"
+    } else {
+        "numbered in the summary's order"
+    };
+    match unnumbered {
+        0 => format!("hinge ({count}), {order}"),
+        k if k == count => format!("hinge ({count}; no room for their numbers)"),
+        k => format!("hinge ({count}), {order} ({k} without room for a number)"),
     }
 }
 
@@ -1120,6 +1197,9 @@ const LINE_LOAD_SPACING: f64 = 0.045;
 /// Font size (px) of load labels and hinge numbers.
 const LOAD_FONT: f64 = 13.0;
 const HINGE_FONT: f64 = 13.0;
+/// Half the side of the box a hinge's circle covers (px): its radius 6 and half its
+/// stroke of 3.
+const HINGE_RADIUS: f64 = 7.5;
 
 /// A point load as drawn: an arrow from `tail` to `tip`, the point of application.
 struct PointMark {

@@ -1119,3 +1119,68 @@ fn a_tie_of_no_capacity_is_drawn_as_none() {
         "{words:?}"
     );
 }
+
+/// On the arcade of `data/arcade.toml` (118 hinges) no hinge number covers another number or
+/// another hinge's circle: a number with no free place beside its circle is left out, and
+/// the legend counts those. Each number drawn is its hinge's place in the summary's order,
+/// 17 px from its own circle.
+#[test]
+fn crowded_hinges_keep_their_numbers_apart() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/arcade.toml");
+    let text = std::fs::read_to_string(path).expect("bundled arcade");
+    let m = model_of(&text);
+    let (r, svg_text) = draw("arcade.svg", &m, Direction::Right, "arcade");
+    let doc = Document::parse(&svg_text).expect("well-formed XML");
+    let circles: Vec<(f64, f64)> = children(group(&doc, "hinges"), "circle")
+        .iter()
+        .map(|c| (attr_f(c, "cx"), attr_f(c, "cy")))
+        .collect();
+    assert_eq!(circles.len(), r.hinges.len());
+    assert!(r.hinges.len() > 50, "a crowded drawing: {}", r.hinges.len());
+    let numbers: Vec<(usize, (f64, f64))> = children(group(&doc, "hinge-numbers"), "text")
+        .iter()
+        .map(|t| {
+            let k: usize = t.text().and_then(|s| s.parse().ok()).expect("a number");
+            (k, (attr_f(t, "x"), attr_f(t, "y")))
+        })
+        .collect();
+    let left_out = r.hinges.len() - numbers.len();
+    assert!(
+        left_out > 0 && numbers.len() > 20,
+        "{} of {}",
+        numbers.len(),
+        r.hinges.len()
+    );
+    // A number's box: the font's height (13 px) square plus a pixel; a circle's: radius 6
+    // and half its 3 px stroke.
+    let (half, radius) = (7.5, 7.5);
+    let apart =
+        |p: (f64, f64), q: (f64, f64), by: f64| (p.0 - q.0).abs() >= by || (p.1 - q.1).abs() >= by;
+    for (i, &(k, p)) in numbers.iter().enumerate() {
+        let own = circles[k - 1];
+        let d = (p.0 - own.0).hypot(p.1 - own.1);
+        // The circles' centres are whole pixels (plotters rounds them), the numbers' tenths.
+        assert!(
+            (d - 17.0).abs() < 0.75,
+            "number {k} at {d} px from its hinge"
+        );
+        for (j, &c) in circles.iter().enumerate() {
+            if j != k - 1 {
+                assert!(
+                    apart(p, c, half + radius - 0.5),
+                    "number {k} covers hinge {}",
+                    j + 1
+                );
+            }
+        }
+        for &(l, q) in &numbers[i + 1..] {
+            assert!(apart(p, q, 2.0 * half), "numbers {k} and {l} overlap");
+        }
+    }
+    let t = texts(&doc);
+    let want = format!(
+        "hinge ({}), numbered in the summary's order ({left_out} without room for a number)",
+        r.hinges.len()
+    );
+    assert!(t.contains(&want), "legend lacks {want}: {t:?}");
+}

@@ -23,7 +23,7 @@
 //! | `infinite_friction`     | 1000                        | the Coulomb coefficient used for `friction = inf` |
 //! | `contact_tolerance`     | `1e-3 t`                    | corner rounding: a vertex pressing into an edge still touches it this far beyond the edge's end; also the window for choosing the edge near a corner. Several times the elastic overlaps, and small against any joint |
 //! | `max_lambda`            | 10                          | above this multiplier (84 deg tilt) the structure is said not to collapse |
-//! | `integrator`            | `"auto"`                    | the time stepping: `"explicit"`, penalty contacts with explicit steps at the stability limit, or `"moreau"`, rigid contacts by Moreau-Jean time stepping (`crate::dem` `moreau` module, docs/dem.md) at steps of `3e-3 T`; `"auto"` takes `"moreau"` for the collapse search of a chain without ties, strips or fill and with no explicit knob set (the rigid stepping holds the exact threshold there, 10 to 24 times faster), `"explicit"` otherwise ([`Integrator::Auto`]) |
+//! | `integrator`            | `"auto"`                    | the time stepping: `"explicit"`, penalty contacts with explicit steps at the stability limit, or `"moreau"`, rigid contacts by Moreau-Jean time stepping (`crate::dem` `moreau` module, docs/dem.md) at steps of `3e-3 T`; `"auto"` takes `"moreau"` for the collapse search of a chain without ties, strips or fill and with none of the explicit stepping's knobs named, even at its default value (the rigid stepping holds the exact threshold there, 10 to 24 times faster), `"explicit"` otherwise ([`Integrator::Auto`]) |
 
 use crate::assembly::Assembly;
 use crate::error::SceneError;
@@ -219,7 +219,23 @@ pub struct IntegrationParameters {
     /// How the blocks are advanced in time. Default [`Integrator::Auto`], which
     /// [`IntegrationParameters::resolved`] turns into one of the other two.
     pub integrator: Integrator,
+    /// Whether a knob only the explicit stepping reads was named (by its setter or its
+    /// `[dem]` key), whatever its value: [`Integrator::Auto`] then takes the explicit
+    /// stepping, also for a value equal to the default (a study that varies the contacts'
+    /// stiffness from its default keeps one stepping on every row). Default false.
+    pub explicit_knobs_named: bool,
 }
+
+/// The `[dem]` keys only the explicit stepping reads: naming any of them (whatever its
+/// value) makes [`Integrator::Auto`] take the explicit stepping.
+const EXPLICIT_KNOBS: &[&str] = &[
+    "normal_stiffness",
+    "shear_stiffness",
+    "contact_damping",
+    "local_damping",
+    "hold_damping",
+    "time_step_factor",
+];
 
 /// What a DEM run is for, which decides [`Integrator::Auto`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -308,6 +324,7 @@ impl IntegrationParameters {
             snapshot_interval: None,
             max_steps: DEFAULT_MAX_STEPS,
             integrator: Integrator::Auto,
+            explicit_knobs_named: false,
         }
     }
 
@@ -329,11 +346,13 @@ impl IntegrationParameters {
     }
 
     /// Whether a knob only the explicit stepping reads (the contacts' stiffness and damping,
-    /// Cundall's damping, the share of the stability limit) differs from its default for
-    /// `model`: set by the scene or the caller, which asks for the explicit stepping.
+    /// Cundall's damping, the share of the stability limit) was named by its setter or its
+    /// `[dem]` key, or differs from its default for `model` (a field written directly): set
+    /// by the scene or the caller, which asks for the explicit stepping.
     fn explicit_knobs_set(&self, model: &Model) -> bool {
         let d = IntegrationParameters::for_model(model);
-        self.normal_stiffness != d.normal_stiffness
+        self.explicit_knobs_named
+            || self.normal_stiffness != d.normal_stiffness
             || self.shear_stiffness != d.shear_stiffness
             || self.contact_damping != d.contact_damping
             || self.local_damping != d.local_damping
@@ -444,6 +463,9 @@ impl IntegrationParameters {
                 })
             }
         }
+        if EXPLICIT_KNOBS.contains(&key) {
+            self.explicit_knobs_named = true;
+        }
         Ok(())
     }
 
@@ -462,26 +484,32 @@ impl IntegrationParameters {
     }
     pub fn normal_stiffness(mut self, k: f64) -> Self {
         self.normal_stiffness = k;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn shear_stiffness(mut self, k: f64) -> Self {
         self.shear_stiffness = k;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn contact_damping(mut self, ratio: f64) -> Self {
         self.contact_damping = ratio;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn local_damping(mut self, alpha: f64) -> Self {
         self.local_damping = alpha;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn hold_damping(mut self, alpha: f64) -> Self {
         self.hold_damping = alpha;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn time_step_factor(mut self, f: f64) -> Self {
         self.time_step_factor = f;
+        self.explicit_knobs_named = true;
         self
     }
     pub fn time_step(mut self, dt: Option<f64>) -> Self {

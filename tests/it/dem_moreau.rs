@@ -17,7 +17,7 @@
 
 use voussoir::dem::dynamic::{self, DynamicSettings};
 use voussoir::dem::record::{Pulse, PulseShape};
-use voussoir::dem::{self as dem, IntegrationParameters, Integrator, Simulation};
+use voussoir::dem::{self as dem, IntegrationParameters, Integrator, Purpose, Simulation};
 use voussoir::geometry::Vec2;
 use voussoir::model::Model;
 
@@ -551,6 +551,30 @@ fn auto_takes_the_rigid_stepping_for_a_chains_collapse_search_only() {
         .with_overrides(&["dem.contact_damping=0.2"])
         .expect("override");
     assert_eq!(chosen(&damped, None), Integrator::Explicit);
+    // A knob named with exactly its default value asks for the explicit stepping too.
+    let named = arch
+        .with_overrides(&["dem.contact_damping=0.3", "dem.time_step_factor=0.9"])
+        .expect("override");
+    let defaults = IntegrationParameters::for_model(&voussoir::scene::build(&arch).expect("model"));
+    assert_eq!(
+        (defaults.contact_damping, defaults.time_step_factor),
+        (0.3, 0.9)
+    );
+    assert_eq!(chosen(&named, None), Integrator::Explicit);
+    let model = voussoir::scene::build(&arch).expect("model");
+    let by_setter = defaults.clone().normal_stiffness(defaults.normal_stiffness);
+    assert_eq!(
+        by_setter
+            .resolved(&model, Purpose::CollapseSearch)
+            .integrator,
+        Integrator::Explicit
+    );
+    assert_eq!(
+        defaults
+            .resolved(&model, Purpose::CollapseSearch)
+            .integrator,
+        Integrator::Moreau
+    );
     let forced = arch
         .with_overrides(&["dem.integrator=explicit"])
         .expect("override");

@@ -96,7 +96,9 @@ pub struct SceneArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Most user blocks ([blocks]) a scene may have; up to 100000 (the cost grows faster than
-    /// the blocks: a 10,050-block wall takes about 24 s of CPU for its static bound)
+    /// the blocks: a 10,050-block wall takes about 24 s of CPU for its static bound; with
+    /// finite friction where joints slip, the non-associative iteration solves some tens of
+    /// such programs: 39 for a 972-block wall with mu = 0.6, 14 s)
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_BLOCKS)]
     pub max_blocks: usize,
 }

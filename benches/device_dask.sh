@@ -4,8 +4,11 @@
 # with map_chunked as it was (each chunk's rows returned as a list) and as it is (one pickle
 # per chunk), the task stream of the 16-worker sweep, and the dynamic route's weak scaling at
 # 16 workers. Needs, in CARRY (default .devcarry): wheels/ (the voussoir wheel and dask,
-# distributed and their pure-Python dependencies, for a machine with no registry),
-# _dask_before.py (python/voussoir/_dask.py before the change) and records5/ (`voussoir
+# distributed and their pure-Python dependencies, for a machine with no registry: `maturin
+# build --release` in python/, and `pip download --no-deps --only-binary=:all:
+# --python-version 3.12 dask distributed tornado tblib zict locket partd` for a Python 3.12
+# machine), _dask_before.py (`git show 499d10a:python/voussoir/_dask.py`, map_chunked before
+# the change) and records5/ (`voussoir
 # records --site ag=0.25 --site soil=B --site F0=2.4 --site Tc_star=0.3 --count 7 --duration
 # 5 --seed 3`). Output: text files in OUT (default the current directory).
 set -uo pipefail

@@ -219,6 +219,10 @@ pub struct DemRow {
     #[serde(flatten)]
     pub case: DemCase,
     pub voussoirs: usize,
+    /// The time stepping that ran (`explicit` or `moreau`: the study names the explicit
+    /// stepping's knobs, so `auto` takes the explicit one; `dem.integrator = "moreau"` in the
+    /// scene forces the rigid one, whose step and contacts these rows' factors do not touch).
+    pub integrator: &'static str,
     pub time_step_s: f64,
     pub normal_stiffness: f64,
     pub lambda_stands: Option<f64>,
@@ -549,6 +553,7 @@ fn dem_row(
         Ok(r) => DemRow {
             case: case.clone(),
             voussoirs: n,
+            integrator: r.params.integrator.name(),
             time_step_s: r.time_step,
             normal_stiffness: params.normal_stiffness,
             lambda_stands: r.lambda_stands,
@@ -569,6 +574,10 @@ fn dem_row(
         Err(e) => DemRow {
             case: case.clone(),
             voussoirs: n,
+            integrator: params
+                .resolved(model, dem::Purpose::CollapseSearch)
+                .integrator
+                .name(),
             time_step_s: 0.0,
             normal_stiffness: params.normal_stiffness,
             lambda_stands: None,

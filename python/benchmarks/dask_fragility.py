@@ -82,8 +82,7 @@ def main():
         durations = [
             ss["stop"] - ss["start"]
             for task in ts.data
-            # map_chunked's chunks run as `_packed` (before: as the run function itself).
-            if str(task.get("key", "")).startswith(("fragility_runs", "_packed"))
+            if str(task.get("key", "")).startswith("fragility_runs")
             for ss in task["startstops"]
             if ss["action"] == "compute"
         ]

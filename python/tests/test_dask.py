@@ -163,3 +163,42 @@ def test_a_refused_sample_is_said_on_the_client_before_any_run_goes_out():
                 scene, samples=20, records=records, stripes=[0.1, 0.6], client=client,
                 progress=False,
             )
+
+
+def failing_run(lo, hi, *, bad):
+    # Runs on a worker process: the numbers lo..hi-1, or an error in the chunk holding `bad`.
+    if lo <= bad < hi:
+        raise ValueError(f"case {bad} refused")
+    return list(range(lo, hi))
+
+
+def test_an_error_on_a_worker_reaches_the_client_and_cancels_the_other_chunks():
+    # Each chunk comes back as one pickle (_packed); an exception raised in a worker process
+    # still reaches the caller as itself, and the chunks still out are cancelled. The tasks
+    # keep the run's name.
+    import time
+
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        out, plan = _dask.map_chunked(
+            client, 30, failing_run, {"bad": -1}, chunk=3, pilot=False, progress=False
+        )
+        assert out == list(range(30))
+        assert (plan.chunk_cases, plan.chunks, plan.pilot_cases) == (3, 10, 0)
+        with distributed.get_task_stream(client) as ts:
+            with pytest.raises(ValueError, match="case 17 refused"):
+                _dask.map_chunked(
+                    client, 300, failing_run, {"bad": 17}, chunk=3, pilot=False, progress=False
+                )
+        deadline = time.monotonic() + 10.0
+        left = None
+        while time.monotonic() < deadline:
+            left = client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks))
+            if left == 0:
+                break
+            time.sleep(0.05)
+        assert left == 0, f"{left} tasks left on the scheduler"
+        # The overhead probe's empty tasks aside, every task is named after the run.
+        keys = {str(t["key"]) for t in ts.data if not str(t["key"]).startswith("_noop")}
+        assert keys and all(k.startswith("failing_run-") for k in keys), keys

@@ -15,7 +15,7 @@ measured here: the first cases run locally, in chunks of 1, 4, 16, ... cases unt
 ``pilot_s`` seconds have passed (one case at least), and are kept as the first rows (no case runs twice). The
 rest is cut into chunks of ``m`` cases (the last one shorter), and each chunk's rows come
 back as soon as it is done, as one pickle (``_packed``: a list returned as it is would be
-serialised element by element and decoded one element at a time by the client); the rows are
+serialised and decoded element by element); the rows are
 returned in case order, so the answer is the local one row for row.
 
 dask is imported only when a client is given: it is no dependency of the package (the
@@ -30,6 +30,7 @@ import pickle
 import statistics
 import sys
 import time
+import uuid
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -131,12 +132,12 @@ def _bar(total: int, desc: str, progress: bool):
 def _packed(lo: int, hi: int, *, _run: Callable[..., List[Any]], **kwargs: Any) -> bytes:
     """``_run(lo, hi, **kwargs)`` on a worker, its list of results returned as one pickle.
 
-    Why: a list returned as it is travels element by element through Dask's serialisation,
-    and the client decodes it in its one communication thread: about 30 us a row for a
-    sweep's rows (dicts of a dozen fields), which made the client the bottleneck of every
-    cluster (a 97,971-case sweep took 6 s on 1 and on 16 workers; docs/performance.md,
-    "Sweeps on Dask"). One pickle is one frame, unpickled on the client in a fraction of
-    that."""
+    Why: a list returned as it is travels element by element through Dask's serialisation
+    (a frame for each row, dumped on the worker and loaded on the client in its one
+    communication thread): about 30 us a row in all for a sweep's rows (dicts of a dozen
+    fields), which bounded every cluster (a 97,971-case sweep took 5.0 s on 1 worker and
+    5.8 s on 16; docs/performance.md, "Sweeps on Dask"). One pickle is one frame, a fraction
+    of that."""
     return pickle.dumps(_run(lo, hi, **kwargs), protocol=pickle.HIGHEST_PROTOCOL)
 
 
@@ -197,10 +198,13 @@ def map_chunked(
         plan = Plan(cases, overhead, case_s, piloted, m, len(bounds))
         parts: Dict[int, List[Any]] = {}
         if bounds:
+            # Each task keeps the run's name (the dashboard's and the task stream's key).
+            name = getattr(run, "__name__", "chunk")
             futures = client.map(
                 _packed,
                 [b[0] for b in bounds],
                 [b[1] for b in bounds],
+                key=[f"{name}-{uuid.uuid4().hex}" for _ in bounds],
                 pure=False,
                 _run=run,
                 **kwargs,

@@ -833,7 +833,8 @@ fn hinge_numbers(
         .iter()
         .map(|h| Rect::around(&[frame.pxf(Vec2::new(h.x, h.y))]).grown(HINGE_RADIUS))
         .collect();
-    let mut taken: Vec<Vec<Px>> = keep_clear.to_vec();
+    // The load marks' boxes are axis-aligned rectangles (their corners): compared as such.
+    let mut taken: Vec<Rect> = keep_clear.iter().map(|b| Rect::around(b)).collect();
     let mut placed = Vec::new();
     let mut left_out = 0;
     for (i, h) in hinges.iter().enumerate() {
@@ -858,15 +859,15 @@ fn hinge_numbers(
             .map(place)
             .find(|&p| {
                 let r = Rect::around(&[p]).grown(half);
-                !taken.iter().any(|o| r.overlaps(o))
+                !taken.iter().any(|o| r.meets(o))
                     && !circles
                         .iter()
                         .enumerate()
-                        .any(|(k, c)| k != i && r.overlaps(&c.corners()))
+                        .any(|(k, c)| k != i && r.meets(c))
             });
         match free {
             Some(p) => {
-                taken.push(Rect::around(&[p]).grown(half).corners());
+                taken.push(Rect::around(&[p]).grown(half));
                 placed.push((i, p));
             }
             None => left_out += 1,
@@ -885,6 +886,7 @@ fn hinge_words(count: usize, joined: bool, unnumbered: usize) -> String {
     };
     match unnumbered {
         0 => format!("hinge ({count}), {order}"),
+        1 if count == 1 => "hinge (1; no room for its number)".to_string(),
         k if k == count => format!("hinge ({count}; no room for their numbers)"),
         k => format!("hinge ({count}), {order} ({k} without room for a number)"),
     }
@@ -1850,6 +1852,10 @@ impl Rect {
             (self.x1, self.y1),
             (self.x0, self.y1),
         ]
+    }
+    /// Whether the two rectangles overlap (touching edges count).
+    fn meets(&self, o: &Rect) -> bool {
+        self.x0 <= o.x1 && o.x0 <= self.x1 && self.y0 <= o.y1 && o.y0 <= self.y1
     }
     /// Whether the rectangle overlaps the convex polygon `poly` (separating axes).
     fn overlaps(&self, poly: &[Px]) -> bool {

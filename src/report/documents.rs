@@ -1256,6 +1256,7 @@ pub fn convergence(c: Convergence) -> Document {
                     Value::Text(r.case.tolerance.to_string()),
                     Value::Text(r.case.time_step_factor.to_string()),
                     Value::Text(r.case.stiffness_factor.to_string()),
+                    Value::text(r.integrator),
                     Value::Scientific {
                         value: r.time_step_s,
                         digits: 2,
@@ -1286,6 +1287,7 @@ pub fn convergence(c: Convergence) -> Document {
                     ("tol", 7),
                     ("dt x", 5),
                     ("k x", 6),
+                    ("stepping", 9),
                     ("dt (s)", 9),
                     ("stands", 9),
                     ("collapses", 9),

@@ -187,6 +187,10 @@ fn dem_study_row() {
     assert!((e - (0.5 * (a + b) - s) / s).abs() < 1e-12);
     assert!(e.abs() < 0.02, "DEM error {e}");
     assert!(r.steps > 0 && r.steps_per_s > 0.0 && r.time_step_s > 0.0);
+    // The study varies the explicit stepping's knobs: its rows run that stepping, also at
+    // the default factors (the rigid stepping's step is about 1e-3 s, the explicit's 1e-5).
+    assert_eq!(r.integrator, "explicit");
+    assert!(r.time_step_s < 1e-4, "dt {}", r.time_step_s);
 }
 
 /// Acceptance: a 1000-voussoir semicircle (t/R = 0.15) through the same library path as

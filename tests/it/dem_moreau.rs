@@ -551,24 +551,55 @@ fn auto_takes_the_rigid_stepping_for_a_chains_collapse_search_only() {
         .with_overrides(&["dem.contact_damping=0.2"])
         .expect("override");
     assert_eq!(chosen(&damped, None), Integrator::Explicit);
-    // A knob named with exactly its default value asks for the explicit stepping too.
-    let named = arch
-        .with_overrides(&["dem.contact_damping=0.3", "dem.time_step_factor=0.9"])
-        .expect("override");
-    let defaults = IntegrationParameters::for_model(&voussoir::scene::build(&arch).expect("model"));
-    assert_eq!(
-        (defaults.contact_damping, defaults.time_step_factor),
-        (0.3, 0.9)
-    );
-    assert_eq!(chosen(&named, None), Integrator::Explicit);
+    // A knob of the explicit stepping named with exactly its default value asks for that
+    // stepping too, by a scene key or by its setter, each one alone; a knob both steppings
+    // read, named at its default, leaves the choice to the rule.
     let model = voussoir::scene::build(&arch).expect("model");
-    let by_setter = defaults.clone().normal_stiffness(defaults.normal_stiffness);
-    assert_eq!(
-        by_setter
-            .resolved(&model, Purpose::CollapseSearch)
-            .integrator,
-        Integrator::Explicit
-    );
+    let defaults = IntegrationParameters::for_model(&model);
+    let explicit_knobs: [(&str, f64); 6] = [
+        ("normal_stiffness", defaults.normal_stiffness),
+        ("shear_stiffness", defaults.shear_stiffness),
+        ("contact_damping", defaults.contact_damping),
+        ("local_damping", defaults.local_damping),
+        ("hold_damping", defaults.hold_damping),
+        ("time_step_factor", defaults.time_step_factor),
+    ];
+    for (key, value) in explicit_knobs {
+        let named = arch
+            .with_overrides(&[format!("dem.{key}={value:?}").as_str()])
+            .expect("override");
+        assert_eq!(chosen(&named, None), Integrator::Explicit, "dem.{key}");
+    }
+    let setters: [fn(IntegrationParameters, f64) -> IntegrationParameters; 6] = [
+        IntegrationParameters::normal_stiffness,
+        IntegrationParameters::shear_stiffness,
+        IntegrationParameters::contact_damping,
+        IntegrationParameters::local_damping,
+        IntegrationParameters::hold_damping,
+        IntegrationParameters::time_step_factor,
+    ];
+    for (set, (key, value)) in setters.iter().zip(explicit_knobs) {
+        let p = set(defaults.clone(), value);
+        assert_eq!(
+            p,
+            IntegrationParameters {
+                explicit_knobs_named: true,
+                ..defaults.clone()
+            }
+        );
+        assert_eq!(
+            p.resolved(&model, Purpose::CollapseSearch).integrator,
+            Integrator::Explicit,
+            "setter of {key}"
+        );
+    }
+    let shared = arch
+        .with_overrides(&[
+            format!("dem.gravity={:?}", defaults.gravity).as_str(),
+            format!("dem.max_time={:?}", defaults.max_time).as_str(),
+        ])
+        .expect("override");
+    assert_eq!(chosen(&shared, None), Integrator::Moreau);
     assert_eq!(
         defaults
             .resolved(&model, Purpose::CollapseSearch)

@@ -1174,7 +1174,8 @@ fn crowded_hinges_keep_their_numbers_apart() {
             }
         }
         for &(l, q) in &numbers[i + 1..] {
-            assert!(apart(p, q, 2.0 * half), "numbers {k} and {l} overlap");
+            // Positions are printed to a tenth of a pixel.
+            assert!(apart(p, q, 2.0 * half - 0.1), "numbers {k} and {l} overlap");
         }
     }
     let t = texts(&doc);

@@ -74,15 +74,20 @@ pub fn analysis(scene: &Scene, a: &SceneAnalysis) -> Document {
                             what_moves(assembly, joints),
                             family_words(m.family)
                         ));
-                        sec.items(hinge_items(assembly, &m.hinges));
+                        let mut items = hinge_items(assembly, &m.hinges);
                         let what = m.open.iter().map(|j| (j, "opens completely"));
                         for (j, does) in what.chain(m.sliding.iter().map(|j| (j, "slides"))) {
                             let label = assembly
                                 .joints
                                 .get(*j)
                                 .map_or("joint".to_string(), |joint| joint_label(joint.kind));
-                            sec.item(format!("joint {j:>4} ({label}), {does}"));
+                            items.push(format!("joint {j:>4} ({label}), {does}"));
                         }
+                        listed(
+                            sec,
+                            items,
+                            "`mechanism_hinges`, `open_joints` and `mechanism_sliding`",
+                        );
                     }
                 }
                 (Status::NoCollapse, _) => {
@@ -350,16 +355,17 @@ fn static_section(doc: &mut Document, model: &Model, r: &StaticResult) {
                 sec.line(words);
             }
             sec.line("hinges of the thrust line:");
-            sec.items(hinge_items(assembly, &r.hinges));
+            listed(sec, hinge_items(assembly, &r.hinges), "`hinges`");
             if !r.sliding.is_empty() {
-                let list: Vec<String> = r.sliding.iter().map(|j| j.to_string()).collect();
-                sec.line(format!("sliding joints (|V| = mu N): {}", list.join(", ")));
+                sec.line(format!(
+                    "sliding joints (|V| = mu N): {}",
+                    joint_list(&r.sliding, "sliding")
+                ));
             }
             if !friction.slipping.is_empty() {
-                let list: Vec<String> = friction.slipping.iter().map(|j| j.to_string()).collect();
                 sec.line(format!(
                     "joints that slip in the collapse mechanism: {}",
-                    list.join(", ")
+                    joint_list(&friction.slipping, "slipping_joints")
                 ));
             }
             if !r.ties.is_empty() {
@@ -1306,4 +1312,45 @@ pub fn convergence(c: Convergence) -> Document {
         });
     }
     doc.with_data(Data::Convergence(Box::new(c)))
+}
+
+/// How many items (hinges, joints) a summary lists one by one under a line: beyond it the
+/// first ones are listed and one more item says how many there are and that the JSON lists
+/// them all (a wall's or an arcade's hundreds of hinges would bury the answer; a chain has a
+/// handful).
+const LISTED_ITEMS: usize = 24;
+
+/// `items` as a list under the section's last line, cut after [`LISTED_ITEMS`] with an item
+/// that counts them and names the JSON fields (`json`) that hold them all.
+fn listed(sec: &mut Section, items: Vec<String>, json: &str) {
+    let all = items.len();
+    sec.items(items.into_iter().take(LISTED_ITEMS));
+    if all > LISTED_ITEMS {
+        sec.item(format!(
+            "... and {} more ({all} in all; every one in the JSON's {json})",
+            all - LISTED_ITEMS
+        ));
+    }
+}
+
+/// How many joint numbers a summary's line of sliding or slipping joints shows.
+const LISTED_JOINTS: usize = 40;
+
+/// The joints `joints` as a comma-separated list, cut after [`LISTED_JOINTS`] with the count
+/// and the JSON field (`json_key`) that holds them all.
+fn joint_list(joints: &[usize], json_key: &str) -> String {
+    let shown: Vec<String> = joints
+        .iter()
+        .take(LISTED_JOINTS)
+        .map(|j| j.to_string())
+        .collect();
+    if joints.len() <= LISTED_JOINTS {
+        shown.join(", ")
+    } else {
+        format!(
+            "{}, ... ({} in all; every one in the JSON's `{json_key}`)",
+            shown.join(", "),
+            joints.len()
+        )
+    }
 }

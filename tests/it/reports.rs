@@ -419,3 +419,71 @@ fn statuses_are_words_in_the_summary() {
     );
     assert_eq!(report::status_words(Status::NoCollapse), "no collapse");
 }
+
+/// A summary lists at most 24 hinges (or mechanism joints) under a line, then says how many
+/// there are and where the JSON lists them all; long joint lists are cut after 40 numbers
+/// with their count. The bundled arcade (over a hundred hinges, hundreds of mechanism
+/// joints) and a chain (four hinges, listed whole).
+#[test]
+fn long_hinge_and_joint_lists_are_cut_with_their_count() {
+    let text = summary(&["analyze"], "arcade.toml");
+    let json_out = voussoir()
+        .args(["analyze", "--json"])
+        .arg(data("arcade.toml"))
+        .assert()
+        .success();
+    let json: serde_json::Value =
+        serde_json::from_slice(&json_out.get_output().stdout).expect("JSON");
+    let count = |key: &str| json[key].as_array().map_or(0, Vec::len);
+    let hinges = count("hinges");
+    assert!(hinges > 24, "{hinges} hinges");
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.trim() == "hinges of the thrust line:")
+        .expect("hinge heading");
+    let items = lines[at + 1..]
+        .iter()
+        .take_while(|l| l.trim_start().starts_with("joint "))
+        .count();
+    assert_eq!(items, 24);
+    assert_eq!(
+        lines[at + 25].trim(),
+        format!(
+            "... and {} more ({hinges} in all; every one in the JSON's `hinges`)",
+            hinges - 24
+        )
+    );
+    let mechanism = count("mechanism_hinges") + count("open_joints") + count("mechanism_sliding");
+    assert!(
+        text.contains(&format!(
+            "... and {} more ({mechanism} in all; every one in the JSON's `mechanism_hinges`, `open_joints` and `mechanism_sliding`)",
+            mechanism - 24
+        )),
+        "{text}"
+    );
+
+    let chain = summary(&["analyze"], "portal.toml");
+    assert!(!chain.contains("more ("), "{chain}");
+    let (_, first) = line_after(&chain, "hinges of the thrust line:");
+    assert!(first.trim_start().starts_with("joint "), "{first}");
+
+    // Joint lists: the arcade with friction 0.4 slides at hundreds of joints.
+    let slid = summary(
+        &["analyze", "--set", "material.friction=0.4"],
+        "arcade.toml",
+    );
+    let (line, _) = line_after(&slid, "sliding joints (|V| = mu N):");
+    let shown = line
+        .split(": ")
+        .nth(1)
+        .expect("list")
+        .split(", ")
+        .take_while(|s| s.parse::<usize>().is_ok())
+        .count();
+    assert_eq!(shown, 40, "{line}");
+    assert!(
+        line.contains("in all; every one in the JSON's `sliding`)"),
+        "{line}"
+    );
+}

@@ -255,10 +255,9 @@ fn friction_section(doc: &mut Document, a: &SceneAnalysis) {
         let sec = doc.section(head);
         sec.line(super::words::non_associative_words(na));
         if !na.sliding.is_empty() {
-            let list: Vec<String> = na.sliding.iter().map(|j| j.to_string()).collect();
             sec.line(format!(
                 "joints that slide in its mechanism: {}",
-                list.join(", ")
+                joint_list(&na.sliding, "non_associative_sliding_joints")
             ));
         }
         sec.items(na.starts.iter().map(|s| {

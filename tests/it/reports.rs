@@ -486,4 +486,9 @@ fn long_hinge_and_joint_lists_are_cut_with_their_count() {
         line.contains("in all; every one in the JSON's `sliding`)"),
         "{line}"
     );
+    let (line, _) = line_after(&slid, "joints that slide in its mechanism:");
+    assert!(
+        line.contains("in all; every one in the JSON's `non_associative_sliding_joints`)"),
+        "{line}"
+    );
 }

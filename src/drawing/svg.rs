@@ -877,12 +877,12 @@ fn hinge_numbers(
 }
 
 /// The legend's words for `count` hinges: numbered along the chain (`joined`) or in the
-/// summary's order, and how many numbers found no room.
+/// order the summary and the JSON list them, and how many numbers found no room.
 fn hinge_words(count: usize, joined: bool, unnumbered: usize) -> String {
     let order = if joined {
         "numbered along the chain"
     } else {
-        "numbered in the summary's order"
+        "numbered as the summary and the JSON list them"
     };
     match unnumbered {
         0 => format!("hinge ({count}), {order}"),

@@ -450,14 +450,15 @@ fn long_hinge_and_joint_lists_are_cut_with_their_count() {
     assert_eq!(
         lines[at + 25].trim(),
         format!(
-            "... and {} more ({hinges} in all; every one in the JSON's `hinges`)",
+            "... and {} more ({hinges} in all; every one in `analyze --json`'s `hinges`)",
             hinges - 24
         )
     );
     let mechanism = count("mechanism_hinges") + count("open_joints") + count("mechanism_sliding");
+    assert!(mechanism > 25, "{mechanism} mechanism joints");
     assert!(
         text.contains(&format!(
-            "... and {} more ({mechanism} in all; every one in the JSON's `mechanism_hinges`, `open_joints` and `mechanism_sliding`)",
+            "... and {} more ({mechanism} in all; every one in `analyze --json`'s `mechanism_hinges`, `open_joints` and `mechanism_sliding`)",
             mechanism - 24
         )),
         "{text}"
@@ -468,27 +469,43 @@ fn long_hinge_and_joint_lists_are_cut_with_their_count() {
     let (_, first) = line_after(&chain, "hinges of the thrust line:");
     assert!(first.trim_start().starts_with("joint "), "{first}");
 
-    // Joint lists: the arcade with friction 0.4 slides at hundreds of joints.
-    let slid = summary(
-        &["analyze", "--set", "material.friction=0.4"],
-        "arcade.toml",
-    );
-    let (line, _) = line_after(&slid, "sliding joints (|V| = mu N):");
-    let shown = line
-        .split(": ")
-        .nth(1)
-        .expect("list")
-        .split(", ")
-        .take_while(|s| s.parse::<usize>().is_ok())
-        .count();
-    assert_eq!(shown, 40, "{line}");
-    assert!(
-        line.contains("in all; every one in the JSON's `sliding`)"),
-        "{line}"
-    );
-    let (line, _) = line_after(&slid, "joints that slide in its mechanism:");
-    assert!(
-        line.contains("in all; every one in the JSON's `non_associative_sliding_joints`)"),
-        "{line}"
-    );
+    // Joint lists: the arcade with friction 0.4 slides at hundreds of joints; each line shows
+    // 40 numbers and the count of the JSON's list.
+    let args = ["analyze", "--set", "material.friction=0.4"];
+    let slid = summary(&args, "arcade.toml");
+    let out = voussoir()
+        .args(args)
+        .arg("--json")
+        .arg(data("arcade.toml"))
+        .assert()
+        .success();
+    let json: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).expect("JSON");
+    for (head, key) in [
+        ("sliding joints (|V| = mu N):", "sliding"),
+        (
+            "joints that slip in the collapse mechanism:",
+            "slipping_joints",
+        ),
+        (
+            "joints that slide in its mechanism:",
+            "non_associative_sliding_joints",
+        ),
+    ] {
+        let all = json[key].as_array().map_or(0, Vec::len);
+        assert!(all > 41, "{key}: {all}");
+        let (line, _) = line_after(&slid, head);
+        let shown = line
+            .split(": ")
+            .nth(1)
+            .expect("list")
+            .split(", ")
+            .take_while(|s| s.parse::<usize>().is_ok())
+            .count();
+        assert_eq!(shown, 40, "{line}");
+        let tail = format!(
+            "and {} more ({all} in all; every one in `analyze --json`'s `{key}`)",
+            all - 40
+        );
+        assert!(line.ends_with(&tail), "{line}");
+    }
 }

@@ -1122,7 +1122,7 @@ fn a_tie_of_no_capacity_is_drawn_as_none() {
 
 /// On the arcade of `data/arcade.toml` (118 hinges) no hinge number covers another number or
 /// another hinge's circle: a number with no free place beside its circle is left out, and
-/// the legend counts those. Each number drawn is its hinge's place in the summary's order,
+/// the legend counts those. Each number drawn is its hinge's place in the summary's and the JSON's order,
 /// 17 px from its own circle.
 #[test]
 fn crowded_hinges_keep_their_numbers_apart() {
@@ -1180,7 +1180,7 @@ fn crowded_hinges_keep_their_numbers_apart() {
     }
     let t = texts(&doc);
     let want = format!(
-        "hinge ({}), numbered in the summary's order ({left_out} without room for a number)",
+        "hinge ({}), numbered as the summary and the JSON list them ({left_out} without room for a number)",
         r.hinges.len()
     );
     assert!(t.contains(&want), "legend lacks {want}: {t:?}");

@@ -546,6 +546,11 @@ fn dem_row(
         .normal_stiffness(base.normal_stiffness * case.stiffness_factor)
         .shear_stiffness(base.shear_stiffness * case.stiffness_factor)
         .initial_guess(Some(start));
+    // The stepping `auto` takes for this search (the one `collapse_multiplier` runs).
+    let integrator = params
+        .resolved(model, dem::Purpose::CollapseSearch)
+        .integrator
+        .name();
     let clock = Instant::now();
     let r = dem::collapse_multiplier(model, &params, case.tolerance, &mut |_| {});
     let time_s = clock.elapsed().as_secs_f64();
@@ -553,7 +558,7 @@ fn dem_row(
         Ok(r) => DemRow {
             case: case.clone(),
             voussoirs: n,
-            integrator: r.params.integrator.name(),
+            integrator,
             time_step_s: r.time_step,
             normal_stiffness: params.normal_stiffness,
             lambda_stands: r.lambda_stands,
@@ -574,10 +579,7 @@ fn dem_row(
         Err(e) => DemRow {
             case: case.clone(),
             voussoirs: n,
-            integrator: params
-                .resolved(model, dem::Purpose::CollapseSearch)
-                .integrator
-                .name(),
+            integrator,
             time_step_s: 0.0,
             normal_stiffness: params.normal_stiffness,
             lambda_stands: None,

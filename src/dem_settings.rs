@@ -52,11 +52,11 @@ pub enum Integrator {
     /// The default: [`Integrator::Moreau`] for the collapse search of a chain (an arch, a
     /// portal of voussoirs between two supports) without ties, strips or passive fill and with
     /// none of the explicit stepping's own knobs named (even at its default value), where the
-    /// rigid stepping brackets the
-    /// exact threshold 10 to 30 times faster (docs/dem.md); [`Integrator::Explicit`] for
-    /// everything else: other assemblies (walls, where the two differ and the rigid contact
-    /// solve may not settle), records and pulses (where the two differ near collapse), and
-    /// the direct [`crate::dem::Simulation`]. [`IntegrationParameters::resolved`] decides.
+    /// rigid stepping brackets the exact threshold 10 to 30 times faster (docs/dem.md);
+    /// [`Integrator::Explicit`] for everything else: other assemblies (walls, where the two
+    /// differ and the rigid contact solve may not settle), records and pulses (where the two
+    /// differ near collapse), and the direct [`crate::dem::Simulation`].
+    /// [`IntegrationParameters::resolved`] decides.
     #[default]
     Auto,
     /// Penalty springs and dashpots at the contacts, symplectic Euler at a step under the

@@ -16,6 +16,7 @@ load average of the machine (other jobs share it).
 import os
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 # One core per worker process and for the local sweep: the speed-up is then the workers'.
@@ -36,30 +37,47 @@ def best_of(n, f):
     return min(times), out
 
 
-def main():
+def study(step):
+    """The benchmark's sweep: the scene, the varied keys (thickness step `step`, a string)
+    and the options of ``_dask.sweep``."""
+    scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
+    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": f"0.08:0.2:{step}"}
+    options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
+    return scene, vary, options
+
+
+def strip(rows):
+    """The rows without their wall times, to compare two sweeps."""
+    return [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
+
+
+@contextmanager
+def warm_cluster(workers):
+    """A client of a ``LocalCluster`` of `workers` one-thread worker processes that have
+    imported voussoir (outside any timing)."""
     from distributed import Client, LocalCluster
 
+    with LocalCluster(
+        n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, Client(cluster) as client:
+        client.run(lambda: __import__("voussoir") and None)
+        yield client
+
+
+def main():
     arg = sys.argv[1] if len(sys.argv) > 1 else str(os.cpu_count() or 1)
     if "," in arg:
         worker_counts = [int(x) for x in arg.split(",") if x]
     else:
         worker_counts = list(range(1, int(arg) + 1))
-    scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
-    step = sys.argv[2] if len(sys.argv) > 2 else "0.0002"
+    scene, vary, options = study(sys.argv[2] if len(sys.argv) > 2 else "0.0002")
     reps = int(os.environ.get("REPS", "3"))
-    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": f"0.08:0.2:{step}"}
-    options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
     local_s, local = best_of(reps, lambda: voussoir.sweep(scene, vary))
-    strip = lambda rows: [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
     print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
     print(f"local sweep, one core: {len(local)} cases in {local_s:.2f} s (best of {reps})")
     for workers in worker_counts:
-        with LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-        ) as cluster, Client(cluster) as client:
+        with warm_cluster(workers) as client:
             run = lambda: _dask.sweep(client, scene, vary, options, progress=False)
-            # Warm the workers (import voussoir) outside the timing.
-            client.run(lambda: __import__("voussoir") and None)
             t, (rows, plan) = best_of(reps, run)
         assert strip(rows) == strip(local)
         print(

@@ -12,14 +12,14 @@ import os
 import statistics
 import sys
 import time
-from pathlib import Path
 
 os.environ["RAYON_NUM_THREADS"] = "1"
 
 import voussoir  # noqa: E402
 from voussoir import _dask  # noqa: E402
 
-REPO = Path(__file__).resolve().parents[2]
+# The same sweep, comparison and warmed cluster as the scaling benchmark beside this file.
+from dask_scaling import strip, study, warm_cluster  # noqa: E402
 
 
 def summary(name, xs):
@@ -85,31 +85,18 @@ def probe(client, scene, vary, options, workers):
     return rows
 
 
-def strip(rows):
-    return [{k: v for k, v in r.items() if k != "solve_time_s"} for r in rows]
-
-
 def main():
-    from distributed import Client, LocalCluster
-
     counts = [int(x) for x in (sys.argv[1] if len(sys.argv) > 1 else "1,2").split(",")]
-    step = sys.argv[2] if len(sys.argv) > 2 else "0.0002"
-    scene = voussoir.Scene.from_toml(str(REPO / "data" / "pointed.toml"))
-    vary = {"arch.eccentricity": "0:0.2:0.004", "arch.thickness": f"0.08:0.2:{step}"}
-    options = (False, False, "certified", voussoir.KINEMATIC_DEFAULT_MAX_JOINTS)
+    scene, vary, options = study(sys.argv[2] if len(sys.argv) > 2 else "0.0002")
     t0 = time.perf_counter()
     local = voussoir.sweep(scene, vary)
     print(f"cores {os.cpu_count()}, load {os.getloadavg()}")
     print(f"local sweep, one core: {len(local)} rows in {time.perf_counter() - t0:.2f} s")
     for w in counts:
-        with LocalCluster(
-            n_workers=w, threads_per_worker=1, processes=True, dashboard_address=None
-        ) as cluster, Client(cluster) as client:
-            client.run(lambda: __import__("voussoir") and None)
+        with warm_cluster(w) as client:
             for rep in range(2):
                 rows = probe(client, scene, vary, options, w)
                 assert strip(rows) == strip(local), "the cluster's rows differ from the local ones"
-
         sys.stdout.flush()
 
 

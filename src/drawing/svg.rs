@@ -331,10 +331,8 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
     // The loads' marks and the hinges' numbers are placed before the legend, which counts
     // the numbers left out.
     let marks_svg = marks.as_ref().map(|mk| marks_svg(mk, scale, &frame));
-    let load_boxes: Vec<Vec<Px>> = marks_svg
-        .as_ref()
-        .map_or_else(Vec::new, |m| m.boxes.clone());
-    let (numbers, unnumbered) = hinge_numbers(assembly, drawing.hinges, &frame, &load_boxes);
+    let load_boxes: &[Rect] = marks_svg.as_ref().map_or(&[], |m| &m.boxes);
+    let (numbers, unnumbered) = hinge_numbers(assembly, drawing.hinges, &frame, load_boxes);
 
     let mut legend = Vec::new();
     let blocks_label = if drawing.moved.is_some() {
@@ -578,12 +576,11 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             d.trim_end()
         );
         for line in chain(&segs) {
-            let pts: Vec<String> = line.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
             text.push_str(&format!(
                 "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" \
                  stroke-dasharray=\"{DASH}\" stroke-linejoin=\"round\" points=\"{}\"/>\n",
                 hex(MECHANISM),
-                pts.join(" ")
+                points_attr(line)
             ));
         }
         svg.raw("mechanism", &text);
@@ -651,7 +648,7 @@ pub fn structure_svg(assembly: &Assembly, drawing: &Drawing) -> Result<String, S
             svg.raw("point-loads", &marks.points);
         }
     }
-    obstacles.extend(load_boxes.iter().cloned());
+    obstacles.extend(load_boxes.iter().map(Rect::corners));
     if !drawing.hinges.is_empty() {
         svg.layer("hinges", |root| {
             for h in drawing.hinges {
@@ -754,27 +751,19 @@ fn factor_words(a: f64) -> String {
 struct MarksSvg {
     lines: String,
     points: String,
-    boxes: Vec<Vec<Px>>,
+    boxes: Vec<Rect>,
 }
 
 fn marks_svg(mk: &LoadMarks, scale: f64, frame: &Frame) -> MarksSvg {
-    let mut load_boxes: Vec<Vec<Px>> = Vec::new();
+    let mut load_boxes: Vec<Rect> = Vec::new();
     let labels = mk.labels(scale);
     let mut text = String::new();
     for (line, label) in mk.lines.iter().zip(&labels[mk.points.len()..]) {
-        let tails: Vec<String> = line
-            .tails
-            .iter()
-            .map(|p| {
-                let (x, y) = frame.pxf(*p);
-                format!("{x:.1},{y:.1}")
-            })
-            .collect();
         text.push_str(&format!(
             "<g class=\"line-load\">\n<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" \
              stroke-linejoin=\"round\" points=\"{}\"/>\n",
             hex(LOAD),
-            tails.join(" ")
+            points_attr(line.tails.iter().map(|p| frame.pxf(*p)))
         ));
         for (tail, tip) in &line.arrows {
             text.push_str(&arrow_svg(
@@ -789,13 +778,9 @@ fn marks_svg(mk: &LoadMarks, scale: f64, frame: &Frame) -> MarksSvg {
         text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
         text.push_str("</g>\n");
         for (tail, tip) in &line.arrows {
-            load_boxes.push(
-                Rect::around(&[frame.pxf(*tip), frame.pxf(*tail)])
-                    .grown(4.0)
-                    .corners(),
-            );
+            load_boxes.push(Rect::around(&[frame.pxf(*tip), frame.pxf(*tail)]).grown(4.0));
         }
-        load_boxes.push(label.rect(frame).corners());
+        load_boxes.push(label.rect(frame));
     }
     let lines = text;
     let mut text = String::new();
@@ -806,8 +791,8 @@ fn marks_svg(mk: &LoadMarks, scale: f64, frame: &Frame) -> MarksSvg {
         let (x, y) = frame.pxf(label.centre);
         text.push_str(&text_svg(x, y, LOAD_FONT, "middle", LOAD, &label.text));
         text.push_str("</g>\n");
-        load_boxes.push(Rect::around(&[tail, tip]).grown(7.0).corners());
-        load_boxes.push(label.rect(frame).corners());
+        load_boxes.push(Rect::around(&[tail, tip]).grown(7.0));
+        load_boxes.push(label.rect(frame));
     }
     MarksSvg {
         lines,
@@ -826,15 +811,14 @@ fn hinge_numbers(
     assembly: &Assembly,
     hinges: &[Hinge],
     frame: &Frame,
-    keep_clear: &[Vec<Px>],
+    keep_clear: &[Rect],
 ) -> (Vec<(usize, Px)>, usize) {
     let half = 0.5 * HINGE_FONT + 1.0;
     let circles: Vec<Rect> = hinges
         .iter()
         .map(|h| Rect::around(&[frame.pxf(Vec2::new(h.x, h.y))]).grown(HINGE_RADIUS))
         .collect();
-    // The load marks' boxes are axis-aligned rectangles (their corners): compared as such.
-    let mut taken: Vec<Rect> = keep_clear.iter().map(|b| Rect::around(b)).collect();
+    let mut taken: Vec<Rect> = keep_clear.to_vec();
     let mut placed = Vec::new();
     let mut left_out = 0;
     for (i, h) in hinges.iter().enumerate() {
@@ -1531,14 +1515,7 @@ fn fixed_svg(outlines: &[Vec<Vec2>], frame: &Frame) -> String {
          y2=\"7\" stroke=\"{edge}\" stroke-width=\"0.8\"/></pattern></defs>\n"
     );
     for o in outlines {
-        let pts: Vec<String> = o
-            .iter()
-            .map(|p| {
-                let (x, y) = frame.pxf(*p);
-                format!("{x:.1},{y:.1}")
-            })
-            .collect();
-        let pts = pts.join(" ");
+        let pts = points_attr(o.iter().map(|p| frame.pxf(*p)));
         out.push_str(&format!(
             "<polygon class=\"fixed-block\" fill=\"{fill}\" stroke=\"none\" points=\"{pts}\"/>\n\
              <polygon fill=\"url(#fixed-hatch)\" stroke=\"{edge}\" stroke-width=\"1.5\" \
@@ -1558,13 +1535,7 @@ fn fill_svg(regions: &[Vec<Vec2>], frame: &Frame, size: f64) -> String {
     );
     let mut d = String::new();
     for r in regions {
-        let pts: Vec<String> = r
-            .iter()
-            .map(|p| {
-                let (x, y) = frame.pxf(*p);
-                format!("{x:.1},{y:.1}")
-            })
-            .collect();
+        let pts: Vec<String> = r.iter().map(|p| px_text(frame.pxf(*p))).collect();
         // A stroke of the fill colour closes the hairline seams between regions.
         out.push_str(&format!(
             "<polygon class=\"fill-region\" fill=\"{fill}\" stroke=\"{fill}\" \
@@ -1605,11 +1576,10 @@ fn fill_svg(regions: &[Vec<Vec2>], frame: &Frame, size: f64) -> String {
         .map(|(a, b)| (frame.pxf(*a), frame.pxf(*b)))
         .collect();
     for line in chain(&outline) {
-        let pts: Vec<String> = line.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
         out.push_str(&format!(
             "<polyline class=\"fill-outline\" fill=\"none\" stroke=\"{edge}\" \
              stroke-width=\"1.2\" points=\"{}\"/>\n",
-            pts.join(" ")
+            points_attr(line)
         ));
     }
     out
@@ -1681,14 +1651,10 @@ fn strips_svg(assembly: &Assembly, drawing: &Drawing, frame: &Frame) -> String {
             .filter(|s| s.source == k)
             .all(|s| s.capacity <= 0.0);
         let stroke = element_stroke(none, 4.0);
-        let line: Vec<String> = pts
-            .iter()
-            .map(|(_, (x, y))| format!("{x:.1},{y:.1}"))
-            .collect();
         text.push_str(&format!(
             "<polyline fill=\"none\" stroke=\"{}\" {stroke} stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"{}\"/>\n",
             hex(STRIP),
-            line.join(" ")
+            points_attr(pts.iter().map(|(_, p)| *p))
         ));
     }
     for (s, f) in drawing.strips.iter().zip(drawing.strip_forces) {
@@ -2064,6 +2030,16 @@ fn closed<T: Copy>(mut pts: Vec<T>) -> Vec<T> {
 
 /// A point in pixels.
 type Px = (f64, f64);
+
+/// A pixel point as SVG writes it (to a tenth of a pixel).
+fn px_text((x, y): Px) -> String {
+    format!("{x:.1},{y:.1}")
+}
+
+/// The `points` attribute of a polyline or polygon through the pixel points `pts`.
+fn points_attr(pts: impl IntoIterator<Item = Px>) -> String {
+    pts.into_iter().map(px_text).collect::<Vec<_>>().join(" ")
+}
 
 /// World (m) to pixels, one scale for both axes.
 struct Frame {

@@ -1319,48 +1319,52 @@ pub fn convergence(c: Convergence) -> Document {
 /// handful).
 const LISTED_ITEMS: usize = 24;
 
-/// `items` as a list under the section's last line, cut after [`LISTED_ITEMS`] (when that
-/// hides more than one) with an item that counts them and names the fields of `analyze
-/// --json` (`json`) that hold them all (the report's JSON nests that object under
-/// `analysis`).
-fn listed(sec: &mut Section, items: Vec<String>, json: &str) {
-    let all = items.len();
-    // Cut only where it hides more than one item (a line to hide one would be no shorter).
-    if all <= LISTED_ITEMS + 1 {
-        sec.items(items);
-        return;
-    }
-    sec.items(items.into_iter().take(LISTED_ITEMS));
-    sec.item(format!(
-        "... and {} more ({all} in all; every one in `analyze --json`'s {json})",
-        all - LISTED_ITEMS
-    ));
-}
-
 /// How many joint numbers a summary's line of sliding or slipping joints shows.
 const LISTED_JOINTS: usize = 40;
 
-/// The joints `joints` as a comma-separated list, cut after [`LISTED_JOINTS`] (when that
-/// hides more than one) with the count and the field of `analyze --json` (`json_key`) that
-/// holds them all (the report's JSON nests that object under `analysis`).
-fn joint_list(joints: &[usize], json_key: &str) -> String {
-    let shown: Vec<String> = joints
-        .iter()
-        .take(LISTED_JOINTS)
-        .map(|j| j.to_string())
-        .collect();
-    if joints.len() <= LISTED_JOINTS + 1 {
-        joints
-            .iter()
-            .map(|j| j.to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
+/// How many of `all` things a list that shows at most `most` shows: all of them, unless that
+/// hides more than one (a line to hide one would be no shorter).
+fn shown(all: usize, most: usize) -> usize {
+    if all > most + 1 {
+        most
     } else {
+        all
+    }
+}
+
+/// What the cut of a list of `all` things after `shown` says: how many more there are, and
+/// the fields of `analyze --json` (`json`) that hold them all (the report's JSON nests that
+/// object under `analysis`).
+fn more(all: usize, shown: usize, json: &str) -> String {
+    format!(
+        "and {} more ({all} in all; every one in `analyze --json`'s {json})",
+        all - shown
+    )
+}
+
+/// `items` as a list under the section's last line, cut after [`LISTED_ITEMS`] with an item
+/// that counts them and names the JSON fields (`json`) that hold them all.
+fn listed(sec: &mut Section, items: Vec<String>, json: &str) {
+    let all = items.len();
+    let n = shown(all, LISTED_ITEMS);
+    sec.items(items.into_iter().take(n));
+    if n < all {
+        sec.item(format!("... {}", more(all, n, json)));
+    }
+}
+
+/// The joints `joints` as a comma-separated list, cut after [`LISTED_JOINTS`] with the count
+/// and the JSON field (`json_key`) that holds them all.
+fn joint_list(joints: &[usize], json_key: &str) -> String {
+    let n = shown(joints.len(), LISTED_JOINTS);
+    let list: Vec<String> = joints[..n].iter().map(|j| j.to_string()).collect();
+    let list = list.join(", ");
+    if n < joints.len() {
         format!(
-            "{}, and {} more ({} in all; every one in `analyze --json`'s `{json_key}`)",
-            shown.join(", "),
-            joints.len() - LISTED_JOINTS,
-            joints.len()
+            "{list}, {}",
+            more(joints.len(), n, &format!("`{json_key}`"))
         )
+    } else {
+        list
     }
 }
